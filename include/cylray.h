@@ -1,0 +1,190 @@
+/* cylray.h - SIMD ray/cylinder intersection kernels: the whole public API. */
+#ifndef CYLRAY_H
+#define CYLRAY_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define CYLRAY_VERSION_MAJOR 0
+#define CYLRAY_VERSION_MINOR 1
+#define CYLRAY_VERSION_PATCH 0
+
+#if defined(_MSC_VER)
+#define CYLRAY_ALIGN(n) __declspec(align(n))
+#else
+#define CYLRAY_ALIGN(n) __attribute__((aligned(n)))
+#endif
+
+/* ---- status ------------------------------------------------------------ */
+
+typedef enum cylray_status {
+    CYLRAY_OK = 0,
+    CYLRAY_EINVAL = 1     /* a cylinder that describes no valid solid */
+} cylray_status;
+
+const char *cylray_strerror(cylray_status s);
+
+/* ---- cylinders ----------------------------------------------------------- */
+
+/* cylray_cylinder.flags */
+#define CYLRAY_CAPPED 0x1u /* the end discs are part of the surface: a closed solid */
+
+typedef struct cylray_cylinder {
+    float center[3];    /* a point on the axis, halfway between the ends */
+    float axis[3];      /* direction of the axis; any nonzero length, taken as exact */
+    float radius;       /* > 0 */
+    float half_height;  /* > 0; INFINITY for an infinite cylinder */
+    unsigned flags;     /* CYLRAY_CAPPED or 0 */
+} cylray_cylinder;
+
+/* What cylray_prepare derives once per cylinder; read-only for the kernels. The
+ * fields are not part of the API. 64-byte aligned so that broadcasts never split a
+ * cache line. */
+typedef struct CYLRAY_ALIGN(64) cylray_prepared {
+    float c[3];        /* center */
+    float v[3];        /* axis scaled by an exact power of two */
+    float n[3];        /* unit axis, for the cap normals */
+    float inv_vv;      /* 1 / (v.v) */
+    float rr_vv;       /* R^2 (v.v) */
+    float sqrt_vv;     /* |v| */
+    float h_v;         /* H |v|; INFINITY when infinite */
+    float nscale;      /* 1 / (R v.v): scales v x (p x v) to a unit normal */
+    float radius, half_height;
+    uint32_t kind;     /* CYLRAY_KIND_*: infinite, open tube, capped */
+    uint32_t axis_id;  /* 0 general, 1..3: along +-x, +-y, +-z */
+    uint32_t magic;    /* set by cylray_prepare; kernels reject anything else */
+    float rr;          /* R^2 */
+    float par_eps;     /* A below par_eps * d.d: parallel to the axis */
+    uint32_t reserved_[2];
+} cylray_prepared;
+
+/* Returns CYLRAY_OK, or CYLRAY_EINVAL (leaving *out untouched) for NaN or Inf
+ * coordinates, a zero or subnormal axis, a radius <= 0 or not finite, a half height
+ * <= 0 or NaN, or unknown flag bits. Never aborts. */
+cylray_status cylray_prepare(cylray_prepared *out, const cylray_cylinder *in);
+
+/* ---- hit output ----------------------------------------------------------- */
+
+#define CYLRAY_MISS     0
+#define CYLRAY_SIDE     1
+#define CYLRAY_CAP_LO   2    /* the disc at axial coordinate -H */
+#define CYLRAY_CAP_HI   3    /* the disc at +H */
+#define CYLRAY_PART_MASK 0x0f
+#define CYLRAY_BACKFACE 0x10 /* met from inside the solid: dot(d, n_out) > 0 */
+
+/* kernel flags */
+#define CYLRAY_NORMAL       0x01u /* write nx, ny, nz; otherwise they stay untouched */
+#define CYLRAY_FACE_FORWARD 0x02u /* flip the normal to face the ray */
+#define CYLRAY_CULL_BACK    0x04u /* ignore hits met from inside */
+#define CYLRAY_REFINE       0x08u /* polish the root once more from the first hit */
+#define CYLRAY_FAST         0x10u /* approximate reciprocals and square roots */
+#define CYLRAY_FLAGS_ALL    0x1fu
+
+/* ---- packets (SoA, aligned to their width in bytes) --------------------- */
+
+#define CYLRAY_PACKET_(n, al)                                                     \
+    typedef struct CYLRAY_ALIGN(al) cylray_ray##n {                              \
+        float ox[n], oy[n], oz[n], dx[n], dy[n], dz[n], tmin[n], tmax[n];        \
+    } cylray_ray##n;                                                            \
+    typedef struct CYLRAY_ALIGN(al) cylray_hit##n {                              \
+        float t[n], nx[n], ny[n], nz[n];                                         \
+        int32_t part[n];                                                         \
+    } cylray_hit##n;
+CYLRAY_PACKET_(4, 16)
+CYLRAY_PACKET_(8, 32)
+CYLRAY_PACKET_(16, 64)
+#undef CYLRAY_PACKET_
+
+/* For every lane i whose bit is set in `active`: on a hit at t in [tmin, tmax] the
+ * kernel writes lane i of *hit, sets ray->tmax[i] = t and sets bit i of the result.
+ * Misses and inactive lanes are not written. A lane with NaN inputs never hits. */
+uint32_t cylray_intersect4(const cylray_prepared *cyl, cylray_ray4 *ray,
+                           cylray_hit4 *hit, uint32_t active, unsigned flags);
+uint32_t cylray_intersect8(const cylray_prepared *cyl, cylray_ray8 *ray,
+                           cylray_hit8 *hit, uint32_t active, unsigned flags);
+uint32_t cylray_intersect16(const cylray_prepared *cyl, cylray_ray16 *ray,
+                            cylray_hit16 *hit, uint32_t active, unsigned flags);
+
+/* Bit i set: lane i has some hit in [tmin, tmax]. Writes nothing. */
+uint32_t cylray_occluded4(const cylray_prepared *cyl, const cylray_ray4 *ray,
+                          uint32_t active, unsigned flags);
+uint32_t cylray_occluded8(const cylray_prepared *cyl, const cylray_ray8 *ray,
+                          uint32_t active, unsigned flags);
+uint32_t cylray_occluded16(const cylray_prepared *cyl, const cylray_ray16 *ray,
+                           uint32_t active, unsigned flags);
+
+/* ---- streams (any length, any alignment) ---------------------------------- */
+
+typedef struct cylray_rays {
+    const float *ox, *oy, *oz, *dx, *dy, *dz, *tmin;
+    float *tmax;
+} cylray_rays;
+
+typedef struct cylray_hits {
+    float *t, *nx, *ny, *nz; /* nx, ny, nz may be NULL without CYLRAY_NORMAL */
+    int32_t *part;
+} cylray_hits;
+
+/* Same per-ray semantics as the packets; returns the number of hits. */
+size_t cylray_intersect_stream(const cylray_prepared *cyl, const cylray_rays *rays,
+                               const cylray_hits *hits, size_t n, unsigned flags);
+/* Sets occluded[i] = 1 for each ray with a hit, leaves the others; returns the count. */
+size_t cylray_occluded_stream(const cylray_prepared *cyl, const cylray_rays *rays,
+                              uint8_t *occluded, size_t n, unsigned flags);
+
+/* ---- per-ISA access ------------------------------------------------------- */
+
+typedef enum cylray_isa {
+    CYLRAY_ISA_SCALAR,
+    CYLRAY_ISA_SSE41,
+    CYLRAY_ISA_AVX2,
+    CYLRAY_ISA_AVX512,
+    CYLRAY_ISA_NEON,
+    CYLRAY_ISA_COUNT
+} cylray_isa;
+
+typedef uint32_t (*cylray_intersect4_fn)(const cylray_prepared *, cylray_ray4 *,
+                                         cylray_hit4 *, uint32_t, unsigned);
+typedef uint32_t (*cylray_intersect8_fn)(const cylray_prepared *, cylray_ray8 *,
+                                         cylray_hit8 *, uint32_t, unsigned);
+typedef uint32_t (*cylray_intersect16_fn)(const cylray_prepared *, cylray_ray16 *,
+                                          cylray_hit16 *, uint32_t, unsigned);
+typedef uint32_t (*cylray_occluded4_fn)(const cylray_prepared *, const cylray_ray4 *,
+                                        uint32_t, unsigned);
+typedef uint32_t (*cylray_occluded8_fn)(const cylray_prepared *, const cylray_ray8 *,
+                                        uint32_t, unsigned);
+typedef uint32_t (*cylray_occluded16_fn)(const cylray_prepared *, const cylray_ray16 *,
+                                         uint32_t, unsigned);
+typedef size_t (*cylray_intersect_stream_fn)(const cylray_prepared *, const cylray_rays *,
+                                             const cylray_hits *, size_t, unsigned);
+typedef size_t (*cylray_occluded_stream_fn)(const cylray_prepared *, const cylray_rays *,
+                                            uint8_t *, size_t, unsigned);
+
+typedef struct cylray_kernels {
+    cylray_isa isa;
+    const char *name; /* "scalar", "sse41", "avx2", "avx512", "neon" */
+    cylray_intersect4_fn intersect4;
+    cylray_intersect8_fn intersect8;
+    cylray_intersect16_fn intersect16;
+    cylray_occluded4_fn occluded4;
+    cylray_occluded8_fn occluded8;
+    cylray_occluded16_fn occluded16;
+    cylray_intersect_stream_fn intersect_stream;
+    cylray_occluded_stream_fn occluded_stream;
+} cylray_kernels;
+
+/* NULL when that path was not built or the CPU (or OS) lacks it. */
+const cylray_kernels *cylray_kernels_for(cylray_isa isa);
+/* The path the plain entry points use: the best the CPU has, or CYLRAY_ISA. */
+const cylray_kernels *cylray_kernels_best(void);
+const char *cylray_isa_name(cylray_isa isa);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* CYLRAY_H */

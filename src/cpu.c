@@ -1,0 +1,54 @@
+/* cpu.c - which ISAs this CPU and OS can run: cpuid for the instructions, xgetbv for
+ * the OS's promise to save the wide registers across context switches. */
+#include "cylray_internal.h"
+
+#if defined(__x86_64__) || defined(__i386__)
+#include <cpuid.h>
+
+static uint64_t xgetbv0(void)
+{
+    uint32_t lo, hi;
+    __asm__ volatile("xgetbv" : "=a"(lo), "=d"(hi) : "c"(0));
+    return ((uint64_t)hi << 32) | lo;
+}
+
+int cylray_cpu_has_(cylray_isa isa)
+{
+    unsigned a, b, c, d;
+    if (!__get_cpuid(1, &a, &b, &c, &d))
+        return isa == CYLRAY_ISA_SCALAR;
+    const int sse41 = (c >> 19) & 1, fma = (c >> 12) & 1, osxsave = (c >> 27) & 1,
+              avx = (c >> 28) & 1;
+    uint64_t xcr0 = osxsave ? xgetbv0() : 0;
+    const int os_ymm = (xcr0 & 0x6) == 0x6;   /* XMM and YMM state */
+    const int os_zmm = (xcr0 & 0xe6) == 0xe6; /* and opmask, ZMM_Hi256, Hi16_ZMM */
+    unsigned b7 = 0;
+    if (__get_cpuid_count(7, 0, &a, &b, &c, &d))
+        b7 = b;
+    const int avx2 = (b7 >> 5) & 1, avx512f = (b7 >> 16) & 1, avx512dq = (b7 >> 17) & 1,
+              avx512vl = (b7 >> 31) & 1;
+    switch (isa) {
+    case CYLRAY_ISA_SCALAR:
+        return 1;
+    case CYLRAY_ISA_SSE41:
+        return sse41;
+    case CYLRAY_ISA_AVX2:
+        return avx && avx2 && fma && os_ymm;
+    case CYLRAY_ISA_AVX512:
+        return avx && avx2 && fma && avx512f && avx512dq && avx512vl && os_zmm;
+    default:
+        return 0;
+    }
+}
+#elif defined(__aarch64__)
+int cylray_cpu_has_(cylray_isa isa)
+{
+    /* Advanced SIMD is mandatory on AArch64. */
+    return isa == CYLRAY_ISA_SCALAR || isa == CYLRAY_ISA_NEON;
+}
+#else
+int cylray_cpu_has_(cylray_isa isa)
+{
+    return isa == CYLRAY_ISA_SCALAR;
+}
+#endif

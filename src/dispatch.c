@@ -1,0 +1,134 @@
+/* dispatch.c - choosing a path once, and the plain entry points that use it.
+ *
+ * The choice is made on the first call and kept in an atomic pointer: threads racing
+ * on that first call compute the same answer, so the race is harmless. */
+#include "cylray_internal.h"
+
+#if defined(__AVX__) || defined(__AVX2__) || defined(__AVX512F__)
+#error "dispatch.c runs before the CPU is known: compile it without AVX"
+#endif
+
+#include <stdatomic.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const cylray_kernels *const built[CYLRAY_ISA_COUNT] = {
+    &cylray_kernels_scalar_,
+#ifdef CYLRAY_HAVE_SSE41
+    &cylray_kernels_sse41_,
+#else
+    NULL,
+#endif
+#ifdef CYLRAY_HAVE_AVX2
+    &cylray_kernels_avx2_,
+#else
+    NULL,
+#endif
+#ifdef CYLRAY_HAVE_AVX512
+    &cylray_kernels_avx512_,
+#else
+    NULL,
+#endif
+#ifdef CYLRAY_HAVE_NEON
+    &cylray_kernels_neon_,
+#else
+    NULL,
+#endif
+};
+
+static const char *const names[CYLRAY_ISA_COUNT] = {"scalar", "sse41", "avx2", "avx512",
+                                                      "neon"};
+
+const char *cylray_isa_name(cylray_isa isa)
+{
+    return (unsigned)isa < CYLRAY_ISA_COUNT ? names[isa] : "unknown";
+}
+
+const cylray_kernels *cylray_kernels_for(cylray_isa isa)
+{
+    if ((unsigned)isa >= CYLRAY_ISA_COUNT || !built[isa] || !cylray_cpu_has_(isa))
+        return NULL;
+    return built[isa];
+}
+
+static const cylray_kernels *choose(void)
+{
+    const cylray_kernels *best = built[CYLRAY_ISA_SCALAR];
+    for (int i = CYLRAY_ISA_COUNT - 1; i > CYLRAY_ISA_SCALAR; i--) {
+        const cylray_kernels *k = cylray_kernels_for((cylray_isa)i);
+        if (k) {
+            best = k;
+            break;
+        }
+    }
+    const char *want = getenv("CYLRAY_ISA");
+    if (want && *want) {
+        for (int i = 0; i < CYLRAY_ISA_COUNT; i++) {
+            if (strcmp(want, names[i]) == 0) {
+                const cylray_kernels *k = cylray_kernels_for((cylray_isa)i);
+                if (k)
+                    return k;
+                break;
+            }
+        }
+        static atomic_int warned;
+        if (!atomic_exchange(&warned, 1))
+            fprintf(stderr, "cylray: CYLRAY_ISA=%s is not available here; using %s\n", want,
+                    best->name);
+    }
+    return best;
+}
+
+static _Atomic(const cylray_kernels *) chosen;
+
+const cylray_kernels *cylray_kernels_best(void)
+{
+    const cylray_kernels *k = atomic_load_explicit(&chosen, memory_order_acquire);
+    if (!k) {
+        k = choose();
+        atomic_store_explicit(&chosen, k, memory_order_release);
+    }
+    return k;
+}
+
+uint32_t cylray_intersect4(const cylray_prepared *cyl, cylray_ray4 *ray, cylray_hit4 *hit,
+                           uint32_t active, unsigned flags)
+{
+    return cylray_kernels_best()->intersect4(cyl, ray, hit, active, flags);
+}
+uint32_t cylray_intersect8(const cylray_prepared *cyl, cylray_ray8 *ray, cylray_hit8 *hit,
+                           uint32_t active, unsigned flags)
+{
+    return cylray_kernels_best()->intersect8(cyl, ray, hit, active, flags);
+}
+uint32_t cylray_intersect16(const cylray_prepared *cyl, cylray_ray16 *ray, cylray_hit16 *hit,
+                            uint32_t active, unsigned flags)
+{
+    return cylray_kernels_best()->intersect16(cyl, ray, hit, active, flags);
+}
+uint32_t cylray_occluded4(const cylray_prepared *cyl, const cylray_ray4 *ray, uint32_t active,
+                          unsigned flags)
+{
+    return cylray_kernels_best()->occluded4(cyl, ray, active, flags);
+}
+uint32_t cylray_occluded8(const cylray_prepared *cyl, const cylray_ray8 *ray, uint32_t active,
+                          unsigned flags)
+{
+    return cylray_kernels_best()->occluded8(cyl, ray, active, flags);
+}
+uint32_t cylray_occluded16(const cylray_prepared *cyl, const cylray_ray16 *ray,
+                           uint32_t active, unsigned flags)
+{
+    return cylray_kernels_best()->occluded16(cyl, ray, active, flags);
+}
+size_t cylray_intersect_stream(const cylray_prepared *cyl, const cylray_rays *rays,
+                               const cylray_hits *hits, size_t n, unsigned flags)
+{
+    return cylray_kernels_best()->intersect_stream(cyl, rays, hits, n, flags);
+}
+size_t cylray_occluded_stream(const cylray_prepared *cyl, const cylray_rays *rays,
+                              uint8_t *occluded, size_t n, unsigned flags)
+{
+    return cylray_kernels_best()->occluded_stream(cyl, rays, occluded, n, flags);
+}

@@ -1,0 +1,35 @@
+/* isa_avx2.c - the kernel on AVX2+FMA: 8 lanes in ymm, and 4 in xmm for 4-ray packets
+ * (compiled with -mavx2 -mfma, never -march=native, which would add AVX-512). */
+#include "cylray_internal.h"
+
+#if !defined(__AVX2__) || !defined(__FMA__)
+#error "isa_avx2.c needs -mavx2 -mfma"
+#endif
+#ifdef __AVX512F__
+#error "isa_avx2.c must not be compiled with AVX-512 enabled"
+#endif
+
+#define X86_FMA 1
+#define X86_KMASK 0
+
+#define VW 8
+#define KFN(n) CYLRAY_CAT(n, _avx2_8)
+#include "vec_x86.h"
+#include "kernel_tmpl.h"
+#include "vec_undef.h"
+#undef KFN
+
+#define VW 4
+#define KFN(n) CYLRAY_CAT(n, _avx2_4)
+#include "vec_x86.h"
+#include "kernel_tmpl.h"
+#include "vec_undef.h"
+#undef KFN
+
+#define KISA avx2
+#define KISA_ENUM CYLRAY_ISA_AVX2
+#define KISA_NAME "avx2"
+#define KW4 avx2_4
+#define KW8 avx2_8
+#define KW16 avx2_8
+#include "isa_entry.h"

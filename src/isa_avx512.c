@@ -1,0 +1,39 @@
+/* isa_avx512.c - the kernel on AVX-512 F+VL+DQ: 16 lanes in zmm, 8 and 4 in ymm and
+ * xmm with mask registers (compiled with -mavx512f -mavx512vl -mavx512dq). */
+#include "cylray_internal.h"
+
+#if !defined(__AVX512F__) || !defined(__AVX512VL__) || !defined(__AVX512DQ__)
+#error "isa_avx512.c needs -mavx512f -mavx512vl -mavx512dq"
+#endif
+
+#define X86_FMA 1
+#define X86_KMASK 1
+
+#define VW 16
+#define KFN(n) CYLRAY_CAT(n, _avx512_16)
+#include "vec_x86.h"
+#include "kernel_tmpl.h"
+#include "vec_undef.h"
+#undef KFN
+
+#define VW 8
+#define KFN(n) CYLRAY_CAT(n, _avx512_8)
+#include "vec_x86.h"
+#include "kernel_tmpl.h"
+#include "vec_undef.h"
+#undef KFN
+
+#define VW 4
+#define KFN(n) CYLRAY_CAT(n, _avx512_4)
+#include "vec_x86.h"
+#include "kernel_tmpl.h"
+#include "vec_undef.h"
+#undef KFN
+
+#define KISA avx512
+#define KISA_ENUM CYLRAY_ISA_AVX512
+#define KISA_NAME "avx512"
+#define KW4 avx512_4
+#define KW8 avx512_8
+#define KW16 avx512_16
+#include "isa_entry.h"

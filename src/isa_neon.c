@@ -1,0 +1,20 @@
+/* isa_neon.c - the kernel on AArch64 NEON, 4 lanes. */
+#include "cylray_internal.h"
+
+#ifndef __aarch64__
+#error "isa_neon.c is for AArch64"
+#endif
+
+#define KFN(n) CYLRAY_CAT(n, _neon_4)
+#include "vec_neon.h"
+#include "kernel_tmpl.h"
+#include "vec_undef.h"
+#undef KFN
+
+#define KISA neon
+#define KISA_ENUM CYLRAY_ISA_NEON
+#define KISA_NAME "neon"
+#define KW4 neon_4
+#define KW8 neon_4
+#define KW16 neon_4
+#include "isa_entry.h"

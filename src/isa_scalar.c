@@ -1,0 +1,16 @@
+/* isa_scalar.c - the portable path: the kernel at one lane, plain C. */
+#include "cylray_internal.h"
+
+#define KFN(n) CYLRAY_CAT(n, _scalar_1)
+#include "vec_scalar.h"
+#include "kernel_tmpl.h"
+#include "vec_undef.h"
+#undef KFN
+
+#define KISA scalar
+#define KISA_ENUM CYLRAY_ISA_SCALAR
+#define KISA_NAME "scalar"
+#define KW4 scalar_1
+#define KW8 scalar_1
+#define KW16 scalar_1
+#include "isa_entry.h"

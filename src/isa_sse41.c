@@ -1,0 +1,23 @@
+/* isa_sse41.c - the kernel on SSE4.1, 4 lanes (compiled with -msse4.1). */
+#include "cylray_internal.h"
+
+#ifndef __SSE4_1__
+#error "isa_sse41.c needs -msse4.1"
+#endif
+
+#define VW 4
+#define X86_FMA 0
+#define X86_KMASK 0
+#define KFN(n) CYLRAY_CAT(n, _sse41_4)
+#include "vec_x86.h"
+#include "kernel_tmpl.h"
+#include "vec_undef.h"
+#undef KFN
+
+#define KISA sse41
+#define KISA_ENUM CYLRAY_ISA_SSE41
+#define KISA_NAME "sse41"
+#define KW4 sse41_4
+#define KW8 sse41_4
+#define KW16 sse41_4
+#include "isa_entry.h"

@@ -1,0 +1,334 @@
+/* kernel_tmpl.h - the ray/cylinder kernel, written once against the vector vocabulary.
+ *
+ * Included once per ISA and width, after a vec_*.h header, with:
+ *   KFN(name)  the name with this instantiation's suffix (e.g. name_avx2_8)
+ *   VW         lanes per vector
+ * It defines KFN(block), the kernel for one vector of rays, and the flag-specialised
+ * packet and stream drivers with their lookup tables KFN(isect_table), KFN(occ_table),
+ * KFN(isect_stream_table) and KFN(occ_stream_table).
+ *
+ * The math is DESIGN.md section 2. Coordinates are cylinder-relative: w = o - c is
+ * formed exactly as a two-term sum, then the origin is moved along the ray to its
+ * closest approach to the center (with the product s*d exact inside an FMA), so that
+ * the error of everything after grows with the distance from there, not from o. The
+ * axis v is the user's, scaled by a power of two, never normalised: v.v is carried
+ * through instead. With e = d x v, f = w' x v, the side is A t^2 + 2 B t + C = 0 with
+ *   A = e.e,  B = e.f,  C = f.f - R^2 v.v,  disc = v.v (A R^2 - g^2),  g = e.w'.
+ */
+
+typedef uint32_t (*KFN(packet_fn))(const cylray_prepared *, const cylray_rays *,
+                                   const cylray_hits *, size_t, uint32_t, unsigned);
+typedef size_t (*KFN(stream_fn))(const cylray_prepared *, const cylray_rays *,
+                                 const cylray_hits *, uint8_t *, size_t, unsigned);
+
+#define KDOT(ax, ay, az, bx, by, bz) vfma(ax, bx, vfma(ay, by, vmul(az, bz)))
+
+/* One vector of rays: lanes [i, i + VW) of R, active where `bits` is set. Returns the
+ * hit lanes; writes H and R->tmax only there. FL is a compile-time constant. */
+CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R,
+                                  const cylray_hits *H, size_t i, uint32_t bits,
+                                  unsigned ff, const unsigned FL)
+{
+    const unsigned kind = (FL >> CYLRAY_KF_KIND_SHIFT) & 3u;
+    const int occ = (FL & CYLRAY_KF_OCCLUDED) != 0;
+    const int normal = (FL & CYLRAY_NORMAL) && !occ;
+    const int cull = (FL & CYLRAY_CULL_BACK) != 0;
+    const int refine = (FL & CYLRAY_REFINE) != 0;
+    const int fast = (FL & CYLRAY_FAST) != 0;
+    const vf zero = vzero(), one = vset1(1.0f), inf = vset1(INFINITY);
+
+    vf ox = vloadu(R->ox + i), oy = vloadu(R->oy + i), oz = vloadu(R->oz + i);
+    vf dx = vloadu(R->dx + i), dy = vloadu(R->dy + i), dz = vloadu(R->dz + i);
+
+    /* x*0 is NaN exactly when x is Inf or NaN: such a lane never hits. */
+    vf fin = vfma(ox, zero, vfma(oy, zero, vfma(oz, zero, vfma(dx, zero, vfma(dy, zero,
+                                                                               vmul(dz, zero))))));
+    vf dd = KDOT(dx, dy, dz, dx, dy, dz);
+    vm act = mand(mfrom_bits(bits), mand(veq(fin, zero), mand(vgt(dd, zero), vlt(dd, inf))));
+    if (!many(act))
+        return 0;
+
+    const vf cx = vset1(P->c[0]), cy = vset1(P->c[1]), cz = vset1(P->c[2]);
+    const vf vx = vset1(P->v[0]), vy = vset1(P->v[1]), vz = vset1(P->v[2]);
+
+    /* w = o - c exactly, as wh + wl (two-sum): neither a far origin nor a cylinder far
+     * from the world origin loses its low bits here. */
+    vf whx = vsub(ox, cx), why = vsub(oy, cy), whz = vsub(oz, cz);
+    vf bx = vsub(whx, ox), by = vsub(why, oy), bz = vsub(whz, oz);
+    vf wlx = vsub(vsub(ox, vsub(whx, bx)), vadd(cx, bx));
+    vf wly = vsub(vsub(oy, vsub(why, by)), vadd(cy, by));
+    vf wlz = vsub(vsub(oz, vsub(whz, bz)), vadd(cz, bz));
+
+    /* Shift to the closest approach to the center. s need not be accurate: any s is
+     * exact as long as w' is formed from the same s, and t = s + t'. */
+    vf wd = KDOT(whx, why, whz, dx, dy, dz);
+    vf s = fast ? vmul(vneg(wd), vrcp_fast(dd)) : vdiv(vneg(wd), dd);
+    vf px = vadd(vfma_x(s, dx, whx), wlx);
+    vf py = vadd(vfma_x(s, dy, why), wly);
+    vf pz = vadd(vfma_x(s, dz, whz), wlz);
+
+    /* e = d x v to a relative accuracy that survives a ray almost along the axis. */
+    vf ex = vdop_x(dy, vz, dz, vy), ey = vdop_x(dz, vx, dx, vz), ez = vdop_x(dx, vy, dy, vx);
+    vf fx = vfms(py, vz, vmul(pz, vy)), fy = vfms(pz, vx, vmul(px, vz)),
+       fz = vfms(px, vy, vmul(py, vx));
+
+    vf A = KDOT(ex, ey, ez, ex, ey, ez);
+    vf B = KDOT(ex, ey, ez, fx, fy, fz);
+    vf C = vsub(KDOT(fx, fy, fz, fx, fy, fz), vset1(P->rr_vv));
+    vf g = KDOT(ex, ey, ez, px, py, pz);
+    /* Lagrange's form of B^2 - A C, over v.v; g^2 is taken exactly. */
+    vf gg = vmul(g, g);
+    vf D = vsub(vfms(A, vset1(P->rr), gg), vfms(g, g, gg));
+    act = mand(act, veq(vfma(C, zero, vmul(D, zero)), zero));
+
+    /* A ray within about one ulp of the axis direction is parallel: it meets the side
+     * nowhere, and no division by its tiny A may make a hit. */
+    vm par = vle(A, vmul(dd, vset1(P->par_eps)));
+    vm side = mand(act, mandn(vge(D, zero), par));
+    vm inpar = mand(act, mand(par, vle(C, zero))); /* parallel and inside the tube */
+    if (kind == CYLRAY_KIND_CAPPED ? !many(mor(side, inpar)) : !many(side))
+        return 0;
+
+    vf sq = fast ? vmul(vmul(D, vrsqrt_fast(vmax(D, vset1(1e-37f)))), vset1(P->sqrt_vv))
+                 : vmul(vsqrt(D), vset1(P->sqrt_vv));
+    vf q = vneg(vadd(B, vcopysign(sq, B)));
+    vf r1 = fast ? vmul(q, vrcp_fast(A)) : vdiv(q, A);
+    vf r2 = fast ? vmul(C, vrcp_fast(q)) : vdiv(C, q);
+    r2 = vsel(veq(q, zero), r1, r2);
+    vf tn = vmin(r1, r2), tf = vmax(r1, r2);
+
+    /* Entry and exit, relative to the shifted origin, and which part each one is. */
+    vf t_in, t_out, part_in, part_out;
+    vm ok_in, ok_out;
+    vf z0 = zero, dv = zero;
+    if (kind != CYLRAY_KIND_INFINITE) {
+        z0 = KDOT(px, py, pz, vx, vy, vz);
+        dv = KDOT(dx, dy, dz, vx, vy, vz);
+    }
+    if (kind == CYLRAY_KIND_CAPPED) {
+        /* The solid is the infinite one cut by the slab |z| <= H: inside on [max of the
+         * entries, min of the exits]. The rim is then shared, not tested twice. */
+        vf side_lo = vsel(side, tn, inf), side_hi = vsel(side, tf, vneg(inf));
+        side_lo = vsel(inpar, vneg(inf), side_lo);
+        side_hi = vsel(inpar, inf, side_hi);
+        const vf hv = vset1(P->h_v);
+        vf rdv = vdiv(one, dv);
+        vf ta = vmul(vsub(vneg(hv), z0), rdv), tb = vmul(vsub(hv, z0), rdv);
+        vf slab_lo = vmin(ta, tb), slab_hi = vmax(ta, tb);
+        vm side_enters = vge(side_lo, slab_lo), side_exits = vle(side_hi, slab_hi);
+        t_in = vsel(side_enters, side_lo, slab_lo);
+        t_out = vsel(side_exits, side_hi, slab_hi);
+        ok_in = mand(mor(side, inpar), vle(t_in, t_out));
+        ok_out = ok_in;
+        vm up = vgt(dv, zero);
+        part_in = vsel(side_enters, one, vsel(up, vset1(CYLRAY_CAP_LO), vset1(CYLRAY_CAP_HI)));
+        part_out = vsel(side_exits, one, vsel(up, vset1(CYLRAY_CAP_HI), vset1(CYLRAY_CAP_LO)));
+    } else {
+        t_in = tn;
+        t_out = tf;
+        ok_in = side;
+        ok_out = side;
+        if (kind == CYLRAY_KIND_OPEN) {
+            const vf hv = vset1(P->h_v);
+            ok_in = mand(ok_in, vle(vabs(vfma(tn, dv, z0)), hv));
+            ok_out = mand(ok_out, vle(vabs(vfma(tf, dv, z0)), hv));
+        }
+        part_in = one;
+        part_out = one;
+    }
+
+    const vf tmin = vloadu(R->tmin + i), tmax = vloadu(R->tmax + i);
+    vf T_in = vadd(s, t_in), T_out = vadd(s, t_out);
+    vm front = mand(ok_in, mand(mand(vge(T_in, tmin), vle(T_in, tmax)), vlt(vabs(T_in), inf)));
+    vm back = mandn(mand(ok_out, mand(mand(vge(T_out, tmin), vle(T_out, tmax)),
+                                      vlt(vabs(T_out), inf))),
+                    front);
+    if (cull)
+        back = mandn(back, back);
+    vm hit = mor(front, back);
+    if (occ || !many(hit))
+        return mbits(hit);
+
+    vf tr = vsel(front, t_in, t_out); /* relative to the shifted origin */
+    vf part = vsel(front, part_in, vadd(part_out, vset1(CYLRAY_BACKFACE)));
+    vm on_side = mand(hit, veq(vsel(front, part_in, part_out), one));
+
+    if (refine && many(on_side)) {
+        /* Root polishing: solve again from the first hit point, where C is tiny and
+         * the small root C/q is a correction of a few ulps. */
+        vf qx = vfma_x(tr, dx, px), qy = vfma_x(tr, dy, py), qz = vfma_x(tr, dz, pz);
+        vf gx = vfms(qy, vz, vmul(qz, vy)), gy = vfms(qz, vx, vmul(qx, vz)),
+           gz = vfms(qx, vy, vmul(qy, vx));
+        vf B2 = KDOT(ex, ey, ez, gx, gy, gz);
+        vf C2 = vsub(KDOT(gx, gy, gz, gx, gy, gz), vset1(P->rr_vv));
+        vf D2 = vmax(vfms(B2, B2, vmul(A, C2)), zero);
+        vf q2 = vneg(vadd(B2, vcopysign(vsqrt(D2), B2)));
+        vf dt = vdiv(C2, q2);
+        vf tr2 = vadd(tr, dt);
+        vf T2 = vadd(s, tr2);
+        vm keep = mand(on_side, mand(mand(vge(T2, tmin), vle(T2, tmax)), vlt(vabs(dt), inf)));
+        if (kind == CYLRAY_KIND_OPEN)
+            keep = mand(keep, vle(vabs(vfma(tr2, dv, z0)), vset1(P->h_v)));
+        tr = vsel(keep, tr2, tr);
+        T_in = vsel(mand(keep, front), T2, T_in);
+        T_out = vsel(mand(keep, back), T2, T_out);
+    }
+
+    vf T = vsel(front, T_in, T_out);
+    vstore_m(H->t + i, hit, T);
+    vstore_m(R->tmax + i, hit, T);
+    vstore_part_m(H->part + i, hit, part);
+
+    if (normal) {
+        /* Side: v x (p x v) = v.v p_perp, with p x v = f + t e already perpendicular,
+         * so no axial magnitude leaks in; scaled by 1 / (R v.v) it is unit length. */
+        vf ux = vfma(tr, ex, fx), uy = vfma(tr, ey, fy), uz = vfma(tr, ez, fz);
+        vf k = vset1(P->nscale);
+        vf nx = vmul(vfms(vy, uz, vmul(vz, uy)), k);
+        vf ny = vmul(vfms(vz, ux, vmul(vx, uz)), k);
+        vf nz = vmul(vfms(vx, uy, vmul(vy, ux)), k);
+        if (kind == CYLRAY_KIND_CAPPED) {
+            vm cap = mandn(hit, on_side);
+            vm lo = veq(part, vset1(CYLRAY_CAP_LO));
+            lo = mor(lo, veq(part, vset1(CYLRAY_CAP_LO | CYLRAY_BACKFACE)));
+            vf sgn = vsel(lo, vset1(-1.0f), one);
+            nx = vsel(cap, vmul(sgn, vset1(P->n[0])), nx);
+            ny = vsel(cap, vmul(sgn, vset1(P->n[1])), ny);
+            nz = vsel(cap, vmul(sgn, vset1(P->n[2])), nz);
+        }
+        /* One Newton step of 1/sqrt(n.n) around 1 removes what rounding left of the
+         * length error, whatever the hit point's distance from the axis. */
+        vf l2 = KDOT(nx, ny, nz, nx, ny, nz);
+        vf corr = vfnma(vset1(0.5f), l2, vset1(1.5f));
+        if (ff)
+            corr = vsel(back, vneg(corr), corr);
+        vstore_m(H->nx + i, hit, vmul(nx, corr));
+        vstore_m(H->ny + i, hit, vmul(ny, corr));
+        vstore_m(H->nz + i, hit, vmul(nz, corr));
+    }
+    return mbits(hit);
+}
+
+/* A packet of n lanes (a multiple of VW, at most 32). */
+CYLRAY_INLINE uint32_t KFN(packet)(const cylray_prepared *P, const cylray_rays *R,
+                                   const cylray_hits *H, size_t n, uint32_t active,
+                                   unsigned ff, const unsigned FL)
+{
+    uint32_t hits = 0;
+    for (size_t b = 0; b < n; b += VW) {
+        uint32_t a = (active >> b) & VFULL;
+        if (a)
+            hits |= KFN(block)(P, R, H, b, a, ff, FL) << b;
+    }
+    return hits;
+}
+
+/* A stream of any length: whole vectors in place, then the tail through a local
+ * copy, so that nothing before or after the caller's arrays is read or written. */
+CYLRAY_INLINE size_t KFN(stream)(const cylray_prepared *P, const cylray_rays *R,
+                                 const cylray_hits *H, uint8_t *occluded, size_t n,
+                                 unsigned ff, const unsigned FL)
+{
+    const int occ = (FL & CYLRAY_KF_OCCLUDED) != 0;
+    const int normal = (FL & CYLRAY_NORMAL) && !occ;
+    size_t count = 0, i = 0;
+    for (; i + VW <= n; i += VW) {
+        uint32_t m = KFN(block)(P, R, H, i, VFULL, ff, FL);
+        count += CYLRAY_POPCOUNT(m);
+        if (occ)
+            for (; m; m &= m - 1)
+                occluded[i + CYLRAY_CTZ(m)] = 1;
+    }
+    if (i < n) {
+        size_t rest = n - i;
+        float in[8][VW] = {{0}}, out[4][VW] = {{0}};
+        int32_t part[VW] = {0};
+        const float *src[8] = {R->ox, R->oy, R->oz, R->dx, R->dy, R->dz, R->tmin, R->tmax};
+        for (int f = 0; f < 8; f++)
+            for (size_t j = 0; j < rest; j++)
+                in[f][j] = src[f][i + j];
+        cylray_rays lr = {in[0], in[1], in[2], in[3], in[4], in[5], in[6], in[7]};
+        cylray_hits lh = {out[0], out[1], out[2], out[3], part};
+        uint32_t m = KFN(block)(P, &lr, &lh, 0, (uint32_t)((1u << rest) - 1u), ff, FL);
+        count += CYLRAY_POPCOUNT(m);
+        for (; m; m &= m - 1) {
+            size_t j = CYLRAY_CTZ(m);
+            if (occ) {
+                occluded[i + j] = 1;
+                continue;
+            }
+            H->t[i + j] = out[0][j];
+            R->tmax[i + j] = in[7][j];
+            H->part[i + j] = part[j];
+            if (normal) {
+                H->nx[i + j] = out[1][j];
+                H->ny[i + j] = out[2][j];
+                H->nz[i + j] = out[3][j];
+            }
+        }
+    }
+    return count;
+}
+
+/* The specialisations: 16 intersect variants (normal, cull, refine, fast) and 8
+ * occluded ones (cull, refine, fast) for each kind of cylinder. */
+#define KFL_(kind, b, extra)                                                       \
+    ((kind) << CYLRAY_KF_KIND_SHIFT | ((b) & 1 ? CYLRAY_NORMAL : 0u) |              \
+     ((b) & 2 ? CYLRAY_CULL_BACK : 0u) | ((b) & 4 ? CYLRAY_REFINE : 0u) |           \
+     ((b) & 8 ? CYLRAY_FAST : 0u) | (extra))
+#define KISECT_(kind, b)                                                           \
+    static uint32_t KFN(pk_##kind##_##b)(const cylray_prepared *P, const cylray_rays *R, \
+                                         const cylray_hits *H, size_t n, uint32_t a,  \
+                                         unsigned ff)                                 \
+    {                                                                              \
+        return KFN(packet)(P, R, H, n, a, ff, KFL_(kind, b, 0u));                  \
+    }                                                                              \
+    static size_t KFN(st_##kind##_##b)(const cylray_prepared *P, const cylray_rays *R, \
+                                       const cylray_hits *H, uint8_t *o, size_t n,      \
+                                       unsigned ff)                                     \
+    {                                                                              \
+        return KFN(stream)(P, R, H, o, n, ff, KFL_(kind, b, 0u));                  \
+    }
+#define KOCC_(kind, b)                                                             \
+    static uint32_t KFN(po_##kind##_##b)(const cylray_prepared *P, const cylray_rays *R, \
+                                         const cylray_hits *H, size_t n, uint32_t a,  \
+                                         unsigned ff)                                 \
+    {                                                                              \
+        return KFN(packet)(P, R, H, n, a, ff, KFL_(kind, (b) << 1, CYLRAY_KF_OCCLUDED)); \
+    }                                                                              \
+    static size_t KFN(so_##kind##_##b)(const cylray_prepared *P, const cylray_rays *R, \
+                                       const cylray_hits *H, uint8_t *o, size_t n,      \
+                                       unsigned ff)                                     \
+    {                                                                              \
+        return KFN(stream)(P, R, H, o, n, ff, KFL_(kind, (b) << 1, CYLRAY_KF_OCCLUDED)); \
+    }
+#define K16_(X, k) X(k, 0) X(k, 1) X(k, 2) X(k, 3) X(k, 4) X(k, 5) X(k, 6) X(k, 7) \
+    X(k, 8) X(k, 9) X(k, 10) X(k, 11) X(k, 12) X(k, 13) X(k, 14) X(k, 15)
+#define K8_(X, k) X(k, 0) X(k, 1) X(k, 2) X(k, 3) X(k, 4) X(k, 5) X(k, 6) X(k, 7)
+#define KALL16_(X) K16_(X, 0) K16_(X, 1) K16_(X, 2)
+#define KALL8_(X) K8_(X, 0) K8_(X, 1) K8_(X, 2)
+
+KALL16_(KISECT_)
+KALL8_(KOCC_)
+
+#define KREF_PK_(k, b) KFN(pk_##k##_##b),
+#define KREF_ST_(k, b) KFN(st_##k##_##b),
+#define KREF_PO_(k, b) KFN(po_##k##_##b),
+#define KREF_SO_(k, b) KFN(so_##k##_##b),
+static const KFN(packet_fn) KFN(isect_table)[48] = {KALL16_(KREF_PK_)};
+static const KFN(stream_fn) KFN(isect_stream_table)[48] = {KALL16_(KREF_ST_)};
+static const KFN(packet_fn) KFN(occ_table)[24] = {KALL8_(KREF_PO_)};
+static const KFN(stream_fn) KFN(occ_stream_table)[24] = {KALL8_(KREF_SO_)};
+
+#undef KDOT
+#undef KFL_
+#undef KISECT_
+#undef KOCC_
+#undef K16_
+#undef K8_
+#undef KALL16_
+#undef KALL8_
+#undef KREF_PK_
+#undef KREF_ST_
+#undef KREF_PO_
+#undef KREF_SO_

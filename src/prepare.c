@@ -1,0 +1,82 @@
+/* prepare.c - validating a cylinder and deriving what every kernel call needs. */
+#include "cylray_internal.h"
+
+#include <float.h>
+#include <string.h>
+
+/* Magnitudes beyond 2^62 would overflow R^2 v.v and the products of the kernel, and
+ * a radius below 2^-60 would leave R^2 subnormal; such a cylinder is refused rather
+ * than answered wrongly. */
+#define CYLRAY_MAX_COORD 0x1p62
+#define CYLRAY_MIN_RADIUS 0x1p-60
+
+const char *cylray_strerror(cylray_status s)
+{
+    switch (s) {
+    case CYLRAY_OK:
+        return "success";
+    case CYLRAY_EINVAL:
+        return "invalid cylinder: a NaN, infinite or over 2^62 coordinate, a zero or "
+               "subnormal axis, a radius not in [2^-60, 2^62], a half height <= 0 or NaN, "
+               "or unknown flag bits";
+    }
+    return "unknown cylray status";
+}
+
+static int coord_ok(float x)
+{
+    return isfinite(x) && fabs((double)x) <= CYLRAY_MAX_COORD;
+}
+
+cylray_status cylray_prepare(cylray_prepared *out, const cylray_cylinder *in)
+{
+    if (!out || !in)
+        return CYLRAY_EINVAL;
+    const float *c = in->center, *a = in->axis;
+    const double R = in->radius, H = in->half_height;
+    for (int k = 0; k < 3; k++)
+        if (!coord_ok(c[k]) || !coord_ok(a[k]))
+            return CYLRAY_EINVAL;
+    if (!(R >= CYLRAY_MIN_RADIUS) || !(R <= CYLRAY_MAX_COORD))
+        return CYLRAY_EINVAL;
+    if (!(H > 0) || (isfinite(H) && H > CYLRAY_MAX_COORD))
+        return CYLRAY_EINVAL;
+    if (in->flags & ~CYLRAY_CAPPED)
+        return CYLRAY_EINVAL;
+    double amax = fmax(fabs((double)a[0]), fmax(fabs((double)a[1]), fabs((double)a[2])));
+    if (amax < FLT_MIN) /* zero, or so small that its direction has lost its bits */
+        return CYLRAY_EINVAL;
+
+    cylray_prepared p;
+    memset(&p, 0, sizeof p);
+    /* Scaling by a power of two keeps the direction exact and v.v near 1. */
+    int e = ilogb(amax);
+    double v[3];
+    for (int k = 0; k < 3; k++) {
+        v[k] = ldexp((double)a[k], -e);
+        p.v[k] = (float)v[k];
+        p.c[k] = c[k];
+    }
+    /* The squares of 24-bit values are exact in double, their sum nearly so. */
+    double vv = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+    double sv = sqrt(vv);
+    for (int k = 0; k < 3; k++)
+        p.n[k] = (float)(v[k] / sv);
+    p.inv_vv = (float)(1.0 / vv);
+    p.rr = (float)(R * R);
+    p.rr_vv = (float)(R * R * vv);
+    p.sqrt_vv = (float)sv;
+    p.h_v = isfinite(H) ? (float)(H * sv) : INFINITY;
+    p.nscale = (float)(1.0 / (R * vv));
+    p.par_eps = (float)(vv * 0x1p-46);
+    p.radius = (float)R;
+    p.half_height = (float)H;
+    p.kind = !isfinite(H) ? CYLRAY_KIND_INFINITE
+             : (in->flags & CYLRAY_CAPPED) ? CYLRAY_KIND_CAPPED
+                                          : CYLRAY_KIND_OPEN;
+    int zeros = (a[0] == 0) + (a[1] == 0) + (a[2] == 0);
+    p.axis_id = zeros == 2 ? (a[0] != 0 ? 1u : a[1] != 0 ? 2u : 3u) : 0u;
+    p.magic = CYLRAY_MAGIC;
+    *out = p;
+    return CYLRAY_OK;
+}

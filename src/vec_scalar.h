@@ -1,0 +1,74 @@
+/* vec_scalar.h - the kernel's vector vocabulary for one lane: plain C.
+ *
+ * This is also the definition of every operation the SIMD headers implement:
+ *   vfma(a,b,c) = a*b + c, vfms = a*b - c, vfnma = c - a*b; fused where the ISA can,
+ *     used where one more rounding does not matter;
+ *   vfma_x(a,b,c) = a*b + c with the product exact (one rounding), and
+ *   vdop_x(a,b,c,d) = a*b - c*d within about one ulp: used where it matters;
+ *   vmin(a,b) = a < b ? a : b and vmax(a,b) = a > b ? a : b (NaN gives b);
+ *   comparisons are ordered (false when either side is NaN);
+ *   vsel(m,a,b) = m ? a : b; vstore_m writes lane i only where m is set. */
+#include <math.h>
+#include <stdint.h>
+
+#define VW 1
+#define VFULL 1u
+#define vf float
+#define vm int
+
+#define vset1(x) ((float)(x))
+#define vzero() 0.0f
+#define vloadu(p) (*(p))
+#define vadd(a, b) ((a) + (b))
+#define vsub(a, b) ((a) - (b))
+#define vmul(a, b) ((a) * (b))
+#define vdiv(a, b) ((a) / (b))
+#define vsqrt(a) sqrtf(a)
+#define vmin(a, b) ((a) < (b) ? (a) : (b))
+#define vmax(a, b) ((a) > (b) ? (a) : (b))
+#define vabs(a) fabsf(a)
+#define vneg(a) (-(a))
+#define vcopysign(mag, sgn) copysignf(mag, sgn)
+
+#if defined(__FMA__) || defined(__aarch64__) || defined(__ARM_FEATURE_FMA)
+#define vfma(a, b, c) fmaf(a, b, c)
+#define vfms(a, b, c) fmaf(a, b, -(c))
+#define vfnma(a, b, c) fmaf(-(a), b, c)
+#define vfma_x(a, b, c) fmaf(a, b, c)
+static inline float KFN(dop_x)(float a, float b, float c, float d)
+{
+    float cd = c * d;
+    float err = fmaf(c, d, -cd);
+    return fmaf(a, b, -cd) - err;
+}
+#else
+/* Without a hardware FMA, fmaf is a slow library call; a product of two floats is
+ * exact in double, so double does the same job in two instructions. */
+#define vfma(a, b, c) ((float)((double)(a) * (double)(b) + (double)(c)))
+#define vfms(a, b, c) ((float)((double)(a) * (double)(b) - (double)(c)))
+#define vfnma(a, b, c) ((float)((double)(c) - (double)(a) * (double)(b)))
+#define vfma_x(a, b, c) vfma(a, b, c)
+static inline float KFN(dop_x)(float a, float b, float c, float d)
+{
+    return (float)((double)a * (double)b - (double)c * (double)d);
+}
+#endif
+#define vdop_x(a, b, c, d) KFN(dop_x)(a, b, c, d)
+#define vrcp_fast(x) (1.0f / (x))
+#define vrsqrt_fast(x) (1.0f / sqrtf(x))
+
+#define vlt(a, b) ((a) < (b))
+#define vle(a, b) ((a) <= (b))
+#define vgt(a, b) ((a) > (b))
+#define vge(a, b) ((a) >= (b))
+#define veq(a, b) ((a) == (b))
+#define mand(a, b) ((a) & (b))
+#define mor(a, b) ((a) | (b))
+#define mandn(a, b) ((a) & !(b))
+#define mnot(a) (!(a))
+#define many(m) (m)
+#define mbits(m) ((uint32_t)(m))
+#define mfrom_bits(b) ((int)((b) & 1u))
+#define vsel(m, a, b) ((m) ? (a) : (b))
+#define vstore_m(p, m, x) do { if (m) *(p) = (x); } while (0)
+#define vstore_part_m(p, m, x) do { if (m) *(p) = (int32_t)(x); } while (0)

@@ -1,0 +1,213 @@
+/* vec_x86.h - the kernel's vector vocabulary on x86: SSE4.1, AVX2+FMA and AVX-512.
+ *
+ * Included once per vector width by an ISA's translation unit, with:
+ *   VW         lanes per vector: 4 (xmm), 8 (ymm) or 16 (zmm)
+ *   X86_FMA    1 when the FMA3 instructions may be used
+ *   X86_KMASK  1 for AVX-512: lane masks live in mask registers (needs VL below 16)
+ * vec_undef.h takes every name back, so the next width can define them again.
+ *
+ * Every operation has one meaning on every ISA (see vec_scalar.h for the plain
+ * statement of each); in particular vmin/vmax return the second operand when either
+ * is NaN, as minps/maxps do, so that NaN lanes behave the same everywhere. */
+#include <immintrin.h>
+#include <stdint.h>
+
+#if VW == 4
+#define vf __m128
+#define vi_ __m128i
+#define VX(n) _mm_##n
+#define VXI(n) _mm_##n##_si128
+#define VCASTI(x) _mm_castps_si128(x)
+#define VCASTF(x) _mm_castsi128_ps(x)
+#elif VW == 8
+#define vf __m256
+#define vi_ __m256i
+#define VX(n) _mm256_##n
+#define VXI(n) _mm256_##n##_si256
+#define VCASTI(x) _mm256_castps_si256(x)
+#define VCASTF(x) _mm256_castsi256_ps(x)
+#elif VW == 16
+#define vf __m512
+#define vi_ __m512i
+#define VX(n) _mm512_##n
+#define VXI(n) _mm512_##n##_si512
+#define VCASTI(x) _mm512_castps_si512(x)
+#define VCASTF(x) _mm512_castsi512_ps(x)
+#else
+#error "vec_x86.h: VW must be 4, 8 or 16"
+#endif
+
+#define VFULL ((uint32_t)((1u << VW) - 1u))
+
+#define vset1(x) VX(set1_ps)(x)
+#define vzero() VX(setzero_ps)()
+#define vloadu(p) VX(loadu_ps)(p)
+#define vadd(a, b) VX(add_ps)(a, b)
+#define vsub(a, b) VX(sub_ps)(a, b)
+#define vmul(a, b) VX(mul_ps)(a, b)
+#define vdiv(a, b) VX(div_ps)(a, b)
+#define vsqrt(a) VX(sqrt_ps)(a)
+#define vmin(a, b) VX(min_ps)(a, b)
+#define vmax(a, b) VX(max_ps)(a, b)
+#define vsignbit_() VX(set1_ps)(-0.0f)
+#define vabs(a) VX(andnot_ps)(vsignbit_(), a)
+#define vneg(a) VX(xor_ps)(a, vsignbit_())
+#define vcopysign(mag, sgn) \
+    VX(or_ps)(VX(andnot_ps)(vsignbit_(), mag), VX(and_ps)(vsignbit_(), sgn))
+
+#if X86_FMA
+#define vfma(a, b, c) VX(fmadd_ps)(a, b, c)
+#define vfms(a, b, c) VX(fmsub_ps)(a, b, c)
+#define vfnma(a, b, c) VX(fnmadd_ps)(a, b, c)
+#define vfma_x(a, b, c) VX(fmadd_ps)(a, b, c)
+/* Kahan's a*b - c*d: the rounding error of c*d is recovered exactly by an FMA. */
+static inline vf KFN(dop_x)(vf a, vf b, vf c, vf d)
+{
+    vf cd = vmul(c, d);
+    vf err = VX(fmsub_ps)(c, d, cd);
+    return vsub(VX(fmsub_ps)(a, b, cd), err);
+}
+#define vdop_x(a, b, c, d) KFN(dop_x)(a, b, c, d)
+#else
+/* No FMA: the products whose rounding matters (the origin shift and the cross
+ * products) are formed in double, where a product of two floats is exact. */
+#define vfma(a, b, c) vadd(vmul(a, b), c)
+#define vfms(a, b, c) vsub(vmul(a, b), c)
+#define vfnma(a, b, c) vsub(c, vmul(a, b))
+static inline __m128 KFN(fma_x)(__m128 a, __m128 b, __m128 c)
+{
+    __m128d lo = _mm_add_pd(_mm_mul_pd(_mm_cvtps_pd(a), _mm_cvtps_pd(b)), _mm_cvtps_pd(c));
+    __m128d hi = _mm_add_pd(_mm_mul_pd(_mm_cvtps_pd(_mm_movehl_ps(a, a)),
+                                       _mm_cvtps_pd(_mm_movehl_ps(b, b))),
+                            _mm_cvtps_pd(_mm_movehl_ps(c, c)));
+    return _mm_movelh_ps(_mm_cvtpd_ps(lo), _mm_cvtpd_ps(hi));
+}
+static inline __m128 KFN(dop_x)(__m128 a, __m128 b, __m128 c, __m128 d)
+{
+    __m128d lo = _mm_sub_pd(_mm_mul_pd(_mm_cvtps_pd(a), _mm_cvtps_pd(b)),
+                            _mm_mul_pd(_mm_cvtps_pd(c), _mm_cvtps_pd(d)));
+    __m128d hi = _mm_sub_pd(_mm_mul_pd(_mm_cvtps_pd(_mm_movehl_ps(a, a)),
+                                       _mm_cvtps_pd(_mm_movehl_ps(b, b))),
+                            _mm_mul_pd(_mm_cvtps_pd(_mm_movehl_ps(c, c)),
+                                       _mm_cvtps_pd(_mm_movehl_ps(d, d))));
+    return _mm_movelh_ps(_mm_cvtpd_ps(lo), _mm_cvtpd_ps(hi));
+}
+#define vfma_x(a, b, c) KFN(fma_x)(a, b, c)
+#define vdop_x(a, b, c, d) KFN(dop_x)(a, b, c, d)
+#endif
+
+/* Reciprocal and reciprocal square root for CYLRAY_FAST: the hardware estimate and
+ * one Newton step (rcp14 gives 14 bits, rcpps 12; one step brings either to ~23). */
+#if X86_KMASK
+#define vrcp_est_(x) VX(rcp14_ps)(x)
+#define vrsqrt_est_(x) VX(rsqrt14_ps)(x)
+#else
+#define vrcp_est_(x) VX(rcp_ps)(x)
+#define vrsqrt_est_(x) VX(rsqrt_ps)(x)
+#endif
+static inline vf KFN(rcp_fast)(vf x)
+{
+    vf r = vrcp_est_(x);
+    return vfma(r, vfnma(x, r, vset1(1.0f)), r);
+}
+static inline vf KFN(rsqrt_fast)(vf x)
+{
+    vf r = vrsqrt_est_(x);
+    vf hx = vmul(x, vset1(0.5f));
+    return vmul(r, vfnma(hx, vmul(r, r), vset1(1.5f)));
+}
+#define vrcp_fast(x) KFN(rcp_fast)(x)
+#define vrsqrt_fast(x) KFN(rsqrt_fast)(x)
+
+/* ---- lane masks ---- */
+#if X86_KMASK
+#if VW == 16
+#define vm __mmask16
+#define vcmp_(a, b, p) _mm512_cmp_ps_mask(a, b, p)
+#else
+#define vm __mmask8
+#define vcmp_(a, b, p) VX(cmp_ps_mask)(a, b, p)
+#endif
+#define vlt(a, b) vcmp_(a, b, _CMP_LT_OQ)
+#define vle(a, b) vcmp_(a, b, _CMP_LE_OQ)
+#define vgt(a, b) vcmp_(a, b, _CMP_GT_OQ)
+#define vge(a, b) vcmp_(a, b, _CMP_GE_OQ)
+#define veq(a, b) vcmp_(a, b, _CMP_EQ_OQ)
+#define mand(a, b) ((vm)((a) & (b)))
+#define mor(a, b) ((vm)((a) | (b)))
+#define mandn(a, b) ((vm)((a) & ~(b)))
+#define mnot(a) ((vm)(~(a) & VFULL))
+#define many(m) ((m) != 0)
+#define mbits(m) ((uint32_t)(m))
+#define mfrom_bits(b) ((vm)((b) & VFULL))
+#define vsel(m, a, b) VX(mask_blend_ps)(m, b, a)
+#define vstore_m(p, m, x) VX(mask_storeu_ps)(p, m, x)
+#define vstore_part_m(p, m, x) VX(mask_storeu_epi32)(p, m, VX(cvttps_epi32)(x))
+#else /* vector masks */
+#define vm vf
+#if X86_FMA /* AVX: one compare with a predicate */
+#define vlt(a, b) VX(cmp_ps)(a, b, _CMP_LT_OQ)
+#define vle(a, b) VX(cmp_ps)(a, b, _CMP_LE_OQ)
+#define vgt(a, b) VX(cmp_ps)(a, b, _CMP_GT_OQ)
+#define vge(a, b) VX(cmp_ps)(a, b, _CMP_GE_OQ)
+#define veq(a, b) VX(cmp_ps)(a, b, _CMP_EQ_OQ)
+#else
+#define vlt(a, b) _mm_cmplt_ps(a, b)
+#define vle(a, b) _mm_cmple_ps(a, b)
+#define vgt(a, b) _mm_cmpgt_ps(a, b)
+#define vge(a, b) _mm_cmpge_ps(a, b)
+#define veq(a, b) _mm_cmpeq_ps(a, b)
+#endif
+#define mand(a, b) VX(and_ps)(a, b)
+#define mor(a, b) VX(or_ps)(a, b)
+#define mandn(a, b) VX(andnot_ps)(b, a)
+#define mnot(a) VX(xor_ps)(a, VCASTF(VX(set1_epi32)(-1)))
+#define mbits(m) ((uint32_t)VX(movemask_ps)(m))
+#define many(m) (mbits(m) != 0)
+#define vsel(m, a, b) VX(blendv_ps)(b, a, m)
+#if VW == 4
+#define vlanebits_() _mm_setr_epi32(1, 2, 4, 8)
+#define vcmpeq_i_(a, b) _mm_cmpeq_epi32(a, b)
+#else
+#define vlanebits_() _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128)
+#define vcmpeq_i_(a, b) _mm256_cmpeq_epi32(a, b)
+#endif
+#define mfrom_bits(b) \
+    VCASTF(vcmpeq_i_(VXI(and)(VX(set1_epi32)((int)(b)), vlanebits_()), vlanebits_()))
+#if X86_FMA
+#define vstore_m(p, m, x) VX(maskstore_ps)(p, VCASTI(m), x)
+#define vstore_part_m(p, m, x) VX(maskstore_epi32)((int *)(p), VCASTI(m), VX(cvttps_epi32)(x))
+#else
+/* SSE has no plain masked store; a full store is used only when every lane is set,
+ * so lanes that are not ours are never written. */
+static inline void KFN(store_m)(float *p, vm m, vf x)
+{
+    uint32_t b = mbits(m);
+    if (b == 0xfu) {
+        _mm_storeu_ps(p, x);
+    } else {
+        float tmp[4];
+        _mm_storeu_ps(tmp, x);
+        for (int i = 0; i < 4; i++)
+            if (b & (1u << i))
+                p[i] = tmp[i];
+    }
+}
+static inline void KFN(store_part_m)(int32_t *p, vm m, vf x)
+{
+    uint32_t b = mbits(m);
+    __m128i xi = _mm_cvttps_epi32(x);
+    if (b == 0xfu) {
+        _mm_storeu_si128((__m128i *)(void *)p, xi);
+    } else {
+        int32_t tmp[4];
+        _mm_storeu_si128((__m128i *)(void *)tmp, xi);
+        for (int i = 0; i < 4; i++)
+            if (b & (1u << i))
+                p[i] = tmp[i];
+    }
+}
+#define vstore_m(p, m, x) KFN(store_m)(p, m, x)
+#define vstore_part_m(p, m, x) KFN(store_part_m)(p, m, x)
+#endif
+#endif
