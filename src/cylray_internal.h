@@ -15,10 +15,16 @@
 
 /* Internal kernel flags, beside the public CYLRAY_* kernel flags (all below 0x20). */
 #define CYLRAY_KF_OCCLUDED 0x100u
-#define CYLRAY_KF_KIND_SHIFT 9
+#define CYLRAY_KF_ALIGNED 0x200u
+#define CYLRAY_KF_KIND_SHIFT 10
 
-/* The flags that select an intersect kernel, packed into 4 bits; face-forward is a
- * sign flip applied to the result and needs no kernel of its own. */
+/* The kernel tables are indexed by the cylinder's variant (its kind, plus 3 when the
+ * axis is a coordinate axis) and the flags that select a kernel, packed into 4 bits;
+ * face-forward is a sign flip applied to the result and needs no kernel of its own. */
+static inline unsigned cylray_variant_(const cylray_prepared *p)
+{
+    return p->kind + (p->axis_id ? CYLRAY_KIND_COUNT : 0u);
+}
 static inline unsigned cylray_isect_index_(unsigned kind, unsigned flags)
 {
     return kind * 16u + (flags & CYLRAY_NORMAL) + ((flags & (CYLRAY_CULL_BACK | CYLRAY_REFINE |
@@ -31,7 +37,8 @@ static inline unsigned cylray_occ_index_(unsigned kind, unsigned flags)
 
 static inline int cylray_prepared_ok_(const cylray_prepared *p)
 {
-    return p != 0 && p->magic == CYLRAY_MAGIC && p->kind < CYLRAY_KIND_COUNT;
+    return p != 0 && p->magic == CYLRAY_MAGIC && p->kind < CYLRAY_KIND_COUNT &&
+           p->axis_id <= 3u;
 }
 
 #if defined(__GNUC__) || defined(__clang__)

@@ -16,7 +16,7 @@
             return 0;                                                                  \
         cylray_rays R = {ray->ox, ray->oy, ray->oz, ray->dx, ray->dy, ray->dz, ray->tmin, ray->tmax}; \
         cylray_hits H = {hit->t, hit->nx, hit->ny, hit->nz, hit->part};               \
-        return KW_(isect_table, KW##n)[cylray_isect_index_(P->kind, flags)](           \
+        return KW_(isect_table, KW##n)[cylray_isect_index_(cylray_variant_(P), flags)](           \
             P, &R, &H, n, active, flags & CYLRAY_FACE_FORWARD);                        \
     }                                                                                  \
     static uint32_t KI_(occluded##n)(const cylray_prepared *P, const cylray_ray##n *ray, \
@@ -28,7 +28,7 @@
         /* the occluded kernels read tmax and never write through these pointers */    \
         cylray_rays R = {ray->ox, ray->oy, ray->oz, ray->dx, ray->dy, ray->dz, ray->tmin, \
                          (float *)(uintptr_t)ray->tmax};                               \
-        return KW_(occ_table, KW##n)[cylray_occ_index_(P->kind, flags)](               \
+        return KW_(occ_table, KW##n)[cylray_occ_index_(cylray_variant_(P), flags)](               \
             P, &R, NULL, n, active, 0);                                                \
     }
 KPACKET_(4, 16)
@@ -40,7 +40,7 @@ static size_t KI_(intersect_stream)(const cylray_prepared *P, const cylray_rays 
 {
     if (!n || !rays || !hits || !cylray_prepared_ok_(P))
         return 0;
-    return KW_(isect_stream_table, KW16)[cylray_isect_index_(P->kind, flags)](
+    return KW_(isect_stream_table, KW16)[cylray_isect_index_(cylray_variant_(P), flags)](
         P, rays, hits, NULL, n, flags & CYLRAY_FACE_FORWARD);
 }
 
@@ -49,7 +49,7 @@ static size_t KI_(occluded_stream)(const cylray_prepared *P, const cylray_rays *
 {
     if (!n || !rays || !occluded || !cylray_prepared_ok_(P))
         return 0;
-    return KW_(occ_stream_table, KW16)[cylray_occ_index_(P->kind, flags)](
+    return KW_(occ_stream_table, KW16)[cylray_occ_index_(cylray_variant_(P), flags)](
         P, rays, NULL, occluded, n, 0);
 }
 

@@ -24,12 +24,17 @@ typedef size_t (*KFN(stream_fn))(const cylray_prepared *, const cylray_rays *,
 #define KDOT(ax, ay, az, bx, by, bz) vfma(ax, bx, vfma(ay, by, vmul(az, bz)))
 
 /* One vector of rays: lanes [i, i + VW) of R, active where `bits` is set. Returns the
- * hit lanes; writes H and R->tmax only there. FL is a compile-time constant. */
+ * hit lanes; writes H and R->tmax only there. FL is a compile-time constant.
+ *
+ * With CYLRAY_KF_ALIGNED the axis is a coordinate axis (P->axis_id) and exactly a unit
+ * vector: the coordinates are renamed so that it is the third one, and the side is a
+ * 2D quadratic without cross products. */
 CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R,
                                   const cylray_hits *H, size_t i, uint32_t bits,
                                   unsigned ff, const unsigned FL)
 {
     const unsigned kind = (FL >> CYLRAY_KF_KIND_SHIFT) & 3u;
+    const int aligned = (FL & CYLRAY_KF_ALIGNED) != 0;
     const int occ = (FL & CYLRAY_KF_OCCLUDED) != 0;
     const int normal = (FL & CYLRAY_NORMAL) && !occ;
     const int cull = (FL & CYLRAY_CULL_BACK) != 0;
@@ -37,19 +42,23 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
     const int fast = (FL & CYLRAY_FAST) != 0;
     const vf zero = vzero(), one = vset1(1.0f), inf = vset1(INFINITY);
 
-    vf ox = vloadu(R->ox + i), oy = vloadu(R->oy + i), oz = vloadu(R->oz + i);
-    vf dx = vloadu(R->dx + i), dy = vloadu(R->dy + i), dz = vloadu(R->dz + i);
+    /* k0, k1, k2: which stored coordinate plays x, y, z (a rotation, so cross products
+     * keep their form); the identity unless the axis is aligned. */
+    const unsigned k2 = aligned ? P->axis_id - 1u : 2u, k0 = aligned ? (k2 + 1u) % 3u : 0u,
+                   k1 = aligned ? (k2 + 2u) % 3u : 1u;
+    const float *const o3[3] = {R->ox, R->oy, R->oz}, *const d3[3] = {R->dx, R->dy, R->dz};
+    vf ox = vloadu(o3[k0] + i), oy = vloadu(o3[k1] + i), oz = vloadu(o3[k2] + i);
+    vf dx = vloadu(d3[k0] + i), dy = vloadu(d3[k1] + i), dz = vloadu(d3[k2] + i);
 
-    /* x*0 is NaN exactly when x is Inf or NaN: such a lane never hits. */
-    vf fin = vfma(ox, zero, vfma(oy, zero, vfma(oz, zero, vfma(dx, zero, vfma(dy, zero,
-                                                                               vmul(dz, zero))))));
+    /* A zero, subnormal-squared or overflowing direction never hits. An Inf or NaN
+     * anywhere else turns C or D into NaN below, which takes the lane out there. */
     vf dd = KDOT(dx, dy, dz, dx, dy, dz);
-    vm act = mand(mfrom_bits(bits), mand(veq(fin, zero), mand(vgt(dd, zero), vlt(dd, inf))));
+    vm act = mand(mfrom_bits(bits), mand(vgt(dd, zero), vlt(dd, inf)));
     if (!many(act))
         return 0;
 
-    const vf cx = vset1(P->c[0]), cy = vset1(P->c[1]), cz = vset1(P->c[2]);
-    const vf vx = vset1(P->v[0]), vy = vset1(P->v[1]), vz = vset1(P->v[2]);
+    const vf cx = vset1(P->c[k0]), cy = vset1(P->c[k1]), cz = vset1(P->c[k2]);
+    const vf vx = vset1(P->v[k0]), vy = vset1(P->v[k1]), vz = vset1(P->v[k2]);
 
     /* w = o - c exactly, as wh + wl (two-sum): neither a far origin nor a cylinder far
      * from the world origin loses its low bits here. */
@@ -60,22 +69,32 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
     vf wlz = vsub(vsub(oz, vsub(whz, bz)), vadd(cz, bz));
 
     /* Shift to the closest approach to the center. s need not be accurate: any s is
-     * exact as long as w' is formed from the same s, and t = s + t'. */
+     * exact as long as w' is formed from the same s, and t = s + t'. So a refined
+     * reciprocal estimate serves, and the divider is kept for the roots. */
     vf wd = KDOT(whx, why, whz, dx, dy, dz);
-    vf s = fast ? vmul(vneg(wd), vrcp_fast(dd)) : vdiv(vneg(wd), dd);
+    vf s = vmul(vneg(wd), vrcp_fast(dd));
     vf px = vadd(vfma_x(s, dx, whx), wlx);
     vf py = vadd(vfma_x(s, dy, why), wly);
     vf pz = vadd(vfma_x(s, dz, whz), wlz);
 
-    /* e = d x v to a relative accuracy that survives a ray almost along the axis. */
-    vf ex = vdop_x(dy, vz, dz, vy), ey = vdop_x(dz, vx, dx, vz), ez = vdop_x(dx, vy, dy, vx);
-    vf fx = vfms(py, vz, vmul(pz, vy)), fy = vfms(pz, vx, vmul(px, vz)),
-       fz = vfms(px, vy, vmul(py, vx));
-
-    vf A = KDOT(ex, ey, ez, ex, ey, ez);
-    vf B = KDOT(ex, ey, ez, fx, fy, fz);
-    vf C = vsub(KDOT(fx, fy, fz, fx, fy, fz), vset1(P->rr_vv));
-    vf g = KDOT(ex, ey, ez, px, py, pz);
+    vf A, B, C, g, ex = zero, ey = zero, ez = zero, fx = zero, fy = zero, fz = zero;
+    if (aligned) {
+        /* v = (0, 0, +-1): e = d x v and f = w' x v are (dy, -dx) and (py, -px) up to
+         * the sign, which no product below sees. */
+        A = vfma(dx, dx, vmul(dy, dy));
+        B = vfma(dx, px, vmul(dy, py));
+        C = vsub(vfma(px, px, vmul(py, py)), vset1(P->rr_vv));
+        g = vdop_x(px, dy, py, dx);
+    } else {
+        /* e = d x v to a relative accuracy that survives a ray almost along the axis. */
+        ex = vdop_x(dy, vz, dz, vy), ey = vdop_x(dz, vx, dx, vz), ez = vdop_x(dx, vy, dy, vx);
+        fx = vfms(py, vz, vmul(pz, vy)), fy = vfms(pz, vx, vmul(px, vz)),
+        fz = vfms(px, vy, vmul(py, vx));
+        A = KDOT(ex, ey, ez, ex, ey, ez);
+        B = KDOT(ex, ey, ez, fx, fy, fz);
+        C = vsub(KDOT(fx, fy, fz, fx, fy, fz), vset1(P->rr_vv));
+        g = KDOT(ex, ey, ez, px, py, pz);
+    }
     /* Lagrange's form of B^2 - A C, over v.v; g^2 is taken exactly. */
     vf gg = vmul(g, g);
     vf D = vsub(vfms(A, vset1(P->rr), gg), vfms(g, g, gg));
@@ -102,8 +121,8 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
     vm ok_in, ok_out;
     vf z0 = zero, dv = zero;
     if (kind != CYLRAY_KIND_INFINITE) {
-        z0 = KDOT(px, py, pz, vx, vy, vz);
-        dv = KDOT(dx, dy, dz, vx, vy, vz);
+        z0 = aligned ? vmul(pz, vz) : KDOT(px, py, pz, vx, vy, vz);
+        dv = aligned ? vmul(dz, vz) : KDOT(dx, dy, dz, vx, vy, vz);
     }
     if (kind == CYLRAY_KIND_CAPPED) {
         /* The solid is the infinite one cut by the slab |z| <= H: inside on [max of the
@@ -157,10 +176,16 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
         /* Root polishing: solve again from the first hit point, where C is tiny and
          * the small root C/q is a correction of a few ulps. */
         vf qx = vfma_x(tr, dx, px), qy = vfma_x(tr, dy, py), qz = vfma_x(tr, dz, pz);
-        vf gx = vfms(qy, vz, vmul(qz, vy)), gy = vfms(qz, vx, vmul(qx, vz)),
-           gz = vfms(qx, vy, vmul(qy, vx));
-        vf B2 = KDOT(ex, ey, ez, gx, gy, gz);
-        vf C2 = vsub(KDOT(gx, gy, gz, gx, gy, gz), vset1(P->rr_vv));
+        vf B2, C2;
+        if (aligned) {
+            B2 = vfma(dx, qx, vmul(dy, qy));
+            C2 = vsub(vfma(qx, qx, vmul(qy, qy)), vset1(P->rr_vv));
+        } else {
+            vf gx = vfms(qy, vz, vmul(qz, vy)), gy = vfms(qz, vx, vmul(qx, vz)),
+               gz = vfms(qx, vy, vmul(qy, vx));
+            B2 = KDOT(ex, ey, ez, gx, gy, gz);
+            C2 = vsub(KDOT(gx, gy, gz, gx, gy, gz), vset1(P->rr_vv));
+        }
         vf D2 = vmax(vfms(B2, B2, vmul(A, C2)), zero);
         vf q2 = vneg(vadd(B2, vcopysign(vsqrt(D2), B2)));
         vf dt = vdiv(C2, q2);
@@ -180,21 +205,28 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
     vstore_part_m(H->part + i, hit, part);
 
     if (normal) {
-        /* Side: v x (p x v) = v.v p_perp, with p x v = f + t e already perpendicular,
-         * so no axial magnitude leaks in; scaled by 1 / (R v.v) it is unit length. */
-        vf ux = vfma(tr, ex, fx), uy = vfma(tr, ey, fy), uz = vfma(tr, ez, fz);
-        vf k = vset1(P->nscale);
-        vf nx = vmul(vfms(vy, uz, vmul(vz, uy)), k);
-        vf ny = vmul(vfms(vz, ux, vmul(vx, uz)), k);
-        vf nz = vmul(vfms(vx, uy, vmul(vy, ux)), k);
+        vf nx, ny, nz;
+        const vf k = vset1(P->nscale);
+        if (aligned) {
+            nx = vmul(vfma(tr, dx, px), k);
+            ny = vmul(vfma(tr, dy, py), k);
+            nz = zero;
+        } else {
+            /* v x (p x v) = v.v p_perp, with p x v = f + t e already perpendicular, so
+             * no axial magnitude leaks in; 1 / (R v.v) makes it unit length. */
+            vf ux = vfma(tr, ex, fx), uy = vfma(tr, ey, fy), uz = vfma(tr, ez, fz);
+            nx = vmul(vfms(vy, uz, vmul(vz, uy)), k);
+            ny = vmul(vfms(vz, ux, vmul(vx, uz)), k);
+            nz = vmul(vfms(vx, uy, vmul(vy, ux)), k);
+        }
         if (kind == CYLRAY_KIND_CAPPED) {
             vm cap = mandn(hit, on_side);
             vm lo = veq(part, vset1(CYLRAY_CAP_LO));
             lo = mor(lo, veq(part, vset1(CYLRAY_CAP_LO | CYLRAY_BACKFACE)));
             vf sgn = vsel(lo, vset1(-1.0f), one);
-            nx = vsel(cap, vmul(sgn, vset1(P->n[0])), nx);
-            ny = vsel(cap, vmul(sgn, vset1(P->n[1])), ny);
-            nz = vsel(cap, vmul(sgn, vset1(P->n[2])), nz);
+            nx = vsel(cap, vmul(sgn, vset1(P->n[k0])), nx);
+            ny = vsel(cap, vmul(sgn, vset1(P->n[k1])), ny);
+            nz = vsel(cap, vmul(sgn, vset1(P->n[k2])), nz);
         }
         /* One Newton step of 1/sqrt(n.n) around 1 removes what rounding left of the
          * length error, whatever the hit point's distance from the axis. */
@@ -202,9 +234,10 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
         vf corr = vfnma(vset1(0.5f), l2, vset1(1.5f));
         if (ff)
             corr = vsel(back, vneg(corr), corr);
-        vstore_m(H->nx + i, hit, vmul(nx, corr));
-        vstore_m(H->ny + i, hit, vmul(ny, corr));
-        vstore_m(H->nz + i, hit, vmul(nz, corr));
+        float *const n3[3] = {H->nx, H->ny, H->nz};
+        vstore_m(n3[k0] + i, hit, vmul(nx, corr));
+        vstore_m(n3[k1] + i, hit, vmul(ny, corr));
+        vstore_m(n3[k2] + i, hit, vmul(nz, corr));
     }
     return mbits(hit);
 }
@@ -271,9 +304,10 @@ CYLRAY_INLINE size_t KFN(stream)(const cylray_prepared *P, const cylray_rays *R,
 }
 
 /* The specialisations: 16 intersect variants (normal, cull, refine, fast) and 8
- * occluded ones (cull, refine, fast) for each kind of cylinder. */
+ * occluded ones (cull, refine, fast) for each kind of cylinder: infinite, open,
+ * capped (0, 1, 2), and the same three with a coordinate axis (3, 4, 5). */
 #define KFL_(kind, b, extra)                                                       \
-    ((kind) << CYLRAY_KF_KIND_SHIFT | ((b) & 1 ? CYLRAY_NORMAL : 0u) |              \
+    (((kind) % 3u) << CYLRAY_KF_KIND_SHIFT | ((kind) >= 3 ? CYLRAY_KF_ALIGNED : 0u) | ((b) & 1 ? CYLRAY_NORMAL : 0u) |              \
      ((b) & 2 ? CYLRAY_CULL_BACK : 0u) | ((b) & 4 ? CYLRAY_REFINE : 0u) |           \
      ((b) & 8 ? CYLRAY_FAST : 0u) | (extra))
 #define KISECT_(kind, b)                                                           \
@@ -305,8 +339,8 @@ CYLRAY_INLINE size_t KFN(stream)(const cylray_prepared *P, const cylray_rays *R,
 #define K16_(X, k) X(k, 0) X(k, 1) X(k, 2) X(k, 3) X(k, 4) X(k, 5) X(k, 6) X(k, 7) \
     X(k, 8) X(k, 9) X(k, 10) X(k, 11) X(k, 12) X(k, 13) X(k, 14) X(k, 15)
 #define K8_(X, k) X(k, 0) X(k, 1) X(k, 2) X(k, 3) X(k, 4) X(k, 5) X(k, 6) X(k, 7)
-#define KALL16_(X) K16_(X, 0) K16_(X, 1) K16_(X, 2)
-#define KALL8_(X) K8_(X, 0) K8_(X, 1) K8_(X, 2)
+#define KALL16_(X) K16_(X, 0) K16_(X, 1) K16_(X, 2) K16_(X, 3) K16_(X, 4) K16_(X, 5)
+#define KALL8_(X) K8_(X, 0) K8_(X, 1) K8_(X, 2) K8_(X, 3) K8_(X, 4) K8_(X, 5)
 
 KALL16_(KISECT_)
 KALL8_(KOCC_)
@@ -315,10 +349,10 @@ KALL8_(KOCC_)
 #define KREF_ST_(k, b) KFN(st_##k##_##b),
 #define KREF_PO_(k, b) KFN(po_##k##_##b),
 #define KREF_SO_(k, b) KFN(so_##k##_##b),
-static const KFN(packet_fn) KFN(isect_table)[48] = {KALL16_(KREF_PK_)};
-static const KFN(stream_fn) KFN(isect_stream_table)[48] = {KALL16_(KREF_ST_)};
-static const KFN(packet_fn) KFN(occ_table)[24] = {KALL8_(KREF_PO_)};
-static const KFN(stream_fn) KFN(occ_stream_table)[24] = {KALL8_(KREF_SO_)};
+static const KFN(packet_fn) KFN(isect_table)[96] = {KALL16_(KREF_PK_)};
+static const KFN(stream_fn) KFN(isect_stream_table)[96] = {KALL16_(KREF_ST_)};
+static const KFN(packet_fn) KFN(occ_table)[48] = {KALL8_(KREF_PO_)};
+static const KFN(stream_fn) KFN(occ_stream_table)[48] = {KALL8_(KREF_SO_)};
 
 #undef KDOT
 #undef KFL_

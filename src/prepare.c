@@ -49,11 +49,14 @@ cylray_status cylray_prepare(cylray_prepared *out, const cylray_cylinder *in)
 
     cylray_prepared p;
     memset(&p, 0, sizeof p);
-    /* Scaling by a power of two keeps the direction exact and v.v near 1. */
+    /* Scaling by a power of two keeps the direction exact and v.v near 1; an axis
+     * along a coordinate axis becomes exactly a unit vector. */
+    int zeros = (a[0] == 0) + (a[1] == 0) + (a[2] == 0);
     int e = ilogb(amax);
     double v[3];
     for (int k = 0; k < 3; k++) {
-        v[k] = ldexp((double)a[k], -e);
+        v[k] = zeros == 2 ? (a[k] == 0 ? 0.0 : copysign(1.0, (double)a[k]))
+                          : ldexp((double)a[k], -e);
         p.v[k] = (float)v[k];
         p.c[k] = c[k];
     }
@@ -74,7 +77,6 @@ cylray_status cylray_prepare(cylray_prepared *out, const cylray_cylinder *in)
     p.kind = !isfinite(H) ? CYLRAY_KIND_INFINITE
              : (in->flags & CYLRAY_CAPPED) ? CYLRAY_KIND_CAPPED
                                           : CYLRAY_KIND_OPEN;
-    int zeros = (a[0] == 0) + (a[1] == 0) + (a[2] == 0);
     p.axis_id = zeros == 2 ? (a[0] != 0 ? 1u : a[1] != 0 ? 2u : 3u) : 0u;
     p.magic = CYLRAY_MAGIC;
     *out = p;
