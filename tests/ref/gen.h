@@ -1,0 +1,70 @@
+/* gen.h - deterministic stress-ray generators shared by the checker, the bench and the fuzzer.
+ *
+ * Each category returns cylinders and rays of one numerical difficulty. Output is a
+ * pure function of (category, seed, index): case i is the same whatever n is, on every
+ * platform (the draw uses only +, -, *, /, sqrt and exact scalings in double, all fixed
+ * by IEEE 754; no libm transcendental), so a seed printed by one tool reproduces in
+ * another. */
+#ifndef CYLGEN_H
+#define CYLGEN_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "cylray.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* The categories, in a fixed order (names are stable; the order may only grow). */
+enum {
+    CYLGEN_ORDINARY,     /* "ordinary": a ray from a few radii away at a random cylinder */
+    CYLGEN_FAR,          /* "far": origin 1e3-1e6 R from the cylinder */
+    CYLGEN_PARALLEL,     /* "parallel": 1e-7-1e-2 rad from the axis */
+    CYLGEN_GRAZING,      /* "grazing": closest approach within 1e-6-1e-2 R of the surface */
+    CYLGEN_SURFACE,      /* "surface": origin on the surface, tmin = 0, in- and outward */
+    CYLGEN_INSIDE,       /* "inside": origin inside the solid */
+    CYLGEN_RIM,          /* "rim": capped, aimed exactly at a point of the cap rim */
+    CYLGEN_TINY,         /* "tiny": radius 1e-4..1e-3, center around 1e4 */
+    CYLGEN_HUGE,         /* "huge": radius 1e3..1e5, center around 1e4..1e5 */
+    CYLGEN_UNNORMALIZED, /* "unnormalized": |d| 1e-3..1e3 */
+    CYLGEN_INFINITE,     /* "infinite": half_height = INFINITY, outside and inside rays */
+    CYLGEN_COUNT
+};
+
+/* The cylinder changes every CYLGEN_BATCH cases (cases [k*16, k*16+16) share one), so
+ * a packet of 4, 8 or 16 taken at a multiple of its width has one cylinder. */
+#define CYLGEN_BATCH 16
+
+typedef struct cylgen_case {
+    cylray_cylinder cyl;
+    float o[3], d[3];
+    float tmin, tmax;
+} cylgen_case;
+
+int cylgen_category_count(void);
+const char *cylgen_category_name(int category);        /* NULL when out of range */
+const char *cylgen_category_description(int category); /* one line, for reports */
+int cylgen_category_find(const char *name);            /* -1 when unknown */
+
+/* n cases of a category; the cylinder changes every CYLGEN_BATCH cases. */
+void cylgen_make(int category, uint64_t seed, size_t n, cylgen_case *out);
+/* n cases that all share one cylinder (that of batch 0): for streams. */
+void cylgen_make_shared(int category, uint64_t seed, size_t n, cylgen_case *out);
+
+/* The PRNG underneath (xoshiro256**, seeded through splitmix64), for anyone who
+ * needs more deterministic draws. */
+typedef struct cylgen_rng {
+    uint64_t s[4];
+} cylgen_rng;
+void cylgen_seed(cylgen_rng *r, uint64_t seed);
+uint64_t cylgen_next(cylgen_rng *r);
+double cylgen_uniform(cylgen_rng *r); /* [0, 1), 53 bits */
+uint64_t cylgen_splitmix64(uint64_t *state);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* CYLGEN_H */
