@@ -142,7 +142,10 @@ static void to_f(float f[3], v3 a)
 static v3 rand_dir(cylgen_rng *r)
 {
     for (;;) {
-        v3 p = mk(uni(r, -1, 1), uni(r, -1, 1), uni(r, -1, 1));
+        /* One draw per statement: the order of function arguments is unspecified,
+         * and gcc and clang do differ. */
+        double x = uni(r, -1, 1), y = uni(r, -1, 1), z = uni(r, -1, 1);
+        v3 p = mk(x, y, z);
         double l = dot(p, p);
         if (l > 1e-4 && l <= 1)
             return scl(p, 1 / sqrt(l));
@@ -202,8 +205,10 @@ typedef struct {
 static void make_cylinder(cylgen_rng *r, const cyl_spec *s, cylray_cylinder *out)
 {
     memset(out, 0, sizeof *out);
-    for (int k = 0; k < 3; k++)
-        out->center[k] = (float)(sign(r) * uni(r, s->c_lo, s->c_hi));
+    for (int k = 0; k < 3; k++) {
+        double sg = sign(r); /* one draw per statement: argument order is unspecified */
+        out->center[k] = (float)(sg * uni(r, s->c_lo, s->c_hi));
+    }
     /* Any nonzero length: axes are not unit vectors, and a third lie along a coordinate
      * axis exactly (both signs), where kernels may take shortcuts. */
     double len = chance(r, 0.5) ? 1.0 : logu(r, 0.25, 8);
@@ -311,7 +316,8 @@ static void gen_parallel(cylgen_rng *r, const frame *f, cylgen_case *c)
     double th = logu(r, 1e-7, 1e-2);
     /* cos and sin of a small angle from their series: exact enough, libm-free. */
     double co = 1 - th * th / 2 + th * th * th * th / 24, si = th - th * th * th / 6;
-    v3 d = add(scl(f->a, sign(r) * co), scl(rand_perp(r, f), si));
+    double sg = sign(r);
+    v3 d = add(scl(f->a, sg * co), scl(rand_perp(r, f), si));
     double rho = chance(r, 0.6) ? f->R * sqrt(cylgen_uniform(r)) : f->R * uni(r, 1, 3);
     double z = zspan(f) * uni(r, -3, 3);
     v3 o = axpy(axpy(f->c, rho, rand_perp(r, f)), z, f->a);
@@ -321,7 +327,8 @@ static void gen_parallel(cylgen_rng *r, const frame *f, cylgen_case *c)
 
 static void gen_grazing(cylgen_rng *r, const frame *f, cylgen_case *c)
 {
-    double delta = sign(r) * logu(r, 1e-6, 1e-2);
+    double sg = sign(r);
+    double delta = sg * logu(r, 1e-6, 1e-2);
     v3 u = rand_perp(r, f), w = cross(f->a, u);
     double z = zspan(f) * uni(r, -0.9, 0.9);
     /* The closest approach to the axis is at q, distance R (1 + delta), whatever the
