@@ -53,13 +53,13 @@ typedef struct CYLRAY_ALIGN(64) cylray_prepared {
     float sqrt_vv;     /* |v| */
     float h_v;         /* H |v|; INFINITY when infinite */
     float nscale;      /* 1 / (R v.v): scales v x (p x v) to a unit normal */
+    float vk[3];       /* v * nscale */
     float radius, half_height;
     uint32_t kind;     /* CYLRAY_KIND_*: infinite, open tube, capped */
     uint32_t axis_id;  /* 0 general, 1..3: along +-x, +-y, +-z */
     uint32_t magic;    /* set by cylray_prepare; kernels reject anything else */
     float rr;          /* R^2 */
     float par_eps;     /* A below par_eps * d.d: parallel to the axis */
-    uint32_t reserved_[2];
 } cylray_prepared;
 
 /* Returns CYLRAY_OK, or CYLRAY_EINVAL (leaving *out untouched) for NaN or Inf

@@ -206,27 +206,27 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
 
     if (normal) {
         vf nx, ny, nz;
-        const vf k = vset1(P->nscale);
         if (aligned) {
+            const vf k = vset1(P->nscale);
             nx = vmul(vfma(tr, dx, px), k);
             ny = vmul(vfma(tr, dy, py), k);
             nz = zero;
         } else {
             /* v x (p x v) = v.v p_perp, with p x v = f + t e already perpendicular, so
-             * no axial magnitude leaks in; 1 / (R v.v) makes it unit length. */
+             * no axial magnitude leaks in; vk = v / (R v.v) makes it unit length. */
+            const vf kx = vset1(P->vk[k0]), ky = vset1(P->vk[k1]), kz = vset1(P->vk[k2]);
             vf ux = vfma(tr, ex, fx), uy = vfma(tr, ey, fy), uz = vfma(tr, ez, fz);
-            nx = vmul(vfms(vy, uz, vmul(vz, uy)), k);
-            ny = vmul(vfms(vz, ux, vmul(vx, uz)), k);
-            nz = vmul(vfms(vx, uy, vmul(vy, ux)), k);
+            nx = vfms(ky, uz, vmul(kz, uy));
+            ny = vfms(kz, ux, vmul(kx, uz));
+            nz = vfms(kx, uy, vmul(ky, ux));
         }
         if (kind == CYLRAY_KIND_CAPPED) {
+            /* The cap a hit is on follows from the direction and entry or exit. */
             vm cap = mandn(hit, on_side);
-            vm lo = veq(part, vset1(CYLRAY_CAP_LO));
-            lo = mor(lo, veq(part, vset1(CYLRAY_CAP_LO | CYLRAY_BACKFACE)));
-            vf sgn = vsel(lo, vset1(-1.0f), one);
-            nx = vsel(cap, vmul(sgn, vset1(P->n[k0])), nx);
-            ny = vsel(cap, vmul(sgn, vset1(P->n[k1])), ny);
-            nz = vsel(cap, vmul(sgn, vset1(P->n[k2])), nz);
+            vm hi = veq(vsel(front, part_in, part_out), vset1(CYLRAY_CAP_HI));
+            nx = vsel(cap, vsel(hi, vset1(P->n[k0]), vset1(-P->n[k0])), nx);
+            ny = vsel(cap, vsel(hi, vset1(P->n[k1]), vset1(-P->n[k1])), ny);
+            nz = vsel(cap, vsel(hi, vset1(P->n[k2]), vset1(-P->n[k2])), nz);
         }
         /* One Newton step of 1/sqrt(n.n) around 1 removes what rounding left of the
          * length error, whatever the hit point's distance from the axis. */

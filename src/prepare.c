@@ -71,6 +71,8 @@ cylray_status cylray_prepare(cylray_prepared *out, const cylray_cylinder *in)
     p.sqrt_vv = (float)sv;
     p.h_v = isfinite(H) ? (float)(H * sv) : INFINITY;
     p.nscale = (float)(1.0 / (R * vv));
+    for (int k = 0; k < 3; k++)
+        p.vk[k] = (float)(v[k] / (R * vv));
     p.par_eps = (float)(vv * 0x1p-46);
     p.radius = (float)R;
     p.half_height = (float)H;
