@@ -47,12 +47,16 @@ typedef struct cylref_alt {
 
 /* The tolerance band: what a float kernel may answer for these float inputs.
  *
- * Every float input except tmin and tmax (o, d, center, axis, radius, half_height) is
- * perturbed by up to +-2 ulps - norm-wise for the vectors (each component by 2 ulps of
- * the vector's largest component, the backward error of float dot and cross products)
- * and the result re-evaluated exactly: once per input (a finite-difference gradient of
- * t, the normal and every decision margin), at the two vertices of the +-2 ulp box
- * where t is extreme, and at 8 random vertices. A decision (does the ray meet the side,
+ * The inputs (except tmin and tmax) are perturbed by up to +-2 ulps - norm-wise for the
+ * vectors (each component by 2 ulps of the vector's largest component: the backward
+ * error of float dot and cross products) - and the result re-evaluated exactly: once
+ * per input (a finite-difference gradient of t, the normal and every decision margin),
+ * at the two vertices of the +-2 ulp box where t is extreme, and at 8 random vertices
+ * (22 evaluations in all). The perturbed inputs are the origin relative to the center
+ * w = o - c (2 ulps of |w|), d, the axis, the radius and the half height. The center is
+ * not moved on its own: moving o and c together changes no t, and a kernel that forms
+ * o - c exactly (DESIGN.md 2.4) owes accuracy relative to |o - c|; 2 ulps of |c| would
+ * excuse any answer for a 1e-4 cylinder at 1e4. A decision (does the ray meet the side,
  * which of entry and exit, side or cap, inside [tmin, tmax]?) is unstable when its
  * margin can change sign inside the box, or when the two t values it compares are
  * within 4 float ulps; every combination of the unstable decisions is then replayed.
