@@ -54,6 +54,7 @@ typedef struct CYLRAY_ALIGN(64) cylray_prepared {
     float h_v;         /* H |v|; INFINITY when infinite */
     float nscale;      /* 1 / (R v.v): scales v x (p x v) to a unit normal */
     float vk[3];       /* v * nscale */
+    float bound2;      /* squared radius of a bounding sphere, with a margin */
     float radius, half_height;
     uint32_t kind;     /* CYLRAY_KIND_*: infinite, open tube, capped */
     uint32_t axis_id;  /* 0 general, 1..3: along +-x, +-y, +-z */

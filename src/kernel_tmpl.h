@@ -72,26 +72,36 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
      * exact as long as w' is formed from the same s, and t = s + t'. So a refined
      * reciprocal estimate serves, and the divider is kept for the roots. */
     vf wd = KDOT(whx, why, whz, dx, dy, dz);
-    vf s = vmul(vneg(wd), vrcp_fast(dd));
+    vf s = vfnma(wd, vrcp_fast(dd), zero);
     vf px = vadd(vfma_x(s, dx, whx), wlx);
     vf py = vadd(vfma_x(s, dy, why), wly);
     vf pz = vadd(vfma_x(s, dz, whz), wlz);
 
-    vf A, B, C, g, ex = zero, ey = zero, ez = zero, fx = zero, fy = zero, fz = zero;
+    /* A finite cylinder lies in a sphere; a ray whose closest approach to the center
+     * is outside it misses, and a packet of such rays ends here. */
+    if (kind != CYLRAY_KIND_INFINITE) {
+        act = mand(act, vle(KDOT(px, py, pz, px, py, pz), vset1(P->bound2)));
+        if (!many(act))
+            return 0;
+    }
+
+    /* nB is -B: f is taken as v x w' rather than w' x v, which saves the negation
+     * of q below. */
+    vf A, nB, C, g, ex = zero, ey = zero, ez = zero, fx = zero, fy = zero, fz = zero;
     if (aligned) {
-        /* v = (0, 0, +-1): e = d x v and f = w' x v are (dy, -dx) and (py, -px) up to
-         * the sign, which no product below sees. */
+        /* v = (0, 0, +-1): e = d x v and f = v x w' are (dy, -dx) and (-py, px) up to
+         * the sign of v, which no product below sees. */
         A = vfma(dx, dx, vmul(dy, dy));
-        B = vfma(dx, px, vmul(dy, py));
+        nB = vfnma(dx, px, vfnma(dy, py, zero));
         C = vsub(vfma(px, px, vmul(py, py)), vset1(P->rr_vv));
         g = vdop_x(px, dy, py, dx);
     } else {
         /* e = d x v to a relative accuracy that survives a ray almost along the axis. */
         ex = vdop_x(dy, vz, dz, vy), ey = vdop_x(dz, vx, dx, vz), ez = vdop_x(dx, vy, dy, vx);
-        fx = vfms(py, vz, vmul(pz, vy)), fy = vfms(pz, vx, vmul(px, vz)),
-        fz = vfms(px, vy, vmul(py, vx));
+        fx = vfms(vy, pz, vmul(vz, py)), fy = vfms(vz, px, vmul(vx, pz)),
+        fz = vfms(vx, py, vmul(vy, px));
         A = KDOT(ex, ey, ez, ex, ey, ez);
-        B = KDOT(ex, ey, ez, fx, fy, fz);
+        nB = KDOT(ex, ey, ez, fx, fy, fz);
         C = vsub(KDOT(fx, fy, fz, fx, fy, fz), vset1(P->rr_vv));
         g = KDOT(ex, ey, ez, px, py, pz);
     }
@@ -110,7 +120,7 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
 
     vf sq = fast ? vmul(vmul(D, vrsqrt_fast(vmax(D, vset1(1e-37f)))), vset1(P->sqrt_vv))
                  : vmul(vsqrt(D), vset1(P->sqrt_vv));
-    vf q = vneg(vadd(B, vcopysign(sq, B)));
+    vf q = vadd(nB, vcopysign(sq, nB)); /* -(B + sign(B) sqrt(disc)) */
     vf r1 = fast ? vmul(q, vrcp_fast(A)) : vdiv(q, A);
     vf r2 = fast ? vmul(C, vrcp_fast(q)) : vdiv(C, q);
     r2 = vsel(veq(q, zero), r1, r2);
@@ -156,19 +166,20 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
         part_out = one;
     }
 
+    /* The entry if it is not before tmin, else the exit (a hit from inside); then
+     * one range test for whichever it is. Rounding s + t is monotonic, so the entry
+     * test decides correctly which of the two can be the first in [tmin, tmax]. */
     const vf tmin = vloadu(R->tmin + i), tmax = vloadu(R->tmax + i);
-    vf T_in = vadd(s, t_in), T_out = vadd(s, t_out);
-    vm front = mand(ok_in, mand(mand(vge(T_in, tmin), vle(T_in, tmax)), vlt(vabs(T_in), inf)));
-    vm back = mandn(mand(ok_out, mand(mand(vge(T_out, tmin), vle(T_out, tmax)),
-                                      vlt(vabs(T_out), inf))),
-                    front);
-    if (cull)
-        back = mandn(back, back);
-    vm hit = mor(front, back);
+    vm front = mand(ok_in, vge(vadd(s, t_in), tmin));
+    vm cand = cull ? front : mor(front, ok_out);
+    vf tr = vsel(front, t_in, t_out); /* relative to the shifted origin */
+    vf T = vadd(s, tr);
+    vm hit = mand(cand, mand(mand(vge(T, tmin), vle(T, tmax)), vlt(vabs(T), inf)));
+    vm back = mandn(hit, front);
+    front = mand(hit, front);
     if (occ || !many(hit))
         return mbits(hit);
 
-    vf tr = vsel(front, t_in, t_out); /* relative to the shifted origin */
     vf part = vsel(front, part_in, vadd(part_out, vset1(CYLRAY_BACKFACE)));
     vm on_side = mand(hit, veq(vsel(front, part_in, part_out), one));
 
@@ -195,11 +206,9 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
         if (kind == CYLRAY_KIND_OPEN)
             keep = mand(keep, vle(vabs(vfma(tr2, dv, z0)), vset1(P->h_v)));
         tr = vsel(keep, tr2, tr);
-        T_in = vsel(mand(keep, front), T2, T_in);
-        T_out = vsel(mand(keep, back), T2, T_out);
+        T = vsel(keep, T2, T);
     }
 
-    vf T = vsel(front, T_in, T_out);
     vstore_m(H->t + i, hit, T);
     vstore_m(R->tmax + i, hit, T);
     vstore_part_m(H->part + i, hit, part);
@@ -215,7 +224,7 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
             /* v x (p x v) = v.v p_perp, with p x v = f + t e already perpendicular, so
              * no axial magnitude leaks in; vk = v / (R v.v) makes it unit length. */
             const vf kx = vset1(P->vk[k0]), ky = vset1(P->vk[k1]), kz = vset1(P->vk[k2]);
-            vf ux = vfma(tr, ex, fx), uy = vfma(tr, ey, fy), uz = vfma(tr, ez, fz);
+            vf ux = vfms(tr, ex, fx), uy = vfms(tr, ey, fy), uz = vfms(tr, ez, fz);
             nx = vfms(ky, uz, vmul(kz, uy));
             ny = vfms(kz, ux, vmul(kx, uz));
             nz = vfms(kx, uy, vmul(ky, ux));

@@ -74,6 +74,8 @@ cylray_status cylray_prepare(cylray_prepared *out, const cylray_cylinder *in)
     for (int k = 0; k < 3; k++)
         p.vk[k] = (float)(v[k] / (R * vv));
     p.par_eps = (float)(vv * 0x1p-46);
+    /* The margin covers the rounding of the shifted origin many times over. */
+    p.bound2 = isfinite(H) ? (float)((R * R + H * H) * (1.0 + 0x1p-12)) : INFINITY;
     p.radius = (float)R;
     p.half_height = (float)H;
     p.kind = !isfinite(H) ? CYLRAY_KIND_INFINITE
