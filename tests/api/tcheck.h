@@ -17,6 +17,7 @@
 
 extern long tc_checks_;
 extern long tc_failures_;
+extern int tc_silent_; /* nonzero: count failures without printing (harness self-test) */
 
 void tc_fail_(const char *file, int line, const char *fmt, ...) TC_PRINTF(3, 4);
 
