@@ -1,0 +1,313 @@
+/* main.c - cylbench: every ISA x width x flag set x scenario, run time against error.
+ *
+ *   cylbench [--isa=LIST] [--width=LIST] [--scenario=LIST] [--quick] [--out=DIR]
+ *            [--reps=N] [--sample-ms=X]
+ *
+ * Prints a readable table on stdout and writes results.csv, results.json, table.txt,
+ * time_vs_error.svg, speedup.svg and scene.png into DIR (default bench/out). */
+#include "bench.h"
+#include "clock.h"
+#include "machine.h"
+#include "report.h"
+#include "scene.h"
+#include "workloads.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+static void usage(FILE *f)
+{
+    fprintf(f,
+            "usage: cylbench [options]\n"
+            "  --isa=LIST       scalar,sse41,avx2,avx512,neon,textbook (default: all this CPU runs)\n"
+            "  --width=LIST     4,8,16,stream (default: each scenario's own)\n"
+            "  --scenario=LIST  names or groups: main, stream, skips, stress, scene, all\n"
+            "                   (main: coherent incoherent shadow bvh-leaf miss-mix hit-mix;\n"
+            "                    stream: big-stream; skips: aligned general open infinite\n"
+            "                    all-miss all-hit; stress: stress-<category of tests/ref/gen.h>)\n"
+            "  --quick          fewer and shorter samples, smaller big stream\n"
+            "  --out=DIR        output directory (default bench/out)\n"
+            "  --reps=N         timed samples per configuration (default 15, quick 7)\n"
+            "  --sample-ms=X    length of one sample in ms (default 1, quick 0.4)\n");
+}
+
+/* Bit per item of a comma-separated list, from a table of names; -1 on an unknown one. */
+static long parse_list(const char *arg, const char *const *names, int n)
+{
+    long mask = 0;
+    for (const char *p = arg; *p;) {
+        size_t k = strcspn(p, ",");
+        int found = -1;
+        for (int i = 0; i < n; i++)
+            if (names[i] && strlen(names[i]) == k && strncmp(p, names[i], k) == 0)
+                found = i;
+        if (found < 0) {
+            fprintf(stderr, "cylbench: unknown item '%.*s' in '%s'\n", (int)k, p, arg);
+            return -1;
+        }
+        mask |= 1L << found;
+        p += k;
+        if (*p == ',')
+            p++;
+    }
+    return mask;
+}
+
+static int parse_options(int argc, char **argv, options *o)
+{
+    memset(o, 0, sizeof *o);
+    o->isa_mask = ~0u;
+    o->width_mask = 0; /* 0: each scenario's own */
+    o->out_dir = "bench/out";
+    int reps = 0;
+    double sample_ms = 0;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        if (!strncmp(a, "--isa=", 6)) {
+            const char *names[BENCH_NISA];
+            for (int k = 0; k < BENCH_NISA; k++)
+                names[k] = bench_isa_name(k);
+            long m = parse_list(a + 6, names, BENCH_NISA);
+            if (m < 0)
+                return -1;
+            o->isa_mask = (unsigned)m;
+        } else if (!strncmp(a, "--width=", 8)) {
+            long m = parse_list(a + 8, bench_width_name, BW_COUNT);
+            if (m < 0)
+                return -1;
+            o->width_mask = (unsigned)m;
+        } else if (!strncmp(a, "--scenario=", 11)) {
+            o->scenarios = a + 11;
+            if (workloads_check_list(o->scenarios))
+                return -1;
+        } else if (!strcmp(a, "--quick")) {
+            o->quick = 1;
+        } else if (!strncmp(a, "--out=", 6)) {
+            o->out_dir = a + 6;
+        } else if (!strncmp(a, "--reps=", 7)) {
+            reps = atoi(a + 7);
+        } else if (!strncmp(a, "--sample-ms=", 12)) {
+            sample_ms = atof(a + 12);
+        } else if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+            usage(stdout);
+            exit(0);
+        } else {
+            fprintf(stderr, "cylbench: unknown option '%s'\n", a);
+            usage(stderr);
+            return -1;
+        }
+    }
+    o->reps = reps > 0 ? reps : o->quick ? 7 : 15;
+    o->sample_ns = (sample_ms > 0 ? sample_ms : o->quick ? 0.4 : 1.0) * 1e6;
+    o->warm_ns = o->quick ? 20e6 : 60e6;
+    /* 4 Mi or 8 Mi rays: 128 or 256 MB of ray input, beyond any cache here */
+    o->big_rays = o->quick ? (size_t)4 << 20 : (size_t)8 << 20;
+    o->scene_w = 640;
+    o->scene_h = 360;
+    return 0;
+}
+
+static int mkdir_p(const char *path)
+{
+    char buf[1024];
+    snprintf(buf, sizeof buf, "%s", path);
+    for (char *p = buf + 1; *p; p++)
+        if (*p == '/') {
+            *p = 0;
+            if (mkdir(buf, 0777) && errno != EEXIST)
+                return -1;
+            *p = '/';
+        }
+    return mkdir(buf, 0777) && errno != EEXIST ? -1 : 0;
+}
+
+/* The ISAs to run: those asked for that this build and CPU have. */
+static int isa_runs(const options *o, int isa)
+{
+    if (!(o->isa_mask >> isa & 1u))
+        return 0;
+    return isa == BENCH_ISA_TEXTBOOK || cylray_kernels_for((cylray_isa)isa) != NULL;
+}
+
+static unsigned widths_of(const workload *w, const options *o)
+{
+    if (!o->width_mask)
+        return w->widths;
+    return w->big ? o->width_mask & (1u << BW_STREAM) : o->width_mask;
+}
+
+/* The configurations a workload runs, in order: flag set, width, then ISA innermost,
+ * so that the ISAs of one configuration are measured close together in time. */
+typedef void (*config_fn)(void *ctx, workload *w, int op, int wid, int isa);
+
+static int for_configs(workload *w, const options *o, config_fn fn, void *ctx)
+{
+    int n = 0;
+    unsigned widths = widths_of(w, o);
+    for (int op = 0; op < OP_COUNT; op++) {
+        if (!(w->ops >> op & 1u))
+            continue;
+        for (int wid = 0; wid < BW_COUNT; wid++) {
+            if (!(widths >> wid & 1u))
+                continue;
+            for (int isa = 0; isa < CYLRAY_ISA_COUNT; isa++)
+                if (isa_runs(o, isa)) {
+                    if (fn)
+                        fn(ctx, w, op, wid, isa);
+                    n++;
+                }
+        }
+        /* The textbook computes t and normals only, one ray at a time. */
+        if (w->textbook && op == OP_NORMAL && isa_runs(o, BENCH_ISA_TEXTBOOK)) {
+            if (fn)
+                fn(ctx, w, op, BW_STREAM, BENCH_ISA_TEXTBOOK);
+            n++;
+        }
+    }
+    return n;
+}
+
+typedef struct run_ctx {
+    const options *opt;
+    result_list *results;
+    int done, total, tty;
+    int warmed[BENCH_NISA];
+    double memcpy_gbs;
+} run_ctx;
+
+static void progress(run_ctx *c, const char *scen, const char *what)
+{
+    if (c->tty)
+        fprintf(stderr, "\r[%4d/%4d] %-20s %-34s", c->done, c->total, scen, what);
+}
+
+static void run_config(void *vctx, workload *w, int op, int wid, int isa)
+{
+    run_ctx *c = vctx;
+    char what[64];
+    snprintf(what, sizeof what, "%s w%s %s", bench_isa_name(isa), bench_width_name[wid],
+             bench_op_name[op]);
+    progress(c, w->name, what);
+    result *r = results_push(c->results);
+    if (!r)
+        return;
+    snprintf(r->scenario, sizeof r->scenario, "%s", w->name);
+    snprintf(r->group, sizeof r->group, "%s", w->group);
+    snprintf(r->isa, sizeof r->isa, "%s", bench_isa_name(isa));
+    snprintf(r->op, sizeof r->op, "%s", bench_op_name[op]);
+    r->isa_id = isa;
+    r->width_id = wid;
+    r->op_id = op;
+    int first = !c->warmed[isa];
+    c->warmed[isa] = 1;
+    if (bench_time(w, isa, wid, op, c->opt, r, first) != 0) {
+        c->results->n--; /* not runnable (e.g. no memory): leave no row */
+        c->done++;
+        return;
+    }
+    if (w->big)
+        r->memcpy_gbytes_s = c->memcpy_gbs;
+    accuracy_measure(w, isa, wid, op, r);
+    c->done++;
+}
+
+/* Speedup over the scalar path in the same run: same scenario, width and flag set (the
+ * textbook against scalar's stream). */
+static void compute_speedups(result_list *l)
+{
+    for (size_t i = 0; i < l->n; i++) {
+        result *r = &l->r[i];
+        for (size_t j = 0; j < l->n; j++) {
+            const result *s = &l->r[j];
+            if (s->isa_id == CYLRAY_ISA_SCALAR && !strcmp(s->scenario, r->scenario) &&
+                s->op_id == r->op_id &&
+                (s->width_id == r->width_id ||
+                 (r->isa_id == BENCH_ISA_TEXTBOOK && r->speedup == 0)) &&
+                r->ns.med > 0) {
+                r->speedup = s->ns.med / r->ns.med;
+                if (s->width_id == r->width_id)
+                    break;
+            }
+        }
+    }
+}
+
+int main(int argc, char **argv)
+{
+    options opt;
+    if (parse_options(argc, argv, &opt))
+        return 2;
+    double t_start = clk_ns();
+    if (mkdir_p(opt.out_dir)) {
+        fprintf(stderr, "cylbench: cannot create %s\n", opt.out_dir);
+        return 1;
+    }
+    machine_info m;
+    machine_probe(&m);
+    clk_pin(m.pinned, sizeof m.pinned);
+
+    run_ctx ctx;
+    memset(&ctx, 0, sizeof ctx);
+    result_list results = {0, 0, 0};
+    ctx.opt = &opt;
+    ctx.results = &results;
+    ctx.tty = isatty(2);
+
+    /* Count the configurations first, for the progress line. */
+    int nw = workloads_count();
+    for (int i = 0; i < nw; i++) {
+        if (!workloads_selected(i, opt.scenarios))
+            continue;
+        workload w;
+        memset(&w, 0, sizeof w);
+        w.ops = 0;
+        /* the table's flag sets and widths are known without drawing any rays */
+        if (workloads_build(i, &w, &(options){.big_rays = 16, .quick = 1}) == 0)
+            ctx.total += for_configs(&w, &opt, NULL, NULL);
+        workloads_free(&w);
+    }
+
+    fprintf(stderr, "cylbench: %s, %d cores, %s; paths: %s; reference: %s\n", m.cpu, m.cores,
+            m.compiler, m.isas, accuracy_available() ? "exact (tests/ref)" : "none");
+    for (int i = 0; i < nw; i++) {
+        if (!workloads_selected(i, opt.scenarios))
+            continue;
+        workload w;
+        progress(&ctx, workloads_name(i), "drawing rays");
+        if (workloads_build(i, &w, &opt) != 0) {
+            fprintf(stderr, "\ncylbench: %s: cannot build this scenario; skipped\n",
+                    workloads_name(i));
+            workloads_free(&w);
+            continue;
+        }
+        progress(&ctx, w.name, "exact reference");
+        accuracy_reference(&w);
+        if (w.big) {
+            progress(&ctx, w.name, "memcpy bound");
+            ctx.memcpy_gbs = bench_memcpy_gbs(&w, &opt);
+        }
+        for_configs(&w, &opt, run_config, &ctx);
+        if (!ctx.tty)
+            fprintf(stderr, "cylbench: %s done (%d/%d)\n", w.name, ctx.done, ctx.total);
+        workloads_free(&w);
+    }
+    scene_report sc;
+    memset(&sc, 0, sizeof sc);
+    if (!opt.scenarios || strstr(opt.scenarios, "scene") || strstr(opt.scenarios, "all")) {
+        progress(&ctx, "scene", "rendering");
+        scene_run(&opt, &sc, &results);
+    }
+    if (ctx.tty)
+        fprintf(stderr, "\r%-80s\r", "");
+    compute_speedups(&results);
+    m.load_end = machine_load();
+
+    double wall = (clk_ns() - t_start) * 1e-9;
+    report_all(&results, &m, &opt, &sc, wall);
+    free(results.r);
+    return 0;
+}

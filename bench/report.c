@@ -1,0 +1,613 @@
+/* report.c - what a person reads: the stdout tables (time and error per ISA, the speed
+ * targets, the skips, the big stream, the scene), and the files: results.csv,
+ * results.json, table.txt (every configuration, one per line), and the two plots. */
+#include "report.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#define NCOLS BENCH_NISA
+
+/* The ISAs (and the textbook) that have rows among the results of one group. */
+static int isas_in(const result_list *l, const char *group, int cols[NCOLS])
+{
+    int n = 0;
+    for (int isa = 0; isa < BENCH_NISA; isa++)
+        for (size_t i = 0; i < l->n; i++)
+            if (l->r[i].isa_id == isa && (!group || !strcmp(l->r[i].group, group))) {
+                cols[n++] = isa;
+                break;
+            }
+    return n;
+}
+
+static const char *err_cell(const result *r, char *buf, size_t n)
+{
+    char u[16];
+    if (!r || !r->have_err)
+        snprintf(buf, n, "-");
+    else if (r->op_id == OP_OCC)
+        snprintf(buf, n, "occ");
+    else
+        snprintf(buf, n, "%su", fmt_ulps(r->ulp_p99, u, sizeof u));
+    return buf;
+}
+
+/* ---- the per-group time table ------------------------------------------------- */
+
+static void print_group(FILE *f, const result_list *l, const char *group, const char *title)
+{
+    int cols[NCOLS], nc = isas_in(l, group, cols);
+    if (!nc)
+        return;
+    fprintf(f, "\n== %s ==\n", title);
+    fprintf(f, "   cell: ns per ray (median; ~: timed by CPU time, the machine was busy) | "
+               "speedup over scalar | p99 t error, ulps\n");
+    fprintf(f, "%-19s %-8s %-6s", "scenario", "flags", "width");
+    for (int c = 0; c < nc; c++)
+        fprintf(f, "| %-19s", bench_isa_name(cols[c]));
+    fprintf(f, "| hit%%  dis\n");
+    const char *last = "";
+    for (size_t i = 0; i < l->n; i++) {
+        const result *r = &l->r[i];
+        if (strcmp(r->group, group) || r->isa_id == BENCH_ISA_TEXTBOOK)
+            continue;
+        /* one row per (scenario, flags, width): its first result opens it */
+        int seen = 0;
+        for (size_t j = 0; j < i && !seen; j++) {
+            const result *q = &l->r[j];
+            seen = q->isa_id != BENCH_ISA_TEXTBOOK && !strcmp(q->scenario, r->scenario) &&
+                   q->op_id == r->op_id && q->width_id == r->width_id;
+        }
+        if (seen)
+            continue;
+        if (strcmp(last, r->scenario) && *last)
+            fprintf(f, "\n");
+        last = r->scenario;
+        fprintf(f, "%-19s %-8s %-6s", r->scenario, r->op, bench_width_name[r->width_id]);
+        size_t dis = 0, unexc = 0;
+        double hit = -1;
+        for (int c = 0; c < nc; c++) {
+            const result *q = find_result(l, r->scenario, cols[c],
+                                          cols[c] == BENCH_ISA_TEXTBOOK ? -1 : r->width_id,
+                                          r->op_id);
+            /* the textbook has one row per flag set: show it on the first width's row */
+            if (q && cols[c] == BENCH_ISA_TEXTBOOK) {
+                const result *first = NULL;
+                for (size_t j = 0; j < l->n && !first; j++)
+                    if (!strcmp(l->r[j].scenario, r->scenario) && l->r[j].op_id == r->op_id &&
+                        l->r[j].isa_id != BENCH_ISA_TEXTBOOK)
+                        first = &l->r[j];
+                if (first != r)
+                    q = NULL;
+            }
+            if (!q) {
+                fprintf(f, "| %-19s", "");
+                continue;
+            }
+            char e[16];
+            fprintf(f, "| %7.2f%c%5.1fx %5s", q->ns.med, q->cpu_timed ? '~' : ' ', q->speedup,
+                    err_cell(q, e, sizeof e));
+            if (cols[c] != BENCH_ISA_TEXTBOOK) {
+                dis += q->extra_hits + q->lost_hits;
+                unexc += q->unexcused;
+                if (hit < 0)
+                    hit = q->hit_frac;
+            }
+        }
+        fprintf(f, "| %4.1f %3zu", 100 * (hit < 0 ? 0 : hit), dis);
+        if (unexc)
+            fprintf(f, " (%zu unexcused)", unexc);
+        fprintf(f, "\n");
+    }
+}
+
+/* ---- M rays/s per ISA and width, and the targets -------------------------------- */
+
+static void print_rates(FILE *f, const result_list *l)
+{
+    if (!find_result(l, "incoherent", CYLRAY_ISA_SCALAR, -1, OP_NORMAL) &&
+        !find_result(l, "incoherent", CYLRAY_ISA_AVX2, -1, OP_NORMAL))
+        return;
+    fprintf(f, "\n== M rays/s: ordinary (incoherent) rays, capped cylinder, normals, batches "
+               "in L1, one core ==\n");
+    fprintf(f, "%-9s", "isa");
+    for (int w = 0; w < BW_COUNT; w++)
+        fprintf(f, " %9s", bench_width_name[w]);
+    fprintf(f, "   | speedup over scalar:");
+    for (int w = 0; w < BW_COUNT; w++)
+        fprintf(f, " %6s", bench_width_name[w]);
+    fprintf(f, "\n");
+    for (int isa = 0; isa < CYLRAY_ISA_COUNT; isa++) {
+        if (!find_result(l, "incoherent", isa, -1, OP_NORMAL))
+            continue;
+        fprintf(f, "%-9s", bench_isa_name(isa));
+        for (int w = 0; w < BW_COUNT; w++) {
+            const result *r = find_result(l, "incoherent", isa, w, OP_NORMAL);
+            if (r)
+                fprintf(f, " %9.1f", r->mrays);
+            else
+                fprintf(f, " %9s", "-");
+        }
+        fprintf(f, "   | %20s", "");
+        for (int w = 0; w < BW_COUNT; w++) {
+            const result *r = find_result(l, "incoherent", isa, w, OP_NORMAL);
+            if (r)
+                fprintf(f, " %5.1fx", r->speedup);
+            else
+                fprintf(f, " %6s", "-");
+        }
+        fprintf(f, "\n");
+    }
+}
+
+static double ratio(const result *a, const result *b)
+{
+    return a && b && b->ns.med > 0 ? a->ns.med / b->ns.med : 0;
+}
+
+static void print_targets(FILE *f, const result_list *l)
+{
+    struct {
+        const char *what;
+        double got, goal;
+        const char *unit;
+    } t[6];
+    int n = 0;
+    const result *a;
+#define TARGET(w, g, gl, u) (t[n].what = (w), t[n].got = (g), t[n].goal = (gl), t[n].unit = (u), n++)
+    a = find_result(l, "incoherent", CYLRAY_ISA_AVX2, BW_8, OP_NORMAL);
+    TARGET("AVX2 8-wide, capped, normals, L1", a ? a->mrays : 0, 250, "M rays/s");
+    a = find_result(l, "incoherent", CYLRAY_ISA_AVX512, BW_16, OP_NORMAL);
+    TARGET("AVX-512 16-wide, capped, normals, L1", a ? a->mrays : 0, 400, "M rays/s");
+    a = find_result(l, "incoherent", CYLRAY_ISA_SSE41, BW_4, OP_NORMAL);
+    TARGET("SSE4.1 4-wide, capped, normals, L1", a ? a->mrays : 0, 120, "M rays/s");
+    TARGET("occluded vs intersect+normals (AVX2 8)",
+           ratio(find_result(l, "incoherent", CYLRAY_ISA_AVX2, BW_8, OP_NORMAL),
+                 find_result(l, "incoherent", CYLRAY_ISA_AVX2, BW_8, OP_OCC)),
+           1.3, "x faster");
+    TARGET("axis-aligned vs general axis (AVX2 8)",
+           ratio(find_result(l, "general", CYLRAY_ISA_AVX2, BW_8, OP_NORMAL),
+                 find_result(l, "aligned", CYLRAY_ISA_AVX2, BW_8, OP_NORMAL)),
+           1.25, "x faster");
+    TARGET("all-miss vs all-hit packet (AVX2 8)",
+           ratio(find_result(l, "all-hit", CYLRAY_ISA_AVX2, BW_8, OP_NORMAL),
+                 find_result(l, "all-miss", CYLRAY_ISA_AVX2, BW_8, OP_NORMAL)),
+           3.0, "x faster");
+#undef TARGET
+    fprintf(f, "\n== speed targets of issues 3 and 5 (reported, not asserted) ==\n");
+    for (int i = 0; i < n; i++) {
+        if (t[i].got <= 0) {
+            fprintf(f, "  %-42s %10s            goal >= %6.2f %-9s  not measured\n",
+                    t[i].what, "-", t[i].goal, t[i].unit);
+            continue;
+        }
+        fprintf(f, "  %-42s %10.2f %-9s  goal >= %6.2f %-9s  %s (%.0f%% of goal)\n", t[i].what,
+                t[i].got, t[i].unit, t[i].goal, t[i].unit, t[i].got >= t[i].goal ? "MET" : "NOT MET",
+                100 * t[i].got / t[i].goal);
+    }
+}
+
+/* ---- what each skip saves (issue 5) -------------------------------------------- */
+
+static void print_skips(FILE *f, const result_list *l)
+{
+    if (!find_result(l, "general", CYLRAY_ISA_SCALAR, -1, OP_NORMAL) &&
+        !find_result(l, "general", CYLRAY_ISA_AVX2, -1, OP_NORMAL))
+        return;
+    fprintf(f, "\n== what each skip saves: time of the full case / time of the reduced one "
+               "(>1: the skip pays) ==\n");
+    fprintf(f, "   normal/t, normal/occ: incoherent rays; general/aligned, capped/open, "
+               "capped/infinite: the same rays;\n   all-hit/all-miss: packets of 100%% "
+               "hits vs 100%% misses (ns/ray of each in brackets)\n");
+    fprintf(f, "%-8s %-6s %8s %9s %9s %14s %10s %13s %22s\n", "isa", "width", "normal",
+               "normal/t", "norm/occ", "general/align", "capd/open", "capd/infinite",
+               "all-hit/all-miss");
+    for (int isa = 0; isa < CYLRAY_ISA_COUNT; isa++)
+        for (int w = 0; w < BW_COUNT; w++) {
+            const result *gen = find_result(l, "general", isa, w, OP_NORMAL);
+            const result *inc = find_result(l, "incoherent", isa, w, OP_NORMAL);
+            if (!gen && !inc)
+                continue;
+            const result *ah = find_result(l, "all-hit", isa, w, OP_NORMAL);
+            const result *am = find_result(l, "all-miss", isa, w, OP_NORMAL);
+            fprintf(f, "%-8s %-6s %8.2f %8.2fx %8.2fx %13.2fx %9.2fx %12.2fx %6.2fx (%.2f/%.2f)\n",
+                    bench_isa_name(isa), bench_width_name[w], inc ? inc->ns.med : 0,
+                    ratio(inc, find_result(l, "incoherent", isa, w, OP_T)),
+                    ratio(inc, find_result(l, "incoherent", isa, w, OP_OCC)),
+                    ratio(gen, find_result(l, "aligned", isa, w, OP_NORMAL)),
+                    ratio(gen, find_result(l, "open", isa, w, OP_NORMAL)),
+                    ratio(gen, find_result(l, "infinite", isa, w, OP_NORMAL)), ratio(ah, am),
+                    ah ? ah->ns.med : 0, am ? am->ns.med : 0);
+        }
+}
+
+/* ---- the big stream -------------------------------------------------------------- */
+
+static void print_stream(FILE *f, const result_list *l)
+{
+    int any = 0;
+    for (size_t i = 0; i < l->n; i++)
+        any |= !strcmp(l->r[i].scenario, "big-stream");
+    if (!any)
+        return;
+    size_t n = 0;
+    for (size_t i = 0; i < l->n; i++)
+        if (!strcmp(l->r[i].scenario, "big-stream"))
+            n = l->r[i].rays_timed;
+    fprintf(f, "\n== big stream: %zu rays (%.0f MB of ray input) through the stream API, one "
+               "pass per sample ==\n",
+            n, 32e-6 * (double)n);
+    fprintf(f, "   GB/s counts the 32 bytes of ray input per ray; memcpy copies the same "
+               "bytes (read + write, GB/s of bytes copied)\n");
+    fprintf(f, "%-8s %-9s %8s %9s %9s %11s %9s\n", "isa", "flags", "ns/ray", "M rays/s",
+            "GB/s", "memcpy GB/s", "of memcpy");
+    for (size_t i = 0; i < l->n; i++) {
+        const result *r = &l->r[i];
+        if (strcmp(r->scenario, "big-stream"))
+            continue;
+        fprintf(f, "%-8s %-9s %8.2f %9.1f %9.2f %11.2f %8.0f%%\n", r->isa, r->op, r->ns.med,
+                r->mrays, r->gbytes_s, r->memcpy_gbytes_s,
+                r->memcpy_gbytes_s > 0 ? 100 * r->gbytes_s / r->memcpy_gbytes_s : 0);
+    }
+}
+
+/* ---- error table --------------------------------------------------------------------- */
+
+/* Do the error figures of (scenario, op, isa) differ between widths? */
+static int err_varies(const result_list *l, const result *r)
+{
+    for (size_t i = 0; i < l->n; i++) {
+        const result *q = &l->r[i];
+        if (q == r || q->isa_id != r->isa_id || q->op_id != r->op_id ||
+            strcmp(q->scenario, r->scenario) || !q->have_err)
+            continue;
+        if (q->ulp_p99 != r->ulp_p99 || q->ulp_max != r->ulp_max ||
+            q->extra_hits != r->extra_hits || q->lost_hits != r->lost_hits)
+            return 1;
+    }
+    return 0;
+}
+
+static void print_errors(FILE *f, const result_list *l)
+{
+    int cols[NCOLS], nc = isas_in(l, NULL, cols);
+    int have = 0;
+    for (size_t i = 0; i < l->n; i++)
+        have |= l->r[i].have_err;
+    if (!have) {
+        fprintf(f, "\n(no exact reference in this build: no error figures)\n");
+        return;
+    }
+    fprintf(f, "\n== t error against the exact reference, on the timed rays (widest width "
+               "measured) ==\n"
+               "   cell: p99/max of |t - t_exact| in ulps at t_exact; dN: N hit/miss or part "
+               "disagreements, !M of them outside the\n   reference's tolerance band "
+               "(unexcused); *: differs between widths. med: worst median; >band: worst "
+               "p99/max of\n   the error beyond the band (what input rounding cannot "
+               "explain). textbook: the seed's formulas, judged as open tubes\n");
+    fprintf(f, "%-19s %-8s", "scenario", "flags");
+    for (int c = 0; c < nc; c++)
+        fprintf(f, "| %-18s", bench_isa_name(cols[c]));
+    fprintf(f, "| %5s %s\n", "med", ">band");
+    for (size_t i = 0; i < l->n; i++) {
+        const result *r = &l->r[i];
+        if (!r->have_err || r->op_id == OP_OCC || r->isa_id == BENCH_ISA_TEXTBOOK)
+            continue;
+        int seen = 0;
+        for (size_t j = 0; j < i && !seen; j++)
+            seen = l->r[j].have_err && !strcmp(l->r[j].scenario, r->scenario) &&
+                   l->r[j].op_id == r->op_id && l->r[j].isa_id != BENCH_ISA_TEXTBOOK;
+        if (seen)
+            continue;
+        fprintf(f, "%-19s %-8s", r->scenario, r->op);
+        double med = 0, xp = 0, xm = 0;
+        for (int c = 0; c < nc; c++) {
+            /* the widest width of this ISA, scenario and flag set */
+            const result *q = NULL;
+            for (int w = BW_16; w >= BW_4 && !q; w--)
+                q = find_result(l, r->scenario, cols[c], w, r->op_id);
+            if (!q)
+                q = find_result(l, r->scenario, cols[c], -1, r->op_id);
+            if (!q || !q->have_err) {
+                fprintf(f, "| %-18s", "");
+                continue;
+            }
+            char a[16], b[16], cell[64];
+            size_t d = q->extra_hits + q->lost_hits + q->part_diff;
+            int k = snprintf(cell, sizeof cell, "%s/%s", fmt_ulps(q->ulp_p99, a, sizeof a),
+                             fmt_ulps(q->ulp_max, b, sizeof b));
+            if (d && k > 0 && (size_t)k < sizeof cell)
+                k += snprintf(cell + k, sizeof cell - (size_t)k, " d%zu", d);
+            if (q->unexcused && k > 0 && (size_t)k < sizeof cell)
+                k += snprintf(cell + k, sizeof cell - (size_t)k, "!%zu", q->unexcused);
+            if (err_varies(l, q) && k > 0 && (size_t)k < sizeof cell)
+                snprintf(cell + k, sizeof cell - (size_t)k, "*");
+            fprintf(f, "| %-18s", cell);
+            if (cols[c] != BENCH_ISA_TEXTBOOK) {
+                med = fmax(med, q->ulp_med);
+                xp = fmax(xp, q->xs_p99);
+                xm = fmax(xm, q->xs_max);
+            }
+        }
+        char a[16], b[16], c[16];
+        fprintf(f, "| %5s %s/%s\n", fmt_ulps(med, a, sizeof a), fmt_ulps(xp, b, sizeof b),
+                fmt_ulps(xm, c, sizeof c));
+    }
+}
+
+/* ---- the scene ------------------------------------------------------------------------ */
+
+static void print_scene(FILE *f, const result_list *l, const scene_report *sc)
+{
+    if (!sc->have)
+        return;
+    fprintf(f, "\n== scene: %d capped cylinders, %dx%d, 16-ray packets against every cylinder, "
+               "%zu primary + %zu shadow rays per frame ==\n",
+            sc->ncyl, sc->w, sc->h, sc->primary, sc->shadow);
+    fprintf(f, "%-14s %10s %10s %12s %9s %14s\n", "path", "ms/frame", "M rays/s",
+            "M tests/s", "xscalar", "pixels != plain");
+    for (size_t i = 0; i < l->n; i++) {
+        const result *r = &l->r[i];
+        if (strcmp(r->scenario, "scene"))
+            continue;
+        double ms = r->ns.med * (double)r->rays_timed * 1e-6;
+        fprintf(f, "%-14s %10.1f %10.1f %12.0f %8.1fx ", r->isa, ms, r->mrays,
+                r->mrays * r->ncyl, r->speedup);
+        if (r->isa_id >= 0 && r->isa_id < BENCH_NISA)
+            fprintf(f, "%14ld\n", sc->pix_diff[r->isa_id]);
+        else
+            fprintf(f, "%14s\n", "(the image)");
+    }
+    if (sc->image[0])
+        fprintf(f, "   image: %s\n", sc->image);
+}
+
+/* ---- files ---------------------------------------------------------------------------- */
+
+static FILE *open_out(const options *opt, const char *name, char *path, size_t n)
+{
+    snprintf(path, n, "%s/%s", opt->out_dir, name);
+    FILE *f = fopen(path, "w");
+    if (!f)
+        fprintf(stderr, "cylbench: cannot write %s\n", path);
+    return f;
+}
+
+static void write_csv(const result_list *l, const machine_info *m, const options *opt)
+{
+    char path[1024], ml[512];
+    FILE *f = open_out(opt, "results.csv", path, sizeof path);
+    if (!f)
+        return;
+    machine_line(m, ml, sizeof ml);
+    fprintf(f, "# cylbench %s; %s; %s\n", m->date, ml, m->pinned);
+    fprintf(f, "scenario,group,isa,width,flags,rays_per_pass,tests_per_ray,reps,ns_med,ns_min,"
+               "ns_max,ns_q1,ns_q3,mrays_s,tsc_ticks,speedup_vs_scalar,hit_frac,samples,"
+               "clean_samples,cpu_timed,err_compared,ref_hits,ulp_med,ulp_p99,ulp_max,"
+               "beyond_band_p99,beyond_band_max,extra_hits,lost_hits,part_diff,unexcused,"
+               "gbytes_s,memcpy_gbytes_s\n");
+    for (size_t i = 0; i < l->n; i++) {
+        const result *r = &l->r[i];
+        fprintf(f, "%s,%s,%s,%s,%s,%zu,%d,%d,%.4f,%.4f,%.4f,%.4f,%.4f,%.2f,%.3f,%.3f,%.4f,"
+                   "%d,%d,%d,",
+                r->scenario, r->group, r->isa, bench_width_name[r->width_id], r->op,
+                r->rays_timed, r->ncyl, r->reps, r->ns.med, r->ns.min, r->ns.max, r->ns.q1,
+                r->ns.q3, r->mrays, r->ticks, r->speedup, r->hit_frac, r->samples, r->clean,
+                r->cpu_timed);
+        if (r->have_err)
+            fprintf(f, "%zu,%zu,%.4g,%.4g,%.4g,%.4g,%.4g,%zu,%zu,%zu,%zu,", r->n_cmp,
+                    r->n_hits_ref, r->ulp_med, r->ulp_p99, r->ulp_max, r->xs_p99, r->xs_max,
+                    r->extra_hits, r->lost_hits, r->part_diff, r->unexcused);
+        else
+            fprintf(f, ",,,,,,,,,,,");
+        if (r->gbytes_s > 0)
+            fprintf(f, "%.3f,%.3f\n", r->gbytes_s, r->memcpy_gbytes_s);
+        else
+            fprintf(f, ",\n");
+    }
+    fclose(f);
+}
+
+static void json_str(FILE *f, const char *s)
+{
+    fputc('"', f);
+    for (; *s; s++) {
+        if (*s == '"' || *s == '\\')
+            fputc('\\', f);
+        if ((unsigned char)*s >= 0x20)
+            fputc(*s, f);
+    }
+    fputc('"', f);
+}
+
+static void json_num(FILE *f, double x)
+{
+    if (isfinite(x))
+        fprintf(f, "%.6g", x);
+    else
+        fprintf(f, "null");
+}
+
+static void write_json(const result_list *l, const machine_info *m, const options *opt,
+                       const scene_report *sc, double wall)
+{
+    char path[1024];
+    FILE *f = open_out(opt, "results.json", path, sizeof path);
+    if (!f)
+        return;
+    fprintf(f, "{\n  \"machine\": {\"cpu\": ");
+    json_str(f, m->cpu);
+    fprintf(f, ", \"cpuid\": ");
+    json_str(f, m->cpuid);
+    fprintf(f, ", \"cores\": %d, \"virtual\": %s, \"tsc_ghz\": ", m->cores,
+            m->hypervisor ? "true" : "false");
+    json_num(f, m->tsc_ghz);
+    fprintf(f, ", \"compiler\": ");
+    json_str(f, m->compiler);
+    fprintf(f, ", \"buildtype\": ");
+    json_str(f, m->buildtype);
+    fprintf(f, ", \"os\": ");
+    json_str(f, m->os);
+    fprintf(f, ", \"paths\": ");
+    json_str(f, m->isas);
+    fprintf(f, ", \"pinning\": ");
+    json_str(f, m->pinned);
+    fprintf(f, ", \"date\": ");
+    json_str(f, m->date);
+    fprintf(f, ", \"load_start\": ");
+    json_num(f, m->load_start);
+    fprintf(f, ", \"load_end\": ");
+    json_num(f, m->load_end);
+    fprintf(f, "},\n  \"settings\": {\"quick\": %s, \"reps\": %d, \"sample_ms\": %.3f, "
+               "\"batch_rays\": %d, \"big_stream_rays\": %zu, \"exact_reference\": %s, "
+               "\"wall_s\": %.1f},\n",
+            opt->quick ? "true" : "false", opt->reps, opt->sample_ns * 1e-6, BENCH_BATCH,
+            opt->big_rays, accuracy_available() ? "true" : "false", wall);
+    if (sc->have) {
+        fprintf(f, "  \"scene\": {\"width\": %d, \"height\": %d, \"cylinders\": %d, "
+                   "\"primary_rays\": %zu, \"shadow_rays\": %zu, \"image\": ",
+                sc->w, sc->h, sc->ncyl, sc->primary, sc->shadow);
+        json_str(f, sc->image);
+        fprintf(f, "},\n");
+    }
+    fprintf(f, "  \"results\": [\n");
+    for (size_t i = 0; i < l->n; i++) {
+        const result *r = &l->r[i];
+        fprintf(f, "    {\"scenario\": \"%s\", \"group\": \"%s\", \"isa\": \"%s\", "
+                   "\"width\": \"%s\", \"flags\": \"%s\", \"rays_per_pass\": %zu, "
+                   "\"tests_per_ray\": %d, \"reps\": %d, \"ns_per_ray\": {\"median\": ",
+                r->scenario, r->group, r->isa, bench_width_name[r->width_id], r->op,
+                r->rays_timed, r->ncyl, r->reps);
+        json_num(f, r->ns.med);
+        fprintf(f, ", \"min\": ");
+        json_num(f, r->ns.min);
+        fprintf(f, ", \"max\": ");
+        json_num(f, r->ns.max);
+        fprintf(f, ", \"q1\": ");
+        json_num(f, r->ns.q1);
+        fprintf(f, ", \"q3\": ");
+        json_num(f, r->ns.q3);
+        fprintf(f, "}, \"mrays_s\": ");
+        json_num(f, r->mrays);
+        fprintf(f, ", \"tsc_ticks_per_ray\": ");
+        json_num(f, r->ticks);
+        fprintf(f, ", \"speedup_vs_scalar\": ");
+        json_num(f, r->speedup);
+        fprintf(f, ", \"hit_frac\": ");
+        json_num(f, r->hit_frac);
+        fprintf(f, ", \"samples\": %d, \"clean_samples\": %d, \"cpu_timed\": %s", r->samples,
+                r->clean, r->cpu_timed ? "true" : "false");
+        if (r->have_err) {
+            fprintf(f, ", \"error\": {\"compared\": %zu, \"ref_hits\": %zu, \"ulp_median\": ",
+                    r->n_cmp, r->n_hits_ref);
+            json_num(f, r->ulp_med);
+            fprintf(f, ", \"ulp_p99\": ");
+            json_num(f, r->ulp_p99);
+            fprintf(f, ", \"ulp_max\": ");
+            json_num(f, r->ulp_max);
+            fprintf(f, ", \"beyond_band_p99\": ");
+            json_num(f, r->xs_p99);
+            fprintf(f, ", \"beyond_band_max\": ");
+            json_num(f, r->xs_max);
+            fprintf(f, ", \"extra_hits\": %zu, \"lost_hits\": %zu, \"part_diff\": %zu, "
+                       "\"unexcused\": %zu}",
+                    r->extra_hits, r->lost_hits, r->part_diff, r->unexcused);
+        }
+        if (r->gbytes_s > 0) {
+            fprintf(f, ", \"gbytes_s\": ");
+            json_num(f, r->gbytes_s);
+            fprintf(f, ", \"memcpy_gbytes_s\": ");
+            json_num(f, r->memcpy_gbytes_s);
+        }
+        fprintf(f, "}%s\n", i + 1 < l->n ? "," : "");
+    }
+    fprintf(f, "  ]\n}\n");
+    fclose(f);
+}
+
+/* Every configuration on its own line, all figures: the long form of the tables. */
+static void write_long(const result_list *l, const machine_info *m, const options *opt)
+{
+    char path[1024], ml[512];
+    FILE *f = open_out(opt, "table.txt", path, sizeof path);
+    if (!f)
+        return;
+    machine_line(m, ml, sizeof ml);
+    fprintf(f, "cylbench %s\n%s; %s\n\n", m->date, ml, m->pinned);
+    fprintf(f, "%-19s %-9s %-6s %-8s %8s %8s %8s %9s %8s %7s %6s | %6s %6s %7s %5s %5s %5s %5s\n",
+            "scenario", "isa", "width", "flags", "ns/ray", "min", "max", "M rays/s",
+            "ticks", "xscalar", "hit%", "med", "p99", "max ulp", "extra", "lost", "part",
+            "unexc");
+    for (size_t i = 0; i < l->n; i++) {
+        const result *r = &l->r[i];
+        fprintf(f, "%-19s %-9s %-6s %-8s %8.3f %8.3f %8.3f %9.1f %8.2f %6.2fx %6.1f |",
+                r->scenario, r->isa, bench_width_name[r->width_id], r->op, r->ns.med,
+                r->ns.min, r->ns.max, r->mrays, r->ticks, r->speedup, 100 * r->hit_frac);
+        if (r->have_err) {
+            char a[16], b[16], c[16];
+            fprintf(f, " %6s %6s %7s %5zu %5zu %5zu %5zu\n", fmt_ulps(r->ulp_med, a, sizeof a),
+                    fmt_ulps(r->ulp_p99, b, sizeof b), fmt_ulps(r->ulp_max, c, sizeof c),
+                    r->extra_hits, r->lost_hits, r->part_diff, r->unexcused);
+        } else {
+            fprintf(f, " %6s\n", "-");
+        }
+    }
+    fclose(f);
+}
+
+void report_all(const result_list *l, const machine_info *m, const options *opt,
+                const scene_report *sc, double wall)
+{
+    FILE *f = stdout;
+    char ml[512];
+    machine_line(m, ml, sizeof ml);
+    fprintf(f, "cylbench: cylray ray/cylinder kernels, run time against error (%s)\n", m->date);
+    fprintf(f, "machine: %s\n", ml);
+    fprintf(f, "         %s; cylray paths on this CPU: %s; %s\n", m->os, m->isas, m->pinned);
+    fprintf(f, "method:  batches of %d rays timed while in L1; warm-up; %d samples of >= %.1f ms "
+               "per configuration;\n         median [spread in results.csv: min, max, "
+               "quartiles]; per-ISA calls through cylray_kernels_for(isa);\n         tmax "
+               "restored per packet inside the timed loop; hit counts kept in a volatile "
+               "sink%s\n",
+            BENCH_BATCH, opt->reps, opt->sample_ns * 1e-6, opt->quick ? "; --quick" : "");
+    size_t busy = 0, timed = 0;
+    for (size_t i = 0; i < l->n; i++)
+        if (strcmp(l->r[i].scenario, "scene")) {
+            timed++;
+            busy += (size_t)l->r[i].cpu_timed;
+        }
+    fprintf(f, "load:    1-minute load average %.2f at the start, %.2f at the end, on %d cores; "
+               "samples interrupted by other\n         processes are retaken; %zu of %zu "
+               "configurations had too few clean ones and were timed by thread CPU time (~)\n",
+            m->load_start, m->load_end, m->cores, busy, timed);
+    fprintf(f, "error:   %s\n",
+            accuracy_available()
+                ? "exact binary128 reference (tests/ref), same rays as timed (big stream: "
+                  "16 Ki of them)"
+                : "no reference built: error columns empty");
+
+    print_group(f, l, "main", "main scenarios: packets of 4, 8, 16 and the stream API");
+    print_group(f, l, "skips", "skips (issue 5): the same work with less to do");
+    print_group(f, l, "stress", "stress categories of tests/ref/gen.h (16 rays per cylinder; "
+                                "textbook: the seed's float formulas)");
+    print_rates(f, l);
+    print_targets(f, l);
+    print_skips(f, l);
+    print_stream(f, l);
+    print_errors(f, l);
+    print_scene(f, l, sc);
+
+    write_csv(l, m, opt);
+    write_json(l, m, opt, sc, wall);
+    write_long(l, m, opt);
+    char p1[1024], p2[1024];
+    snprintf(p1, sizeof p1, "%s/time_vs_error.svg", opt->out_dir);
+    snprintf(p2, sizeof p2, "%s/speedup.svg", opt->out_dir);
+    int e1 = svg_time_vs_error(p1, l, m), e2 = svg_speedup(p2, l, m);
+    fprintf(f, "\noutputs in %s: results.csv results.json table.txt%s%s%s\n", opt->out_dir,
+            e1 ? "" : " time_vs_error.svg", e2 ? "" : " speedup.svg",
+            sc->have && sc->image[0] ? " scene.png" : "");
+    fprintf(f, "harness wall time: %.1f s\n", wall);
+}
