@@ -419,10 +419,9 @@ static void gen_case(int cat, cylgen_rng *r, cylgen_case *c)
             ray_towards(r, &f, f.R * logu(r, 2, 1e3), 1.3, c);
         break;
     case CYLGEN_HUGE:
-        if (chance(r, 0.3))
-            ray_inside(r, &f, c);
-        else
-            ray_towards(r, &f, f.R * uni(r, 2, 20), 1.3, c);
+        /* From outside, as "tiny": the scale is the difficulty here; rays from inside
+         * are the "inside" category's. */
+        ray_towards(r, &f, f.R * uni(r, 2, 20), 1.3, c);
         break;
     case CYLGEN_UNNORMALIZED: {
         ray_towards(r, &f, f.R * uni(r, 2, 20), 1.3, c);
@@ -462,7 +461,7 @@ static const char *const descriptions[CYLGEN_COUNT] = {
     "origin inside the solid",
     "capped, aimed exactly at a rim point, entering (or leaving) through the edge",
     "radius 1e-4..1e-3, center at 0.5e4..2e4, origin 2-1e6 R away",
-    "radius 1e3..1e5, center at 1e4..1e5",
+    "radius 1e3..1e5, center at 1e4..1e5, origin 2-20 R away",
     "|d| 1e-3..1e3",
     "infinite cylinders, outside and inside origins",
 };

@@ -27,7 +27,7 @@ enum {
     CYLGEN_INSIDE,       /* "inside": origin inside the solid */
     CYLGEN_RIM,          /* "rim": capped, aimed exactly at a point of the cap rim */
     CYLGEN_TINY,         /* "tiny": radius 1e-4..1e-3, center around 1e4 */
-    CYLGEN_HUGE,         /* "huge": radius 1e3..1e5, center around 1e4..1e5 */
+    CYLGEN_HUGE,         /* "huge": radius 1e3..1e5, center around 1e4..1e5, from outside */
     CYLGEN_UNNORMALIZED, /* "unnormalized": |d| 1e-3..1e3 */
     CYLGEN_INFINITE,     /* "infinite": half_height = INFINITY, outside and inside rays */
     CYLGEN_COUNT

@@ -1,0 +1,132 @@
+/* check.h - what the parts of cylcheck share: the cases with their exact bands, one
+ * kernel answer per lane, the verdict rules and the statistics. */
+#ifndef CYLCHECK_H
+#define CYLCHECK_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "cylray.h"
+#include "cylref.h"
+#include "gen.h"
+
+/* ---- the criteria --------------------------------------------------------------- */
+
+/* t may lie this many float ulps outside the exact band (DESIGN.md section 4). */
+#define TOL_T_ULPS 4.0
+/* With CYLRAY_FAST (hardware reciprocal / rsqrt estimates plus one Newton step). */
+#define TOL_T_ULPS_FAST 16.0
+/* |n| - 1. */
+#define TOL_NORMAL_LEN 1e-5
+/* Angle between the kernel's normal and the exact one, beyond what the band's input
+ * perturbation itself turns the normal by (n_spread). */
+#define TOL_NORMAL_ANGLE 4e-6
+
+/* Headline numbers the default path (no REFINE, no FAST) must reach. */
+#define HEADLINE_P99_ULPS 2.5
+#define HEADLINE_FAR_MAX_ULPS 2.0
+
+/* The modes the statistics are kept apart for. */
+enum { MODE_PLAIN, MODE_REFINE, MODE_FAST, MODE_COUNT };
+static inline int mode_of(unsigned flags)
+{
+    return (flags & CYLRAY_FAST) ? MODE_FAST : (flags & CYLRAY_REFINE) ? MODE_REFINE : MODE_PLAIN;
+}
+
+/* ---- cases ---------------------------------------------------------------------- */
+
+typedef struct ref_case {
+    cylgen_case c;
+    cylref_band band[2]; /* [0]: flags without CULL_BACK, [1]: with */
+    int index;           /* within its category's case list */
+} ref_case;
+
+/* One kernel answer for one lane, with what the checks on memory need. */
+typedef struct lane_out {
+    int hit;
+    float t, n[3];
+    int32_t part;
+} lane_out;
+
+/* ---- options and shared state --------------------------------------------------- */
+
+typedef struct options {
+    uint64_t seed;
+    int isa;          /* -1: every ISA the CPU has */
+    int category;     /* -1: all */
+    int only_case;    /* -1: all */
+    int flags_only;   /* -1: all 32 combinations */
+    size_t n;         /* packet cases per category (multiple of 16) */
+    int quick, report, verbose;
+    int max_print;    /* failures printed in full */
+    int headline;     /* assert the headline numbers */
+    double show_ulps; /* print every hit whose t is this many ulps off the exact t (0: no) */
+} options;
+
+extern options opt;
+extern long failures;
+
+/* ---- statistics ------------------------------------------------------------------ */
+
+typedef struct stat_cell {
+    double *ulps; /* t error vs exact, hits with the exact part */
+    size_t n_ulps, cap_ulps;
+    long lanes, exact_hits, kernel_hits;
+    long hm_excused, hm_unexcused;     /* hit/miss disagreements with the exact answer */
+    long part_excused, part_unexcused; /* part disagreements */
+    long t_beyond;                     /* t outside the band by more than the tolerance */
+    double max_beyond;                 /* ulps beyond the band, worst */
+    double max_angle, max_angle_excess; /* normal angle error; beyond n_spread */
+    double max_len;                    /* ||n| - 1| */
+    long vs_scalar, same_as_scalar;    /* lanes compared with scalar, bitwise equal */
+    long scalar_hm;                    /* hit/miss or part differs from scalar */
+    double max_vs_scalar;              /* t ulps between the two (same part) */
+    long rim_rays, rim_missed, rim_later; /* rim category: exact hit at the rim */
+} stat_cell;
+
+stat_cell *stat_at(int isa, int category, int mode);
+void stat_add_ulps(stat_cell *s, double u);
+/* Sorts and reads percentile p (0..1) of the t errors; NAN when empty. */
+double stat_percentile(stat_cell *s, double p);
+void stats_report(void);
+/* Checks the headline numbers for one ISA (default mode); prints them; returns the
+ * number of violated ones. */
+int stats_headline(int isa);
+void stats_free(void);
+
+/* ---- verdicts -------------------------------------------------------------------- */
+
+typedef struct lane_ctx {
+    const cylray_kernels *k;
+    unsigned flags;
+    int category;
+    const char *width; /* "4", "8", "16", "stream" */
+    int lane;
+} lane_ctx;
+
+/* Judges one lane's answer against the exact band (and the scalar answer when not
+ * NULL); counts, and prints a failure. */
+void check_lane(const lane_ctx *lc, const ref_case *rc, const lane_out *got,
+                const lane_out *scalar);
+/* A failure that is not about the numbers (memory, masks, return values). */
+void fail_memory(const lane_ctx *lc, const ref_case *rc, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+void print_case(const ref_case *rc, unsigned flags);
+const char *flags_name(unsigned flags);
+
+/* ---- the drivers ----------------------------------------------------------------- */
+
+/* Every width of packet over cases[0..n) (n a multiple of CYLGEN_BATCH, one cylinder
+ * per batch), with random active masks and poisoned outputs; scalar[i] (or NULL) is the
+ * scalar path's answer for cases[i]. */
+void drive_packets(const cylray_kernels *k, unsigned flags, int category, const ref_case *cases,
+                   size_t n, const lane_out *scalar, uint64_t seed);
+/* Streams of the given lengths over consecutive cases (each segment one cylinder),
+ * misaligned, with guard zones. */
+void drive_streams(const cylray_kernels *k, unsigned flags, int category, const ref_case *cases,
+                   const size_t *lengths, size_t n_lengths, const lane_out *scalar, uint64_t seed);
+/* The scalar path's answers for cases[0..n), one call per cylinder-sharing segment. */
+void scalar_answers(const cylray_kernels *scalar, unsigned flags, const ref_case *cases,
+                    const size_t *segments, size_t n_segments, lane_out *out);
+
+#endif

@@ -1,0 +1,149 @@
+/* stats.c - accuracy per ISA x category x mode: the t error distribution against the
+ * exact answer, disagreements (excused by the band or not), normals, agreement with
+ * the scalar path; the report table and the headline numbers. */
+#include "check.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+static stat_cell cells[CYLRAY_ISA_COUNT][CYLGEN_COUNT][MODE_COUNT];
+static const char *const mode_names[MODE_COUNT] = {"plain", "refine", "fast"};
+
+stat_cell *stat_at(int isa, int category, int mode)
+{
+    return &cells[isa][category][mode];
+}
+
+void stat_add_ulps(stat_cell *s, double u)
+{
+    if (s->n_ulps == s->cap_ulps) {
+        size_t cap = s->cap_ulps ? 2 * s->cap_ulps : 1024;
+        double *p = realloc(s->ulps, cap * sizeof *p);
+        if (!p) {
+            fprintf(stderr, "cylcheck: out of memory\n");
+            exit(2);
+        }
+        s->ulps = p;
+        s->cap_ulps = cap;
+    }
+    s->ulps[s->n_ulps++] = u;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+double stat_percentile(stat_cell *s, double p)
+{
+    if (!s->n_ulps)
+        return NAN;
+    qsort(s->ulps, s->n_ulps, sizeof *s->ulps, cmp_double);
+    /* Nearest rank: the smallest value with at least p of the sample at or below it. */
+    size_t k = (size_t)ceil(p * (double)s->n_ulps);
+    return s->ulps[k ? k - 1 : 0];
+}
+
+static void print_ulps(double u)
+{
+    if (u != u)
+        printf(" %8s", "-");
+    else if (u < 1e4)
+        printf(" %8.2f", u);
+    else
+        printf(" %8.1e", u);
+}
+
+void stats_report(void)
+{
+    printf("\naccuracy: t error in float ulps against the exact answer (hits with the exact "
+           "part); disagreements with the exact answer, excused by the band (exc) or not "
+           "(UNEXC); normals in radians\n");
+    printf("%-7s %-13s %-6s %7s %6s %8s %8s %8s %5s %5s %5s %5s %7s %8s %8s %8s %7s\n", "isa",
+           "category", "mode", "lanes", "hits%", "median", "p99", "max", "hmexc", "HMUNX",
+           "ptexc", "PTUNX", ">band", "maxbeyond", "nangle", "|n|-1", "=scalar");
+    for (int isa = 0; isa < CYLRAY_ISA_COUNT; isa++)
+        for (int cat = 0; cat < CYLGEN_COUNT; cat++)
+            for (int m = 0; m < MODE_COUNT; m++) {
+                stat_cell *s = &cells[isa][cat][m];
+                if (!s->lanes)
+                    continue;
+                printf("%-7s %-13s %-6s %7ld %6.1f", cylray_isa_name((cylray_isa)isa),
+                       cylgen_category_name(cat), mode_names[m], s->lanes,
+                       100.0 * (double)s->exact_hits / (double)s->lanes);
+                print_ulps(stat_percentile(s, 0.5));
+                print_ulps(stat_percentile(s, 0.99));
+                print_ulps(stat_percentile(s, 1.0));
+                printf(" %5ld %5ld %5ld %5ld %7ld", s->hm_excused, s->hm_unexcused,
+                       s->part_excused, s->part_unexcused, s->t_beyond);
+                print_ulps(s->max_beyond);
+                printf(" %8.1e %8.1e", s->max_angle, s->max_len);
+                if (s->vs_scalar)
+                    printf(" %6.1f%%", 100.0 * (double)s->same_as_scalar / (double)s->vs_scalar);
+                else
+                    printf(" %7s", "-");
+                printf("\n");
+            }
+    printf("(normal angle beyond the band's own spread, worst per ISA and mode:");
+    for (int isa = 0; isa < CYLRAY_ISA_COUNT; isa++)
+        for (int m = 0; m < MODE_COUNT; m++) {
+            double w = -INFINITY, vs = 0;
+            long shm = 0;
+            for (int cat = 0; cat < CYLGEN_COUNT; cat++) {
+                stat_cell *s = &cells[isa][cat][m];
+                if (s->lanes && s->max_angle_excess > w)
+                    w = s->max_angle_excess;
+                if (s->max_vs_scalar > vs)
+                    vs = s->max_vs_scalar;
+                shm += s->scalar_hm;
+            }
+            if (w > -INFINITY)
+                printf(" %s/%s %.2g (vs scalar: max %.3g ulps, %ld hit/part differ)",
+                       cylray_isa_name((cylray_isa)isa), mode_names[m], w, vs, shm);
+        }
+    printf(")\n");
+}
+
+int stats_headline(int isa)
+{
+    static const int p99_cats[] = {CYLGEN_ORDINARY, CYLGEN_FAR, CYLGEN_TINY, CYLGEN_HUGE,
+                                   CYLGEN_UNNORMALIZED};
+    int bad = 0;
+    const char *name = cylray_isa_name((cylray_isa)isa);
+    stat_cell *rim = &cells[isa][CYLGEN_RIM][MODE_PLAIN];
+    if (rim->lanes) {
+        int ok = rim->rim_rays > 0 && rim->rim_missed == 0 && rim->rim_later == 0;
+        printf("headline %-7s rim: %ld of %ld rays aimed at the rim hit there (%ld missed, %ld "
+               "later or beyond the band) %s\n",
+               name, rim->rim_rays - rim->rim_missed - rim->rim_later, rim->rim_rays,
+               rim->rim_missed, rim->rim_later, ok ? "ok" : "FAILED");
+        bad += !ok;
+    }
+    for (size_t i = 0; i < sizeof p99_cats / sizeof p99_cats[0]; i++) {
+        stat_cell *s = &cells[isa][p99_cats[i]][MODE_PLAIN];
+        if (!s->lanes)
+            continue;
+        double p99 = stat_percentile(s, 0.99), mx = stat_percentile(s, 1.0);
+        int ok = !(p99 > HEADLINE_P99_ULPS);
+        int far = p99_cats[i] == CYLGEN_FAR;
+        if (far)
+            ok = ok && !(mx > HEADLINE_FAR_MAX_ULPS);
+        printf("headline %-7s %-13s p99 %.3g ulps (<= %g)", name,
+               cylgen_category_name(p99_cats[i]), p99, HEADLINE_P99_ULPS);
+        if (far)
+            printf(", max %.3g ulps (<= %g)", mx, HEADLINE_FAR_MAX_ULPS);
+        printf(" over %zu hits %s\n", s->n_ulps, ok ? "ok" : "FAILED");
+        bad += !ok;
+    }
+    return bad;
+}
+
+void stats_free(void)
+{
+    for (int isa = 0; isa < CYLRAY_ISA_COUNT; isa++)
+        for (int cat = 0; cat < CYLGEN_COUNT; cat++)
+            for (int m = 0; m < MODE_COUNT; m++)
+                free(cells[isa][cat][m].ulps);
+}
