@@ -57,10 +57,16 @@ int hc_verify(const cylray_cylinder *cyl, const float o[3], const float d[3], fl
     hc_from(&g, cyl);
     if (!isfinite(t) || !(t >= tmin && t <= tmax))
         return WHY_("t %a not a finite value in [%a, %a]", t, tmin, tmax);
-    double x[3], p[3], z, r;
+    /* The hit point relative to the center: o - c is exact in double unless the two
+     * differ by more than 2^29 in scale, and t d is exact; adding c back first would
+     * lose everything below 2^-53 of a far center. */
+    double w[3], p[3], z, r;
     for (int k = 0; k < 3; k++)
-        x[k] = (double)o[k] + (double)t * d[k]; /* the product of two floats is exact */
-    hc_locate(&g, x, &z, &r, p);
+        w[k] = ((double)o[k] - g.c[k]) + (double)t * d[k];
+    z = dot3(w, g.u);
+    for (int k = 0; k < 3; k++)
+        p[k] = w[k] - z * g.u[k];
+    r = sqrt(dot3(p, p));
     const double tol = hc_tolerance(&g, o, d, t, slack);
     const int base = part & ~CYLRAY_BACKFACE;
     const int back = (part & CYLRAY_BACKFACE) != 0;
@@ -94,15 +100,19 @@ int hc_verify(const cylray_cylinder *cyl, const float o[3], const float d[3], fl
         return WHY_("part %#x is no part", (unsigned)part);
     }
 
-    /* Front or back: the sign of d . n_out, decidable unless the ray grazes. The side
-     * normal's direction is known to about tol / R from the point's position. */
+    /* Front or back: the sign of d . n_out. The side normal's direction is known to
+     * about tol / R from the point's position. Near a tangency the entry and the exit
+     * merge: d . n_out / |d| there is the square root of the discriminant's relative
+     * size, so an error of tol / R in the discriminant allows sqrt(tol / R) either way
+     * (the kernel may report the exit as the entry of a grazing ray). */
     const double dl = sqrt((double)d[0] * d[0] + (double)d[1] * d[1] + (double)d[2] * d[2]);
     const double dn[3] = {d[0] / dl, d[1] / dl, d[2] / dl};
     const double cosang = dot3(dn, nout);
     const double dir_err = base == CYLRAY_SIDE ? 2 * tol / g.R + 1e-6 : 1e-6;
-    if (back && cosang < -dir_err)
+    const double face_err = base == CYLRAY_SIDE ? dir_err + sqrt(tol / g.R) : dir_err;
+    if (back && cosang < -face_err)
         return WHY_("BACKFACE set but the ray enters (d.n_out/|d| = %g)", cosang);
-    if (!back && cosang > dir_err)
+    if (!back && cosang > face_err)
         return WHY_("BACKFACE clear but the ray leaves (d.n_out/|d| = %g)", cosang);
 
     if (n && (flags & CYLRAY_NORMAL)) {
@@ -123,7 +133,7 @@ int hc_verify(const cylray_cylinder *cyl, const float o[3], const float d[3], fl
                 return WHY_("normal (%a, %a, %a) is %.3g rad off the %s normal", n[0], n[1],
                             n[2], ang, flip < 0 ? "flipped outward" : "outward");
         }
-        if ((flags & CYLRAY_FACE_FORWARD) && dot3(nd, dn) / len > dir_err)
+        if ((flags & CYLRAY_FACE_FORWARD) && dot3(nd, dn) / len > face_err)
             return WHY_("FACE_FORWARD normal faces away from the ray (n.d/|d| = %g)",
                         dot3(nd, dn) / len);
     }

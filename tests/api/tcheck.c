@@ -18,7 +18,12 @@ int tc_silent_;
 void tc_fail_(const char *file, int line, const char *fmt, ...)
 {
     tc_failures_++;
-    if (tc_silent_ || tc_failures_ > TC_PRINT_MAX)
+    static int verbose = -1;
+    if (verbose < 0) {
+        const char *v = getenv("CYLRAY_TEST_VERBOSE");
+        verbose = v && *v && strcmp(v, "0") != 0;
+    }
+    if (tc_silent_ || (tc_failures_ > TC_PRINT_MAX && !verbose))
         return;
     fprintf(stderr, "FAIL %s:%d: ", file, line);
     va_list ap;
@@ -26,8 +31,9 @@ void tc_fail_(const char *file, int line, const char *fmt, ...)
     vfprintf(stderr, fmt, ap);
     va_end(ap);
     fputc('\n', stderr);
-    if (tc_failures_ == TC_PRINT_MAX)
-        fprintf(stderr, "(further failures are counted, not printed)\n");
+    if (tc_failures_ == TC_PRINT_MAX && !verbose)
+        fprintf(stderr, "(further failures are counted, not printed; CYLRAY_TEST_VERBOSE=1 "
+                        "prints all)\n");
 }
 
 int tc_report(const char *name)
