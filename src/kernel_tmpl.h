@@ -23,6 +23,28 @@ typedef size_t (*KFN(stream_fn))(const cylray_prepared *, const cylray_rays *,
 
 #define KDOT(ax, ay, az, bx, by, bz) vfma(ax, bx, vfma(ay, by, vmul(az, bz)))
 
+/* The side's quadratic from the shifted origin p: f = v x p (so that nB = e.f is -B),
+ * C = f.f - R^2 v.v and g = e.p, the triple product of Lagrange's form. */
+CYLRAY_INLINE void KFN(side_coefs)(const cylray_prepared *P, int aligned, vf dx, vf dy, vf ex,
+                                   vf ey, vf ez, vf vx, vf vy, vf vz, vf px, vf py, vf pz,
+                                   vf *fx, vf *fy, vf *fz, vf *nB, vf *C, vf *g)
+{
+    const vf zero = vzero();
+    if (aligned) {
+        *fx = *fy = *fz = zero;
+        *nB = vfnma(dx, px, vfnma(dy, py, zero));
+        *C = vsub(vfma(px, px, vmul(py, py)), vset1(P->rr_vv));
+        *g = vdop_x(px, dy, py, dx);
+    } else {
+        *fx = vfms(vy, pz, vmul(vz, py));
+        *fy = vfms(vz, px, vmul(vx, pz));
+        *fz = vfms(vx, py, vmul(vy, px));
+        *nB = KDOT(ex, ey, ez, *fx, *fy, *fz);
+        *C = vsub(KDOT(*fx, *fy, *fz, *fx, *fy, *fz), vset1(P->rr_vv));
+        *g = KDOT(ex, ey, ez, px, py, pz);
+    }
+}
+
 /* One vector of rays: lanes [i, i + VW) of R, active where `bits` is set. Returns the
  * hit lanes; writes H and R->tmax only there. FL is a compile-time constant.
  *
@@ -71,8 +93,8 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
     /* Shift to the closest approach to the center. s need not be accurate: any s is
      * exact as long as w' is formed from the same s, and t = s + t'. So a refined
      * reciprocal estimate serves, and the divider is kept for the roots. */
-    vf wd = KDOT(whx, why, whz, dx, dy, dz);
-    vf s = vfnma(wd, vrcp_fast(dd), zero);
+    const vf rdd = vrcp_fast(dd);
+    vf s = vfnma(KDOT(whx, why, whz, dx, dy, dz), rdd, zero);
     vf px = vadd(vfma_x(s, dx, whx), wlx);
     vf py = vadd(vfma_x(s, dy, why), wly);
     vf pz = vadd(vfma_x(s, dz, whz), wlz);
@@ -85,25 +107,42 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
             return 0;
     }
 
-    /* nB is -B: f is taken as v x w' rather than w' x v, which saves the negation
-     * of q below. */
-    vf A, nB, C, g, ex = zero, ey = zero, ez = zero, fx = zero, fy = zero, fz = zero;
+    /* e = d x v to a relative accuracy that survives a ray almost along the axis.
+     * With an aligned axis v = (0, 0, +-1) and e = (dy, -dx, 0) up to the sign of v,
+     * which no product below sees. */
+    vf A, ex = zero, ey = zero, ez = zero;
     if (aligned) {
-        /* v = (0, 0, +-1): e = d x v and f = v x w' are (dy, -dx) and (-py, px) up to
-         * the sign of v, which no product below sees. */
         A = vfma(dx, dx, vmul(dy, dy));
-        nB = vfnma(dx, px, vfnma(dy, py, zero));
-        C = vsub(vfma(px, px, vmul(py, py)), vset1(P->rr_vv));
-        g = vdop_x(px, dy, py, dx);
     } else {
-        /* e = d x v to a relative accuracy that survives a ray almost along the axis. */
         ex = vdop_x(dy, vz, dz, vy), ey = vdop_x(dz, vx, dx, vz), ez = vdop_x(dx, vy, dy, vx);
-        fx = vfms(vy, pz, vmul(vz, py)), fy = vfms(vz, px, vmul(vx, pz)),
-        fz = vfms(vx, py, vmul(vy, px));
         A = KDOT(ex, ey, ez, ex, ey, ez);
-        nB = KDOT(ex, ey, ez, fx, fy, fz);
-        C = vsub(KDOT(fx, fy, fz, fx, fy, fz), vset1(P->rr_vv));
-        g = KDOT(ex, ey, ez, px, py, pz);
+    }
+    vf nB, C, g, fx, fy, fz;
+    KFN(side_coefs)(P, aligned, dx, dy, ex, ey, ez, vx, vy, vz, px, py, pz, &fx, &fy, &fz, &nB,
+                    &C, &g);
+
+    if (kind == CYLRAY_KIND_INFINITE) {
+        /* An infinite cylinder has no center: c may slide along the axis (any slide u
+         * is exact when the product u v is, as in the FMA). The error of a root t'
+         * grows with its distance from the shifted point: a far origin aimed near c
+         * wants the point near c, an origin near the surface far along the axis wants
+         * c slid to the origin's level. |C / B| estimates the near root's distance;
+         * each lane keeps the shift that makes it smaller. */
+        vf u = vmul(KDOT(whx, why, whz, vx, vy, vz), vset1(P->inv_vv));
+        vf hx = vfma_x(vneg(u), vx, whx), hy = vfma_x(vneg(u), vy, why),
+           hz = vfma_x(vneg(u), vz, whz);
+        vf s2 = vfnma(KDOT(hx, hy, hz, dx, dy, dz), rdd, zero);
+        vf qx = vadd(vfma_x(s2, dx, hx), wlx);
+        vf qy = vadd(vfma_x(s2, dy, hy), wly);
+        vf qz = vadd(vfma_x(s2, dz, hz), wlz);
+        vf nB2, C2, g2, fx2, fy2, fz2;
+        KFN(side_coefs)(P, aligned, dx, dy, ex, ey, ez, vx, vy, vz, qx, qy, qz, &fx2, &fy2,
+                        &fz2, &nB2, &C2, &g2);
+        vm slide = vlt(vabs(vmul(C2, nB)), vabs(vmul(C, nB2)));
+        s = vsel(slide, s2, s);
+        px = vsel(slide, qx, px), py = vsel(slide, qy, py), pz = vsel(slide, qz, pz);
+        fx = vsel(slide, fx2, fx), fy = vsel(slide, fy2, fy), fz = vsel(slide, fz2, fz);
+        nB = vsel(slide, nB2, nB), C = vsel(slide, C2, C), g = vsel(slide, g2, g);
     }
     /* Lagrange's form of B^2 - A C, over v.v; g^2 is taken exactly. */
     vf gg = vmul(g, g);
@@ -202,7 +241,12 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
         vf dt = vdiv(C2, q2);
         vf tr2 = vadd(tr, dt);
         vf T2 = vadd(s, tr2);
-        vm keep = mand(on_side, mand(mand(vge(T2, tmin), vle(T2, tmax)), vlt(vabs(dt), inf)));
+        /* The polish point carries a rounding error relative to its own distance from
+         * c: it only helps where that is not much beyond the shifted origin's. */
+        vf qq = KDOT(qx, qy, qz, qx, qy, qz);
+        vf near = vmul(vset1(4.0f), vmax(KDOT(px, py, pz, px, py, pz), vset1(P->rr)));
+        vm keep = mand(mand(on_side, vle(qq, near)),
+                       mand(mand(vge(T2, tmin), vle(T2, tmax)), vlt(vabs(dt), inf)));
         if (kind == CYLRAY_KIND_OPEN)
             keep = mand(keep, vle(vabs(vfma(tr2, dv, z0)), vset1(P->h_v)));
         tr = vsel(keep, tr2, tr);
