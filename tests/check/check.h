@@ -14,13 +14,16 @@
 
 /* t may lie this many float ulps outside the exact band (DESIGN.md section 4). */
 #define TOL_T_ULPS 4.0
-/* With CYLRAY_FAST (hardware reciprocal / rsqrt estimates plus one Newton step). */
-#define TOL_T_ULPS_FAST 16.0
+/* With CYLRAY_FAST (hardware reciprocal / rsqrt estimates plus one Newton step): twice
+ * the plain bound. Measured: no FAST answer outside the band at all, and the same p99
+ * against the exact t as without FAST, on every ISA here. */
+#define TOL_T_ULPS_FAST 8.0
 /* |n| - 1. */
 #define TOL_NORMAL_LEN 1e-5
 /* Angle between the kernel's normal and the exact one, beyond what the band's input
- * perturbation itself turns the normal by (n_spread). */
-#define TOL_NORMAL_ANGLE 4e-6
+ * perturbation itself turns the normal by (n_spread). Measured: at most 3e-7 rad on
+ * every ISA and mode (about 2.5 float epsilons). */
+#define TOL_NORMAL_ANGLE 1e-6
 
 /* Headline numbers the default path (no REFINE, no FAST) must reach. */
 #define HEADLINE_P99_ULPS 2.5
@@ -92,6 +95,7 @@ void stats_report(void);
 /* Checks the headline numbers for one ISA (default mode); prints them; returns the
  * number of violated ones. */
 int stats_headline(int isa);
+/* Frees the samples and zeroes every counter. */
 void stats_free(void);
 
 /* ---- verdicts -------------------------------------------------------------------- */
@@ -113,6 +117,12 @@ void fail_memory(const lane_ctx *lc, const ref_case *rc, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
 void print_case(const ref_case *rc, unsigned flags);
 const char *flags_name(unsigned flags);
+
+/* n_packet cases of a category (one cylinder per batch of 16), then one stream segment
+ * per length (one cylinder each), all with their exact bands (only case opt.only_case
+ * when that is set). *total gets the count; free() the result. */
+ref_case *make_cases(int cat, uint64_t seed, size_t n_packet, const size_t *lengths,
+                     size_t n_lengths, size_t *total);
 
 /* ---- the drivers ----------------------------------------------------------------- */
 

@@ -18,7 +18,6 @@
 #include <string.h>
 #include <time.h>
 
-options opt = {0, -1, -1, -1, -1, 0, 0, 0, 0, 12, 1, 0};
 
 static const size_t stream_full[] = {1, 2, 3, 5, 7, 8, 9, 13, 15, 16, 17, 23, 31, 33, 47, 64, 65, 100};
 static const size_t stream_quick[] = {1, 3, 5, 7, 13, 17, 31};
@@ -117,44 +116,6 @@ static void parse_args(int argc, char **argv)
         opt.n = opt.quick ? 64 : 1024;
 }
 
-/* The cases of one category with their exact bands: n packet cases (one cylinder per
- * batch of 16), then the stream segments (one cylinder each). */
-static ref_case *make_cases(int cat, const size_t *lengths, size_t n_lengths, size_t *total)
-{
-    size_t ns = 0;
-    for (size_t i = 0; i < n_lengths; i++)
-        ns += lengths[i];
-    size_t n = opt.n + ns;
-    ref_case *rc = calloc(n, sizeof *rc);
-    cylgen_case *gc = malloc((opt.n > 128 ? opt.n : 128) * sizeof *gc);
-    if (!rc || !gc) {
-        fprintf(stderr, "cylcheck: out of memory\n");
-        exit(2);
-    }
-    cylgen_make(cat, opt.seed, opt.n, gc);
-    for (size_t i = 0; i < opt.n; i++)
-        rc[i].c = gc[i];
-    size_t at = opt.n;
-    for (size_t li = 0; li < n_lengths; li++) {
-        cylgen_make_shared(cat, opt.seed ^ (0x5354524541ull + li) * 0x9e3779b97f4a7c15ull,
-                           lengths[li], gc);
-        for (size_t i = 0; i < lengths[li]; i++)
-            rc[at++].c = gc[i];
-    }
-    for (size_t i = 0; i < n; i++) {
-        const cylgen_case *c = &rc[i].c;
-        rc[i].index = (int)i;
-        if (opt.only_case >= 0 && (int)i != opt.only_case)
-            continue;
-        cylref_band_eval(&c->cyl, c->o, c->d, c->tmin, c->tmax, 0, &rc[i].band[0]);
-        cylref_band_eval(&c->cyl, c->o, c->d, c->tmin, c->tmax, CYLRAY_CULL_BACK,
-                         &rc[i].band[1]);
-    }
-    free(gc);
-    *total = n;
-    return rc;
-}
-
 int main(int argc, char **argv)
 {
     setvbuf(stdout, NULL, _IOLBF, 0);
@@ -200,7 +161,7 @@ int main(int argc, char **argv)
         if (opt.category >= 0 && cat != opt.category)
             continue;
         size_t total;
-        ref_case *rc = make_cases(cat, lengths, n_lengths, &total);
+        ref_case *rc = make_cases(cat, opt.seed, opt.n, lengths, n_lengths, &total);
         lane_out *sc = malloc(total * sizeof *sc);
         if (!sc)
             return 2;

@@ -6,6 +6,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 static stat_cell cells[CYLRAY_ISA_COUNT][CYLGEN_COUNT][MODE_COUNT];
 static const char *const mode_names[MODE_COUNT] = {"plain", "refine", "fast"};
@@ -144,6 +145,8 @@ void stats_free(void)
 {
     for (int isa = 0; isa < CYLRAY_ISA_COUNT; isa++)
         for (int cat = 0; cat < CYLGEN_COUNT; cat++)
-            for (int m = 0; m < MODE_COUNT; m++)
+            for (int m = 0; m < MODE_COUNT; m++) {
                 free(cells[isa][cat][m].ulps);
+                memset(&cells[isa][cat][m], 0, sizeof cells[isa][cat][m]);
+            }
 }
