@@ -292,7 +292,8 @@ int main(int argc, char **argv)
         }
         for_configs(&w, &opt, run_config, &ctx);
         if (!ctx.tty)
-            fprintf(stderr, "cylbench: %s done (%d/%d)\n", w.name, ctx.done, ctx.total);
+            fprintf(stderr, "cylbench: %s done (%d/%d, %.1f s)\n", w.name, ctx.done, ctx.total,
+                    (clk_ns() - t_start) * 1e-9);
         workloads_free(&w);
     }
     scene_report sc;

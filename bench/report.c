@@ -87,7 +87,9 @@ static void print_group(FILE *f, const result_list *l, const char *group, const 
                 continue;
             }
             char e[16];
-            fprintf(f, "| %7.2f%c%5.1fx %5s", q->ns.med, q->cpu_timed ? '~' : ' ', q->speedup,
+            char sp[16];
+            snprintf(sp, sizeof sp, q->speedup > 0 ? "%5.1fx" : "     -", q->speedup);
+            fprintf(f, "| %7.2f%c%s %5s", q->ns.med, q->cpu_timed ? '~' : ' ', sp,
                     err_cell(q, e, sizeof e));
             if (cols[c] != BENCH_ISA_TEXTBOOK) {
                 dis += q->extra_hits + q->lost_hits;
@@ -239,17 +241,19 @@ static void print_stream(FILE *f, const result_list *l)
     fprintf(f, "\n== big stream: %zu rays (%.0f MB of ray input) through the stream API, one "
                "pass per sample ==\n",
             n, 32e-6 * (double)n);
-    fprintf(f, "   GB/s counts the 32 bytes of ray input per ray; memcpy copies the same "
-               "bytes (read + write, GB/s of bytes copied)\n");
-    fprintf(f, "%-8s %-9s %8s %9s %9s %11s %9s\n", "isa", "flags", "ns/ray", "M rays/s",
-            "GB/s", "memcpy GB/s", "of memcpy");
+    fprintf(f, "   GB/s: the 32 bytes of ray input per ray over the time; memcpy: a plain "
+               "memcpy of the same bytes (GB/s copied,\n   and its time per ray); x memcpy: "
+               "the kernel's time per ray over memcpy's (1 = as fast as copying the rays)\n");
+    fprintf(f, "%-8s %-9s %8s %9s %7s %11s %13s %9s\n", "isa", "flags", "ns/ray", "M rays/s",
+            "GB/s", "memcpy GB/s", "memcpy ns/ray", "x memcpy");
     for (size_t i = 0; i < l->n; i++) {
         const result *r = &l->r[i];
         if (strcmp(r->scenario, "big-stream"))
             continue;
-        fprintf(f, "%-8s %-9s %8.2f %9.1f %9.2f %11.2f %8.0f%%\n", r->isa, r->op, r->ns.med,
-                r->mrays, r->gbytes_s, r->memcpy_gbytes_s,
-                r->memcpy_gbytes_s > 0 ? 100 * r->gbytes_s / r->memcpy_gbytes_s : 0);
+        double mc = r->memcpy_gbytes_s > 0 ? 32.0 / r->memcpy_gbytes_s : 0;
+        fprintf(f, "%-8s %-9s %8.2f %9.1f %7.2f %11.2f %13.2f %8.2fx%s\n", r->isa, r->op,
+                r->ns.med, r->mrays, r->gbytes_s, r->memcpy_gbytes_s, mc,
+                mc > 0 ? r->ns.med / mc : 0, r->cpu_timed ? " ~" : "");
     }
 }
 
@@ -289,7 +293,7 @@ static void print_errors(FILE *f, const result_list *l)
                "explain). textbook: the seed's formulas, judged as open tubes\n");
     fprintf(f, "%-19s %-8s", "scenario", "flags");
     for (int c = 0; c < nc; c++)
-        fprintf(f, "| %-18s", bench_isa_name(cols[c]));
+        fprintf(f, "| %-20s", bench_isa_name(cols[c]));
     fprintf(f, "| %5s %s\n", "med", ">band");
     for (size_t i = 0; i < l->n; i++) {
         const result *r = &l->r[i];
@@ -311,7 +315,7 @@ static void print_errors(FILE *f, const result_list *l)
             if (!q)
                 q = find_result(l, r->scenario, cols[c], -1, r->op_id);
             if (!q || !q->have_err) {
-                fprintf(f, "| %-18s", "");
+                fprintf(f, "| %-20s", "");
                 continue;
             }
             char a[16], b[16], cell[64];
@@ -324,7 +328,7 @@ static void print_errors(FILE *f, const result_list *l)
                 k += snprintf(cell + k, sizeof cell - (size_t)k, "!%zu", q->unexcused);
             if (err_varies(l, q) && k > 0 && (size_t)k < sizeof cell)
                 snprintf(cell + k, sizeof cell - (size_t)k, "*");
-            fprintf(f, "| %-18s", cell);
+            fprintf(f, "| %-20s", cell);
             if (cols[c] != BENCH_ISA_TEXTBOOK) {
                 med = fmax(med, q->ulp_med);
                 xp = fmax(xp, q->xs_p99);

@@ -279,7 +279,7 @@ int bench_time(const workload *w, int isa, int width_id, int op, const options *
         acc += x.pass(&x, 0);
         pass_ns += clk_ns() - a;
         passes++;
-    } while (passes < 2 || (clk_ns() - t0 < warm && !w->big));
+    } while (!w->big && (passes < 2 || clk_ns() - t0 < warm)); /* a big pass: just one */
     pass_ns /= passes;
     long K = w->big ? 1 : (long)ceil(opt->sample_ns / (pass_ns > 1 ? pass_ns : 1));
     if (K < 1)
@@ -288,7 +288,9 @@ int bench_time(const workload *w, int isa, int width_id, int op, const options *
     /* Samples: wall time, the thread's CPU time and TSC ticks. A sample during which
      * the thread lost the CPU (another process on this 2-core machine) is set aside
      * and retaken; if too few clean ones come, the CPU-time figures are used. */
-    const int reps = opt->reps, max_samples = w->big ? reps : 8 * reps;
+    /* A big stream's sample is a whole pass (tens to hundreds of ms): fewer of them. */
+    const int reps = w->big ? (opt->reps < 5 ? opt->reps : 5) : opt->reps;
+    const int max_samples = w->big ? reps : 8 * reps;
     double *ns = malloc((size_t)max_samples * sizeof *ns);
     double *tk = malloc((size_t)max_samples * sizeof *tk);
     double *cpu = malloc((size_t)max_samples * sizeof *cpu);

@@ -31,13 +31,12 @@ typedef struct scen_def {
     int gen_category; /* S_GEN: the cylgen category */
 } scen_def;
 
-#define NGEN 11 /* the categories of tests/ref/gen.h, in its order */
-static const char *const gen_names[NGEN] = {
-    "stress-ordinary", "stress-far", "stress-parallel", "stress-grazing",
-    "stress-surface", "stress-inside", "stress-rim", "stress-tiny",
-    "stress-huge", "stress-unnormalized", "stress-infinite"};
+#define MAX_SCEN 48
+#ifdef CYLBENCH_HAVE_REF
+static char gen_names[MAX_SCEN][40]; /* "stress-" + the category names of gen.h */
+#endif
 
-static scen_def table[32];
+static scen_def table[MAX_SCEN];
 static int ntable;
 
 static void init_table(void)
@@ -81,7 +80,8 @@ static void init_table(void)
     for (size_t i = 0; i < sizeof fixed / sizeof fixed[0]; i++)
         table[ntable++] = fixed[i];
 #ifdef CYLBENCH_HAVE_REF
-    for (int c = 0; c < NGEN && c < cylgen_category_count(); c++) {
+    for (int c = 0; c < cylgen_category_count() && ntable < MAX_SCEN; c++) {
+        snprintf(gen_names[c], sizeof gen_names[c], "stress-%s", cylgen_category_name(c));
         scen_def s = {gen_names[c], "stress", cylgen_category_description(c), S_GEN,
                       RK_INCOHERENT, 2,
                       (1 << OP_NORMAL) | (1 << OP_REFINE) | (1 << OP_FAST),
