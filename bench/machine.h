@@ -14,6 +14,8 @@ typedef struct machine_info {
     int cores;          /* online logical CPUs */
     int hypervisor;     /* 1 when /proc/cpuinfo lists the hypervisor flag */
     double tsc_ghz;
+    double core_ghz;     /* the core's clock while busy, from a dependent add chain; 0 if
+                            unknown. TSC ticks run at tsc_ghz whatever the core does. */
     double load_start, load_end; /* 1-minute load average when the run began and ended */
 } machine_info;
 

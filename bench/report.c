@@ -388,18 +388,18 @@ static void write_csv(const result_list *l, const machine_info *m, const options
     machine_line(m, ml, sizeof ml);
     fprintf(f, "# cylbench %s; %s; %s\n", m->date, ml, m->pinned);
     fprintf(f, "scenario,group,isa,width,flags,rays_per_pass,tests_per_ray,reps,ns_med,ns_min,"
-               "ns_max,ns_q1,ns_q3,mrays_s,tsc_ticks,speedup_vs_scalar,hit_frac,samples,"
+               "ns_max,ns_q1,ns_q3,mrays_s,tsc_ticks,core_cycles,speedup_vs_scalar,hit_frac,samples,"
                "clean_samples,cpu_timed,err_compared,ref_hits,ulp_med,ulp_p99,ulp_max,"
                "beyond_band_p99,beyond_band_max,extra_hits,lost_hits,part_diff,unexcused,"
                "gbytes_s,memcpy_gbytes_s\n");
     for (size_t i = 0; i < l->n; i++) {
         const result *r = &l->r[i];
-        fprintf(f, "%s,%s,%s,%s,%s,%zu,%d,%d,%.4f,%.4f,%.4f,%.4f,%.4f,%.2f,%.3f,%.3f,%.4f,"
+        fprintf(f, "%s,%s,%s,%s,%s,%zu,%d,%d,%.4f,%.4f,%.4f,%.4f,%.4f,%.2f,%.3f,%.2f,%.3f,%.4f,"
                    "%d,%d,%d,",
                 r->scenario, r->group, r->isa, bench_width_name[r->width_id], r->op,
                 r->rays_timed, r->ncyl, r->reps, r->ns.med, r->ns.min, r->ns.max, r->ns.q1,
-                r->ns.q3, r->mrays, r->ticks, r->speedup, r->hit_frac, r->samples, r->clean,
-                r->cpu_timed);
+                r->ns.q3, r->mrays, r->ticks, r->ns.med * m->core_ghz, r->speedup, r->hit_frac,
+                r->samples, r->clean, r->cpu_timed);
         if (r->have_err)
             fprintf(f, "%zu,%zu,%.4g,%.4g,%.4g,%.4g,%.4g,%zu,%zu,%zu,%zu,", r->n_cmp,
                     r->n_hits_ref, r->ulp_med, r->ulp_p99, r->ulp_max, r->xs_p99, r->xs_max,
@@ -540,15 +540,19 @@ static void write_long(const result_list *l, const machine_info *m, const option
         return;
     machine_line(m, ml, sizeof ml);
     fprintf(f, "cylbench %s\n%s; %s\n\n", m->date, ml, m->pinned);
-    fprintf(f, "%-19s %-9s %-6s %-8s %8s %8s %8s %9s %8s %7s %6s | %6s %6s %7s %5s %5s %5s %5s\n",
+    fprintf(f, "ticks: TSC ticks per ray (%.3f GHz); cycles: ns x the measured core clock "
+               "(%.2f GHz); ~: CPU-timed (busy machine)\n\n", m->tsc_ghz, m->core_ghz);
+    fprintf(f, "%-19s %-14s %-6s %-8s %8s %8s %8s %9s %8s %8s %7s %6s | %6s %6s %7s %5s %5s "
+               "%5s %5s\n",
             "scenario", "isa", "width", "flags", "ns/ray", "min", "max", "M rays/s",
-            "ticks", "xscalar", "hit%", "med", "p99", "max ulp", "extra", "lost", "part",
-            "unexc");
+            "ticks", "cycles", "xscalar", "hit%", "med", "p99", "max ulp", "extra", "lost",
+            "part", "unexc");
     for (size_t i = 0; i < l->n; i++) {
         const result *r = &l->r[i];
-        fprintf(f, "%-19s %-9s %-6s %-8s %8.3f %8.3f %8.3f %9.1f %8.2f %6.2fx %6.1f |",
+        fprintf(f, "%-19s %-14s %-6s %-8s %8.3f%c%8.3f %8.3f %9.1f %8.2f %8.1f %6.2fx %6.1f |",
                 r->scenario, r->isa, bench_width_name[r->width_id], r->op, r->ns.med,
-                r->ns.min, r->ns.max, r->mrays, r->ticks, r->speedup, 100 * r->hit_frac);
+                r->cpu_timed ? '~' : ' ', r->ns.min, r->ns.max, r->mrays, r->ticks,
+                r->ns.med * m->core_ghz, r->speedup, 100 * r->hit_frac);
         if (r->have_err) {
             char a[16], b[16], c[16];
             fprintf(f, " %6s %6s %7s %5zu %5zu %5zu %5zu\n", fmt_ulps(r->ulp_med, a, sizeof a),

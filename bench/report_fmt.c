@@ -35,7 +35,7 @@ const result *find_result(const result_list *l, const char *scenario, int isa, i
 
 void machine_line(const machine_info *m, char *buf, size_t n)
 {
-    snprintf(buf, n, "%s (%s), %d cores%s, TSC %.3f GHz; %s, %s; load %.1f", m->cpu, m->cpuid,
-             m->cores, m->hypervisor ? " (virtual machine)" : "", m->tsc_ghz, m->compiler,
-             m->buildtype, m->load_start);
+    snprintf(buf, n, "%s (%s), %d cores%s, core ~%.2f GHz, TSC %.3f GHz; %s, %s; load %.1f",
+             m->cpu, m->cpuid, m->cores, m->hypervisor ? " (virtual machine)" : "", m->core_ghz,
+             m->tsc_ghz, m->compiler, m->buildtype, m->load_start);
 }
