@@ -98,13 +98,18 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
     vf px = vadd(vfma_x(s, dx, whx), wlx);
     vf py = vadd(vfma_x(s, dy, why), wly);
     vf pz = vadd(vfma_x(s, dz, whz), wlz);
-
-    /* A finite cylinder lies in a sphere; a ray whose closest approach to the center
-     * is outside it misses, and a packet of such rays ends here. */
     if (kind != CYLRAY_KIND_INFINITE) {
-        act = mand(act, vle(KDOT(px, py, pz, px, py, pz), vset1(P->bound2)));
+        /* A finite cylinder lies in a sphere; a ray whose closest approach to the
+         * center is outside it misses, and a packet of such rays ends here. */
+        vf pp = KDOT(px, py, pz, px, py, pz);
+        act = mand(act, vle(pp, vset1(P->bound2)));
         if (!many(act))
             return 0;
+        /* A shift that brings the origin less than a factor sqrt(2) closer gains less
+         * than it costs: a small t would lose its low bits in s + t'. */
+        vm stay = vle(vmul(vmul(s, s), dd), pp);
+        s = vsel(stay, zero, s);
+        px = vsel(stay, whx, px), py = vsel(stay, why, py), pz = vsel(stay, whz, pz);
     }
 
     /* e = d x v to a relative accuracy that survives a ray almost along the axis.
@@ -180,8 +185,16 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
         side_lo = vsel(inpar, vneg(inf), side_lo);
         side_hi = vsel(inpar, inf, side_hi);
         const vf hv = vset1(P->h_v);
-        vf rdv = vdiv(one, dv);
-        vf ta = vmul(vsub(vneg(hv), z0), rdv), tb = vmul(vsub(hv, z0), rdv);
+        /* Two divisions rather than one reciprocal: a cap hit is then as exact as
+         * the plane's offset, and dv = 0 gives the infinities the slab wants. */
+        vf na = vsub(vneg(hv), z0), nb = vsub(hv, z0);
+        vf ta, tb;
+        if (fast) {
+            vf rdv = vdiv(one, dv);
+            ta = vmul(na, rdv), tb = vmul(nb, rdv);
+        } else {
+            ta = vdiv(na, dv), tb = vdiv(nb, dv);
+        }
         vf slab_lo = vmin(ta, tb), slab_hi = vmax(ta, tb);
         vm side_enters = vge(side_lo, slab_lo), side_exits = vle(side_hi, slab_hi);
         t_in = vsel(side_enters, side_lo, slab_lo);
