@@ -14,6 +14,7 @@
  * in the 48 KB L1 data cache while it is timed. */
 #define BENCH_BATCH 512
 #define BENCH_MAXCYL 64
+#define BENCH_MAXSAMP 128 /* samples kept per configuration */
 
 /* Widths: the packet sizes and the stream API (any length). */
 enum { BW_4, BW_8, BW_16, BW_STREAM, BW_COUNT };
@@ -86,6 +87,8 @@ typedef struct result {
     double hit_frac;            /* share of rays with a hit (or occluded) */
     int reps;                   /* samples the median is over */
     int samples, clean;         /* samples taken; of those, not interrupted */
+    double s_wall[BENCH_MAXSAMP], s_cpu[BENCH_MAXSAMP], s_tick[BENCH_MAXSAMP];
+    unsigned char s_clean[BENCH_MAXSAMP];
     int cpu_timed;              /* too few clean samples (a busy machine): the figures
                                    come from the thread's CPU time instead of wall time */
     /* error side (have_err == 0: no reference in this build) */
@@ -108,15 +111,19 @@ typedef struct result_list {
 
 result *results_push(result_list *l);
 
-/* timing.c: times one (workload, ISA, width, op) and fills the timing side of *r. */
 /* Cylinder tests per ray in one pass. */
 static inline int bench_tests_per_ray(const workload *w)
 {
     return w->grouped ? 1 : w->ncyl;
 }
 
-int bench_time(const workload *w, int isa, int width_id, int op, const options *opt,
-               result *r, int first_of_isa);
+/* timing.c: warms (workload, ISA, width, op) up and appends `want` clean samples (ns,
+ * CPU ns, TSC ticks per ray) to *r; called once per round, so that every configuration
+ * is sampled across the whole run and a busy spell of the machine hits all alike. */
+int bench_sample(const workload *w, int isa, int width_id, int op, const options *opt,
+                 result *r, int want, int first_of_isa);
+/* timing.c: the median and spread of the samples (reps: how many were wanted). */
+void bench_summarize(const workload *w, result *r, int reps);
 /* timing.c: the memcpy bound of a big stream, in bytes per second. */
 double bench_memcpy_gbs(const workload *w, const options *opt);
 

@@ -174,45 +174,83 @@ static int for_configs(workload *w, const options *o, config_fn fn, void *ctx)
 typedef struct run_ctx {
     const options *opt;
     result_list *results;
+    size_t next;          /* the result the next configuration samples into */
+    int want;             /* clean samples per configuration in this round */
     int done, total, tty;
     int warmed[BENCH_NISA];
-    double memcpy_gbs;
+    double memcpy_gbs, t_start;
 } run_ctx;
 
 static void progress(run_ctx *c, const char *scen, const char *what)
 {
     if (c->tty)
-        fprintf(stderr, "\r[%4d/%4d] %-20s %-34s", c->done, c->total, scen, what);
+        fprintf(stderr, "\r[%5d/%5d] %-20s %-34s", c->done, c->total, scen, what);
 }
 
-static void run_config(void *vctx, workload *w, int op, int wid, int isa)
+/* Round 0 creates the configuration's row; every round appends samples to it. */
+static void sample_config(void *vctx, workload *w, int op, int wid, int isa)
 {
     run_ctx *c = vctx;
     char what[64];
     snprintf(what, sizeof what, "%s w%s %s", bench_isa_name(isa), bench_width_name[wid],
              bench_op_name[op]);
     progress(c, w->name, what);
-    result *r = results_push(c->results);
-    if (!r)
-        return;
-    snprintf(r->scenario, sizeof r->scenario, "%s", w->name);
-    snprintf(r->group, sizeof r->group, "%s", w->group);
-    snprintf(r->isa, sizeof r->isa, "%s", bench_isa_name(isa));
-    snprintf(r->op, sizeof r->op, "%s", bench_op_name[op]);
-    r->isa_id = isa;
-    r->width_id = wid;
-    r->op_id = op;
-    int first = !c->warmed[isa];
-    c->warmed[isa] = 1;
-    if (bench_time(w, isa, wid, op, c->opt, r, first) != 0) {
-        c->results->n--; /* not runnable (e.g. no memory): leave no row */
+    result *r;
+    if (c->next == c->results->n) {
+        r = results_push(c->results);
+        if (!r)
+            return;
+        snprintf(r->scenario, sizeof r->scenario, "%s", w->name);
+        snprintf(r->group, sizeof r->group, "%s", w->group);
+        snprintf(r->isa, sizeof r->isa, "%s", bench_isa_name(isa));
+        snprintf(r->op, sizeof r->op, "%s", bench_op_name[op]);
+        r->isa_id = isa;
+        r->width_id = wid;
+        r->op_id = op;
+    }
+    r = &c->results->r[c->next++];
+    if (r->samples < 0) { /* failed in an earlier round */
         c->done++;
         return;
     }
+    int first = !c->warmed[isa];
+    c->warmed[isa] = 1;
+    if (bench_sample(w, isa, wid, op, c->opt, r, c->want, first) != 0)
+        r->samples = -1; /* not runnable (no memory): dropped at the end */
+    c->done++;
+}
+
+/* After the last round: the statistics, and the error side on the same rays. */
+static void finish_config(void *vctx, workload *w, int op, int wid, int isa)
+{
+    run_ctx *c = vctx;
+    result *r = &c->results->r[c->next++];
+    (void)op, (void)wid, (void)isa;
+    if (r->samples <= 0)
+        return;
+    bench_summarize(w, r, w->big ? c->want : c->opt->reps);
     if (w->big)
         r->memcpy_gbytes_s = c->memcpy_gbs;
+    char what[64];
+    snprintf(what, sizeof what, "error side: %s w%s %s", r->isa, bench_width_name[wid], r->op);
+    progress(c, w->name, what);
     accuracy_measure(w, isa, wid, op, r);
-    c->done++;
+}
+
+static void drop_failed(result_list *l)
+{
+    size_t k = 0;
+    for (size_t i = 0; i < l->n; i++)
+        if (l->r[i].samples > 0)
+            l->r[k++] = l->r[i];
+    l->n = k;
+}
+
+static void note(run_ctx *c, const char *what)
+{
+    if (!c->tty)
+        fprintf(stderr, "cylbench: %s (%d/%d configurations sampled, %.1f s)\n", what, c->done,
+                c->total, (clk_ns() - c->t_start) * 1e-9);
 }
 
 /* Speedup over the scalar path in the same run: same scenario, width and flag set (the
@@ -256,46 +294,87 @@ int main(int argc, char **argv)
     ctx.opt = &opt;
     ctx.results = &results;
     ctx.tty = isatty(2);
+    ctx.t_start = t_start;
 
-    /* Count the configurations first, for the progress line. */
+    /* The L1-resident workloads are all built first and then sampled in rounds: each
+     * round visits every configuration once and takes a share of its samples, so a busy
+     * spell of this shared machine lands on all configurations alike and the ratios
+     * between them stay fair. The big stream (one long pass per sample) comes after. */
+    const int rounds = opt.reps >= 6 ? 3 : opt.reps >= 2 ? 2 : 1;
     int nw = workloads_count();
-    for (int i = 0; i < nw; i++) {
-        if (!workloads_selected(i, opt.scenarios))
-            continue;
-        workload w;
-        memset(&w, 0, sizeof w);
-        w.ops = 0;
-        /* the table's flag sets and widths are known without drawing any rays */
-        if (workloads_build(i, &w, &(options){.big_rays = 16, .quick = 1}) == 0)
-            ctx.total += for_configs(&w, &opt, NULL, NULL);
-        workloads_free(&w);
-    }
-
+    workload *ws = calloc((size_t)nw, sizeof *ws);
+    int nws = 0, big_idx[8], nbig = 0;
+    if (!ws)
+        return 1;
     fprintf(stderr, "cylbench: %s, %d cores, %s; paths: %s; reference: %s\n", m.cpu, m.cores,
             m.compiler, m.isas, accuracy_available() ? "exact (tests/ref)" : "none");
     for (int i = 0; i < nw; i++) {
         if (!workloads_selected(i, opt.scenarios))
             continue;
         workload w;
-        progress(&ctx, workloads_name(i), "drawing rays");
+        memset(&w, 0, sizeof w);
+        if (!strcmp(workloads_group(i), "stream")) {
+            /* the configurations are counted now, the rays drawn when their turn comes */
+            if (workloads_build(i, &w, &(options){.big_rays = 16, .quick = 1}) == 0 && nbig < 8) {
+                big_idx[nbig++] = i;
+                ctx.total += for_configs(&w, &opt, NULL, NULL);
+            }
+            workloads_free(&w);
+            continue;
+        }
+        progress(&ctx, workloads_name(i), "drawing rays, exact reference");
         if (workloads_build(i, &w, &opt) != 0) {
             fprintf(stderr, "\ncylbench: %s: cannot build this scenario; skipped\n",
                     workloads_name(i));
             workloads_free(&w);
             continue;
         }
-        progress(&ctx, w.name, "exact reference");
         accuracy_reference(&w);
-        if (w.big) {
-            progress(&ctx, w.name, "memcpy bound");
-            ctx.memcpy_gbs = bench_memcpy_gbs(&w, &opt);
-        }
-        for_configs(&w, &opt, run_config, &ctx);
-        if (!ctx.tty)
-            fprintf(stderr, "cylbench: %s done (%d/%d, %.1f s)\n", w.name, ctx.done, ctx.total,
-                    (clk_ns() - t_start) * 1e-9);
-        workloads_free(&w);
+        ws[nws++] = w;
+        ctx.total += rounds * for_configs(&w, &opt, NULL, NULL);
     }
+    note(&ctx, "workloads built");
+    for (int round = 0; round < rounds; round++) {
+        ctx.next = 0;
+        ctx.want = (opt.reps + rounds - 1 - round) / rounds; /* shares add up to reps */
+        for (int k = 0; k < nws; k++)
+            for_configs(&ws[k], &opt, sample_config, &ctx);
+        char what[32];
+        snprintf(what, sizeof what, "round %d of %d done", round + 1, rounds);
+        note(&ctx, what);
+    }
+    ctx.next = 0;
+    for (int k = 0; k < nws; k++) {
+        for_configs(&ws[k], &opt, finish_config, &ctx);
+        workloads_free(&ws[k]);
+    }
+    note(&ctx, "error side done");
+    free(ws);
+
+    for (int k = 0; k < nbig; k++) {
+        workload w;
+        progress(&ctx, workloads_name(big_idx[k]), "drawing rays, exact reference");
+        if (workloads_build(big_idx[k], &w, &opt) != 0) {
+            fprintf(stderr, "\ncylbench: %s: cannot build this scenario; skipped\n",
+                    workloads_name(big_idx[k]));
+            workloads_free(&w);
+            continue;
+        }
+        accuracy_reference(&w);
+        progress(&ctx, w.name, "memcpy bound");
+        ctx.memcpy_gbs = bench_memcpy_gbs(&w, &opt);
+        size_t first = results.n;
+        ctx.next = first;
+        /* whole passes of 128 or 256 MB: fewer samples */
+        ctx.want = opt.reps < 3 ? opt.reps : opt.quick ? 3 : 4;
+        for_configs(&w, &opt, sample_config, &ctx);
+        ctx.next = first;
+        for_configs(&w, &opt, finish_config, &ctx);
+        workloads_free(&w);
+        note(&ctx, "big stream done");
+    }
+    drop_failed(&results);
+
     scene_report sc;
     memset(&sc, 0, sizeof sc);
     if (!opt.scenarios || strstr(opt.scenarios, "scene") || strstr(opt.scenarios, "all")) {

@@ -357,8 +357,8 @@ static void print_scene(FILE *f, const result_list *l, const scene_report *sc)
         if (strcmp(r->scenario, "scene"))
             continue;
         double ms = r->ns.med * (double)r->rays_timed * 1e-6;
-        fprintf(f, "%-14s %10.1f %10.1f %12.0f %8.1fx ", r->isa, ms, r->mrays,
-                r->mrays * r->ncyl, r->speedup);
+        fprintf(f, "%-14s %9.1f%c %10.1f %12.0f %8.1fx ", r->isa, ms, r->cpu_timed ? '~' : ' ',
+                r->mrays, r->mrays * r->ncyl, r->speedup);
         if (r->isa_id >= 0 && r->isa_id < BENCH_NISA)
             fprintf(f, "%14ld\n", sc->pix_diff[r->isa_id]);
         else
@@ -574,11 +574,12 @@ void report_all(const result_list *l, const machine_info *m, const options *opt,
     fprintf(f, "cylbench: cylray ray/cylinder kernels, run time against error (%s)\n", m->date);
     fprintf(f, "machine: %s\n", ml);
     fprintf(f, "         %s; cylray paths on this CPU: %s; %s\n", m->os, m->isas, m->pinned);
-    fprintf(f, "method:  batches of %d rays timed while in L1; warm-up; %d samples of >= %.1f ms "
-               "per configuration;\n         median [spread in results.csv: min, max, "
-               "quartiles]; per-ISA calls through cylray_kernels_for(isa);\n         tmax "
-               "restored per packet inside the timed loop; hit counts kept in a volatile "
-               "sink%s\n",
+    fprintf(f, "method:  batches of %d rays timed while in L1; per configuration %d samples of "
+               ">= %.1f ms each, taken in\n         rounds over all configurations (a busy "
+               "spell hits all alike), after a warm-up; median, spread in\n         "
+               "results.csv (min, max, quartiles); per-ISA calls through "
+               "cylray_kernels_for(isa); tmax restored\n         per packet inside the timed "
+               "loop; hit counts summed into a volatile sink%s\n",
             BENCH_BATCH, opt->reps, opt->sample_ns * 1e-6, opt->quick ? "; --quick" : "");
     size_t busy = 0, timed = 0;
     for (size_t i = 0; i < l->n; i++)

@@ -254,8 +254,8 @@ static void restore_all(runner *x)
         memcpy(x->tmax, x->w->rays.tmax, x->w->rays.n * sizeof(float));
 }
 
-int bench_time(const workload *w, int isa, int width_id, int op, const options *opt,
-               result *res, int first_of_isa)
+int bench_sample(const workload *w, int isa, int width_id, int op, const options *opt,
+                 result *res, int want, int first_of_isa)
 {
     runner x;
     if (runner_init(&x, w, isa, width_id, op)) {
@@ -268,40 +268,34 @@ int bench_time(const workload *w, int isa, int width_id, int op, const options *
 
     /* Warm-up: caches, branch predictors, and on AVX-512 the wide units and the clock
      * licence; the first configuration of each ISA warms for longer. It also measures
-     * one pass, to size the samples. */
-    double warm = first_of_isa ? opt->warm_ns : 2 * opt->sample_ns;
-    int passes = 0;
-    double t0 = clk_ns(), pass_ns = 0;
-    do {
-        if (x.restore_outside)
-            restore_all(&x);
-        double a = clk_ns();
-        acc += x.pass(&x, 0);
-        pass_ns += clk_ns() - a;
-        passes++;
-    } while (!w->big && (passes < 2 || clk_ns() - t0 < warm)); /* a big pass: just one */
-    pass_ns /= passes;
-    long K = w->big ? 1 : (long)ceil(opt->sample_ns / (pass_ns > 1 ? pass_ns : 1));
-    if (K < 1)
-        K = 1;
+     * one pass, to size the samples. A big stream needs none: its arrays were written
+     * when allocated (no page faults left), it cannot be cached, and a sample is one
+     * pass whatever the pass takes. */
+    long K = 1;
+    if (!w->big) {
+        double warm = first_of_isa ? opt->warm_ns : 2 * opt->sample_ns;
+        int passes = 0;
+        double t0 = clk_ns(), pass_ns = 0;
+        do {
+            double a = clk_ns();
+            acc += x.pass(&x, 0);
+            pass_ns += clk_ns() - a;
+            passes++;
+        } while (passes < 2 || clk_ns() - t0 < warm);
+        pass_ns /= passes;
+        K = (long)ceil(opt->sample_ns / (pass_ns > 1 ? pass_ns : 1));
+        if (K < 1)
+            K = 1;
+    }
 
     /* Samples: wall time, the thread's CPU time and TSC ticks. A sample during which
-     * the thread lost the CPU (another process on this 2-core machine) is set aside
-     * and retaken; if too few clean ones come, the CPU-time figures are used. */
-    /* A big stream's sample is a whole pass (tens to hundreds of ms): fewer of them. */
-    const int reps = w->big ? (opt->reps < 5 ? opt->reps : 5) : opt->reps;
-    const int max_samples = w->big ? reps : 8 * reps;
-    double *ns = malloc((size_t)max_samples * sizeof *ns);
-    double *tk = malloc((size_t)max_samples * sizeof *tk);
-    double *cpu = malloc((size_t)max_samples * sizeof *cpu);
-    if (!ns || !tk || !cpu) {
-        free(ns), free(tk), free(cpu);
-        runner_free(&x);
-        return -1;
-    }
-    int clean = 0, taken = 0;
-    for (; taken < max_samples && clean < reps; taken++) {
-        size_t b = (size_t)taken % nb;
+     * the thread lost the CPU (another process on this 2-core machine) is marked
+     * unclean and retaken, up to 8 tries per wanted sample (a big stream: no retries). */
+    const int max_try = w->big ? want : 8 * want;
+    int clean = 0;
+    for (int tries = 0; tries < max_try && clean < want && res->samples < BENCH_MAXSAMP;
+         tries++) {
+        size_t b = (size_t)res->samples % nb;
         if (x.restore_outside)
             restore_all(&x);
         else if (nb > 1)
@@ -314,41 +308,51 @@ int bench_time(const workload *w, int isa, int width_id, int op, const options *
         uint64_t c1 = clk_ticks();
         double a1 = clk_ns(), p1 = clk_cpu_ns();
         double per = (double)K * per_sample;
-        cpu[taken] = (p1 - p0) / per;
-        if (p1 - p0 >= 0.95 * (a1 - a0)) {
-            ns[clean] = (a1 - a0) / per;
-            tk[clean] = (double)(c1 - c0) / per;
-            clean++;
-        }
+        int i = res->samples++;
+        res->s_wall[i] = (a1 - a0) / per;
+        res->s_cpu[i] = (p1 - p0) / per;
+        res->s_tick[i] = (double)(c1 - c0) / per;
+        res->s_clean[i] = p1 - p0 >= 0.95 * (a1 - a0);
+        clean += res->s_clean[i];
         acc += hits;
     }
     sink = sink + acc;
-    res->samples = taken;
+    res->rays_timed = w->batch;
+    res->ncyl = bench_tests_per_ray(w);
+    runner_free(&x);
+    return 0;
+}
+
+void bench_summarize(const workload *w, result *res, int reps)
+{
+    double ns[BENCH_MAXSAMP], tk[BENCH_MAXSAMP];
+    int clean = 0;
+    for (int i = 0; i < res->samples; i++)
+        if (res->s_clean[i]) {
+            ns[clean] = res->s_wall[i];
+            tk[clean++] = res->s_tick[i];
+        }
     res->clean = clean;
-    if (clean >= (reps + 1) / 2 && clean >= 1) {
+    /* Wall time over the clean samples when there are enough of them; otherwise the
+     * thread's CPU time over all of them (marked: the machine was too busy). */
+    if (clean >= 1 && clean >= (reps + 1) / 2) {
         stat_summary(ns, (size_t)clean, &res->ns);
         stat5 ts;
         stat_summary(tk, (size_t)clean, &ts);
         res->ticks = ts.med;
         res->reps = clean;
+        res->cpu_timed = 0;
     } else {
-        stat_summary(cpu, (size_t)taken, &res->ns);
+        for (int i = 0; i < res->samples; i++)
+            ns[i] = res->s_cpu[i];
+        stat_summary(ns, (size_t)res->samples, &res->ns);
         res->ticks = res->ns.med * clk_tsc_ghz();
-        res->reps = taken;
+        res->reps = res->samples;
         res->cpu_timed = 1;
     }
     res->mrays = res->ns.med > 0 ? 1e3 / res->ns.med : 0;
-    res->rays_timed = w->batch;
-    res->ncyl = bench_tests_per_ray(w);
-    if (w->big) {
-        /* the bytes a ray stream moves: 8 input floats per ray */
+    if (w->big) /* the bytes a ray stream moves: 8 input floats per ray */
         res->gbytes_s = 32.0 / res->ns.med;
-    }
-    free(ns);
-    free(tk);
-    free(cpu);
-    runner_free(&x);
-    return 0;
 }
 
 /* The lane's outputs from a packet array of N lanes. */
