@@ -175,7 +175,7 @@ static size_t mut_stream(const cylray_prepared *p, const cylray_rays *r, const c
     memcpy(bt, h->t, n * sizeof *bt);
     memcpy(btmax, r->tmax, n * sizeof *btmax);
     cylray_hits hh = *h;
-    float dummy[3];
+    float dummy[32]; /* stands in for absent normal arrays, one chunk long */
     unsigned rf = real_flags(f);
     if (!h->nx)
         rf &= ~CYLRAY_NORMAL | (f & CYLRAY_NORMAL); /* no arrays to write normals to */

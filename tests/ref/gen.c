@@ -209,9 +209,11 @@ static void make_cylinder(cylgen_rng *r, const cyl_spec *s, cylray_cylinder *out
         double sg = sign(r); /* one draw per statement: argument order is unspecified */
         out->center[k] = (float)(sg * uni(r, s->c_lo, s->c_hi));
     }
-    /* Any nonzero length: axes are not unit vectors, and a third lie along a coordinate
-     * axis exactly (both signs), where kernels may take shortcuts. */
-    double len = chance(r, 0.5) ? 1.0 : logu(r, 0.25, 8);
+    /* Any nonzero length (unit, 0.25..8, sometimes 1e-4..1e4): the axis is taken as
+     * exact, never normalised. A third lie along a coordinate axis exactly (either
+     * sign), where kernels may take shortcuts. */
+    double u = cylgen_uniform(r);
+    double len = u < 0.45 ? 1.0 : u < 0.85 ? logu(r, 0.25, 8) : logu(r, 1e-4, 1e4);
     if (chance(r, 0.35)) {
         int k = (int)(cylgen_next(r) % 3);
         out->axis[k] = (float)(sign(r) * len);
@@ -222,11 +224,13 @@ static void make_cylinder(cylgen_rng *r, const cyl_spec *s, cylray_cylinder *out
     out->radius = (float)R;
     int kind = s->kind;
     if (kind == KIND_ANY) {
-        double u = cylgen_uniform(r);
+        u = cylgen_uniform(r);
         kind = u < 0.45 ? KIND_CAPPED : u < 0.75 ? KIND_OPEN : KIND_INFINITE;
     }
     if (kind == KIND_INFINITE) {
         out->half_height = INFINITY;
+        /* The capped flag means nothing without ends; a kernel must not invent them. */
+        out->flags = chance(r, 0.25) ? CYLRAY_CAPPED : 0u;
     } else {
         out->half_height = (float)(R * logu(r, 0.2, 5));
         out->flags = kind == KIND_CAPPED ? CYLRAY_CAPPED : 0u;
