@@ -87,6 +87,7 @@ typedef struct result {
     double hit_frac;            /* share of rays with a hit (or occluded) */
     int reps;                   /* samples the median is over */
     int samples, clean;         /* samples taken; of those, not interrupted */
+    long passes_per_sample;     /* set by the first visit's warm-up */
     double s_wall[BENCH_MAXSAMP], s_cpu[BENCH_MAXSAMP], s_tick[BENCH_MAXSAMP];
     unsigned char s_clean[BENCH_MAXSAMP];
     int cpu_timed;              /* too few clean samples (a busy machine): the figures

@@ -297,10 +297,10 @@ int main(int argc, char **argv)
     ctx.t_start = t_start;
 
     /* The L1-resident workloads are all built first and then sampled in rounds: each
-     * round visits every configuration once and takes a share of its samples, so a busy
-     * spell of this shared machine lands on all configurations alike and the ratios
-     * between them stay fair. The big stream (one long pass per sample) comes after. */
-    const int rounds = opt.reps >= 6 ? 3 : opt.reps >= 2 ? 2 : 1;
+     * round visits every configuration once and takes one sample of it, so a busy spell
+     * of this shared machine lands on all configurations alike and the ratios between
+     * them stay fair. The big stream (one long pass per sample) comes after. */
+    const int rounds = opt.reps; /* one sample per configuration and round */
     int nw = workloads_count();
     workload *ws = calloc((size_t)nw, sizeof *ws);
     int nws = 0, big_idx[8], nbig = 0;
@@ -339,9 +339,11 @@ int main(int argc, char **argv)
         ctx.want = (opt.reps + rounds - 1 - round) / rounds; /* shares add up to reps */
         for (int k = 0; k < nws; k++)
             for_configs(&ws[k], &opt, sample_config, &ctx);
-        char what[32];
-        snprintf(what, sizeof what, "round %d of %d done", round + 1, rounds);
-        note(&ctx, what);
+        if ((round + 1) % 5 == 0 || round + 1 == rounds) {
+            char what[32];
+            snprintf(what, sizeof what, "round %d of %d done", round + 1, rounds);
+            note(&ctx, what);
+        }
     }
     ctx.next = 0;
     for (int k = 0; k < nws; k++) {

@@ -266,13 +266,15 @@ int bench_sample(const workload *w, int isa, int width_id, int op, const options
     const double per_sample = (double)w->batch * bench_tests_per_ray(w);
     uint64_t acc = 0;
 
-    /* Warm-up: caches, branch predictors, and on AVX-512 the wide units and the clock
-     * licence; the first configuration of each ISA warms for longer. It also measures
-     * one pass, to size the samples. A big stream needs none: its arrays were written
-     * when allocated (no page faults left), it cannot be cached, and a sample is one
-     * pass whatever the pass takes. */
-    long K = 1;
-    if (!w->big) {
+    /* Warm-up, on the first visit: caches, branch predictors, and on AVX-512 the wide
+     * units and the clock licence; the first configuration of each ISA warms for
+     * longer. It also times a pass, which sizes the samples. A big stream needs none:
+     * its arrays were written when allocated (no page faults left), it cannot be cached,
+     * and a sample is one pass whatever the pass takes. Later visits run one untimed pass
+     * over the sample's batch before timing it. */
+    if (w->big) {
+        res->passes_per_sample = 1;
+    } else if (res->passes_per_sample == 0) {
         double warm = first_of_isa ? opt->warm_ns : 2 * opt->sample_ns;
         int passes = 0;
         double t0 = clk_ns(), pass_ns = 0;
@@ -283,10 +285,10 @@ int bench_sample(const workload *w, int isa, int width_id, int op, const options
             passes++;
         } while (passes < 2 || clk_ns() - t0 < warm);
         pass_ns /= passes;
-        K = (long)ceil(opt->sample_ns / (pass_ns > 1 ? pass_ns : 1));
-        if (K < 1)
-            K = 1;
+        long k = (long)ceil(opt->sample_ns / (pass_ns > 1 ? pass_ns : 1));
+        res->passes_per_sample = k < 1 ? 1 : k;
     }
+    const long K = res->passes_per_sample;
 
     /* Samples: wall time, the thread's CPU time and TSC ticks. A sample during which
      * the thread lost the CPU (another process on this 2-core machine) is marked
@@ -298,8 +300,8 @@ int bench_sample(const workload *w, int isa, int width_id, int op, const options
         size_t b = (size_t)res->samples % nb;
         if (x.restore_outside)
             restore_all(&x);
-        else if (nb > 1)
-            acc += x.pass(&x, b); /* untimed: brings batch b into L1 */
+        else
+            acc += x.pass(&x, b); /* untimed: batch b into L1, the predictors trained */
         uint64_t hits = 0;
         double p0 = clk_cpu_ns(), a0 = clk_ns();
         uint64_t c0 = clk_ticks();
