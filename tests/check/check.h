@@ -29,6 +29,12 @@
 #define HEADLINE_P99_ULPS 2.5
 #define HEADLINE_FAR_MAX_ULPS 2.0
 
+/* Categories: the generators' (gen.h), then the fixed regression cases (regress.c). */
+#define CAT_REGRESS CYLGEN_COUNT
+#define CAT_COUNT (CYLGEN_COUNT + 1)
+const char *cat_name(int category);
+int cat_find(const char *name); /* -1 when unknown */
+
 /* The modes the statistics are kept apart for. */
 enum { MODE_PLAIN, MODE_REFINE, MODE_FAST, MODE_COUNT };
 static inline int mode_of(unsigned flags)
@@ -123,6 +129,14 @@ const char *flags_name(unsigned flags);
  * when that is set). *total gets the count; free() the result. */
 ref_case *make_cases(int cat, uint64_t seed, size_t n_packet, const size_t *lengths,
                      size_t n_lengths, size_t *total);
+
+/* The regression cases: inputs that once made a kernel fail, and float-exact hand cases
+ * whose answer is known. Each is repeated over one batch of 16 (its own cylinder) and
+ * once as a stream of 3. Same layout as make_cases. */
+ref_case *make_regress_cases(size_t *n_packet, const size_t **lengths, size_t *n_lengths,
+                             size_t *total);
+/* What regression case `index` is about. */
+const char *regress_why(int index);
 
 /* ---- the drivers ----------------------------------------------------------------- */
 

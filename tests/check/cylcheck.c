@@ -28,8 +28,8 @@ static void usage(FILE *f)
             "usage: cylcheck [options]\n"
             "  --isa=NAME       only this path (scalar, sse41, avx2, avx512, neon)\n"
             "  --category=NAME  only this category of rays:");
-    for (int c = 0; c < cylgen_category_count(); c++)
-        fprintf(f, " %s", cylgen_category_name(c));
+    for (int c = 0; c < CAT_COUNT; c++)
+        fprintf(f, " %s", cat_name(c));
     fprintf(f, "\n"
                "  --seed=N         the generators' seed (default: from the clock, printed)\n"
                "  --quick          small counts (sanitizers, qemu); also CYLRAY_TEST_QUICK=1\n"
@@ -65,7 +65,7 @@ static void parse_args(int argc, char **argv)
                 exit(2);
             }
         } else if (strncmp(a, "--category=", 11) == 0) {
-            opt.category = cylgen_category_find(a + 11);
+            opt.category = cat_find(a + 11);
             if (opt.category < 0) {
                 fprintf(stderr, "cylcheck: unknown category '%s'\n", a + 11);
                 usage(stderr);
@@ -146,25 +146,24 @@ int main(int argc, char **argv)
     const size_t *lengths = opt.quick ? stream_quick : stream_full;
     size_t n_lengths = opt.quick ? sizeof stream_quick / sizeof *stream_quick
                                  : sizeof stream_full / sizeof *stream_full;
-    /* Segments for the scalar answers: packet batches, then the streams. */
-    size_t n_seg = opt.n / CYLGEN_BATCH + n_lengths;
-    size_t *segs = malloc(n_seg * sizeof *segs);
-    if (!segs)
-        return 2;
-    for (size_t i = 0; i < opt.n / CYLGEN_BATCH; i++)
-        segs[i] = CYLGEN_BATCH;
-    for (size_t i = 0; i < n_lengths; i++)
-        segs[opt.n / CYLGEN_BATCH + i] = lengths[i];
-
     long lanes_before = 0;
-    for (int cat = 0; cat < cylgen_category_count(); cat++) {
+    for (int cat = 0; cat < CAT_COUNT; cat++) {
         if (opt.category >= 0 && cat != opt.category)
             continue;
-        size_t total;
-        ref_case *rc = make_cases(cat, opt.seed, opt.n, lengths, n_lengths, &total);
+        size_t total, npk = opt.n, nl = n_lengths;
+        const size_t *ls = lengths;
+        ref_case *rc = cat == CAT_REGRESS ? make_regress_cases(&npk, &ls, &nl, &total)
+                                          : make_cases(cat, opt.seed, npk, ls, nl, &total);
+        /* Segments for the scalar answers: packet batches, then the streams. */
+        size_t n_seg = npk / CYLGEN_BATCH + nl;
+        size_t *segs = malloc(n_seg * sizeof *segs);
         lane_out *sc = malloc(total * sizeof *sc);
-        if (!sc)
+        if (!segs || !sc)
             return 2;
+        for (size_t i = 0; i < npk / CYLGEN_BATCH; i++)
+            segs[i] = CYLGEN_BATCH;
+        for (size_t i = 0; i < nl; i++)
+            segs[npk / CYLGEN_BATCH + i] = ls[i];
         for (unsigned flags = 0; flags <= CYLRAY_FLAGS_ALL; flags++) {
             if (opt.flags_only >= 0 && flags != (unsigned)opt.flags_only)
                 continue;
@@ -173,9 +172,8 @@ int main(int argc, char **argv)
             for (int i = 0; i < n_isas; i++) {
                 const cylray_kernels *k = isas[i];
                 const lane_out *cmp = scalar && k != scalar ? sc : NULL;
-                drive_packets(k, flags, cat, rc, opt.n, cmp, opt.seed);
-                drive_streams(k, flags, cat, rc + opt.n, lengths, n_lengths,
-                              cmp ? cmp + opt.n : NULL, opt.seed);
+                drive_packets(k, flags, cat, rc, npk, cmp, opt.seed);
+                drive_streams(k, flags, cat, rc + npk, ls, nl, cmp ? cmp + npk : NULL, opt.seed);
             }
         }
         long lanes = 0;
@@ -183,13 +181,13 @@ int main(int argc, char **argv)
             for (int m = 0; m < MODE_COUNT; m++)
                 lanes += stat_at(isas[i]->isa, cat, m)->lanes;
         if (opt.verbose || opt.report)
-            printf("cylcheck: %-13s %ld lanes checked, %ld failures so far\n",
-                   cylgen_category_name(cat), lanes, failures);
+            printf("cylcheck: %-13s %ld lanes checked, %ld failures so far\n", cat_name(cat),
+                   lanes, failures);
         lanes_before += lanes;
+        free(segs);
         free(sc);
         free(rc);
     }
-    free(segs);
 
     if (opt.report)
         stats_report();

@@ -8,8 +8,18 @@
 #include <stdlib.h>
 #include <string.h>
 
-static stat_cell cells[CYLRAY_ISA_COUNT][CYLGEN_COUNT][MODE_COUNT];
+static stat_cell cells[CYLRAY_ISA_COUNT][CAT_COUNT][MODE_COUNT];
 static const char *const mode_names[MODE_COUNT] = {"plain", "refine", "fast"};
+
+const char *cat_name(int category)
+{
+    return category == CAT_REGRESS ? "regress" : cylgen_category_name(category);
+}
+
+int cat_find(const char *name)
+{
+    return name && strcmp(name, "regress") == 0 ? CAT_REGRESS : cylgen_category_find(name);
+}
 
 stat_cell *stat_at(int isa, int category, int mode)
 {
@@ -66,13 +76,13 @@ void stats_report(void)
            "category", "mode", "lanes", "hits%", "median", "p99", "max", "hmexc", "HMUNX",
            "ptexc", "PTUNX", ">band", "maxbeyond", "nangle", "|n|-1", "=scalar");
     for (int isa = 0; isa < CYLRAY_ISA_COUNT; isa++)
-        for (int cat = 0; cat < CYLGEN_COUNT; cat++)
+        for (int cat = 0; cat < CAT_COUNT; cat++)
             for (int m = 0; m < MODE_COUNT; m++) {
                 stat_cell *s = &cells[isa][cat][m];
                 if (!s->lanes)
                     continue;
                 printf("%-7s %-13s %-6s %7ld %6.1f", cylray_isa_name((cylray_isa)isa),
-                       cylgen_category_name(cat), mode_names[m], s->lanes,
+                       cat_name(cat), mode_names[m], s->lanes,
                        100.0 * (double)s->exact_hits / (double)s->lanes);
                 print_ulps(stat_percentile(s, 0.5));
                 print_ulps(stat_percentile(s, 0.99));
@@ -92,7 +102,7 @@ void stats_report(void)
         for (int m = 0; m < MODE_COUNT; m++) {
             double w = -INFINITY, vs = 0;
             long shm = 0;
-            for (int cat = 0; cat < CYLGEN_COUNT; cat++) {
+            for (int cat = 0; cat < CAT_COUNT; cat++) {
                 stat_cell *s = &cells[isa][cat][m];
                 if (s->lanes && s->max_angle_excess > w)
                     w = s->max_angle_excess;
@@ -150,7 +160,7 @@ int stats_headline(int isa)
 void stats_free(void)
 {
     for (int isa = 0; isa < CYLRAY_ISA_COUNT; isa++)
-        for (int cat = 0; cat < CYLGEN_COUNT; cat++)
+        for (int cat = 0; cat < CAT_COUNT; cat++)
             for (int m = 0; m < MODE_COUNT; m++) {
                 free(cells[isa][cat][m].ulps);
                 memset(&cells[isa][cat][m], 0, sizeof cells[isa][cat][m]);

@@ -75,14 +75,17 @@ static void print_out(const char *who, const lane_out *o, unsigned flags)
 
 static void fail_header(const lane_ctx *lc, const ref_case *rc)
 {
-    printf("FAIL %s w=%s lane %d flags %s category %s case #%d: ", lc->k->name, lc->width,
-           lc->lane, flags_name(lc->flags), cylgen_category_name(lc->category), rc->index);
+    printf("FAIL %s w=%s lane %d flags %s category %s case #%d", lc->k->name, lc->width,
+           lc->lane, flags_name(lc->flags), cat_name(lc->category), rc->index);
+    if (lc->category == CAT_REGRESS)
+        printf(" (%s)", regress_why(rc->index));
+    printf(": ");
 }
 
 static void print_repro(const lane_ctx *lc, const ref_case *rc)
 {
     printf("    repro: cylcheck --isa=%s --category=%s --seed=%llu --case=%d --flags=%u%s\n",
-           lc->k->name, cylgen_category_name(lc->category), (unsigned long long)opt.seed,
+           lc->k->name, cat_name(lc->category), (unsigned long long)opt.seed,
            rc->index, lc->flags, opt.quick ? " --quick" : "");
 }
 
@@ -185,7 +188,7 @@ void check_lane(const lane_ctx *lc, const ref_case *rc, const lane_out *got,
         if (opt.show_ulps > 0 && u > opt.show_ulps) {
             printf("NOTE %s w=%s lane %d flags %s category %s case #%d: t %.3g ulps from exact "
                    "(%.3g beyond the band)\n", lc->k->name, lc->width, lc->lane, flags_name(flags),
-                   cylgen_category_name(lc->category), rc->index, u, ub);
+                   cat_name(lc->category), rc->index, u, ub);
             print_case(rc, flags);
             print_out("kernel:", got, flags);
         }
