@@ -1,0 +1,327 @@
+#!/usr/bin/env bash
+# tests/run.sh - build and run the whole test suite in every configuration CI needs,
+# installing whatever tools are missing first, and end with the line
+#     N passed, N failed
+# counted from each build's meson-logs/testlog.json (meson test's exit status is the
+# failure count modulo 256) plus the timed fuzzing run. Exits nonzero when anything
+# failed, a build included.
+#
+# Configurations, each in its own build directory build/test-<name>:
+#   gcc      gcc, debugoptimized, warnings are errors
+#   clang    clang, debugoptimized, warnings are errors (also runs the fuzz corpus
+#            and a short deterministic libFuzzer session as tests)
+#   asan     gcc with AddressSanitizer + UndefinedBehaviorSanitizer
+#   aarch64  cross-compiled for AArch64 (NEON), ASan + UBSan, run under qemu-user
+#   tsan     clang with ThreadSanitizer, the thread test only
+#   fuzz     clang libFuzzer + ASan + UBSan, a timed run (FUZZ_SECONDS, default 60)
+# Sanitizer and qemu configurations set CYLRAY_TEST_QUICK=1 so that heavy tests shrink.
+#
+# Usage: tests/run.sh [config...]      e.g. tests/run.sh gcc clang
+# Environment: FUZZ_SECONDS (default 60); CI=true makes a configuration whose tools
+# cannot be installed count as failed instead of skipped.
+set -euo pipefail
+
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+ALL_CONFIGS=(gcc clang asan aarch64 tsan fuzz)
+FUZZ_SECONDS=${FUZZ_SECONDS:-60}
+CI=${CI:-}
+
+# ---- which configurations -------------------------------------------------------
+CONFIGS=()
+for a in "$@"; do
+    case "$a" in
+    -h | --help)
+        sed -n '2,24p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'
+        exit 0
+        ;;
+    gcc | clang | asan | aarch64 | tsan | fuzz) CONFIGS+=("$a") ;;
+    *)
+        echo "run.sh: unknown configuration '$a' (known: ${ALL_CONFIGS[*]})" >&2
+        exit 2
+        ;;
+    esac
+done
+[ ${#CONFIGS[@]} -gt 0 ] || CONFIGS=("${ALL_CONFIGS[@]}")
+wants() {
+    local c
+    for c in "${CONFIGS[@]}"; do [ "$c" = "$1" ] && return 0; done
+    return 1
+}
+
+# ---- tools: check, then install what is missing ---------------------------------
+# Each check names the Debian package that provides it (TOOLCHAIN.md's list).
+missing_pkgs=()
+need() { # need <package> <test command...>
+    local pkg=$1
+    shift
+    if ! "$@" >/dev/null 2>&1; then
+        missing_pkgs+=("$pkg")
+    fi
+}
+have_fuzzer_rt() {
+    command -v clang >/dev/null || return 1
+    local rt
+    rt=$(clang -print-resource-dir)/lib/linux/libclang_rt.fuzzer-x86_64.a
+    [ -e "$rt" ] || [ -e "$(clang -print-resource-dir)/lib/x86_64-unknown-linux-gnu/libclang_rt.fuzzer.a" ]
+}
+have_cxx() { command -v c++ || command -v g++ || command -v clang++; }
+
+need meson command -v meson
+need ninja-build command -v ninja
+need python3 command -v python3
+if wants gcc || wants asan; then need gcc command -v gcc; fi
+if wants clang || wants tsan || wants fuzz; then need clang command -v clang; fi
+if wants fuzz || wants clang || wants tsan; then need libclang-rt-14-dev have_fuzzer_rt; fi
+if wants aarch64; then
+    need gcc-aarch64-linux-gnu command -v aarch64-linux-gnu-gcc
+    need libc6-dev-arm64-cross test -e /usr/aarch64-linux-gnu/include/stdio.h
+    need qemu-user command -v qemu-aarch64
+fi
+# The header's C++ test needs some C++ compiler; it is skipped (not failed) without.
+if wants gcc || wants clang; then need g++ have_cxx; fi
+
+if [ ${#missing_pkgs[@]} -gt 0 ]; then
+    # dedupe, keep order
+    mapfile -t missing_pkgs < <(printf '%s\n' "${missing_pkgs[@]}" | awk '!seen[$0]++')
+    echo "== installing: ${missing_pkgs[*]}"
+    SUDO=()
+    if [ "$(id -u)" -ne 0 ]; then
+        if command -v sudo >/dev/null; then SUDO=(sudo -n); else SUDO=(false); fi
+    fi
+    if "${SUDO[@]}" apt-get update -q >/dev/null &&
+        "${SUDO[@]}" env DEBIAN_FRONTEND=noninteractive apt-get install -y -q \
+            --no-install-recommends "${missing_pkgs[@]}" >/dev/null; then
+        echo "   installed"
+    else
+        echo "   could not install (no root, or apt failed); configurations that need them will not run"
+    fi
+fi
+
+# ---- running one configuration ---------------------------------------------------
+PASSED=0
+FAILED=0
+SUMMARY=()
+TSTART=$(date +%s)
+
+# Counts results in a testlog.json; prints "passed failed".
+count_log() {
+    python3 - "$1" <<'PY'
+import json, sys
+passed = failed = 0
+for line in open(sys.argv[1], encoding='utf-8', errors='replace'):
+    line = line.strip()
+    if not line:
+        continue
+    r = json.loads(line).get('result')
+    if r == 'OK':
+        passed += 1
+    elif r in ('FAIL', 'ERROR', 'TIMEOUT', 'UNEXPECTEDPASS'):
+        failed += 1
+print(passed, failed)
+PY
+}
+
+note() { # note <config> <passed> <failed> <seconds> <remark>
+    PASSED=$((PASSED + $2))
+    FAILED=$((FAILED + $3))
+    SUMMARY+=("$(printf '%-8s %4d passed %4d failed %6ss  %s' "$1" "$2" "$3" "$4" "$5")")
+    printf -- '-- %s: %d passed, %d failed (%ss) %s\n' "$1" "$2" "$3" "$4" "$5"
+}
+
+# A configuration whose tools are missing: skipped locally, a failure in CI.
+unavailable() { # unavailable <config> <what is missing>
+    if [ "$CI" = true ]; then
+        note "$1" 0 1 0 "FAILED: $2 missing"
+    else
+        SUMMARY+=("$(printf '%-8s skipped: %s missing' "$1" "$2")")
+        echo "-- $1: skipped ($2 missing)"
+    fi
+}
+
+# setup_build <dir> <meson setup args...>: configures (or reconfigures) and builds.
+# Targets to build may be given in BUILD_TARGETS (default: all).
+setup_build() {
+    local dir=$1
+    shift
+    if [ -e "$dir" ] && [ ! -e "$dir/meson-private/coredata.dat" ]; then rm -rf "$dir"; fi
+    if [ -e "$dir/meson-private/coredata.dat" ]; then
+        meson setup --reconfigure "$dir" "$@" >"$dir.setup.log" 2>&1 || {
+            tail -30 "$dir.setup.log"
+            return 1
+        }
+    else
+        mkdir -p "$(dirname "$dir")"
+        meson setup "$dir" "$@" >"$dir.setup.log" 2>&1 || {
+            tail -30 "$dir.setup.log"
+            return 1
+        }
+    fi
+    # shellcheck disable=SC2086
+    ninja -C "$dir" ${BUILD_TARGETS:-} >"$dir.build.log" 2>&1 || {
+        grep -E 'error|FAILED' "$dir.build.log" | head -30
+        return 1
+    }
+}
+
+# run_tests <config> <dir> <start time> <meson test args...>: runs the suite with the
+# environment in TEST_ENV (an array of VAR=value) and counts the results.
+TEST_ENV=()
+run_tests() {
+    local cfg=$1 dir=$2 t0=$3 remark=""
+    shift 3
+    rm -f "$dir/meson-logs/testlog.json"
+    env "${TEST_ENV[@]}" meson test -C "$dir" --no-rebuild --print-errorlogs "$@" \
+        >"$dir.test.log" 2>&1 || true
+    grep -E '^ *[0-9]+/[0-9]+ ' "$dir.test.log" | sed 's/^/   /' || true
+    local log=$dir/meson-logs/testlog.json p f
+    if [ ! -s "$log" ]; then
+        note "$cfg" 0 1 $(($(date +%s) - t0)) "FAILED: no test results ($dir.test.log)"
+        return
+    fi
+    read -r p f < <(count_log "$log")
+    if [ "$p" -eq 0 ] && [ "$f" -eq 0 ]; then
+        f=1
+        remark="FAILED: no test ran"
+    fi
+    if [ "$f" -gt 0 ]; then
+        # the failing tests' own output, for the CI log
+        awk '/^=+ [0-9]+\/[0-9]+ =+$/ {show = 0} /^[ ]*[0-9]+\/[0-9]+ .*(FAIL|ERROR|TIMEOUT)/ {show = 1} show' \
+            "$dir.test.log" | head -150
+        remark="${remark:-see $dir.test.log}"
+    fi
+    note "$cfg" "$p" "$f" $(($(date +%s) - t0)) "$remark"
+}
+
+# What the sanitizers must do on a finding: stop, so that the test fails.
+san_env() { # san_env <extra ASAN_OPTIONS>
+    TEST_ENV=("ASAN_OPTIONS=$1halt_on_error=1:abort_on_error=1:print_summary=1"
+        "UBSAN_OPTIONS=halt_on_error=1:abort_on_error=1:print_stacktrace=1:print_summary=1"
+        "TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1")
+}
+
+build_failed() { # build_failed <config> <dir> <start time>
+    note "$1" 0 1 $(($(date +%s) - $3)) "FAILED: build (see $2.setup.log, $2.build.log)"
+}
+
+config_gcc() {
+    local t0 dir=build/test-gcc
+    t0=$(date +%s)
+    command -v gcc >/dev/null || { unavailable gcc gcc; return; }
+    TEST_ENV=()
+    if CC=gcc CXX=g++ setup_build "$dir" --buildtype=debugoptimized --werror; then
+        run_tests gcc "$dir" "$t0"
+    else
+        build_failed gcc "$dir" "$t0"
+    fi
+}
+
+config_clang() {
+    local t0 dir=build/test-clang
+    t0=$(date +%s)
+    command -v clang >/dev/null || { unavailable clang clang; return; }
+    san_env "" # the fuzz target in this build carries ASan and UBSan
+    if CC=clang CXX=clang++ setup_build "$dir" --buildtype=debugoptimized --werror; then
+        run_tests clang "$dir" "$t0"
+    else
+        build_failed clang "$dir" "$t0"
+    fi
+}
+
+config_asan() {
+    local t0 dir=build/test-asan
+    t0=$(date +%s)
+    command -v gcc >/dev/null || { unavailable asan gcc; return; }
+    san_env "detect_leaks=1:"
+    TEST_ENV+=(CYLRAY_TEST_QUICK=1)
+    if CC=gcc CXX=g++ setup_build "$dir" --buildtype=debugoptimized \
+        -Db_sanitize=address,undefined -Dbench=false; then
+        run_tests asan "$dir" "$t0" --timeout-multiplier 3
+    else
+        build_failed asan "$dir" "$t0"
+    fi
+}
+
+config_aarch64() {
+    local t0 dir=build/test-aarch64
+    t0=$(date +%s)
+    command -v aarch64-linux-gnu-gcc >/dev/null || { unavailable aarch64 aarch64-linux-gnu-gcc; return; }
+    command -v qemu-aarch64 >/dev/null || { unavailable aarch64 qemu-aarch64; return; }
+    # LeakSanitizer cannot run under qemu-user; ASan and UBSan can.
+    san_env "detect_leaks=0:"
+    TEST_ENV+=(CYLRAY_TEST_QUICK=1)
+    if setup_build "$dir" --cross-file tests/cross/aarch64-linux-gnu.ini \
+        --buildtype=debugoptimized -Db_sanitize=address,undefined -Dbench=false; then
+        run_tests aarch64 "$dir" "$t0" --timeout-multiplier 10
+    else
+        build_failed aarch64 "$dir" "$t0"
+    fi
+}
+
+config_tsan() {
+    local t0 dir=build/test-tsan wrap=()
+    t0=$(date +%s)
+    command -v clang >/dev/null || { unavailable tsan clang; return; }
+    san_env ""
+    # ThreadSanitizer needs a low-entropy address layout on some kernels (high
+    # vm.mmap_rnd_bits): run without randomisation where setarch allows it.
+    if setarch "$(uname -m)" -R true 2>/dev/null; then
+        wrap=(--wrapper "setarch $(uname -m) -R")
+    fi
+    if CC=clang BUILD_TARGETS=tests/robust/robust_threads setup_build "$dir" \
+        --buildtype=debugoptimized -Db_sanitize=thread -Db_lundef=false -Dbench=false; then
+        run_tests tsan "$dir" "$t0" --suite threads --timeout-multiplier 5 "${wrap[@]}"
+    else
+        build_failed tsan "$dir" "$t0"
+    fi
+}
+
+config_fuzz() {
+    local t0 dir=build/test-fuzz
+    t0=$(date +%s)
+    command -v clang >/dev/null || { unavailable fuzz clang; return; }
+    have_fuzzer_rt || { unavailable fuzz "libFuzzer (libclang-rt-14-dev)"; return; }
+    # The library too is built with coverage (fuzzer-no-link), so libFuzzer is guided
+    # by the kernels' branches, not only the harness's.
+    if ! CC=clang BUILD_TARGETS=tests/fuzz/cylray_fuzz setup_build "$dir" \
+        --buildtype=debugoptimized -Db_sanitize=address,undefined -Db_lundef=false \
+        -Dc_args=-fsanitize=fuzzer-no-link -Dbench=false; then
+        build_failed fuzz "$dir" "$t0"
+        return
+    fi
+    local work=$dir/fuzz-corpus art=$dir/fuzz-artifacts/ log=$dir.fuzz.log
+    mkdir -p "$work" "$art"
+    san_env "detect_leaks=1:"
+    echo "   fuzzing for ${FUZZ_SECONDS}s (corpus $work, crashes to $art)"
+    if env "${TEST_ENV[@]}" "$dir/tests/fuzz/cylray_fuzz" -max_total_time="$FUZZ_SECONDS" \
+        -timeout=20 -max_len=1024 -print_final_stats=1 -artifact_prefix="$art" \
+        "$work" tests/fuzz/corpus >"$log" 2>&1; then
+        grep -E '^cylray-fuzz: executions|stat::number_of_executed_units' "$log" | sed 's/^/   /'
+        note fuzz 1 0 $(($(date +%s) - t0)) ""
+    else
+        grep -E '^cylray-fuzz|^  |^==[0-9]+==|SUMMARY|^artifact_prefix|Test unit written' "$log" |
+            head -60 | sed 's/^/   /'
+        note fuzz 0 1 $(($(date +%s) - t0)) "FAILED: see $log"
+    fi
+}
+
+# ---- the run ----------------------------------------------------------------------
+i=0
+for cfg in "${CONFIGS[@]}"; do
+    i=$((i + 1))
+    case $cfg in
+    gcc) what="gcc, debugoptimized, -Werror" ;;
+    clang) what="clang, debugoptimized, -Werror" ;;
+    asan) what="gcc, ASan + UBSan, CYLRAY_TEST_QUICK=1" ;;
+    aarch64) what="aarch64 cross, NEON, ASan + UBSan under qemu-user, CYLRAY_TEST_QUICK=1" ;;
+    tsan) what="clang, ThreadSanitizer, the thread test" ;;
+    fuzz) what="clang libFuzzer + ASan + UBSan, ${FUZZ_SECONDS}s" ;;
+    esac
+    echo "== [$i/${#CONFIGS[@]}] $cfg: $what"
+    "config_$cfg"
+done
+
+echo
+echo "== summary ($(($(date +%s) - TSTART))s in all)"
+printf '   %s\n' "${SUMMARY[@]}"
+echo "$PASSED passed, $FAILED failed"
+[ "$FAILED" -eq 0 ]
