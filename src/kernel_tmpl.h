@@ -151,7 +151,7 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
     }
     /* Lagrange's form of B^2 - A C, over v.v; g^2 is taken exactly. */
     vf gg = vmul(g, g);
-    vf D = vsub(vfms(A, vset1(P->rr), gg), vfms(g, g, gg));
+    vf D = vsub(vfms_x(A, vset1(P->rr), gg), vfms_x(g, g, gg));
     act = mand(act, veq(vfma(C, zero, vmul(D, zero)), zero));
 
     /* A ray within about one ulp of the axis direction is parallel: it meets the side
@@ -298,6 +298,11 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
          * length error, whatever the hit point's distance from the axis. */
         vf l2 = KDOT(nx, ny, nz, nx, ny, nz);
         vf corr = vfnma(vset1(0.5f), l2, vset1(1.5f));
+        /* A hit point that rounding moved well off the surface (a radius far below the
+         * coordinates' ulp) gets a true normalisation; it is rare enough to branch. */
+        vm off = mand(hit, vgt(vabs(vsub(l2, one)), vset1(0x1p-10f)));
+        if (many(off))
+            corr = vsel(mand(off, vgt(l2, zero)), vdiv(one, vsqrt(l2)), corr);
         if (ff)
             corr = vsel(back, vneg(corr), corr);
         float *const n3[3] = {H->nx, H->ny, H->nz};

@@ -27,6 +27,7 @@
 #define vfms(a, b, c) vnegq_f32(vfmsq_f32(c, a, b))
 #define vfnma(a, b, c) vfmsq_f32(c, a, b)
 #define vfma_x(a, b, c) vfmaq_f32(c, a, b)
+#define vfms_x(a, b, c) vfms(a, b, c)
 static inline vf KFN(dop_x)(vf a, vf b, vf c, vf d)
 {
     vf cd = vmulq_f32(c, d);

@@ -3,7 +3,7 @@
  * This is also the definition of every operation the SIMD headers implement:
  *   vfma(a,b,c) = a*b + c, vfms = a*b - c, vfnma = c - a*b; fused where the ISA can,
  *     used where one more rounding does not matter;
- *   vfma_x(a,b,c) = a*b + c with the product exact (one rounding), and
+ *   vfma_x(a,b,c) = a*b + c and vfms_x = a*b - c with the product exact, and
  *   vdop_x(a,b,c,d) = a*b - c*d within about one ulp: used where it matters;
  *   vmin(a,b) = a < b ? a : b and vmax(a,b) = a > b ? a : b (NaN gives b);
  *   comparisons are ordered (false when either side is NaN);
@@ -35,6 +35,7 @@
 #define vfms(a, b, c) fmaf(a, b, -(c))
 #define vfnma(a, b, c) fmaf(-(a), b, c)
 #define vfma_x(a, b, c) fmaf(a, b, c)
+#define vfms_x(a, b, c) fmaf(a, b, -(c))
 static inline float KFN(dop_x)(float a, float b, float c, float d)
 {
     float cd = c * d;
@@ -48,6 +49,7 @@ static inline float KFN(dop_x)(float a, float b, float c, float d)
 #define vfms(a, b, c) ((float)((double)(a) * (double)(b) - (double)(c)))
 #define vfnma(a, b, c) ((float)((double)(c) - (double)(a) * (double)(b)))
 #define vfma_x(a, b, c) vfma(a, b, c)
+#define vfms_x(a, b, c) vfms(a, b, c)
 static inline float KFN(dop_x)(float a, float b, float c, float d)
 {
     return (float)((double)a * (double)b - (double)c * (double)d);

@@ -26,6 +26,7 @@
 #undef vfms
 #undef vfnma
 #undef vfma_x
+#undef vfms_x
 #undef vdop_x
 #undef vrcp_est_
 #undef vrsqrt_est_

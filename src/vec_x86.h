@@ -60,6 +60,7 @@
 #define vfms(a, b, c) VX(fmsub_ps)(a, b, c)
 #define vfnma(a, b, c) VX(fnmadd_ps)(a, b, c)
 #define vfma_x(a, b, c) VX(fmadd_ps)(a, b, c)
+#define vfms_x(a, b, c) VX(fmsub_ps)(a, b, c)
 /* Kahan's a*b - c*d: the rounding error of c*d is recovered exactly by an FMA. */
 static inline vf KFN(dop_x)(vf a, vf b, vf c, vf d)
 {
@@ -93,6 +94,7 @@ static inline __m128 KFN(dop_x)(__m128 a, __m128 b, __m128 c, __m128 d)
     return _mm_movelh_ps(_mm_cvtpd_ps(lo), _mm_cvtpd_ps(hi));
 }
 #define vfma_x(a, b, c) KFN(fma_x)(a, b, c)
+#define vfms_x(a, b, c) KFN(fma_x)(a, b, vneg(c))
 #define vdop_x(a, b, c, d) KFN(dop_x)(a, b, c, d)
 #endif
 
