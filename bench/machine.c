@@ -67,13 +67,13 @@ void machine_probe(machine_info *m)
 {
     memset(m, 0, sizeof *m);
     snprintf(m->cpu, sizeof m->cpu, "unknown CPU");
-    char fam[16] = "?", model[16] = "?", step[16] = "?";
+    char fam[12] = "?", model[12] = "?", step[12] = "?";
     FILE *f = fopen("/proc/cpuinfo", "r");
     if (f) {
         char line[4096];
         int got_name = 0, got_flags = 0;
         while (fgets(line, sizeof line, f) && !(got_name && got_flags)) {
-            char tmp[16];
+            char tmp[12];
             if (!got_name && cpuinfo_field(line, "model name", m->cpu, sizeof m->cpu))
                 got_name = 1;
             else if (cpuinfo_field(line, "cpu family", tmp, sizeof tmp))

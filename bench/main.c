@@ -340,7 +340,7 @@ int main(int argc, char **argv)
         for (int k = 0; k < nws; k++)
             for_configs(&ws[k], &opt, sample_config, &ctx);
         if ((round + 1) % 5 == 0 || round + 1 == rounds) {
-            char what[32];
+            char what[48];
             snprintf(what, sizeof what, "round %d of %d done", round + 1, rounds);
             note(&ctx, what);
         }

@@ -51,8 +51,18 @@ static void print_group(FILE *f, const result_list *l, const char *group, const 
     const char *last = "";
     for (size_t i = 0; i < l->n; i++) {
         const result *r = &l->r[i];
-        if (strcmp(r->group, group) || r->isa_id == BENCH_ISA_TEXTBOOK)
+        if (strcmp(r->group, group))
             continue;
+        /* The textbook shares the rows of the paths; it opens one only when it ran
+         * alone (--isa=textbook). */
+        if (r->isa_id == BENCH_ISA_TEXTBOOK) {
+            int alone = 1;
+            for (size_t j = 0; j < l->n && alone; j++)
+                alone = l->r[j].isa_id == BENCH_ISA_TEXTBOOK ||
+                        strcmp(l->r[j].scenario, r->scenario) || l->r[j].op_id != r->op_id;
+            if (!alone)
+                continue;
+        }
         /* one row per (scenario, flags, width): its first result opens it */
         int seen = 0;
         for (size_t j = 0; j < i && !seen; j++) {
@@ -73,7 +83,7 @@ static void print_group(FILE *f, const result_list *l, const char *group, const 
                                           cols[c] == BENCH_ISA_TEXTBOOK ? -1 : r->width_id,
                                           r->op_id);
             /* the textbook has one row per flag set: show it on the first width's row */
-            if (q && cols[c] == BENCH_ISA_TEXTBOOK) {
+            if (q && cols[c] == BENCH_ISA_TEXTBOOK && r->isa_id != BENCH_ISA_TEXTBOOK) {
                 const result *first = NULL;
                 for (size_t j = 0; j < l->n && !first; j++)
                     if (!strcmp(l->r[j].scenario, r->scenario) && l->r[j].op_id == r->op_id &&
@@ -91,7 +101,7 @@ static void print_group(FILE *f, const result_list *l, const char *group, const 
             snprintf(sp, sizeof sp, q->speedup > 0 ? "%5.1fx" : "     -", q->speedup);
             fprintf(f, "| %7.2f%c%s %5s", q->ns.med, q->cpu_timed ? '~' : ' ', sp,
                     err_cell(q, e, sizeof e));
-            if (cols[c] != BENCH_ISA_TEXTBOOK) {
+            if (cols[c] != BENCH_ISA_TEXTBOOK || r->isa_id == BENCH_ISA_TEXTBOOK) {
                 dis += q->extra_hits + q->lost_hits;
                 unexc += q->unexcused;
                 if (hit < 0)
@@ -297,12 +307,15 @@ static void print_errors(FILE *f, const result_list *l)
     fprintf(f, "| %5s %s\n", "med", ">band");
     for (size_t i = 0; i < l->n; i++) {
         const result *r = &l->r[i];
-        if (!r->have_err || r->op_id == OP_OCC || r->isa_id == BENCH_ISA_TEXTBOOK)
+        if (!r->have_err || r->op_id == OP_OCC)
             continue;
+        /* one row per (scenario, flags), opened by its first result */
         int seen = 0;
-        for (size_t j = 0; j < i && !seen; j++)
-            seen = l->r[j].have_err && !strcmp(l->r[j].scenario, r->scenario) &&
-                   l->r[j].op_id == r->op_id && l->r[j].isa_id != BENCH_ISA_TEXTBOOK;
+        for (size_t j = 0; j < l->n && !seen; j++)
+            seen = j != i && l->r[j].have_err && !strcmp(l->r[j].scenario, r->scenario) &&
+                   l->r[j].op_id == r->op_id &&
+                   (j < i ? 1 : r->isa_id == BENCH_ISA_TEXTBOOK &&
+                                    l->r[j].isa_id != BENCH_ISA_TEXTBOOK);
         if (seen)
             continue;
         fprintf(f, "%-19s %-8s", r->scenario, r->op);
