@@ -301,8 +301,15 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
         /* A hit point that rounding moved well off the surface (a radius far below the
          * coordinates' ulp) gets a true normalisation; it is rare enough to branch. */
         vm off = mand(hit, vgt(vabs(vsub(l2, one)), vset1(0x1p-10f)));
-        if (many(off))
-            corr = vsel(mand(off, vgt(l2, zero)), vdiv(one, vsqrt(l2)), corr);
+        if (many(off)) {
+            /* Divided by its largest component first, so that a length whose square
+             * underflows or overflows still normalises. */
+            vf m = vmax(vabs(nx), vmax(vabs(ny), vabs(nz)));
+            vf r = vdiv(one, m);
+            vf sx = vmul(nx, r), sy = vmul(ny, r), sz = vmul(nz, r);
+            vf k = vdiv(r, vsqrt(KDOT(sx, sy, sz, sx, sy, sz)));
+            corr = vsel(mand(off, vgt(m, zero)), k, corr);
+        }
         if (ff)
             corr = vsel(back, vneg(corr), corr);
         float *const n3[3] = {H->nx, H->ny, H->nz};
