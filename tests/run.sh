@@ -175,12 +175,14 @@ TEST_ENV=()
 run_tests() {
     local cfg=$1 dir=$2 t0=$3 remark=""
     shift 3
-    rm -f "$dir/meson-logs/testlog.json"
+    # meson names its log after a --wrapper (testlog-setarch.json): take whichever appears
+    rm -f "$dir"/meson-logs/testlog*.json
     env "${TEST_ENV[@]}" meson test -C "$dir" --no-rebuild --print-errorlogs "$@" \
         >"$dir.test.log" 2>&1 || true
     grep -E '^ *[0-9]+/[0-9]+ ' "$dir.test.log" | sed 's/^/   /' || true
-    local log=$dir/meson-logs/testlog.json p f
-    if [ ! -s "$log" ]; then
+    local log p f
+    log=$(ls -t "$dir"/meson-logs/testlog*.json 2>/dev/null | head -1)
+    if [ -z "$log" ] || [ ! -s "$log" ]; then
         note "$cfg" 0 1 $(($(date +%s) - t0)) "FAILED: no test results ($dir.test.log)"
         return
     fi

@@ -237,7 +237,8 @@ static int packet_run(const cylray_kernels *k, int w, const cylray_prepared *P,
                       gresult *out)
 {
     char ctx[160];
-    context(ctx, sizeof ctx, k, w, (size_t)w, active, flags, 0, occluded ? "occluded" : "intersect");
+    const char *op = occluded ? "occluded" : "intersect";
+    context(ctx, sizeof ctx, k, w, (size_t)w, active, flags, 0, op);
     const size_t W = (size_t)w;
     garr ra, ha;
     float *ray = garr_open(&ra, 8 * W * sizeof(float), 0);
@@ -328,7 +329,8 @@ static int stream_run(const cylray_kernels *k, const cylray_prepared *P, const g
                       size_t n, unsigned flags, unsigned misalign, int occluded, gresult *out)
 {
     char ctx[160];
-    context(ctx, sizeof ctx, k, G_STREAM, n, 0, flags, misalign, occluded ? "occluded" : "intersect");
+    const char *op = occluded ? "occluded" : "intersect";
+    context(ctx, sizeof ctx, k, G_STREAM, n, 0, flags, misalign, op);
     const size_t lead = misalign * sizeof(float);
     garr ra[G_NFIELD], ha[5], oa;
     float *f[G_NFIELD];
@@ -398,7 +400,8 @@ static int stream_run(const cylray_kernels *k, const cylray_prepared *P, const g
             continue;
         }
         /* A stream has no mask to say which rays hit: a written part says it. */
-        int hit = part[i] != G_POISON_PART || !is_poison(h[0][i]) || !same(f[7][i], in->f[G_TMAX][i]);
+        int hit = part[i] != G_POISON_PART || !is_poison(h[0][i]) ||
+                  !same(f[7][i], in->f[G_TMAX][i]);
         if (hit) {
             out->hit |= 1ull << i;
             written++;

@@ -95,11 +95,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         for (size_t i = 0; i < c.n; i++) {
             if (!((res[ii].hit >> i) & 1u))
                 continue;
-            const float *r = NULL;
-            float ray[G_NFIELD];
+            float r[G_NFIELD];
             for (int f = 0; f < G_NFIELD; f++)
-                ray[f] = c.rays.f[f][i];
-            r = ray;
+                r[f] = c.rays.f[f][i];
             const float n[3] = {res[ii].nx[i], res[ii].ny[i], res[ii].nz[i]};
             char why[256];
             if (hc_verify(&c.cyl, r, r + 3, r[G_TMIN], r[G_TMAX], res[ii].t[i], res[ii].part[i],

@@ -182,7 +182,8 @@ static void judge_bad(const cylray_cylinder *cyl, const bad *d, const gresult *r
             const float n[3] = {r->nx[j], r->ny[j], r->nz[j]};
             int v = hc_verify(cyl, d->ray, d->ray + 3, d->ray[G_TMIN], d->ray[G_TMAX], r->t[j],
                               r->part[j], n, flags, slack, why, sizeof why);
-            CHECK(v == 0, "%s lane %zu [%s]: impossible hit: %s (%s)", ctx, j, d->name, why, rs);
+            CHECK(v == 0, "%s lane %zu [%s]: impossible hit: %s (%s)", ctx, j, d->name, why,
+                  rs);
         }
 #ifdef HAVE_CYLREF
         const cylref_band *b = &d->band[(flags & CYLRAY_CULL_BACK) != 0];
