@@ -4,6 +4,7 @@
 
 #include "cylray.h"
 
+#include <float.h>
 #include <math.h>
 
 #define CYLRAY_KIND_INFINITE 0u
@@ -60,6 +61,37 @@ static inline size_t CYLRAY_CTZ(unsigned x)
     return n;
 }
 #endif
+
+/* A cylinder along a coordinate axis is handled with the coordinates renamed by a
+ * rotation (so cross products keep their form) that makes its axis the third one:
+ * renames the cylinder's, the rays' and the hits' coordinates once per call, so that
+ * the kernel reads and writes them in place, without a per-lane permutation. */
+static inline void cylray_rename_(const cylray_prepared **P, const cylray_rays **R,
+                                  const cylray_hits **H, cylray_prepared *Q,
+                                  cylray_rays *RQ, cylray_hits *HQ)
+{
+    const unsigned k2 = (*P)->axis_id - 1u, k0 = (k2 + 1u) % 3u, k1 = (k2 + 2u) % 3u;
+    const unsigned k[3] = {k0, k1, k2};
+    *Q = **P;
+    for (int j = 0; j < 3; j++) {
+        Q->c[j] = (*P)->c[k[j]];
+        Q->v[j] = (*P)->v[k[j]];
+        Q->n[j] = (*P)->n[k[j]];
+        Q->vk[j] = (*P)->vk[k[j]];
+    }
+    const float *o[3] = {(*R)->ox, (*R)->oy, (*R)->oz}, *d[3] = {(*R)->dx, (*R)->dy, (*R)->dz};
+    *RQ = **R;
+    RQ->ox = o[k0], RQ->oy = o[k1], RQ->oz = o[k2];
+    RQ->dx = d[k0], RQ->dy = d[k1], RQ->dz = d[k2];
+    if (*H) {
+        float *n[3] = {(*H)->nx, (*H)->ny, (*H)->nz};
+        *HQ = **H;
+        HQ->nx = n[k0], HQ->ny = n[k1], HQ->nz = n[k2];
+        *H = HQ;
+    }
+    *P = Q;
+    *R = RQ;
+}
 
 #define CYLRAY_CAT_(a, b) a##b
 #define CYLRAY_CAT(a, b) CYLRAY_CAT_(a, b)

@@ -64,13 +64,10 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
     const int fast = (FL & CYLRAY_FAST) != 0;
     const vf zero = vzero(), one = vset1(1.0f), inf = vset1(INFINITY);
 
-    /* k0, k1, k2: which stored coordinate plays x, y, z (a rotation, so cross products
-     * keep their form); the identity unless the axis is aligned. */
-    const unsigned k2 = aligned ? P->axis_id - 1u : 2u, k0 = aligned ? (k2 + 1u) % 3u : 0u,
-                   k1 = aligned ? (k2 + 2u) % 3u : 1u;
-    const float *const o3[3] = {R->ox, R->oy, R->oz}, *const d3[3] = {R->dx, R->dy, R->dz};
-    vf ox = vloadu(o3[k0] + i), oy = vloadu(o3[k1] + i), oz = vloadu(o3[k2] + i);
-    vf dx = vloadu(d3[k0] + i), dy = vloadu(d3[k1] + i), dz = vloadu(d3[k2] + i);
+    /* An aligned cylinder comes with its coordinates already renamed (see the
+     * drivers below), so that its axis is the third one. */
+    vf ox = vloadu(R->ox + i), oy = vloadu(R->oy + i), oz = vloadu(R->oz + i);
+    vf dx = vloadu(R->dx + i), dy = vloadu(R->dy + i), dz = vloadu(R->dz + i);
 
     /* A zero, subnormal-squared or overflowing direction never hits. An Inf or NaN
      * anywhere else turns C or D into NaN below, which takes the lane out there. */
@@ -79,49 +76,62 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
     if (!many(act))
         return 0;
 
-    const vf cx = vset1(P->c[k0]), cy = vset1(P->c[k1]), cz = vset1(P->c[k2]);
-    const vf vx = vset1(P->v[k0]), vy = vset1(P->v[k1]), vz = vset1(P->v[k2]);
+    const vf cx = vset1(P->c[0]), cy = vset1(P->c[1]), cz = vset1(P->c[2]);
+    const vf vx = vset1(P->v[0]), vy = vset1(P->v[1]), vz = vset1(P->v[2]);
 
-    /* w = o - c exactly, as wh + wl (two-sum): neither a far origin nor a cylinder far
-     * from the world origin loses its low bits here. */
+    /* w = o - c, rounded here; its rounding error wl is recovered below (two-sum),
+     * once the cheap whole-packet rejections are behind. */
     vf whx = vsub(ox, cx), why = vsub(oy, cy), whz = vsub(oz, cz);
-    vf bx = vsub(whx, ox), by = vsub(why, oy), bz = vsub(whz, oz);
-    vf wlx = vsub(vsub(ox, vsub(whx, bx)), vadd(cx, bx));
-    vf wly = vsub(vsub(oy, vsub(why, by)), vadd(cy, by));
-    vf wlz = vsub(vsub(oz, vsub(whz, bz)), vadd(cz, bz));
+    vf ww = KDOT(whx, why, whz, whx, why, whz), wd = KDOT(whx, why, whz, dx, dy, dz);
 
     /* Shift to the closest approach to the center. s need not be accurate: any s is
      * exact as long as w' is formed from the same s, and t = s + t'. So a refined
      * reciprocal estimate serves, and the divider is kept for the roots. */
     const vf rdd = vrcp_fast(dd);
-    vf s = vfnma(KDOT(whx, why, whz, dx, dy, dz), rdd, zero);
-    vf px = vadd(vfma_x(s, dx, whx), wlx);
-    vf py = vadd(vfma_x(s, dy, why), wly);
-    vf pz = vadd(vfma_x(s, dz, whz), wlz);
+    vf s = vfnma(wd, rdd, zero);
     if (kind != CYLRAY_KIND_INFINITE) {
-        /* A finite cylinder lies in a sphere; a ray whose closest approach to the
-         * center is outside it misses, and a packet of such rays ends here. */
-        vf pp = KDOT(px, py, pz, px, py, pz);
-        act = mand(act, vle(pp, vset1(P->bound2)));
+        /* ww + s wd = ww - wd^2 / dd is the squared distance of the closest approach
+         * to the center; a finite cylinder lies in a sphere, and a ray that passes
+         * outside it misses. The slack covers the cancellation of a far origin. */
+        vf pp = vfma(wd, s, ww);
+        act = mand(act, vle(vfnma(ww, vset1(0x1p-19f), pp), vset1(P->bound2)));
         if (!many(act))
             return 0;
         /* A shift that brings the origin less than a factor sqrt(2) closer gains less
          * than it costs: a small t would lose its low bits in s + t'. */
-        vm stay = vle(vmul(vmul(s, s), dd), pp);
-        s = vsel(stay, zero, s);
-        px = vsel(stay, whx, px), py = vsel(stay, why, py), pz = vsel(stay, whz, pz);
+        s = vkeep(vgt(ww, vadd(pp, pp)), s);
     }
 
     /* e = d x v to a relative accuracy that survives a ray almost along the axis.
      * With an aligned axis v = (0, 0, +-1) and e = (dy, -dx, 0) up to the sign of v,
      * which no product below sees. */
-    vf A, ex = zero, ey = zero, ez = zero;
+    vf A, ex = zero, ey = zero, ez = zero, g0;
     if (aligned) {
         A = vfma(dx, dx, vmul(dy, dy));
+        g0 = vfms(whx, dy, vmul(why, dx));
     } else {
         ex = vdop_x(dy, vz, dz, vy), ey = vdop_x(dz, vx, dx, vz), ez = vdop_x(dx, vy, dy, vx);
         A = KDOT(ex, ey, ez, ex, ey, ez);
+        g0 = KDOT(ex, ey, ez, whx, why, whz);
     }
+    /* The ray's line passes at |g| / sqrt(A) from the axis (g = e.w moves neither with
+     * the shift nor along the axis). g0 is off from the exact g by less than
+     * 2^-21 sqrt(A ww); beyond that margin the line misses the tube, and a packet of
+     * such rays ends before the exact work. */
+    act = mandn(act, vgt(vmul(g0, g0),
+                         vmul(vmul(A, vset1(1.0f + 0x1p-9f)),
+                              vfma(ww, vset1(0x1p-30f), vset1(P->rr)))));
+    if (!many(act))
+        return 0;
+
+    vf bx = vsub(whx, ox), by = vsub(why, oy), bz = vsub(whz, oz);
+    vf wlx = vsub(vsub(ox, vsub(whx, bx)), vadd(cx, bx));
+    vf wly = vsub(vsub(oy, vsub(why, by)), vadd(cy, by));
+    vf wlz = vsub(vsub(oz, vsub(whz, bz)), vadd(cz, bz));
+    vf px = vadd(vfma_x(s, dx, whx), wlx);
+    vf py = vadd(vfma_x(s, dy, why), wly);
+    vf pz = vadd(vfma_x(s, dz, whz), wlz);
+
     vf nB, C, g, fx, fy, fz;
     KFN(side_coefs)(P, aligned, dx, dy, ex, ey, ez, vx, vy, vz, px, py, pz, &fx, &fy, &fz, &nB,
                     &C, &g);
@@ -171,7 +181,7 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
     vf tn = vmin(r1, r2), tf = vmax(r1, r2);
 
     /* Entry and exit, relative to the shifted origin, and which part each one is. */
-    vf t_in, t_out, part_in, part_out;
+    vf t_in, t_out, side_lo = tn, side_hi = tf;
     vm ok_in, ok_out;
     vf z0 = zero, dv = zero;
     if (kind != CYLRAY_KIND_INFINITE) {
@@ -180,10 +190,9 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
     }
     if (kind == CYLRAY_KIND_CAPPED) {
         /* The solid is the infinite one cut by the slab |z| <= H: inside on [max of the
-         * entries, min of the exits]. The rim is then shared, not tested twice. */
-        vf side_lo = vsel(side, tn, inf), side_hi = vsel(side, tf, vneg(inf));
-        side_lo = vsel(inpar, vneg(inf), side_lo);
-        side_hi = vsel(inpar, inf, side_hi);
+         * entries, min of the exits]. The rim is then shared, not tested twice. A ray
+         * parallel to the axis inside the tube is inside the side everywhere. */
+        side_lo = vsel(inpar, vneg(inf), tn), side_hi = vsel(inpar, inf, tf);
         const vf hv = vset1(P->h_v);
         /* Two divisions rather than one reciprocal: a cap hit is then as exact as
          * the plane's offset, and dv = 0 gives the infinities the slab wants. */
@@ -195,15 +204,10 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
         } else {
             ta = vdiv(na, dv), tb = vdiv(nb, dv);
         }
-        vf slab_lo = vmin(ta, tb), slab_hi = vmax(ta, tb);
-        vm side_enters = vge(side_lo, slab_lo), side_exits = vle(side_hi, slab_hi);
-        t_in = vsel(side_enters, side_lo, slab_lo);
-        t_out = vsel(side_exits, side_hi, slab_hi);
+        t_in = vmax(side_lo, vmin(ta, tb));
+        t_out = vmin(side_hi, vmax(ta, tb));
         ok_in = mand(mor(side, inpar), vle(t_in, t_out));
         ok_out = ok_in;
-        vm up = vgt(dv, zero);
-        part_in = vsel(side_enters, one, vsel(up, vset1(CYLRAY_CAP_LO), vset1(CYLRAY_CAP_HI)));
-        part_out = vsel(side_exits, one, vsel(up, vset1(CYLRAY_CAP_HI), vset1(CYLRAY_CAP_LO)));
     } else {
         t_in = tn;
         t_out = tf;
@@ -214,26 +218,34 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
             ok_in = mand(ok_in, vle(vabs(vfma(tn, dv, z0)), hv));
             ok_out = mand(ok_out, vle(vabs(vfma(tf, dv, z0)), hv));
         }
-        part_in = one;
-        part_out = one;
     }
 
     /* The entry if it is not before tmin, else the exit (a hit from inside); then
      * one range test for whichever it is. Rounding s + t is monotonic, so the entry
-     * test decides correctly which of the two can be the first in [tmin, tmax]. */
-    const vf tmin = vloadu(R->tmin + i), tmax = vloadu(R->tmax + i);
+     * test decides correctly which of the two can be the first in [tmin, tmax]. The
+     * bounds are clamped to finite values, so that no infinite t ever hits. */
+    const vf tmin = vmax(vloadu(R->tmin + i), vset1(-FLT_MAX));
+    const vf tmax = vmin(vloadu(R->tmax + i), vset1(FLT_MAX));
     vm front = mand(ok_in, vge(vadd(s, t_in), tmin));
     vm cand = cull ? front : mor(front, ok_out);
     vf tr = vsel(front, t_in, t_out); /* relative to the shifted origin */
     vf T = vadd(s, tr);
-    vm hit = mand(cand, mand(mand(vge(T, tmin), vle(T, tmax)), vlt(vabs(T), inf)));
+    vm hit = mand(cand, mand(vge(T, tmin), vle(T, tmax)));
     vm back = mandn(hit, front);
     front = mand(hit, front);
     if (occ || !many(hit))
         return mbits(hit);
 
-    vf part = vsel(front, part_in, vadd(part_out, vset1(CYLRAY_BACKFACE)));
-    vm on_side = mand(hit, veq(vsel(front, part_in, part_out), one));
+    /* On a capped cylinder, the chosen t is the side's or a cap's; which cap follows
+     * from the direction: entering upwards (or leaving downwards) is the low one. */
+    vm on_side = hit, cap_hi = hit;
+    vf part = one;
+    if (kind == CYLRAY_KIND_CAPPED) {
+        on_side = mand(hit, veq(tr, vsel(front, side_lo, side_hi)));
+        cap_hi = mxor(vgt(dv, zero), front);
+        part = vsel(on_side, one, vsel(cap_hi, vset1(CYLRAY_CAP_HI), vset1(CYLRAY_CAP_LO)));
+    }
+    part = vadd(part, vkeep(back, vset1(CYLRAY_BACKFACE)));
 
     if (refine && many(on_side)) {
         /* Root polishing: solve again from the first hit point, where C is tiny and
@@ -280,19 +292,18 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
         } else {
             /* v x (p x v) = v.v p_perp, with p x v = f + t e already perpendicular, so
              * no axial magnitude leaks in; vk = v / (R v.v) makes it unit length. */
-            const vf kx = vset1(P->vk[k0]), ky = vset1(P->vk[k1]), kz = vset1(P->vk[k2]);
+            const vf kx = vset1(P->vk[0]), ky = vset1(P->vk[1]), kz = vset1(P->vk[2]);
             vf ux = vfms(tr, ex, fx), uy = vfms(tr, ey, fy), uz = vfms(tr, ez, fz);
             nx = vfms(ky, uz, vmul(kz, uy));
             ny = vfms(kz, ux, vmul(kx, uz));
             nz = vfms(kx, uy, vmul(ky, ux));
         }
         if (kind == CYLRAY_KIND_CAPPED) {
-            /* The cap a hit is on follows from the direction and entry or exit. */
             vm cap = mandn(hit, on_side);
-            vm hi = veq(vsel(front, part_in, part_out), vset1(CYLRAY_CAP_HI));
-            nx = vsel(cap, vsel(hi, vset1(P->n[k0]), vset1(-P->n[k0])), nx);
-            ny = vsel(cap, vsel(hi, vset1(P->n[k1]), vset1(-P->n[k1])), ny);
-            nz = vsel(cap, vsel(hi, vset1(P->n[k2]), vset1(-P->n[k2])), nz);
+            vf sgn = vsel(cap_hi, one, vset1(-1.0f));
+            nx = vsel(cap, aligned ? zero : vmul(sgn, vset1(P->n[0])), nx);
+            ny = vsel(cap, aligned ? zero : vmul(sgn, vset1(P->n[1])), ny);
+            nz = vsel(cap, vmul(sgn, vset1(P->n[2])), nz);
         }
         /* One Newton step of 1/sqrt(n.n) around 1 removes what rounding left of the
          * length error, whatever the hit point's distance from the axis. */
@@ -305,6 +316,22 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
             /* Divided by its largest component first, so that a length whose square
              * underflows or overflows still normalises. */
             vf m = vmax(vabs(nx), vmax(vabs(ny), vabs(nz)));
+            vm lost = mand(off, veq(m, zero));
+            if (many(lost)) {
+                /* A hit point that rounds onto the axis (a radius far below the
+                 * coordinates' ulp) has no direction of its own: the side then faces
+                 * the ray, along -d_perp (v x e = v.v d_perp) on entry. */
+                vf ux = dx, uy = dy, uz = zero;
+                if (!aligned) {
+                    ux = vfms(vy, ez, vmul(vz, ey));
+                    uy = vfms(vz, ex, vmul(vx, ez));
+                    uz = vfms(vx, ey, vmul(vy, ex));
+                }
+                nx = vsel(lost, vsel(front, vneg(ux), ux), nx);
+                ny = vsel(lost, vsel(front, vneg(uy), uy), ny);
+                nz = vsel(lost, vsel(front, vneg(uz), uz), nz);
+                m = vmax(vabs(nx), vmax(vabs(ny), vabs(nz)));
+            }
             vf r = vdiv(one, m);
             vf sx = vmul(nx, r), sy = vmul(ny, r), sz = vmul(nz, r);
             vf k = vdiv(r, vsqrt(KDOT(sx, sy, sz, sx, sy, sz)));
@@ -312,10 +339,9 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
         }
         if (ff)
             corr = vsel(back, vneg(corr), corr);
-        float *const n3[3] = {H->nx, H->ny, H->nz};
-        vstore_m(n3[k0] + i, hit, vmul(nx, corr));
-        vstore_m(n3[k1] + i, hit, vmul(ny, corr));
-        vstore_m(n3[k2] + i, hit, vmul(nz, corr));
+        vstore_m(H->nx + i, hit, vmul(nx, corr));
+        vstore_m(H->ny + i, hit, vmul(ny, corr));
+        vstore_m(H->nz + i, hit, vmul(nz, corr));
     }
     return mbits(hit);
 }
@@ -325,6 +351,11 @@ CYLRAY_INLINE uint32_t KFN(packet)(const cylray_prepared *P, const cylray_rays *
                                    const cylray_hits *H, size_t n, uint32_t active,
                                    unsigned ff, const unsigned FL)
 {
+    cylray_prepared Q;
+    cylray_rays RQ;
+    cylray_hits HQ;
+    if (FL & CYLRAY_KF_ALIGNED)
+        cylray_rename_(&P, &R, &H, &Q, &RQ, &HQ);
     uint32_t hits = 0;
     for (size_t b = 0; b < n; b += VW) {
         uint32_t a = (active >> b) & VFULL;
@@ -342,6 +373,11 @@ CYLRAY_INLINE size_t KFN(stream)(const cylray_prepared *P, const cylray_rays *R,
 {
     const int occ = (FL & CYLRAY_KF_OCCLUDED) != 0;
     const int normal = (FL & CYLRAY_NORMAL) && !occ;
+    cylray_prepared Q;
+    cylray_rays RQ;
+    cylray_hits HQ;
+    if (FL & CYLRAY_KF_ALIGNED)
+        cylray_rename_(&P, &R, &H, &Q, &RQ, &HQ);
     size_t count = 0, i = 0;
     for (; i + VW <= n; i += VW) {
         uint32_t m = KFN(block)(P, R, H, i, VFULL, ff, FL);

@@ -74,6 +74,8 @@ static inline vm KFN(mfrom_bits)(uint32_t b)
 #define mbits(m) KFN(mbits)(m)
 #define mfrom_bits(b) KFN(mfrom_bits)(b)
 #define vsel(m, a, b) vbslq_f32(m, a, b)
+#define vkeep(m, a) vreinterpretq_f32_u32(vandq_u32(m, vreinterpretq_u32_f32(a)))
+#define mxor(a, b) veorq_u32(a, b)
 static inline void KFN(store_m)(float *p, vm m, vf x)
 {
     uint32_t b = mbits(m);

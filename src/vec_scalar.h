@@ -7,7 +7,7 @@
  *   vdop_x(a,b,c,d) = a*b - c*d within about one ulp: used where it matters;
  *   vmin(a,b) = a < b ? a : b and vmax(a,b) = a > b ? a : b (NaN gives b);
  *   comparisons are ordered (false when either side is NaN);
- *   vsel(m,a,b) = m ? a : b; vstore_m writes lane i only where m is set. */
+ *   vsel(m,a,b) = m ? a : b, vkeep(m,a) = m ? a : 0; vstore_m writes lane i only where m is set. */
 #include <math.h>
 #include <stdint.h>
 
@@ -72,5 +72,7 @@ static inline float KFN(dop_x)(float a, float b, float c, float d)
 #define mbits(m) ((uint32_t)(m))
 #define mfrom_bits(b) ((int)((b) & 1u))
 #define vsel(m, a, b) ((m) ? (a) : (b))
+#define vkeep(m, a) ((m) ? (a) : 0.0f)
+#define mxor(a, b) ((a) ^ (b))
 #define vstore_m(p, m, x) do { if (m) *(p) = (x); } while (0)
 #define vstore_part_m(p, m, x) do { if (m) *(p) = (int32_t)(x); } while (0)

@@ -46,6 +46,8 @@
 #undef mbits
 #undef mfrom_bits
 #undef vsel
+#undef vkeep
+#undef mxor
 #undef vstore_m
 #undef vstore_part_m
 #undef vlanebits_
