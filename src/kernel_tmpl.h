@@ -224,8 +224,8 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
      * one range test for whichever it is. Rounding s + t is monotonic, so the entry
      * test decides correctly which of the two can be the first in [tmin, tmax]. The
      * bounds are clamped to finite values, so that no infinite t ever hits. */
-    const vf tmin = vmax(vloadu(R->tmin + i), vset1(-FLT_MAX));
-    const vf tmax = vmin(vloadu(R->tmax + i), vset1(FLT_MAX));
+    const vf tmin = vmax(vset1(-FLT_MAX), vloadu(R->tmin + i)); /* a NaN bound stays */
+    const vf tmax = vmin(vset1(FLT_MAX), vloadu(R->tmax + i));
     vm front = mand(ok_in, vge(vadd(s, t_in), tmin));
     vm cand = cull ? front : mor(front, ok_out);
     vf tr = vsel(front, t_in, t_out); /* relative to the shifted origin */
