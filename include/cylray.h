@@ -61,6 +61,8 @@ typedef struct CYLRAY_ALIGN(64) cylray_prepared {
     uint32_t magic;    /* set by cylray_prepare; kernels reject anything else */
     float rr;          /* R^2 */
     float par_eps;     /* A below par_eps * d.d: parallel to the axis */
+    float cr[3];       /* along a coordinate axis: the center with that axis third */
+    float vr;          /* along a coordinate axis: its sign (v there is (0, 0, vr)) */
 } cylray_prepared;
 
 /* Returns CYLRAY_OK, or CYLRAY_EINVAL (leaving *out untouched) for NaN or Inf

@@ -63,34 +63,34 @@ static inline size_t CYLRAY_CTZ(unsigned x)
 #endif
 
 /* A cylinder along a coordinate axis is handled with the coordinates renamed by a
- * rotation (so cross products keep their form) that makes its axis the third one:
- * renames the cylinder's, the rays' and the hits' coordinates once per call, so that
- * the kernel reads and writes them in place, without a per-lane permutation. */
-static inline void cylray_rename_(const cylray_prepared **P, const cylray_rays **R,
-                                  const cylray_hits **H, cylray_prepared *Q,
-                                  cylray_rays *RQ, cylray_hits *HQ)
+ * rotation (so cross products keep their form) that makes its axis the third one.
+ * cylray_prepare stores the renamed center (cr); the entry points rename the rays' and
+ * the hits' coordinate arrays, once per call, so that the kernel reads and writes them
+ * in place. The pointers are renamed by value: a copy of a pointer struct just stored
+ * by the caller would read across several stores, which store forwarding cannot serve
+ * (it cost about 100 cycles a call). */
+static inline cylray_rays cylray_rays_renamed_(const cylray_prepared *P, const cylray_rays *r)
 {
-    const unsigned k2 = (*P)->axis_id - 1u, k0 = (k2 + 1u) % 3u, k1 = (k2 + 2u) % 3u;
-    const unsigned k[3] = {k0, k1, k2};
-    *Q = **P;
-    for (int j = 0; j < 3; j++) {
-        Q->c[j] = (*P)->c[k[j]];
-        Q->v[j] = (*P)->v[k[j]];
-        Q->n[j] = (*P)->n[k[j]];
-        Q->vk[j] = (*P)->vk[k[j]];
+    const float *x = r->ox, *y = r->oy, *z = r->oz, *u = r->dx, *v = r->dy, *w = r->dz;
+    cylray_rays q = {x, y, z, u, v, w, r->tmin, r->tmax};
+    if (P->axis_id == 1u) {
+        q.ox = y, q.oy = z, q.oz = x, q.dx = v, q.dy = w, q.dz = u;
+    } else if (P->axis_id == 2u) {
+        q.ox = z, q.oy = x, q.oz = y, q.dx = w, q.dy = u, q.dz = v;
     }
-    const float *o[3] = {(*R)->ox, (*R)->oy, (*R)->oz}, *d[3] = {(*R)->dx, (*R)->dy, (*R)->dz};
-    *RQ = **R;
-    RQ->ox = o[k0], RQ->oy = o[k1], RQ->oz = o[k2];
-    RQ->dx = d[k0], RQ->dy = d[k1], RQ->dz = d[k2];
-    if (*H) {
-        float *n[3] = {(*H)->nx, (*H)->ny, (*H)->nz};
-        *HQ = **H;
-        HQ->nx = n[k0], HQ->ny = n[k1], HQ->nz = n[k2];
-        *H = HQ;
+    return q;
+}
+
+static inline cylray_hits cylray_hits_renamed_(const cylray_prepared *P, const cylray_hits *h)
+{
+    float *x = h->nx, *y = h->ny, *z = h->nz;
+    cylray_hits q = {h->t, x, y, z, h->part};
+    if (P->axis_id == 1u) {
+        q.nx = y, q.ny = z, q.nz = x;
+    } else if (P->axis_id == 2u) {
+        q.nx = z, q.ny = x, q.nz = y;
     }
-    *P = Q;
-    *R = RQ;
+    return q;
 }
 
 #define CYLRAY_CAT_(a, b) a##b

@@ -14,8 +14,10 @@
         active &= (uint32_t)((1ull << n) - 1u);                                        \
         if (!active || !ray || !hit || !cylray_prepared_ok_(P))                        \
             return 0;                                                                  \
-        cylray_rays R = {ray->ox, ray->oy, ray->oz, ray->dx, ray->dy, ray->dz, ray->tmin, ray->tmax}; \
-        cylray_hits H = {hit->t, hit->nx, hit->ny, hit->nz, hit->part};               \
+        const cylray_rays R0 = {ray->ox, ray->oy, ray->oz, ray->dx, ray->dy, ray->dz, ray->tmin, ray->tmax}; \
+        const cylray_hits H0 = {hit->t, hit->nx, hit->ny, hit->nz, hit->part};        \
+        const cylray_rays R = cylray_rays_renamed_(P, &R0);                            \
+        const cylray_hits H = cylray_hits_renamed_(P, &H0);                            \
         return KW_(isect_table, KW##n)[cylray_isect_index_(cylray_variant_(P), flags)](           \
             P, &R, &H, n, active, flags & CYLRAY_FACE_FORWARD);                        \
     }                                                                                  \
@@ -26,8 +28,9 @@
         if (!active || !ray || !cylray_prepared_ok_(P))                                \
             return 0;                                                                  \
         /* the occluded kernels read tmax and never write through these pointers */    \
-        cylray_rays R = {ray->ox, ray->oy, ray->oz, ray->dx, ray->dy, ray->dz, ray->tmin, \
-                         (float *)(uintptr_t)ray->tmax};                               \
+        const cylray_rays R0 = {ray->ox, ray->oy, ray->oz, ray->dx, ray->dy, ray->dz,    \
+                                ray->tmin, (float *)(uintptr_t)ray->tmax};             \
+        const cylray_rays R = cylray_rays_renamed_(P, &R0);                            \
         return KW_(occ_table, KW##n)[cylray_occ_index_(cylray_variant_(P), flags)](               \
             P, &R, NULL, n, active, 0);                                                \
     }
@@ -40,8 +43,10 @@ static size_t KI_(intersect_stream)(const cylray_prepared *P, const cylray_rays 
 {
     if (!n || !rays || !hits || !cylray_prepared_ok_(P))
         return 0;
+    const cylray_rays R = cylray_rays_renamed_(P, rays);
+    const cylray_hits H = cylray_hits_renamed_(P, hits);
     return KW_(isect_stream_table, KW16)[cylray_isect_index_(cylray_variant_(P), flags)](
-        P, rays, hits, NULL, n, flags & CYLRAY_FACE_FORWARD);
+        P, &R, &H, NULL, n, flags & CYLRAY_FACE_FORWARD);
 }
 
 static size_t KI_(occluded_stream)(const cylray_prepared *P, const cylray_rays *rays,
@@ -49,8 +54,9 @@ static size_t KI_(occluded_stream)(const cylray_prepared *P, const cylray_rays *
 {
     if (!n || !rays || !occluded || !cylray_prepared_ok_(P))
         return 0;
+    const cylray_rays R = cylray_rays_renamed_(P, rays);
     return KW_(occ_stream_table, KW16)[cylray_occ_index_(cylray_variant_(P), flags)](
-        P, rays, NULL, occluded, n, 0);
+        P, &R, NULL, occluded, n, 0);
 }
 
 const cylray_kernels CYLRAY_CAT(CYLRAY_CAT(cylray_kernels_, KISA), _) = {

@@ -64,8 +64,8 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
     const int fast = (FL & CYLRAY_FAST) != 0;
     const vf zero = vzero(), one = vset1(1.0f), inf = vset1(INFINITY);
 
-    /* An aligned cylinder comes with its coordinates already renamed (see the
-     * drivers below), so that its axis is the third one. */
+    /* An aligned cylinder comes with its coordinates already renamed by the entry
+     * points (cylray_rays_renamed_), so that its axis is the third one. */
     vf ox = vloadu(R->ox + i), oy = vloadu(R->oy + i), oz = vloadu(R->oz + i);
     vf dx = vloadu(R->dx + i), dy = vloadu(R->dy + i), dz = vloadu(R->dz + i);
 
@@ -76,8 +76,10 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
     if (!many(act))
         return 0;
 
-    const vf cx = vset1(P->c[0]), cy = vset1(P->c[1]), cz = vset1(P->c[2]);
-    const vf vx = vset1(P->v[0]), vy = vset1(P->v[1]), vz = vset1(P->v[2]);
+    const float *const c3 = aligned ? P->cr : P->c;
+    const vf cx = vset1(c3[0]), cy = vset1(c3[1]), cz = vset1(c3[2]);
+    const vf vx = aligned ? zero : vset1(P->v[0]), vy = aligned ? zero : vset1(P->v[1]);
+    const vf vz = vset1(aligned ? P->vr : P->v[2]);
 
     /* w = o - c, rounded here; its rounding error wl is recovered below (two-sum),
      * once the cheap whole-packet rejections are behind. */
@@ -303,7 +305,7 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
             vf sgn = vsel(cap_hi, one, vset1(-1.0f));
             nx = vsel(cap, aligned ? zero : vmul(sgn, vset1(P->n[0])), nx);
             ny = vsel(cap, aligned ? zero : vmul(sgn, vset1(P->n[1])), ny);
-            nz = vsel(cap, vmul(sgn, vset1(P->n[2])), nz);
+            nz = vsel(cap, vmul(sgn, aligned ? vz : vset1(P->n[2])), nz);
         }
         /* One Newton step of 1/sqrt(n.n) around 1 removes what rounding left of the
          * length error, whatever the hit point's distance from the axis. */
@@ -351,11 +353,6 @@ CYLRAY_INLINE uint32_t KFN(packet)(const cylray_prepared *P, const cylray_rays *
                                    const cylray_hits *H, size_t n, uint32_t active,
                                    unsigned ff, const unsigned FL)
 {
-    cylray_prepared Q;
-    cylray_rays RQ;
-    cylray_hits HQ;
-    if (FL & CYLRAY_KF_ALIGNED)
-        cylray_rename_(&P, &R, &H, &Q, &RQ, &HQ);
     uint32_t hits = 0;
     for (size_t b = 0; b < n; b += VW) {
         uint32_t a = (active >> b) & VFULL;
@@ -373,11 +370,6 @@ CYLRAY_INLINE size_t KFN(stream)(const cylray_prepared *P, const cylray_rays *R,
 {
     const int occ = (FL & CYLRAY_KF_OCCLUDED) != 0;
     const int normal = (FL & CYLRAY_NORMAL) && !occ;
-    cylray_prepared Q;
-    cylray_rays RQ;
-    cylray_hits HQ;
-    if (FL & CYLRAY_KF_ALIGNED)
-        cylray_rename_(&P, &R, &H, &Q, &RQ, &HQ);
     size_t count = 0, i = 0;
     for (; i + VW <= n; i += VW) {
         uint32_t m = KFN(block)(P, R, H, i, VFULL, ff, FL);

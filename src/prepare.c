@@ -82,6 +82,12 @@ cylray_status cylray_prepare(cylray_prepared *out, const cylray_cylinder *in)
              : (in->flags & CYLRAY_CAPPED) ? CYLRAY_KIND_CAPPED
                                           : CYLRAY_KIND_OPEN;
     p.axis_id = zeros == 2 ? (a[0] != 0 ? 1u : a[1] != 0 ? 2u : 3u) : 0u;
+    if (p.axis_id) { /* the renaming of cylray_rename_ */
+        const unsigned k2 = p.axis_id - 1u;
+        for (unsigned j = 0; j < 3; j++)
+            p.cr[j] = p.c[(k2 + 1u + j) % 3u];
+        p.vr = p.v[k2];
+    }
     p.magic = CYLRAY_MAGIC;
     *out = p;
     return CYLRAY_OK;
