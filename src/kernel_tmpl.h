@@ -97,8 +97,6 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
          * outside it misses. The slack covers the cancellation of a far origin. */
         vf pp = vfma(wd, s, ww);
         act = mand(act, vle(vfnma(ww, vset1(0x1p-19f), pp), vset1(P->bound2)));
-        if (!many(act))
-            return 0;
         /* A shift that brings the origin less than a factor sqrt(2) closer gains less
          * than it costs: a small t would lose its low bits in s + t'. */
         s = vkeep(vgt(ww, vadd(pp, pp)), s);
@@ -118,8 +116,9 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
     }
     /* The ray's line passes at |g| / sqrt(A) from the axis (g = e.w moves neither with
      * the shift nor along the axis). g0 is off from the exact g by less than
-     * 2^-21 sqrt(A ww); beyond that margin the line misses the tube, and a packet of
-     * such rays ends before the exact work. */
+     * 2^-21 sqrt(A ww); beyond that margin the line misses the tube. A packet whose
+     * rays all miss the sphere or the tube ends here, before the exact work, at one
+     * branch (two would mispredict on a mix of the two kinds of miss). */
     act = mandn(act, vgt(vmul(g0, g0),
                          vmul(vmul(A, vset1(1.0f + 0x1p-9f)),
                               vfma(ww, vset1(0x1p-30f), vset1(P->rr)))));
@@ -174,8 +173,9 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
     if (kind == CYLRAY_KIND_CAPPED ? !many(mor(side, inpar)) : !many(side))
         return 0;
 
-    vf sq = fast ? vmul(vmul(D, vrsqrt_fast(vmax(D, vset1(1e-37f)))), vset1(P->sqrt_vv))
-                 : vmul(vsqrt(D), vset1(P->sqrt_vv));
+    vf sq = fast ? vmul(D, vrsqrt_fast(vmax(D, vset1(1e-37f)))) : vsqrt(D);
+    if (!aligned) /* |v| = 1 there */
+        sq = vmul(sq, vset1(P->sqrt_vv));
     vf q = vadd(nB, vcopysign(sq, nB)); /* -(B + sign(B) sqrt(disc)) */
     vf r1 = fast ? vmul(q, vrcp_fast(A)) : vdiv(q, A);
     vf r2 = fast ? vmul(C, vrcp_fast(q)) : vdiv(C, q);
