@@ -94,9 +94,10 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
     if (kind != CYLRAY_KIND_INFINITE) {
         /* ww + s wd = ww - wd^2 / dd is the squared distance of the closest approach
          * to the center; a finite cylinder lies in a sphere, and a ray that passes
-         * outside it misses. The slack covers the cancellation of a far origin. */
+         * outside it misses. The slack covers the cancellation of a far origin: the
+         * rounding of wh, ww, wd and the reciprocal move pp by less than 2^-19 ww. */
         vf pp = vfma(wd, s, ww);
-        act = mand(act, vle(vfnma(ww, vset1(0x1p-19f), pp), vset1(P->bound2)));
+        act = mand(act, vle(vfnma(ww, vset1(0x1p-17f), pp), vset1(P->bound2)));
         /* A shift that brings the origin less than a factor sqrt(2) closer gains less
          * than it costs: a small t would lose its low bits in s + t'. */
         s = vkeep(vgt(ww, vadd(pp, pp)), s);
