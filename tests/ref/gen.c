@@ -342,7 +342,9 @@ static void gen_grazing(cylgen_rng *r, const frame *f, cylgen_case *c)
     v3 d = unit(add(w, scl(f->a, tilt)));
     if (chance(r, 0.5))
         d = scl(d, -1);
-    double dist = f->R * uni(r, 2, 20);
+    /* Mostly from nearby; a quarter from far away, where the packet rejections of
+     * the kernels must keep their margins against a large |o - c|. */
+    double dist = f->R * (chance(r, 0.25) ? logu(r, 1e3, 1e6) : uni(r, 2, 20));
     set_ray(c, axpy(q, -dist, d), d);
     pick_interval(r, dist, c);
 }
