@@ -63,33 +63,62 @@ static inline size_t CYLRAY_CTZ(unsigned x)
 #endif
 
 /* A cylinder along a coordinate axis is handled with the coordinates renamed by a
- * rotation (so cross products keep their form) that makes its axis the third one.
- * cylray_prepare stores the renamed center (cr); the entry points rename the rays' and
- * the hits' coordinate arrays, once per call, so that the kernel reads and writes them
- * in place. The pointers are renamed by value: a copy of a pointer struct just stored
- * by the caller would read across several stores, which store forwarding cannot serve
- * (it cost about 100 cycles a call). */
+ * rotation (so cross products keep their form) that makes its axis the third one:
+ * along x, (x, y, z) is read as (y, z, x); along y, as (z, x, y). cylray_prepare stores
+ * the renamed center (cr); the kernels rename the rays' and the hits' coordinate
+ * arrays, once per call, and then read and write them in place. */
+static inline void cylray_axis_order_(const cylray_prepared *P, int aligned, size_t k[3])
+{
+    /* axis_id 1, 2, 3: the renamed coordinates are (1,2,0), (2,0,1), (0,1,2) */
+    const size_t a = aligned ? P->axis_id % 3u : 0u;
+    k[0] = a;
+    k[1] = a == 2u ? 0u : a + 1u;
+    k[2] = a == 0u ? 2u : a - 1u;
+}
+
+/* The views of a packet struct (cylray_rayN, cylray_hitN): field f of n lanes each
+ * at ray + f n, renamed when aligned. hit may be NULL (occlusion). */
+static inline cylray_rays cylray_packet_rays_(const cylray_prepared *P, float *ray, size_t n,
+                                              int aligned)
+{
+    size_t k[3];
+    cylray_axis_order_(P, aligned, k);
+    cylray_rays q = {ray + k[0] * n,       ray + k[1] * n,       ray + k[2] * n,
+                     ray + (3 + k[0]) * n, ray + (3 + k[1]) * n, ray + (3 + k[2]) * n,
+                     ray + 6 * n,          ray + 7 * n};
+    return q;
+}
+
+static inline cylray_hits cylray_packet_hits_(const cylray_prepared *P, float *hit, size_t n,
+                                              int aligned)
+{
+    cylray_hits q = {NULL, NULL, NULL, NULL, NULL};
+    if (hit) {
+        size_t k[3];
+        cylray_axis_order_(P, aligned, k);
+        q.t = hit;
+        q.nx = hit + (1 + k[0]) * n, q.ny = hit + (1 + k[1]) * n, q.nz = hit + (1 + k[2]) * n;
+        q.part = (int32_t *)(void *)(hit + 4 * n);
+    }
+    return q;
+}
+
+/* The same renaming for a stream's separate arrays. */
 static inline cylray_rays cylray_rays_renamed_(const cylray_prepared *P, const cylray_rays *r)
 {
-    const float *x = r->ox, *y = r->oy, *z = r->oz, *u = r->dx, *v = r->dy, *w = r->dz;
-    cylray_rays q = {x, y, z, u, v, w, r->tmin, r->tmax};
-    if (P->axis_id == 1u) {
-        q.ox = y, q.oy = z, q.oz = x, q.dx = v, q.dy = w, q.dz = u;
-    } else if (P->axis_id == 2u) {
-        q.ox = z, q.oy = x, q.oz = y, q.dx = w, q.dy = u, q.dz = v;
-    }
+    const float *o[3] = {r->ox, r->oy, r->oz}, *d[3] = {r->dx, r->dy, r->dz};
+    size_t k[3];
+    cylray_axis_order_(P, 1, k);
+    cylray_rays q = {o[k[0]], o[k[1]], o[k[2]], d[k[0]], d[k[1]], d[k[2]], r->tmin, r->tmax};
     return q;
 }
 
 static inline cylray_hits cylray_hits_renamed_(const cylray_prepared *P, const cylray_hits *h)
 {
-    float *x = h->nx, *y = h->ny, *z = h->nz;
-    cylray_hits q = {h->t, x, y, z, h->part};
-    if (P->axis_id == 1u) {
-        q.nx = y, q.ny = z, q.nz = x;
-    } else if (P->axis_id == 2u) {
-        q.nx = z, q.ny = x, q.nz = y;
-    }
+    float *nv[3] = {h->nx, h->ny, h->nz};
+    size_t k[3];
+    cylray_axis_order_(P, 1, k);
+    cylray_hits q = {h->t, nv[k[0]], nv[k[1]], nv[k[2]], h->part};
     return q;
 }
 

@@ -16,8 +16,8 @@
  *   A = e.e,  B = e.f,  C = f.f - R^2 v.v,  disc = v.v (A R^2 - g^2),  g = e.w'.
  */
 
-typedef uint32_t (*KFN(packet_fn))(const cylray_prepared *, const cylray_rays *,
-                                   const cylray_hits *, size_t, uint32_t, unsigned);
+typedef uint32_t (*KFN(packet_fn))(const cylray_prepared *, float *, float *, size_t,
+                                   uint32_t, unsigned);
 typedef size_t (*KFN(stream_fn))(const cylray_prepared *, const cylray_rays *,
                                  const cylray_hits *, uint8_t *, size_t, unsigned);
 
@@ -349,28 +349,39 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
     return mbits(hit);
 }
 
-/* A packet of n lanes (a multiple of VW, at most 32). */
-CYLRAY_INLINE uint32_t KFN(packet)(const cylray_prepared *P, const cylray_rays *R,
-                                   const cylray_hits *H, size_t n, uint32_t active,
-                                   unsigned ff, const unsigned FL)
+/* A packet of n lanes (a multiple of VW, at most 32), given as the packet structs
+ * themselves: field f of the rays at ray + f n, of the hits at hit + f n. The views
+ * are built here, where they stay in registers, rather than by the caller (a struct
+ * of pointers passed through memory costs a store and a reload on every call). */
+CYLRAY_INLINE uint32_t KFN(packet)(const cylray_prepared *P, float *ray, float *hit, size_t n,
+                                   uint32_t active, unsigned ff, const unsigned FL)
 {
+    const cylray_rays R = cylray_packet_rays_(P, ray, n, (FL & CYLRAY_KF_ALIGNED) != 0);
+    const cylray_hits H = cylray_packet_hits_(P, hit, n, (FL & CYLRAY_KF_ALIGNED) != 0);
     uint32_t hits = 0;
     for (size_t b = 0; b < n; b += VW) {
         uint32_t a = (active >> b) & VFULL;
         if (a)
-            hits |= KFN(block)(P, R, H, b, a, ff, FL) << b;
+            hits |= KFN(block)(P, &R, &H, b, a, ff, FL) << b;
     }
     return hits;
 }
 
 /* A stream of any length: whole vectors in place, then the tail through a local
  * copy, so that nothing before or after the caller's arrays is read or written. */
-CYLRAY_INLINE size_t KFN(stream)(const cylray_prepared *P, const cylray_rays *R,
-                                 const cylray_hits *H, uint8_t *occluded, size_t n,
+CYLRAY_INLINE size_t KFN(stream)(const cylray_prepared *P, const cylray_rays *R0,
+                                 const cylray_hits *H0, uint8_t *occluded, size_t n,
                                  unsigned ff, const unsigned FL)
 {
     const int occ = (FL & CYLRAY_KF_OCCLUDED) != 0;
     const int normal = (FL & CYLRAY_NORMAL) && !occ;
+    const int aligned = (FL & CYLRAY_KF_ALIGNED) != 0;
+    const cylray_rays Rv = aligned ? cylray_rays_renamed_(P, R0) : *R0;
+    cylray_hits Hv = {NULL, NULL, NULL, NULL, NULL}; /* occlusion writes no hits */
+    if (!occ)
+        Hv = aligned ? cylray_hits_renamed_(P, H0) : *H0;
+    const cylray_rays *R = &Rv;
+    const cylray_hits *H = &Hv;
     size_t count = 0, i = 0;
     for (; i + VW <= n; i += VW) {
         uint32_t m = KFN(block)(P, R, H, i, VFULL, ff, FL);
@@ -418,9 +429,8 @@ CYLRAY_INLINE size_t KFN(stream)(const cylray_prepared *P, const cylray_rays *R,
      ((b) & 2 ? CYLRAY_CULL_BACK : 0u) | ((b) & 4 ? CYLRAY_REFINE : 0u) |           \
      ((b) & 8 ? CYLRAY_FAST : 0u) | (extra))
 #define KISECT_(kind, b)                                                           \
-    static uint32_t KFN(pk_##kind##_##b)(const cylray_prepared *P, const cylray_rays *R, \
-                                         const cylray_hits *H, size_t n, uint32_t a,  \
-                                         unsigned ff)                                 \
+    static uint32_t KFN(pk_##kind##_##b)(const cylray_prepared *P, float *R, float *H,  \
+                                         size_t n, uint32_t a, unsigned ff)          \
     {                                                                              \
         return KFN(packet)(P, R, H, n, a, ff, KFL_(kind, b, 0u));                  \
     }                                                                              \
@@ -431,9 +441,8 @@ CYLRAY_INLINE size_t KFN(stream)(const cylray_prepared *P, const cylray_rays *R,
         return KFN(stream)(P, R, H, o, n, ff, KFL_(kind, b, 0u));                  \
     }
 #define KOCC_(kind, b)                                                             \
-    static uint32_t KFN(po_##kind##_##b)(const cylray_prepared *P, const cylray_rays *R, \
-                                         const cylray_hits *H, size_t n, uint32_t a,  \
-                                         unsigned ff)                                 \
+    static uint32_t KFN(po_##kind##_##b)(const cylray_prepared *P, float *R, float *H,  \
+                                         size_t n, uint32_t a, unsigned ff)          \
     {                                                                              \
         return KFN(packet)(P, R, H, n, a, ff, KFL_(kind, (b) << 1, CYLRAY_KF_OCCLUDED)); \
     }                                                                              \
