@@ -24,7 +24,7 @@
  * face-forward is a sign flip applied to the result and needs no kernel of its own. */
 static inline unsigned cylray_variant_(const cylray_prepared *p)
 {
-    return p->kind + (p->axis_id ? CYLRAY_KIND_COUNT : 0u);
+    return p->variant;
 }
 static inline unsigned cylray_isect_index_(unsigned kind, unsigned flags)
 {
@@ -39,7 +39,7 @@ static inline unsigned cylray_occ_index_(unsigned kind, unsigned flags)
 static inline int cylray_prepared_ok_(const cylray_prepared *p)
 {
     return p != 0 && p->magic == CYLRAY_MAGIC && p->kind < CYLRAY_KIND_COUNT &&
-           p->axis_id <= 3u;
+           p->variant == p->kind + (p->axis_id ? CYLRAY_KIND_COUNT : 0u);
 }
 
 #if defined(__GNUC__) || defined(__clang__)
@@ -69,11 +69,8 @@ static inline size_t CYLRAY_CTZ(unsigned x)
  * arrays, once per call, and then read and write them in place. */
 static inline void cylray_axis_order_(const cylray_prepared *P, int aligned, size_t k[3])
 {
-    /* axis_id 1, 2, 3: the renamed coordinates are (1,2,0), (2,0,1), (0,1,2) */
-    const size_t a = aligned ? P->axis_id % 3u : 0u;
-    k[0] = a;
-    k[1] = a == 2u ? 0u : a + 1u;
-    k[2] = a == 0u ? 2u : a - 1u;
+    for (int j = 0; j < 3; j++)
+        k[j] = aligned ? P->order[j] : (size_t)j;
 }
 
 /* The views of a packet struct (cylray_rayN, cylray_hitN): field f of n lanes each

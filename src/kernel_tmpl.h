@@ -40,7 +40,7 @@ CYLRAY_INLINE void KFN(side_coefs)(const cylray_prepared *P, int aligned, vf dx,
         *fy = vfms(vz, px, vmul(vx, pz));
         *fz = vfms(vx, py, vmul(vy, px));
         *nB = KDOT(ex, ey, ez, *fx, *fy, *fz);
-        *C = vsub(KDOT(*fx, *fy, *fz, *fx, *fy, *fz), vset1(P->rr_vv));
+        *C = vsumsq_x(*fx, *fy, *fz, vset1(P->rr_vv));
         *g = KDOT(ex, ey, ez, px, py, pz);
     }
 }
@@ -90,17 +90,17 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
      * exact as long as w' is formed from the same s, and t = s + t'. So a refined
      * reciprocal estimate serves, and the divider is kept for the roots. */
     const vf rdd = vrcp_fast(dd);
-    vf s = vfnma(wd, rdd, zero);
+    vf s = vmul(vneg(wd), rdd);
     if (kind != CYLRAY_KIND_INFINITE) {
         /* ww + s wd = ww - wd^2 / dd is the squared distance of the closest approach
          * to the center; a finite cylinder lies in a sphere, and a ray that passes
          * outside it misses. The slack covers the cancellation of a far origin: the
          * rounding of wh, ww, wd and the reciprocal move pp by less than 2^-19 ww. */
-        vf pp = vfma(wd, s, ww);
-        act = mand(act, vle(vfnma(ww, vset1(0x1p-17f), pp), vset1(P->bound2)));
+        vf wd2 = vmul(vmul(wd, wd), rdd); /* wd^2 / dd; wd^2 is formed beside rdd */
+        act = mand(act, vle(vfnma(ww, vset1(0x1p-17f), vsub(ww, wd2)), vset1(P->bound2)));
         /* A shift that brings the origin less than a factor sqrt(2) closer gains less
-         * than it costs: a small t would lose its low bits in s + t'. */
-        s = vkeep(vgt(ww, vadd(pp, pp)), s);
+         * than it costs: a small t would lose its low bits in s + t'. (ww > 2 pp.) */
+        s = vkeep(vgt(vadd(wd2, wd2), ww), s);
     }
 
     /* e = d x v to a relative accuracy that survives a ray almost along the axis.
@@ -109,7 +109,7 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
     vf A, ex = zero, ey = zero, ez = zero, g0;
     if (aligned) {
         A = vfma(dx, dx, vmul(dy, dy));
-        g0 = vfms(whx, dy, vmul(why, dx));
+        g0 = vfms(whx, dy, vmul(why, dx)); /* plain: within the margin below */
     } else {
         ex = vdop_x(dy, vz, dz, vy), ey = vdop_x(dz, vx, dx, vz), ez = vdop_x(dx, vy, dy, vx);
         A = KDOT(ex, ey, ez, ex, ey, ez);
@@ -130,9 +130,9 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
     vf wlx = vsub(vsub(ox, vsub(whx, bx)), vadd(cx, bx));
     vf wly = vsub(vsub(oy, vsub(why, by)), vadd(cy, by));
     vf wlz = vsub(vsub(oz, vsub(whz, bz)), vadd(cz, bz));
-    vf px = vadd(vfma_x(s, dx, whx), wlx);
-    vf py = vadd(vfma_x(s, dy, why), wly);
-    vf pz = vadd(vfma_x(s, dz, whz), wlz);
+    vf px = vfma_x2(s, dx, whx, wlx);
+    vf py = vfma_x2(s, dy, why, wly);
+    vf pz = vfma_x2(s, dz, whz, wlz);
 
     vf nB, C, g, fx, fy, fz;
     KFN(side_coefs)(P, aligned, dx, dy, ex, ey, ez, vx, vy, vz, px, py, pz, &fx, &fy, &fz, &nB,
@@ -149,9 +149,9 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
         vf hx = vfma_x(vneg(u), vx, whx), hy = vfma_x(vneg(u), vy, why),
            hz = vfma_x(vneg(u), vz, whz);
         vf s2 = vfnma(KDOT(hx, hy, hz, dx, dy, dz), rdd, zero);
-        vf qx = vadd(vfma_x(s2, dx, hx), wlx);
-        vf qy = vadd(vfma_x(s2, dy, hy), wly);
-        vf qz = vadd(vfma_x(s2, dz, hz), wlz);
+        vf qx = vfma_x2(s2, dx, hx, wlx);
+        vf qy = vfma_x2(s2, dy, hy, wly);
+        vf qz = vfma_x2(s2, dz, hz, wlz);
         vf nB2, C2, g2, fx2, fy2, fz2;
         KFN(side_coefs)(P, aligned, dx, dy, ex, ey, ez, vx, vy, vz, qx, qy, qz, &fx2, &fy2,
                         &fz2, &nB2, &C2, &g2);
@@ -161,9 +161,8 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
         fx = vsel(slide, fx2, fx), fy = vsel(slide, fy2, fy), fz = vsel(slide, fz2, fz);
         nB = vsel(slide, nB2, nB), C = vsel(slide, C2, C), g = vsel(slide, g2, g);
     }
-    /* Lagrange's form of B^2 - A C, over v.v; g^2 is taken exactly. */
-    vf gg = vmul(g, g);
-    vf D = vsub(vfms_x(A, vset1(P->rr), gg), vfms_x(g, g, gg));
+    /* Lagrange's form of B^2 - A C, over v.v, with both products exact. */
+    vf D = vdop_x(A, vset1(P->rr), g, g);
     act = mand(act, veq(vfma(C, zero, vmul(D, zero)), zero));
 
     /* A ray within about one ulp of the axis direction is parallel: it meets the side
@@ -177,7 +176,7 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
     vf sq = fast ? vmul(D, vrsqrt_fast(vmax(D, vset1(1e-37f)))) : vsqrt(D);
     if (!aligned) /* |v| = 1 there */
         sq = vmul(sq, vset1(P->sqrt_vv));
-    vf q = vadd(nB, vcopysign(sq, nB)); /* -(B + sign(B) sqrt(disc)) */
+    vf q = vadd(nB, vxorsign(sq, nB)); /* -(B + sign(B) sqrt(disc)); sq >= 0 */
     vf r1 = fast ? vmul(q, vrcp_fast(A)) : vdiv(q, A);
     vf r2 = fast ? vmul(C, vrcp_fast(q)) : vdiv(C, q);
     r2 = vsel(veq(q, zero), r1, r2);
@@ -229,10 +228,11 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
      * bounds are clamped to finite values, so that no infinite t ever hits. */
     const vf tmin = vmax(vset1(-FLT_MAX), vloadu(R->tmin + i)); /* a NaN bound stays */
     const vf tmax = vmin(vset1(FLT_MAX), vloadu(R->tmax + i));
-    vm front = mand(ok_in, vge(vadd(s, t_in), tmin));
+    vf T_in = vadd(s, t_in), T_out = vadd(s, t_out);
+    vm front = mand(ok_in, vge(T_in, tmin));
     vm cand = cull ? front : mor(front, ok_out);
     vf tr = vsel(front, t_in, t_out); /* relative to the shifted origin */
-    vf T = vadd(s, tr);
+    vf T = vsel(front, T_in, T_out);
     vm hit = mand(cand, mand(vge(T, tmin), vle(T, tmax)));
     vm back = mandn(hit, front);
     front = mand(hit, front);
@@ -356,6 +356,11 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
 CYLRAY_INLINE uint32_t KFN(packet)(const cylray_prepared *P, float *ray, float *hit, size_t n,
                                    uint32_t active, unsigned ff, const unsigned FL)
 {
+    if (n == VW) {
+        const cylray_rays R = cylray_packet_rays_(P, ray, VW, (FL & CYLRAY_KF_ALIGNED) != 0);
+        const cylray_hits H = cylray_packet_hits_(P, hit, VW, (FL & CYLRAY_KF_ALIGNED) != 0);
+        return KFN(block)(P, &R, &H, 0, active, ff, FL);
+    }
     const cylray_rays R = cylray_packet_rays_(P, ray, n, (FL & CYLRAY_KF_ALIGNED) != 0);
     const cylray_hits H = cylray_packet_hits_(P, hit, n, (FL & CYLRAY_KF_ALIGNED) != 0);
     uint32_t hits = 0;

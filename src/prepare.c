@@ -82,12 +82,16 @@ cylray_status cylray_prepare(cylray_prepared *out, const cylray_cylinder *in)
              : (in->flags & CYLRAY_CAPPED) ? CYLRAY_KIND_CAPPED
                                           : CYLRAY_KIND_OPEN;
     p.axis_id = zeros == 2 ? (a[0] != 0 ? 1u : a[1] != 0 ? 2u : 3u) : 0u;
-    if (p.axis_id) { /* the renaming of cylray_rename_ */
-        const unsigned k2 = p.axis_id - 1u;
+    /* The renaming of cylray_internal.h: along x, (x, y, z) is read as (y, z, x); along
+     * y, as (z, x, y); so that the axis is the third coordinate. */
+    for (unsigned j = 0; j < 3; j++)
+        p.order[j] = (uint8_t)(p.axis_id ? (p.axis_id + j) % 3u : j);
+    if (p.axis_id) {
         for (unsigned j = 0; j < 3; j++)
-            p.cr[j] = p.c[(k2 + 1u + j) % 3u];
-        p.vr = p.v[k2];
+            p.cr[j] = p.c[p.order[j]];
+        p.vr = p.v[p.order[2]];
     }
+    p.variant = (uint8_t)(p.kind + (p.axis_id ? CYLRAY_KIND_COUNT : 0u));
     p.magic = CYLRAY_MAGIC;
     *out = p;
     return CYLRAY_OK;

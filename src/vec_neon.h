@@ -22,12 +22,16 @@
 #define vabs(a) vabsq_f32(a)
 #define vneg(a) vnegq_f32(a)
 #define vcopysign(mag, sgn) vbslq_f32(vdupq_n_u32(0x80000000u), sgn, mag)
+#define vxorsign(a, b) \
+    vreinterpretq_f32_u32(veorq_u32(vreinterpretq_u32_f32(a), \
+                                    vandq_u32(vreinterpretq_u32_f32(b), vdupq_n_u32(0x80000000u))))
 
 #define vfma(a, b, c) vfmaq_f32(c, a, b)
 #define vfms(a, b, c) vnegq_f32(vfmsq_f32(c, a, b))
 #define vfnma(a, b, c) vfmsq_f32(c, a, b)
 #define vfma_x(a, b, c) vfmaq_f32(c, a, b)
-#define vfms_x(a, b, c) vfms(a, b, c)
+#define vfma_x2(a, b, ch, cl) vaddq_f32(vfmaq_f32(ch, a, b), cl)
+#define vsumsq_x(a, b, c, k) vsubq_f32(vfmaq_f32(vfmaq_f32(vmulq_f32(c, c), b, b), a, a), k)
 static inline vf KFN(dop_x)(vf a, vf b, vf c, vf d)
 {
     vf cd = vmulq_f32(c, d);

@@ -3,10 +3,14 @@
  * This is also the definition of every operation the SIMD headers implement:
  *   vfma(a,b,c) = a*b + c, vfms = a*b - c, vfnma = c - a*b; fused where the ISA can,
  *     used where one more rounding does not matter;
- *   vfma_x(a,b,c) = a*b + c and vfms_x = a*b - c with the product exact, and
+ *   vfma_x(a,b,c) = a*b + c with the product exact, vfma_x2(a,b,ch,cl) = a*b + ch + cl
+ *     with the product exact (for c given as a two-term sum, |cl| <= ulp(ch)),
+ *   vsumsq_x(a,b,c,k) = a*a + b*b + c*c - k, with the sum of squares as an FMA chain
+ *     forms it (in double, rounded once, where the ISA has no FMA), and
  *   vdop_x(a,b,c,d) = a*b - c*d within about one ulp: used where it matters;
  *   vmin(a,b) = a < b ? a : b and vmax(a,b) = a > b ? a : b (NaN gives b);
  *   comparisons are ordered (false when either side is NaN);
+ *   vxorsign(a,b) = a with its sign flipped where b's sign bit is set (copysign for a >= 0);
  *   vsel(m,a,b) = m ? a : b, vkeep(m,a) = m ? a : 0; vstore_m writes lane i only where m is set. */
 #include <math.h>
 #include <stdint.h>
@@ -29,13 +33,15 @@
 #define vabs(a) fabsf(a)
 #define vneg(a) (-(a))
 #define vcopysign(mag, sgn) copysignf(mag, sgn)
+#define vxorsign(a, b) (signbit(b) ? -(a) : (a))
 
 #if defined(__FMA__) || defined(__aarch64__) || defined(__ARM_FEATURE_FMA)
 #define vfma(a, b, c) fmaf(a, b, c)
 #define vfms(a, b, c) fmaf(a, b, -(c))
 #define vfnma(a, b, c) fmaf(-(a), b, c)
 #define vfma_x(a, b, c) fmaf(a, b, c)
-#define vfms_x(a, b, c) fmaf(a, b, -(c))
+#define vfma_x2(a, b, ch, cl) (fmaf(a, b, ch) + (cl))
+#define vsumsq_x(a, b, c, k) (fmaf(a, a, fmaf(b, b, (c) * (c))) - (k))
 static inline float KFN(dop_x)(float a, float b, float c, float d)
 {
     float cd = c * d;
@@ -49,7 +55,11 @@ static inline float KFN(dop_x)(float a, float b, float c, float d)
 #define vfms(a, b, c) ((float)((double)(a) * (double)(b) - (double)(c)))
 #define vfnma(a, b, c) ((float)((double)(c) - (double)(a) * (double)(b)))
 #define vfma_x(a, b, c) vfma(a, b, c)
-#define vfms_x(a, b, c) vfms(a, b, c)
+#define vfma_x2(a, b, ch, cl) \
+    ((float)((double)(a) * (double)(b) + ((double)(ch) + (double)(cl))))
+#define vsumsq_x(a, b, c, k)                                                              \
+    ((float)((double)(a) * (double)(a) + (double)(b) * (double)(b) +                    \
+             (double)(c) * (double)(c) - (double)(k)))
 static inline float KFN(dop_x)(float a, float b, float c, float d)
 {
     return (float)((double)a * (double)b - (double)c * (double)d);

@@ -22,11 +22,13 @@
 #undef vabs
 #undef vneg
 #undef vcopysign
+#undef vxorsign
 #undef vfma
 #undef vfms
 #undef vfnma
 #undef vfma_x
-#undef vfms_x
+#undef vfma_x2
+#undef vsumsq_x
 #undef vdop_x
 #undef vrcp_est_
 #undef vrsqrt_est_

@@ -54,13 +54,15 @@
 #define vneg(a) VX(xor_ps)(a, vsignbit_())
 #define vcopysign(mag, sgn) \
     VX(or_ps)(VX(andnot_ps)(vsignbit_(), mag), VX(and_ps)(vsignbit_(), sgn))
+#define vxorsign(a, b) VX(xor_ps)(a, VX(and_ps)(b, vsignbit_()))
 
 #if X86_FMA
 #define vfma(a, b, c) VX(fmadd_ps)(a, b, c)
 #define vfms(a, b, c) VX(fmsub_ps)(a, b, c)
 #define vfnma(a, b, c) VX(fnmadd_ps)(a, b, c)
 #define vfma_x(a, b, c) VX(fmadd_ps)(a, b, c)
-#define vfms_x(a, b, c) VX(fmsub_ps)(a, b, c)
+#define vfma_x2(a, b, ch, cl) vadd(VX(fmadd_ps)(a, b, ch), cl)
+#define vsumsq_x(a, b, c, k) vsub(VX(fmadd_ps)(a, a, VX(fmadd_ps)(b, b, vmul(c, c))), k)
 /* Kahan's a*b - c*d: the rounding error of c*d is recovered exactly by an FMA. */
 static inline vf KFN(dop_x)(vf a, vf b, vf c, vf d)
 {
@@ -83,6 +85,17 @@ static inline __m128 KFN(fma_x)(__m128 a, __m128 b, __m128 c)
                             _mm_cvtps_pd(_mm_movehl_ps(c, c)));
     return _mm_movelh_ps(_mm_cvtpd_ps(lo), _mm_cvtpd_ps(hi));
 }
+/* a*b + (ch + cl) rounded once: the two-term sum and the product are exact in double. */
+static inline __m128 KFN(fma_x2)(__m128 a, __m128 b, __m128 ch, __m128 cl)
+{
+    __m128d lo = _mm_add_pd(_mm_mul_pd(_mm_cvtps_pd(a), _mm_cvtps_pd(b)),
+                            _mm_add_pd(_mm_cvtps_pd(ch), _mm_cvtps_pd(cl)));
+    __m128d hi = _mm_add_pd(_mm_mul_pd(_mm_cvtps_pd(_mm_movehl_ps(a, a)),
+                                       _mm_cvtps_pd(_mm_movehl_ps(b, b))),
+                            _mm_add_pd(_mm_cvtps_pd(_mm_movehl_ps(ch, ch)),
+                                       _mm_cvtps_pd(_mm_movehl_ps(cl, cl))));
+    return _mm_movelh_ps(_mm_cvtpd_ps(lo), _mm_cvtpd_ps(hi));
+}
 static inline __m128 KFN(dop_x)(__m128 a, __m128 b, __m128 c, __m128 d)
 {
     __m128d lo = _mm_sub_pd(_mm_mul_pd(_mm_cvtps_pd(a), _mm_cvtps_pd(b)),
@@ -94,7 +107,24 @@ static inline __m128 KFN(dop_x)(__m128 a, __m128 b, __m128 c, __m128 d)
     return _mm_movelh_ps(_mm_cvtpd_ps(lo), _mm_cvtpd_ps(hi));
 }
 #define vfma_x(a, b, c) KFN(fma_x)(a, b, c)
-#define vfms_x(a, b, c) KFN(fma_x)(a, b, vneg(c))
+#define vfma_x2(a, b, ch, cl) KFN(fma_x2)(a, b, ch, cl)
+/* |(a, b, c)|^2 - k rounded once: C, where the shifted origin lies near the surface,
+ * is a difference of two near numbers that only an exact sum of squares keeps. */
+static inline __m128 KFN(sumsq_x)(__m128 a, __m128 b, __m128 c, __m128 k)
+{
+#define LO_(x) _mm_cvtps_pd(x)
+#define HI_(x) _mm_cvtps_pd(_mm_movehl_ps(x, x))
+#define SQ3_(H)                                                                          \
+    _mm_sub_pd(_mm_add_pd(_mm_add_pd(_mm_mul_pd(H(a), H(a)), _mm_mul_pd(H(b), H(b))),      \
+                          _mm_mul_pd(H(c), H(c))),                                       \
+               H(k))
+    __m128d lo = SQ3_(LO_), hi = SQ3_(HI_);
+#undef LO_
+#undef HI_
+#undef SQ3_
+    return _mm_movelh_ps(_mm_cvtpd_ps(lo), _mm_cvtpd_ps(hi));
+}
+#define vsumsq_x(a, b, c, k) KFN(sumsq_x)(a, b, c, k)
 #define vdop_x(a, b, c, d) KFN(dop_x)(a, b, c, d)
 #endif
 
