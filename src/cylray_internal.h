@@ -44,10 +44,14 @@ static inline int cylray_prepared_ok_(const cylray_prepared *p)
 
 #if defined(__GNUC__) || defined(__clang__)
 #define CYLRAY_INLINE static inline __attribute__((always_inline))
+/* Makes the compiler read memory again after this point instead of keeping what it
+ * read before in registers (or in spill slots). */
+#define CYLRAY_REREAD() __asm__ volatile("" ::: "memory")
 #define CYLRAY_POPCOUNT(x) ((unsigned)__builtin_popcount(x))
 #define CYLRAY_CTZ(x) ((size_t)__builtin_ctz(x))
 #else
 #define CYLRAY_INLINE static inline
+#define CYLRAY_REREAD() ((void)0)
 static inline unsigned CYLRAY_POPCOUNT(unsigned x)
 {
     unsigned n = 0;

@@ -70,14 +70,14 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
     vf dx = vloadu(R->dx + i), dy = vloadu(R->dy + i), dz = vloadu(R->dz + i);
 
     /* A zero, subnormal-squared or overflowing direction never hits. An Inf or NaN
-     * anywhere else turns C or D into NaN below, which takes the lane out there. */
+     * anywhere else turns C or D into NaN below, which takes the lane out there.
+     * Inactive lanes are computed like the others (their garbage cannot disturb a
+     * lane) and taken out where the hits are decided. */
     vf dd = KDOT(dx, dy, dz, dx, dy, dz);
-    vm act = mand(mfrom_bits(bits), mand(vgt(dd, zero), vlt(dd, inf)));
-    if (!many(act))
-        return 0;
+    vm act = mand(vgt(dd, zero), vlt(dd, inf));
 
     const float *const c3 = aligned ? P->cr : P->c;
-    const vf cx = vset1(c3[0]), cy = vset1(c3[1]), cz = vset1(c3[2]);
+    vf cx = vset1(c3[0]), cy = vset1(c3[1]), cz = vset1(c3[2]);
     const vf vx = aligned ? zero : vset1(P->v[0]), vy = aligned ? zero : vset1(P->v[1]);
     const vf vz = vset1(aligned ? P->vr : P->v[2]);
 
@@ -125,6 +125,12 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
                               vfma(ww, vset1(0x1p-30f), vset1(P->rr)))));
     if (!many(act))
         return 0;
+    /* Past the rejection, the inputs are read again rather than kept across it: a
+     * rejected packet then spills nothing, and the rest loses nothing (it would
+     * reload them from the stack instead). */
+    CYLRAY_REREAD();
+    ox = vloadu(R->ox + i), oy = vloadu(R->oy + i), oz = vloadu(R->oz + i);
+    cx = vset1(c3[0]), cy = vset1(c3[1]), cz = vset1(c3[2]);
 
     vf bx = vsub(whx, ox), by = vsub(why, oy), bz = vsub(whz, oz);
     vf wlx = vsub(vsub(ox, vsub(whx, bx)), vadd(cx, bx));
@@ -233,7 +239,7 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
     vm cand = cull ? front : mor(front, ok_out);
     vf tr = vsel(front, t_in, t_out); /* relative to the shifted origin */
     vf T = vsel(front, T_in, T_out);
-    vm hit = mand(cand, mand(vge(T, tmin), vle(T, tmax)));
+    vm hit = mand(mand(cand, mfrom_bits(bits)), mand(vge(T, tmin), vle(T, tmax)));
     vm back = mandn(hit, front);
     front = mand(hit, front);
     if (occ || !many(hit))
