@@ -24,7 +24,8 @@ typedef size_t (*KFN(stream_fn))(const cylray_prepared *, const cylray_rays *,
 #define KDOT(ax, ay, az, bx, by, bz) vfma(ax, bx, vfma(ay, by, vmul(az, bz)))
 
 /* The side's quadratic from the shifted origin p: f = v x p (so that nB = e.f is -B),
- * C = f.f - R^2 v.v and g = e.p, the triple product of Lagrange's form. */
+ * C = f.f - R^2 v.v and g = e.p, the triple product of Lagrange's form (with an
+ * aligned axis g is the caller's, from the unshifted origin). */
 CYLRAY_INLINE void KFN(side_coefs)(const cylray_prepared *P, int aligned, vf dx, vf dy, vf ex,
                                    vf ey, vf ez, vf vx, vf vy, vf vz, vf px, vf py, vf pz,
                                    vf *fx, vf *fy, vf *fz, vf *nB, vf *C, vf *g)
@@ -34,7 +35,6 @@ CYLRAY_INLINE void KFN(side_coefs)(const cylray_prepared *P, int aligned, vf dx,
         *fx = *fy = *fz = zero;
         *nB = vfnma(dx, px, vfnma(dy, py, zero));
         *C = vsub(vfma(px, px, vmul(py, py)), vset1(P->rr_vv));
-        *g = vdop_x(px, dy, py, dx);
     } else {
         *fx = vfms(vy, pz, vmul(vz, py));
         *fy = vfms(vz, px, vmul(vx, pz));
@@ -140,7 +140,14 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
     vf py = vfma_x2(s, dy, why, wly);
     vf pz = vfma_x2(s, dz, whz, wlz);
 
-    vf nB, C, g, fx, fy, fz;
+    vf nB, C, g = zero, fx, fy, fz;
+    if (aligned) {
+        /* g = w x d, in the plane: it does not change along the ray, and Kahan's
+         * difference of products is accurate relative to g itself (2 eps), so g is
+         * taken from the unshifted w = wh + wl, and the discriminant need not wait
+         * for the shift. */
+        g = vadd(vdop_x(whx, dy, why, dx), vfms(wlx, dy, vmul(wly, dx)));
+    }
     KFN(side_coefs)(P, aligned, dx, dy, ex, ey, ez, vx, vy, vz, px, py, pz, &fx, &fy, &fz, &nB,
                     &C, &g);
 
@@ -158,7 +165,7 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
         vf qx = vfma_x2(s2, dx, hx, wlx);
         vf qy = vfma_x2(s2, dy, hy, wly);
         vf qz = vfma_x2(s2, dz, hz, wlz);
-        vf nB2, C2, g2, fx2, fy2, fz2;
+        vf nB2, C2, g2 = g, fx2, fy2, fz2;
         KFN(side_coefs)(P, aligned, dx, dy, ex, ey, ez, vx, vy, vz, qx, qy, qz, &fx2, &fy2,
                         &fz2, &nB2, &C2, &g2);
         vm slide = vlt(vabs(vmul(C2, nB)), vabs(vmul(C, nB2)));
