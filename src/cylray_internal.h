@@ -47,11 +47,13 @@ static inline int cylray_prepared_ok_(const cylray_prepared *p)
 /* Makes the compiler read memory again after this point instead of keeping what it
  * read before in registers (or in spill slots). */
 #define CYLRAY_REREAD() __asm__ volatile("" ::: "memory")
+#define CYLRAY_MAYBE_UNUSED __attribute__((unused))
 #define CYLRAY_POPCOUNT(x) ((unsigned)__builtin_popcount(x))
 #define CYLRAY_CTZ(x) ((size_t)__builtin_ctz(x))
 #else
 #define CYLRAY_INLINE static inline
 #define CYLRAY_REREAD() ((void)0)
+#define CYLRAY_MAYBE_UNUSED
 static inline unsigned CYLRAY_POPCOUNT(unsigned x)
 {
     unsigned n = 0;
@@ -78,7 +80,7 @@ static inline void cylray_axis_order_(const cylray_prepared *P, int aligned, siz
 }
 
 /* The views of a packet struct (cylray_rayN, cylray_hitN): field f of n lanes each
- * at ray + f n, renamed when aligned. hit may be NULL (occlusion). */
+ * at ray + f n, renamed when aligned. */
 static inline cylray_rays cylray_packet_rays_(const cylray_prepared *P, float *ray, size_t n,
                                               int aligned)
 {
@@ -93,14 +95,10 @@ static inline cylray_rays cylray_packet_rays_(const cylray_prepared *P, float *r
 static inline cylray_hits cylray_packet_hits_(const cylray_prepared *P, float *hit, size_t n,
                                               int aligned)
 {
-    cylray_hits q = {NULL, NULL, NULL, NULL, NULL};
-    if (hit) {
-        size_t k[3];
-        cylray_axis_order_(P, aligned, k);
-        q.t = hit;
-        q.nx = hit + (1 + k[0]) * n, q.ny = hit + (1 + k[1]) * n, q.nz = hit + (1 + k[2]) * n;
-        q.part = (int32_t *)(void *)(hit + 4 * n);
-    }
+    size_t k[3];
+    cylray_axis_order_(P, aligned, k);
+    cylray_hits q = {hit, hit + (1 + k[0]) * n, hit + (1 + k[1]) * n, hit + (1 + k[2]) * n,
+                     (int32_t *)(void *)(hit + 4 * n)};
     return q;
 }
 

@@ -18,7 +18,9 @@
         active &= (uint32_t)((1ull << n) - 1u);                                        \
         if (!active || !ray || !hit || !cylray_prepared_ok_(P))                        \
             return 0;                                                                  \
-        return KW_(isect_table, KW##n)[cylray_isect_index_(cylray_variant_(P), flags)](  \
+        const KW_(packet_fn, KW##n) *t = n == KW_(vw, KW##n) ? KW_(isect1_table, KW##n)   \
+                                                            : KW_(isect_table, KW##n);   \
+        return t[cylray_isect_index_(cylray_variant_(P), flags)](                     \
             P, ray->ox, hit->t, n, active, flags & CYLRAY_FACE_FORWARD);               \
     }                                                                                  \
     static uint32_t KI_(occluded##n)(const cylray_prepared *P, const cylray_ray##n *ray, \
@@ -28,7 +30,9 @@
         if (!active || !ray || !cylray_prepared_ok_(P))                                \
             return 0;                                                                  \
         /* the occluded kernels read tmax and never write through this pointer */      \
-        return KW_(occ_table, KW##n)[cylray_occ_index_(cylray_variant_(P), flags)](      \
+        const KW_(packet_fn, KW##n) *t = n == KW_(vw, KW##n) ? KW_(occ1_table, KW##n)     \
+                                                            : KW_(occ_table, KW##n);     \
+        return t[cylray_occ_index_(cylray_variant_(P), flags)](                       \
             P, (float *)(uintptr_t)ray->ox, NULL, n, active, 0);                       \
     }
 KPACKET_(4)

@@ -362,20 +362,28 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
     return mbits(hit);
 }
 
-/* A packet of n lanes (a multiple of VW, at most 32), given as the packet structs
- * themselves: field f of the rays at ray + f n, of the hits at hit + f n. The views
- * are built here, where they stay in registers, rather than by the caller (a struct
- * of pointers passed through memory costs a store and a reload on every call). */
+/* A packet given as the packet structs themselves: field f of the rays at ray + f n,
+ * of the hits at hit + f n. The views are built here, where they stay in registers,
+ * rather than by the caller (a struct of pointers passed through memory costs a store
+ * and a reload on every call). packet1 is one vector (n = VW), with constant offsets
+ * and nothing else to keep in registers; packet any multiple of VW up to 32. */
+static const cylray_hits KFN(no_hits) = {NULL, NULL, NULL, NULL, NULL}; /* occlusion */
+
+CYLRAY_INLINE uint32_t KFN(packet1)(const cylray_prepared *P, float *ray, float *hit,
+                                    uint32_t active, unsigned ff, const unsigned FL)
+{
+    const int aligned = (FL & CYLRAY_KF_ALIGNED) != 0, occ = (FL & CYLRAY_KF_OCCLUDED) != 0;
+    const cylray_rays R = cylray_packet_rays_(P, ray, VW, aligned);
+    const cylray_hits H = occ ? KFN(no_hits) : cylray_packet_hits_(P, hit, VW, aligned);
+    return KFN(block)(P, &R, &H, 0, active, ff, FL);
+}
+
 CYLRAY_INLINE uint32_t KFN(packet)(const cylray_prepared *P, float *ray, float *hit, size_t n,
                                    uint32_t active, unsigned ff, const unsigned FL)
 {
-    if (n == VW) {
-        const cylray_rays R = cylray_packet_rays_(P, ray, VW, (FL & CYLRAY_KF_ALIGNED) != 0);
-        const cylray_hits H = cylray_packet_hits_(P, hit, VW, (FL & CYLRAY_KF_ALIGNED) != 0);
-        return KFN(block)(P, &R, &H, 0, active, ff, FL);
-    }
-    const cylray_rays R = cylray_packet_rays_(P, ray, n, (FL & CYLRAY_KF_ALIGNED) != 0);
-    const cylray_hits H = cylray_packet_hits_(P, hit, n, (FL & CYLRAY_KF_ALIGNED) != 0);
+    const int aligned = (FL & CYLRAY_KF_ALIGNED) != 0, occ = (FL & CYLRAY_KF_OCCLUDED) != 0;
+    const cylray_rays R = cylray_packet_rays_(P, ray, n, aligned);
+    const cylray_hits H = occ ? KFN(no_hits) : cylray_packet_hits_(P, hit, n, aligned);
     uint32_t hits = 0;
     for (size_t b = 0; b < n; b += VW) {
         uint32_t a = (active >> b) & VFULL;
@@ -395,9 +403,7 @@ CYLRAY_INLINE size_t KFN(stream)(const cylray_prepared *P, const cylray_rays *R0
     const int normal = (FL & CYLRAY_NORMAL) && !occ;
     const int aligned = (FL & CYLRAY_KF_ALIGNED) != 0;
     const cylray_rays Rv = aligned ? cylray_rays_renamed_(P, R0) : *R0;
-    cylray_hits Hv = {NULL, NULL, NULL, NULL, NULL}; /* occlusion writes no hits */
-    if (!occ)
-        Hv = aligned ? cylray_hits_renamed_(P, H0) : *H0;
+    const cylray_hits Hv = occ ? KFN(no_hits) : aligned ? cylray_hits_renamed_(P, H0) : *H0;
     const cylray_rays *R = &Rv;
     const cylray_hits *H = &Hv;
     size_t count = 0, i = 0;
@@ -447,6 +453,12 @@ CYLRAY_INLINE size_t KFN(stream)(const cylray_prepared *P, const cylray_rays *R0
      ((b) & 2 ? CYLRAY_CULL_BACK : 0u) | ((b) & 4 ? CYLRAY_REFINE : 0u) |           \
      ((b) & 8 ? CYLRAY_FAST : 0u) | (extra))
 #define KISECT_(kind, b)                                                           \
+    static uint32_t KFN(pk1_##kind##_##b)(const cylray_prepared *P, float *R, float *H, \
+                                          size_t n, uint32_t a, unsigned ff)         \
+    {                                                                              \
+        (void)n;                                                                   \
+        return KFN(packet1)(P, R, H, a, ff, KFL_(kind, b, 0u));                    \
+    }                                                                              \
     static uint32_t KFN(pk_##kind##_##b)(const cylray_prepared *P, float *R, float *H,  \
                                          size_t n, uint32_t a, unsigned ff)          \
     {                                                                              \
@@ -459,6 +471,12 @@ CYLRAY_INLINE size_t KFN(stream)(const cylray_prepared *P, const cylray_rays *R0
         return KFN(stream)(P, R, H, o, n, ff, KFL_(kind, b, 0u));                  \
     }
 #define KOCC_(kind, b)                                                             \
+    static uint32_t KFN(po1_##kind##_##b)(const cylray_prepared *P, float *R, float *H, \
+                                          size_t n, uint32_t a, unsigned ff)         \
+    {                                                                              \
+        (void)n;                                                                   \
+        return KFN(packet1)(P, R, H, a, ff, KFL_(kind, (b) << 1, CYLRAY_KF_OCCLUDED)); \
+    }                                                                              \
     static uint32_t KFN(po_##kind##_##b)(const cylray_prepared *P, float *R, float *H,  \
                                          size_t n, uint32_t a, unsigned ff)          \
     {                                                                              \
@@ -479,14 +497,21 @@ CYLRAY_INLINE size_t KFN(stream)(const cylray_prepared *P, const cylray_rays *R0
 KALL16_(KISECT_)
 KALL8_(KOCC_)
 
+#define KREF_PK1_(k, b) KFN(pk1_##k##_##b),
 #define KREF_PK_(k, b) KFN(pk_##k##_##b),
 #define KREF_ST_(k, b) KFN(st_##k##_##b),
+#define KREF_PO1_(k, b) KFN(po1_##k##_##b),
 #define KREF_PO_(k, b) KFN(po_##k##_##b),
 #define KREF_SO_(k, b) KFN(so_##k##_##b),
-static const KFN(packet_fn) KFN(isect_table)[96] = {KALL16_(KREF_PK_)};
-static const KFN(stream_fn) KFN(isect_stream_table)[96] = {KALL16_(KREF_ST_)};
-static const KFN(packet_fn) KFN(occ_table)[48] = {KALL8_(KREF_PO_)};
-static const KFN(stream_fn) KFN(occ_stream_table)[48] = {KALL8_(KREF_SO_)};
+/* The packet tables for one vector (isect1, occ1) and for several (isect, occ); an
+ * ISA's entry points take the ones their widths need, the compiler drops the rest. */
+enum { KFN(vw) = VW };
+CYLRAY_MAYBE_UNUSED static const KFN(packet_fn) KFN(isect1_table)[96] = {KALL16_(KREF_PK1_)};
+CYLRAY_MAYBE_UNUSED static const KFN(packet_fn) KFN(isect_table)[96] = {KALL16_(KREF_PK_)};
+CYLRAY_MAYBE_UNUSED static const KFN(stream_fn) KFN(isect_stream_table)[96] = {KALL16_(KREF_ST_)};
+CYLRAY_MAYBE_UNUSED static const KFN(packet_fn) KFN(occ1_table)[48] = {KALL8_(KREF_PO1_)};
+CYLRAY_MAYBE_UNUSED static const KFN(packet_fn) KFN(occ_table)[48] = {KALL8_(KREF_PO_)};
+CYLRAY_MAYBE_UNUSED static const KFN(stream_fn) KFN(occ_stream_table)[48] = {KALL8_(KREF_SO_)};
 
 #undef KDOT
 #undef KFL_
@@ -496,7 +521,9 @@ static const KFN(stream_fn) KFN(occ_stream_table)[48] = {KALL8_(KREF_SO_)};
 #undef K8_
 #undef KALL16_
 #undef KALL8_
+#undef KREF_PK1_
 #undef KREF_PK_
 #undef KREF_ST_
+#undef KREF_PO1_
 #undef KREF_PO_
 #undef KREF_SO_
