@@ -63,6 +63,7 @@ typedef struct CYLRAY_ALIGN(64) cylray_prepared {
     float par_eps;     /* A below par_eps * d.d: parallel to the axis */
     float cr[3];       /* along a coordinate axis: the center with that axis third */
     float vr;          /* along a coordinate axis: its sign (v there is (0, 0, vr)) */
+    float cap_up, cap_down; /* along a coordinate axis: the parts at renamed z = +-H */
     uint8_t order[3];  /* the renamed coordinates: the j-th is the user's order[j] */
     uint8_t variant;   /* kind, plus 3 along a coordinate axis: selects the kernels */
 } cylray_prepared;

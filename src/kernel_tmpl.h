@@ -73,7 +73,8 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
      * anywhere else turns C or D into NaN below, which takes the lane out there.
      * Inactive lanes are computed like the others (their garbage cannot disturb a
      * lane) and taken out where the hits are decided. */
-    vf dd = KDOT(dx, dy, dz, dx, dy, dz);
+    vf A = aligned ? vfma(dx, dx, vmul(dy, dy)) : zero; /* the side's |d_perp|^2 */
+    vf dd = aligned ? vfma(dz, dz, A) : KDOT(dx, dy, dz, dx, dy, dz);
     vm act = mand(vgt(dd, zero), vlt(dd, inf));
 
     const float *const c3 = aligned ? P->cr : P->c;
@@ -106,9 +107,8 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
     /* e = d x v to a relative accuracy that survives a ray almost along the axis.
      * With an aligned axis v = (0, 0, +-1) and e = (dy, -dx, 0) up to the sign of v,
      * which no product below sees. */
-    vf A, ex = zero, ey = zero, ez = zero, g0;
+    vf ex = zero, ey = zero, ez = zero, g0;
     if (aligned) {
-        A = vfma(dx, dx, vmul(dy, dy));
         g0 = vfms(whx, dy, vmul(why, dx)); /* plain: within the margin below */
     } else {
         ex = vdop_x(dy, vz, dz, vy), ey = vdop_x(dz, vx, dx, vz), ez = vdop_x(dx, vy, dy, vx);
@@ -198,10 +198,13 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
     /* Entry and exit, relative to the shifted origin, and which part each one is. */
     vf t_in, t_out, side_lo = tn, side_hi = tf;
     vm ok_in, ok_out;
+    /* The axial coordinate z0 + t dv, over |v|. An aligned axis is measured along the
+     * third coordinate itself, whatever its sign: the slab is symmetric, and the sign
+     * only names the caps. */
     vf z0 = zero, dv = zero;
     if (kind != CYLRAY_KIND_INFINITE) {
-        z0 = aligned ? vmul(pz, vz) : KDOT(px, py, pz, vx, vy, vz);
-        dv = aligned ? vmul(dz, vz) : KDOT(dx, dy, dz, vx, vy, vz);
+        z0 = aligned ? pz : KDOT(px, py, pz, vx, vy, vz);
+        dv = aligned ? dz : KDOT(dx, dy, dz, vx, vy, vz);
     }
     if (kind == CYLRAY_KIND_CAPPED) {
         /* The solid is the infinite one cut by the slab |z| <= H: inside on [max of the
@@ -253,13 +256,16 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
         return mbits(hit);
 
     /* On a capped cylinder, the chosen t is the side's or a cap's; which cap follows
-     * from the direction: entering upwards (or leaving downwards) is the low one. */
+     * from the direction: entering upwards (or leaving downwards) is the low one. An
+     * aligned axis pointing down the third coordinate swaps the names (P->cap_up). */
     vm on_side = hit, cap_hi = hit;
     vf part = one;
     if (kind == CYLRAY_KIND_CAPPED) {
         on_side = mand(hit, veq(tr, vsel(front, side_lo, side_hi)));
         cap_hi = mxor(vgt(dv, zero), front);
-        part = vsel(on_side, one, vsel(cap_hi, vset1(CYLRAY_CAP_HI), vset1(CYLRAY_CAP_LO)));
+        part = vsel(on_side, one,
+                    aligned ? vsel(cap_hi, vset1(P->cap_up), vset1(P->cap_down))
+                            : vsel(cap_hi, vset1(CYLRAY_CAP_HI), vset1(CYLRAY_CAP_LO)));
     }
     part = vadd(part, vkeep(back, vset1(CYLRAY_BACKFACE)));
 
@@ -319,7 +325,7 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
             vf sgn = vsel(cap_hi, one, vset1(-1.0f));
             nx = vsel(cap, aligned ? zero : vmul(sgn, vset1(P->n[0])), nx);
             ny = vsel(cap, aligned ? zero : vmul(sgn, vset1(P->n[1])), ny);
-            nz = vsel(cap, vmul(sgn, aligned ? vz : vset1(P->n[2])), nz);
+            nz = vsel(cap, aligned ? sgn : vmul(sgn, vset1(P->n[2])), nz);
         }
         /* One Newton step of 1/sqrt(n.n) around 1 removes what rounding left of the
          * length error, whatever the hit point's distance from the axis. */

@@ -90,6 +90,8 @@ cylray_status cylray_prepare(cylray_prepared *out, const cylray_cylinder *in)
         for (unsigned j = 0; j < 3; j++)
             p.cr[j] = p.c[p.order[j]];
         p.vr = p.v[p.order[2]];
+        p.cap_up = p.vr > 0 ? CYLRAY_CAP_HI : CYLRAY_CAP_LO;
+        p.cap_down = p.vr > 0 ? CYLRAY_CAP_LO : CYLRAY_CAP_HI;
     }
     p.variant = (uint8_t)(p.kind + (p.axis_id ? CYLRAY_KIND_COUNT : 0u));
     p.magic = CYLRAY_MAGIC;
