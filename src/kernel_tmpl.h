@@ -249,7 +249,9 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
     vm cand = cull ? front : mor(front, ok_out);
     vf tr = vsel(front, t_in, t_out); /* relative to the shifted origin */
     vf T = vsel(front, T_in, T_out);
-    vm hit = mand(mand(cand, mfrom_bits(bits)), mand(vge(T, tmin), vle(T, tmax)));
+    vm hit = mand(cand, mand(vge(T, tmin), vle(T, tmax)));
+    if (bits != VFULL) /* a whole packet is the common case, and needs no mask */
+        hit = mand(hit, mfrom_bits(bits));
     vm back = mandn(hit, front);
     front = mand(hit, front);
     if (occ || !many(hit))
