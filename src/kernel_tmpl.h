@@ -4,8 +4,9 @@
  *   KFN(name)  the name with this instantiation's suffix (e.g. name_avx2_8)
  *   VW         lanes per vector
  * It defines KFN(block), the kernel for one vector of rays, and the flag-specialised
- * packet and stream drivers with their lookup tables KFN(isect_table), KFN(occ_table),
- * KFN(isect_stream_table) and KFN(occ_stream_table).
+ * packet and stream drivers with their lookup tables: KFN(isect1_table) and
+ * KFN(occ1_table) for packets of one vector, KFN(isect_table) and KFN(occ_table) for
+ * packets of several, KFN(isect_stream_table) and KFN(occ_stream_table); KFN(vw) = VW.
  *
  * The math is DESIGN.md section 2. Coordinates are cylinder-relative: w = o - c is
  * formed exactly as a two-term sum, then the origin is moved along the ray to its
@@ -64,8 +65,8 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
     const int fast = (FL & CYLRAY_FAST) != 0;
     const vf zero = vzero(), one = vset1(1.0f), inf = vset1(INFINITY);
 
-    /* An aligned cylinder comes with its coordinates already renamed by the entry
-     * points (cylray_rays_renamed_), so that its axis is the third one. */
+    /* An aligned cylinder comes with its coordinates already renamed by the packet and
+     * stream drivers (cylray_internal.h), so that its axis is the third one. */
     vf ox = vloadu(R->ox + i), oy = vloadu(R->oy + i), oz = vloadu(R->oz + i);
     vf dx = vloadu(R->dx + i), dy = vloadu(R->dy + i), dz = vloadu(R->dz + i);
 
