@@ -72,58 +72,51 @@ static inline vf KFN(dop_x)(vf a, vf b, vf c, vf d)
 }
 #define vdop_x(a, b, c, d) KFN(dop_x)(a, b, c, d)
 #else
-/* No FMA: the products whose rounding matters (the origin shift and the cross
- * products) are formed in double, where a product of two floats is exact. */
+/* No FMA: the products whose rounding matters (the origin shift, the cross products,
+ * the discriminant, C) are formed in double, where a product of two floats is exact. */
 #define vfma(a, b, c) vadd(vmul(a, b), c)
 #define vfms(a, b, c) vsub(vmul(a, b), c)
 #define vfnma(a, b, c) vsub(c, vmul(a, b))
+/* Each is one expression E(H) in the double lanes H(x) of its operands, evaluated for
+ * lanes 0-1 and 2-3 and rounded to float once. */
+#define VLO_(x) _mm_cvtps_pd(x)
+#define VHI_(x) _mm_cvtps_pd(_mm_movehl_ps(x, x))
+#define VIN_DOUBLE_(E) _mm_movelh_ps(_mm_cvtpd_ps(E(VLO_)), _mm_cvtpd_ps(E(VHI_)))
 static inline __m128 KFN(fma_x)(__m128 a, __m128 b, __m128 c)
 {
-    __m128d lo = _mm_add_pd(_mm_mul_pd(_mm_cvtps_pd(a), _mm_cvtps_pd(b)), _mm_cvtps_pd(c));
-    __m128d hi = _mm_add_pd(_mm_mul_pd(_mm_cvtps_pd(_mm_movehl_ps(a, a)),
-                                       _mm_cvtps_pd(_mm_movehl_ps(b, b))),
-                            _mm_cvtps_pd(_mm_movehl_ps(c, c)));
-    return _mm_movelh_ps(_mm_cvtpd_ps(lo), _mm_cvtpd_ps(hi));
+#define E_(H) _mm_add_pd(_mm_mul_pd(H(a), H(b)), H(c))
+    return VIN_DOUBLE_(E_);
+#undef E_
 }
-/* a*b + (ch + cl) rounded once: the two-term sum and the product are exact in double. */
+/* a*b + (ch + cl): the two-term sum and the product are exact in double. */
 static inline __m128 KFN(fma_x2)(__m128 a, __m128 b, __m128 ch, __m128 cl)
 {
-    __m128d lo = _mm_add_pd(_mm_mul_pd(_mm_cvtps_pd(a), _mm_cvtps_pd(b)),
-                            _mm_add_pd(_mm_cvtps_pd(ch), _mm_cvtps_pd(cl)));
-    __m128d hi = _mm_add_pd(_mm_mul_pd(_mm_cvtps_pd(_mm_movehl_ps(a, a)),
-                                       _mm_cvtps_pd(_mm_movehl_ps(b, b))),
-                            _mm_add_pd(_mm_cvtps_pd(_mm_movehl_ps(ch, ch)),
-                                       _mm_cvtps_pd(_mm_movehl_ps(cl, cl))));
-    return _mm_movelh_ps(_mm_cvtpd_ps(lo), _mm_cvtpd_ps(hi));
+#define E_(H) _mm_add_pd(_mm_mul_pd(H(a), H(b)), _mm_add_pd(H(ch), H(cl)))
+    return VIN_DOUBLE_(E_);
+#undef E_
 }
-static inline __m128 KFN(dop_x)(__m128 a, __m128 b, __m128 c, __m128 d)
-{
-    __m128d lo = _mm_sub_pd(_mm_mul_pd(_mm_cvtps_pd(a), _mm_cvtps_pd(b)),
-                            _mm_mul_pd(_mm_cvtps_pd(c), _mm_cvtps_pd(d)));
-    __m128d hi = _mm_sub_pd(_mm_mul_pd(_mm_cvtps_pd(_mm_movehl_ps(a, a)),
-                                       _mm_cvtps_pd(_mm_movehl_ps(b, b))),
-                            _mm_mul_pd(_mm_cvtps_pd(_mm_movehl_ps(c, c)),
-                                       _mm_cvtps_pd(_mm_movehl_ps(d, d))));
-    return _mm_movelh_ps(_mm_cvtpd_ps(lo), _mm_cvtpd_ps(hi));
-}
-#define vfma_x(a, b, c) KFN(fma_x)(a, b, c)
-#define vfma_x2(a, b, ch, cl) KFN(fma_x2)(a, b, ch, cl)
-/* |(a, b, c)|^2 - k rounded once: C, where the shifted origin lies near the surface,
- * is a difference of two near numbers that only an exact sum of squares keeps. */
+/* |(a, b, c)|^2 - k: C, where the shifted origin lies near the surface, is a
+ * difference of two near numbers that only an exact sum of squares keeps. */
 static inline __m128 KFN(sumsq_x)(__m128 a, __m128 b, __m128 c, __m128 k)
 {
-#define LO_(x) _mm_cvtps_pd(x)
-#define HI_(x) _mm_cvtps_pd(_mm_movehl_ps(x, x))
-#define SQ3_(H)                                                                          \
+#define E_(H)                                                                            \
     _mm_sub_pd(_mm_add_pd(_mm_add_pd(_mm_mul_pd(H(a), H(a)), _mm_mul_pd(H(b), H(b))),      \
                           _mm_mul_pd(H(c), H(c))),                                       \
                H(k))
-    __m128d lo = SQ3_(LO_), hi = SQ3_(HI_);
-#undef LO_
-#undef HI_
-#undef SQ3_
-    return _mm_movelh_ps(_mm_cvtpd_ps(lo), _mm_cvtpd_ps(hi));
+    return VIN_DOUBLE_(E_);
+#undef E_
 }
+static inline __m128 KFN(dop_x)(__m128 a, __m128 b, __m128 c, __m128 d)
+{
+#define E_(H) _mm_sub_pd(_mm_mul_pd(H(a), H(b)), _mm_mul_pd(H(c), H(d)))
+    return VIN_DOUBLE_(E_);
+#undef E_
+}
+#undef VLO_
+#undef VHI_
+#undef VIN_DOUBLE_
+#define vfma_x(a, b, c) KFN(fma_x)(a, b, c)
+#define vfma_x2(a, b, ch, cl) KFN(fma_x2)(a, b, ch, cl)
 #define vsumsq_x(a, b, c, k) KFN(sumsq_x)(a, b, c, k)
 #define vdop_x(a, b, c, d) KFN(dop_x)(a, b, c, d)
 #endif
