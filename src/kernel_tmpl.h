@@ -341,11 +341,13 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
             /* Divided by its largest component first, so that a length whose square
              * underflows or overflows still normalises. */
             vf m = vmax(vabs(nx), vmax(vabs(ny), vabs(nz)));
-            vm lost = mand(off, veq(m, zero));
+            vm lost = mandn(off, mand(vgt(m, zero), vlt(m, inf)));
             if (many(lost)) {
                 /* A hit point that rounds onto the axis (a radius far below the
-                 * coordinates' ulp) has no direction of its own: the side then faces
-                 * the ray, along -d_perp (v x e = v.v d_perp) on entry. */
+                 * coordinates' ulp), or one so far from it that the offset is not
+                 * finite (an origin far beyond the documented 2^62), has no direction
+                 * of its own: the side then faces the ray, along -d_perp
+                 * (v x e = v.v d_perp) on entry. */
                 vf ux = dx, uy = dy, uz = zero;
                 if (!aligned) {
                     ux = vfms(vy, ez, vmul(vz, ey));
@@ -357,10 +359,13 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
                 nz = vsel(lost, vsel(front, vneg(uz), uz), nz);
                 m = vmax(vabs(nx), vmax(vabs(ny), vabs(nz)));
             }
-            vf r = vdiv(one, m);
-            vf sx = vmul(nx, r), sy = vmul(ny, r), sz = vmul(nz, r);
-            vf k = vdiv(r, vsqrt(KDOT(sx, sy, sz, sx, sy, sz)));
-            corr = vsel(mand(off, vgt(m, zero)), k, corr);
+            /* n / m by division: 1 / m overflows where m is subnormal. */
+            vf sx = vdiv(nx, m), sy = vdiv(ny, m), sz = vdiv(nz, m);
+            vf k = vdiv(one, vsqrt(KDOT(sx, sy, sz, sx, sy, sz)));
+            vm ok = mand(off, mand(vgt(m, zero), vlt(m, inf)));
+            nx = vsel(ok, vmul(sx, k), nx), ny = vsel(ok, vmul(sy, k), ny);
+            nz = vsel(ok, vmul(sz, k), nz);
+            corr = vsel(ok, one, corr);
         }
         if (ff)
             corr = vsel(back, vneg(corr), corr);
