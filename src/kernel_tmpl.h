@@ -292,10 +292,14 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
         vf tr2 = vadd(tr, dt);
         vf T2 = vadd(s, tr2);
         /* The polish point carries a rounding error relative to its own distance from
-         * c: it only helps where that is not much beyond the shifted origin's. */
+         * c: it only helps where that is not much beyond the shifted origin's. And the
+         * small root dt is a correction only while the other one, q2 / A, lies well
+         * beyond it: near a tangency the two merge (or, with D2 clamped, dt is a
+         * Newton step on a flat quadratic), and the first root is as good as any. */
         vf qq = KDOT(qx, qy, qz, qx, qy, qz);
         vf near = vmul(vset1(4.0f), vmax(KDOT(px, py, pz, px, py, pz), vset1(P->rr)));
-        vm keep = mand(mand(on_side, vle(qq, near)),
+        vm apart = vle(vmul(vabs(dt), vmul(A, vset1(4.0f))), vabs(q2));
+        vm keep = mand(mand(on_side, mand(vle(qq, near), apart)),
                        mand(mand(vge(T2, tmin), vle(T2, tmax)), vlt(vabs(dt), inf)));
         if (kind == CYLRAY_KIND_OPEN)
             keep = mand(keep, vle(vabs(vfma(tr2, dv, z0)), vset1(P->h_v)));

@@ -37,6 +37,15 @@ static const regress_case table[] = {
       {-0x1.62d9acp-1f, -0x1.f7cc4ep-2f, -0x1.0dc35cp-1f}, 0x1.77271p+12f, 0x1.5410dep+13f, 0},
      {-0x1.bf1ffcp+15f, -0x1.3b5bfp+15f, 0x1.e1626p+14f},
      {-0x1.2d7592p-1f, -0x1.849a34p-1f, -0x1.1ca304p-2f}, 0, I},
+    /* Found by libFuzzer on kernel f93de4d (SSE4.1, which hit where the others missed,
+     * as the band allows): the line grazes a radius-2^-55 cylinder, the polish point's
+     * discriminant clamps to 0 and the "small root" was a Newton step on a flat
+     * quadratic, moving t from 7.3e-4 to 2.2e-2 (a side hit 10.6 from the axis). */
+    {"refine, grazing a radius-2^-55 cylinder",
+     {{0x1.f4p+9f, -0x1.f4p+9f, 0x1.f4p+8f}, {-0x1.91999ap-3f, 0x1.ccccccp-1f, 0x1.99999ap-4f},
+      0x1.ae14ep-56f, 0x1.cp-9f, CAP},
+     {0x1.f4p+9f, -0x1.f4p+9f, 0x1.f46p+8f}, {0x1.e56e6ep-5f, -0x1.167e96p-2f, -0x1.fffffcp+8f},
+     0, I},
     /* Float-exact hand cases (R = 1, H = 2 along z unless said). */
     {"exactly through the rim, entering", {{0, 0, 0}, {0, 0, 1}, 1, 2, CAP}, {-2, 0, 3},
      {1, 0, -1}, 0, I},
