@@ -18,6 +18,9 @@
 #define CYLRAY_KF_OCCLUDED 0x100u
 #define CYLRAY_KF_ALIGNED 0x200u
 #define CYLRAY_KF_KIND_SHIFT 10
+#define CYLRAY_KF_SCALED 0x1000u /* the rare-lane instance: d scaled to near unit length */
+/* What KFN(block) returns for a vector the rare instance must do (no lane is 31) */
+#define CYLRAY_RARE_ 0x80000000u
 
 /* The kernel tables are indexed by the cylinder's variant (its kind, plus 3 when the
  * axis is a coordinate axis) and the flags that select a kernel, packed into 4 bits;
@@ -44,6 +47,7 @@ static inline int cylray_prepared_ok_(const cylray_prepared *p)
 
 #if defined(__GNUC__) || defined(__clang__)
 #define CYLRAY_INLINE static inline __attribute__((always_inline))
+#define CYLRAY_NOINLINE static __attribute__((noinline, cold))
 /* Makes the compiler read memory again after this point instead of keeping what it
  * read before in registers (or in spill slots). */
 #define CYLRAY_REREAD() __asm__ volatile("" ::: "memory")
@@ -52,6 +56,7 @@ static inline int cylray_prepared_ok_(const cylray_prepared *p)
 #define CYLRAY_CTZ(x) ((size_t)__builtin_ctz(x))
 #else
 #define CYLRAY_INLINE static inline
+#define CYLRAY_NOINLINE static
 #define CYLRAY_REREAD() ((void)0)
 #define CYLRAY_MAYBE_UNUSED
 static inline unsigned CYLRAY_POPCOUNT(unsigned x)

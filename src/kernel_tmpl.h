@@ -56,6 +56,7 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
                                   const cylray_hits *H, size_t i, uint32_t bits,
                                   unsigned ff, const unsigned FL)
 {
+    const int scaled = (FL & CYLRAY_KF_SCALED) != 0;
     const unsigned kind = (FL >> CYLRAY_KF_KIND_SHIFT) & 3u;
     const int aligned = (FL & CYLRAY_KF_ALIGNED) != 0;
     const int occ = (FL & CYLRAY_KF_OCCLUDED) != 0;
@@ -70,13 +71,35 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
     vf ox = vloadu(R->ox + i), oy = vloadu(R->oy + i), oz = vloadu(R->oz + i);
     vf dx = vloadu(R->dx + i), dy = vloadu(R->dy + i), dz = vloadu(R->dz + i);
 
-    /* A zero, subnormal-squared or overflowing direction never hits. An Inf or NaN
-     * anywhere else turns C or D into NaN below, which takes the lane out there.
-     * Inactive lanes are computed like the others (their garbage cannot disturb a
-     * lane) and taken out where the hits are decided. */
+    /* An Inf or NaN anywhere but in d turns C or D into NaN below, which takes the
+     * lane out there. Inactive lanes are computed like the others (their garbage
+     * cannot disturb a lane) and taken out where the hits are decided. */
     vf A = aligned ? vfma(dx, dx, vmul(dy, dy)) : zero; /* the side's |d_perp|^2 */
     vf dd = aligned ? vfma(dz, dz, A) : KDOT(dx, dy, dz, dx, dy, dz);
-    vm act = mand(vgt(dd, zero), vlt(dd, inf));
+    vm act = mand(vge(dd, vset1(0x1p-40f)), vle(dd, vset1(0x1p40f)));
+    /* A direction far from unit length makes A, D and their products under- or
+     * overflow (|d| = 2^-56 loses a tiny radius, 2^64 overflows d.d). A vector with
+     * such an active lane (or a bad one) goes to the rare instance, where every lane
+     * takes d times an exact power of two m, so that its largest component lies in
+     * [2^-29, 2^20]: the line is the same, and t = m t'. Everything below works in t';
+     * only T, which meets tmin and tmax, is scaled back. A zero, infinite or NaN
+     * direction never hits. */
+    vf tscale = one;
+    if (scaled) {
+        vf M = vmax(vabs(dx), vmax(vabs(dy), vabs(dz)));
+        tscale = vsel(vlt(M, vset1(0x1p-20f)), vset1(0x1p40f), tscale);
+        tscale = vsel(vlt(M, vset1(0x1p-60f)), vset1(0x1p80f), tscale);
+        tscale = vsel(vlt(M, vset1(0x1p-100f)), vset1(0x1p120f), tscale);
+        tscale = vsel(vgt(M, vset1(0x1p20f)), vset1(0x1p-40f), tscale);
+        tscale = vsel(vgt(M, vset1(0x1p60f)), vset1(0x1p-80f), tscale);
+        tscale = vsel(vgt(M, vset1(0x1p100f)), vset1(0x1p-120f), tscale);
+        dx = vmul(dx, tscale), dy = vmul(dy, tscale), dz = vmul(dz, tscale);
+        A = aligned ? vfma(dx, dx, vmul(dy, dy)) : zero;
+        dd = aligned ? vfma(dz, dz, A) : KDOT(dx, dy, dz, dx, dy, dz);
+        act = mand(mand(vgt(dd, zero), vlt(dd, inf)), vlt(M, inf));
+    } else if ((mbits(act) & bits) != bits) {
+        return CYLRAY_RARE_; /* the driver calls KFN(block_rare) */
+    }
 
     const float *const c3 = aligned ? P->cr : P->c;
     vf cx = vset1(c3[0]), cy = vset1(c3[1]), cz = vset1(c3[2]);
@@ -187,12 +210,31 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
     if (kind == CYLRAY_KIND_CAPPED ? !many(mor(side, inpar)) : !many(side))
         return 0;
 
-    vf sq = fast ? vmul(D, vrsqrt_fast(vmax(D, vset1(1e-37f)))) : vsqrt(D);
+    /* The estimates see subnormal inputs as zero: below 2^-100 (rare where the
+     * coordinates are near 1, and D = 0 at a tangency) the exact operation serves. */
+    const vf tiny = vset1(0x1p-100f);
+    vf sq;
+    if (fast) {
+        sq = vmul(D, vrsqrt_fast(vmax(D, tiny)));
+        vm small = mand(side, vlt(D, tiny));
+        if (many(small))
+            sq = vsel(small, vsqrt(D), sq);
+    } else {
+        sq = vsqrt(D);
+    }
     if (!aligned) /* |v| = 1 there */
         sq = vmul(sq, vset1(P->sqrt_vv));
     vf q = vadd(nB, vxorsign(sq, nB)); /* -(B + sign(B) sqrt(disc)); sq >= 0 */
     vf r1 = fast ? vmul(q, vrcp_fast(A)) : vdiv(q, A);
-    vf r2 = fast ? vmul(C, vrcp_fast(q)) : vdiv(C, q);
+    vf r2;
+    if (fast) {
+        r2 = vmul(C, vrcp_fast(q));
+        vm small = mand(side, vlt(vabs(q), tiny));
+        if (many(small))
+            r2 = vsel(small, vdiv(C, q), r2);
+    } else {
+        r2 = vdiv(C, q);
+    }
     r2 = vsel(veq(q, zero), r1, r2);
     vf tn = vmin(r1, r2), tf = vmax(r1, r2);
 
@@ -246,6 +288,8 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
     const vf tmin = vmax(vset1(-FLT_MAX), vloadu(R->tmin + i)); /* a NaN bound stays */
     const vf tmax = vmin(vset1(FLT_MAX), vloadu(R->tmax + i));
     vf T_in = vadd(s, t_in), T_out = vadd(s, t_out);
+    if (scaled)
+        T_in = vmul(T_in, tscale), T_out = vmul(T_out, tscale);
     vm front = mand(ok_in, vge(T_in, tmin));
     vm cand = cull ? front : mor(front, ok_out);
     vf tr = vsel(front, t_in, t_out); /* relative to the shifted origin */
@@ -291,6 +335,8 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
         vf dt = vdiv(C2, q2);
         vf tr2 = vadd(tr, dt);
         vf T2 = vadd(s, tr2);
+        if (scaled)
+            T2 = vmul(T2, tscale);
         /* The polish point carries a rounding error relative to its own distance from
          * c: it only helps where that is not much beyond the shifted origin's. And the
          * small root dt is a correction only while the other one, q2 / A, lies well
@@ -380,6 +426,31 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
     return mbits(hit);
 }
 
+static const cylray_hits KFN(no_hits) = {NULL, NULL, NULL, NULL, NULL}; /* occlusion */
+
+/* The rare instance, one per ISA and width for every kind and flag set: a vector with
+ * an active lane whose direction is far from unit length is rare, and the branches on
+ * FL here cost less than 48 more specialised copies would. The drivers call it when
+ * KFN(block) returns CYLRAY_RARE_, rather than KFN(block) itself: a call there would
+ * make the views escape, and every vector would pay for storing them. */
+CYLRAY_NOINLINE uint32_t KFN(block_rare)(const cylray_prepared *P, const cylray_rays *R,
+                                         const cylray_hits *H, size_t i, uint32_t bits,
+                                         unsigned ff, unsigned FL)
+{
+    return KFN(block)(P, R, H, i, bits, ff, FL | CYLRAY_KF_SCALED);
+}
+
+/* The same for lanes [b, b + VW) of a packet of n, given as the packet structs. */
+CYLRAY_NOINLINE uint32_t KFN(packet_rare)(const cylray_prepared *P, float *ray, float *hit,
+                                          size_t n, size_t b, uint32_t bits, unsigned ff,
+                                          unsigned FL)
+{
+    const int aligned = (FL & CYLRAY_KF_ALIGNED) != 0, occ = (FL & CYLRAY_KF_OCCLUDED) != 0;
+    const cylray_rays R = cylray_packet_rays_(P, ray, n, aligned);
+    const cylray_hits H = occ ? KFN(no_hits) : cylray_packet_hits_(P, hit, n, aligned);
+    return KFN(block)(P, &R, &H, b, bits, ff, FL | CYLRAY_KF_SCALED);
+}
+
 /* A packet given as the packet structs themselves: field f of the rays at ray + f n,
  * of the hits at hit + f n. The views are built here, where they stay in registers,
  * rather than by the caller (a struct of pointers passed through memory costs a store
@@ -387,7 +458,6 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
  * and nothing else to keep in registers; packet any multiple of VW up to 32. (packet
  * with n = VW folds to nearly the same code, but a rejected AVX2 packet then takes 12
  * instructions and 6 % more time.) */
-static const cylray_hits KFN(no_hits) = {NULL, NULL, NULL, NULL, NULL}; /* occlusion */
 
 CYLRAY_INLINE uint32_t KFN(packet1)(const cylray_prepared *P, float *ray, float *hit,
                                     uint32_t active, unsigned ff, const unsigned FL)
@@ -395,7 +465,8 @@ CYLRAY_INLINE uint32_t KFN(packet1)(const cylray_prepared *P, float *ray, float 
     const int aligned = (FL & CYLRAY_KF_ALIGNED) != 0, occ = (FL & CYLRAY_KF_OCCLUDED) != 0;
     const cylray_rays R = cylray_packet_rays_(P, ray, VW, aligned);
     const cylray_hits H = occ ? KFN(no_hits) : cylray_packet_hits_(P, hit, VW, aligned);
-    return KFN(block)(P, &R, &H, 0, active, ff, FL);
+    uint32_t m = KFN(block)(P, &R, &H, 0, active, ff, FL);
+    return m == CYLRAY_RARE_ ? KFN(packet_rare)(P, ray, hit, VW, 0, active, ff, FL) : m;
 }
 
 CYLRAY_INLINE uint32_t KFN(packet)(const cylray_prepared *P, float *ray, float *hit, size_t n,
@@ -407,8 +478,12 @@ CYLRAY_INLINE uint32_t KFN(packet)(const cylray_prepared *P, float *ray, float *
     uint32_t hits = 0;
     for (size_t b = 0; b < n; b += VW) {
         uint32_t a = (active >> b) & VFULL;
-        if (a)
-            hits |= KFN(block)(P, &R, &H, b, a, ff, FL) << b;
+        if (a) {
+            uint32_t m = KFN(block)(P, &R, &H, b, a, ff, FL);
+            if (m == CYLRAY_RARE_)
+                m = KFN(packet_rare)(P, ray, hit, n, b, a, ff, FL);
+            hits |= m << b;
+        }
     }
     return hits;
 }
@@ -429,6 +504,8 @@ CYLRAY_INLINE size_t KFN(stream)(const cylray_prepared *P, const cylray_rays *R0
     size_t count = 0, i = 0;
     for (; i + VW <= n; i += VW) {
         uint32_t m = KFN(block)(P, R, H, i, VFULL, ff, FL);
+        if (m == CYLRAY_RARE_)
+            m = KFN(block_rare)(P, R, H, i, VFULL, ff, FL);
         count += CYLRAY_POPCOUNT(m);
         if (occ)
             for (; m; m &= m - 1)
@@ -444,7 +521,10 @@ CYLRAY_INLINE size_t KFN(stream)(const cylray_prepared *P, const cylray_rays *R0
                 in[f][j] = src[f][i + j];
         cylray_rays lr = {in[0], in[1], in[2], in[3], in[4], in[5], in[6], in[7]};
         cylray_hits lh = {out[0], out[1], out[2], out[3], part};
-        uint32_t m = KFN(block)(P, &lr, &lh, 0, (uint32_t)((1u << rest) - 1u), ff, FL);
+        const uint32_t bits = (uint32_t)((1u << rest) - 1u);
+        uint32_t m = KFN(block)(P, &lr, &lh, 0, bits, ff, FL);
+        if (m == CYLRAY_RARE_)
+            m = KFN(block_rare)(P, &lr, &lh, 0, bits, ff, FL);
         count += CYLRAY_POPCOUNT(m);
         for (; m; m &= m - 1) {
             size_t j = CYLRAY_CTZ(m);

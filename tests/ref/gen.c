@@ -445,6 +445,23 @@ static void gen_case(int cat, cylgen_rng *r, cylgen_case *c)
         else
             ray_towards(r, &f, f.R * uni(r, 2, 20), 1.3, c);
         break;
+    case CYLGEN_SCALED: {
+        /* The direction times 2^k, |k| <= 100, and the interval over it: the same
+         * line and the same hits, at t 2^-k times as large. */
+        const double u = cylgen_uniform(r);
+        if (u < 0.25)
+            gen_parallel(r, &f, c);
+        else if (u < 0.5)
+            gen_grazing(r, &f, c);
+        else
+            ray_towards(r, &f, f.R * uni(r, 2, 20), 1.3, c);
+        const int k = (int)floor(uni(r, -100, 101));
+        for (int j = 0; j < 3; j++)
+            c->d[j] = (float)ldexp(c->d[j], k);
+        c->tmin = (float)ldexp(c->tmin, -k);
+        c->tmax = (float)ldexp(c->tmax, -k);
+        break;
+    }
     case CYLGEN_ORDINARY:
     default:
         ray_towards(r, &f, f.R * uni(r, 2, 20), 1.3, c);
@@ -456,7 +473,7 @@ static void gen_case(int cat, cylgen_rng *r, cylgen_case *c)
 
 static const char *const names[CYLGEN_COUNT] = {
     "ordinary", "far", "parallel", "grazing", "surface", "inside",
-    "rim", "tiny", "huge", "unnormalized", "infinite",
+    "rim", "tiny", "huge", "unnormalized", "infinite", "scaled",
 };
 static const char *const descriptions[CYLGEN_COUNT] = {
     "random cylinder, origin 2-20 R away, aimed near the solid",
@@ -470,6 +487,7 @@ static const char *const descriptions[CYLGEN_COUNT] = {
     "radius 1e3..1e5, center at 1e4..1e5, origin 2-20 R away",
     "|d| 1e-3..1e3",
     "infinite cylinders, outside and inside origins",
+    "ordinary, parallel or grazing, d times 2^k (|k| <= 100), the interval over it",
 };
 
 int cylgen_category_count(void)

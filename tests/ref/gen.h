@@ -30,6 +30,7 @@ enum {
     CYLGEN_HUGE,         /* "huge": radius 1e3..1e5, center around 1e4..1e5, from outside */
     CYLGEN_UNNORMALIZED, /* "unnormalized": |d| 1e-3..1e3 */
     CYLGEN_INFINITE,     /* "infinite": half_height = INFINITY, outside and inside rays */
+    CYLGEN_SCALED,       /* "scaled": ordinary, parallel or grazing, |d| 2^-100..2^100 */
     CYLGEN_COUNT
 };
 

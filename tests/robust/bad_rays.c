@@ -141,20 +141,16 @@ static void put(gbatch *b, size_t i, const float r[G_NFIELD])
 }
 
 /* The range the kernel works in. cylray_prepare refuses cylinders with coordinates
- * beyond 2^62 (src/prepare.c); a ray whose direction has no component of at least
- * 2^-62, or one beyond 2^62, or whose origin is 2^62 from the center, overflows or
- * underflows the float products (|d|^2, |d|^2 R^2). Such a ray may miss: cylray.h does
- * not promise more (yet). It must still never hit falsely. Measured: hits are found
- * for |d| from 2^-63 to 2^62 on every x86 path. */
-static int in_range(const cylray_cylinder *c, const float r[G_NFIELD])
+ * beyond 2^62 (src/prepare.c); an origin 2^62 from the center overflows the float
+ * products. Such a ray may miss: cylray.h does not promise more. Any finite nonzero
+ * direction is in range (the kernels scale it by a power of two), as long as the
+ * answer's t is a float. Out of range, a ray must still never hit falsely. */
+static int in_range(const cylray_cylinder *c, const float r[G_NFIELD], double exact_t)
 {
-    double dmax = 0;
-    for (int k = 0; k < 3; k++) {
-        dmax = fmax(dmax, fabs((double)r[G_DX + k]));
+    for (int k = 0; k < 3; k++)
         if (!(fabs((double)r[G_OX + k] - c->center[k]) <= 0x1p62))
             return 0;
-    }
-    return dmax >= 0x1p-62 && dmax <= 0x1p62;
+    return fabs(exact_t) <= FLT_MAX;
 }
 
 /* Judges the damaged lane j of r. */
@@ -190,7 +186,7 @@ static void judge_bad(const cylray_cylinder *cyl, const bad *d, const gresult *r
         double beyond = 0;
         int verdict = cylref_judge(b, hit, r->part[j], r->t[j], &beyond);
         /* out of range, a miss is allowed; a hit must still be right */
-        if (verdict == 1 && !hit && !in_range(cyl, d->ray))
+        if (verdict == 1 && !hit && !in_range(cyl, d->ray, b->exact.t))
             verdict = 0;
         CHECK(verdict == 0,
               "%s lane %zu [%s]: %s (t %a part %#x), exact: %s at %.17g part %#x (%s)", ctx, j,
