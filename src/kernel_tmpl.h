@@ -81,9 +81,8 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
      * overflow (|d| = 2^-56 loses a tiny radius, 2^64 overflows d.d). A vector with
      * such an active lane (or a bad one) goes to the rare instance, where every lane
      * takes d times an exact power of two m, so that its largest component lies in
-     * [2^-29, 2^20]: the line is the same, and t = m t'. Everything below works in t';
-     * only T, which meets tmin and tmax, is scaled back. A zero, infinite or NaN
-     * direction never hits. */
+     * [2^-29, 2^20]: the line is the same, and t = m t'. Everything below works in t'
+     * but the range test and T itself. A zero, infinite or NaN direction never hits. */
     vf tscale = one;
     if (scaled) {
         vf M = vmax(vabs(dx), vmax(vabs(dy), vabs(dz)));
@@ -285,11 +284,22 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
      * one range test for whichever it is. Rounding s + t is monotonic, so the entry
      * test decides correctly which of the two can be the first in [tmin, tmax]. The
      * bounds are clamped to finite values, so that no infinite t ever hits. */
-    const vf tmin = vmax(vset1(-FLT_MAX), vloadu(R->tmin + i)); /* a NaN bound stays */
-    const vf tmax = vmin(vset1(FLT_MAX), vloadu(R->tmax + i));
+    vf tmin = vmax(vset1(-FLT_MAX), vloadu(R->tmin + i)); /* a NaN bound stays */
+    vf tmax = vmin(vset1(FLT_MAX), vloadu(R->tmax + i));
     vf T_in = vadd(s, t_in), T_out = vadd(s, t_out);
-    if (scaled)
-        T_in = vmul(T_in, tscale), T_out = vmul(T_out, tscale);
+    /* With a scaled direction the range test is made where no scaling rounds: a
+     * shrunk d (m < 1) moves the bounds to t' (exact, or overflowing as it should), a
+     * grown one moves T to t (the same); tcu takes t' there, tout takes that to t. */
+    vf tcu = one, tout = one;
+    if (scaled) {
+        vm shrunk = vlt(tscale, one);
+        vf rs = vdiv(one, tscale);
+        tmin = vsel(shrunk, vmul(tmin, rs), tmin);
+        tmax = vsel(shrunk, vmul(tmax, rs), tmax);
+        tcu = vsel(shrunk, one, tscale);
+        tout = vsel(shrunk, tscale, one);
+        T_in = vmul(T_in, tcu), T_out = vmul(T_out, tcu);
+    }
     vm front = mand(ok_in, vge(T_in, tmin));
     vm cand = cull ? front : mor(front, ok_out);
     vf tr = vsel(front, t_in, t_out); /* relative to the shifted origin */
@@ -336,7 +346,7 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
         vf tr2 = vadd(tr, dt);
         vf T2 = vadd(s, tr2);
         if (scaled)
-            T2 = vmul(T2, tscale);
+            T2 = vmul(T2, tcu);
         /* The polish point carries a rounding error relative to its own distance from
          * c: it only helps where that is not much beyond the shifted origin's. And the
          * small root dt is a correction only while the other one, q2 / A, lies well
@@ -353,6 +363,8 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
         T = vsel(keep, T2, T);
     }
 
+    if (scaled)
+        T = vmul(T, tout);
     vstore_m(H->t + i, hit, T);
     vstore_m(R->tmax + i, hit, T);
     vstore_part_m(H->part + i, hit, part);

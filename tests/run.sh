@@ -14,20 +14,25 @@
 #            also built with libFuzzer coverage, so the fuzz step reuses this build
 #   aarch64  cross-compiled for AArch64 (NEON), gcc's ASan + UBSan, under qemu-user
 #   tsan     clang with ThreadSanitizer, the thread test only
-#   fuzz     libFuzzer on the asan build's target, a timed run (FUZZ_SECONDS, 60)
+#   fuzz     libFuzzer on the asan build's target: FUZZ_RUNS inputs (20000) from seed
+#            FUZZ_SEED (1), so that a commit's result does not depend on the clock;
+#            FUZZ_SECONDS (120) caps the time. FUZZ_SEED=0 seeds from the clock, and
+#            tests/fuzz/run-long.sh explores for as long as one likes.
 # Sanitizer and qemu configurations set CYLRAY_TEST_QUICK=1 so that heavy tests shrink.
 # Why asan and fuzz share a build: the kernels are stamped out in hundreds of flag
 # specialisations per ISA, and a sanitized build of them costs about ten CPU minutes;
 # one build serves both.
 #
 # Usage: tests/run.sh [config...]      e.g. tests/run.sh gcc clang
-# Environment: FUZZ_SECONDS (default 60); CI=true makes a configuration whose tools
-# cannot be installed count as failed instead of skipped.
+# Environment: FUZZ_RUNS, FUZZ_SEED, FUZZ_SECONDS (above); CI=true makes a
+# configuration whose tools cannot be installed count as failed instead of skipped.
 set -euo pipefail
 
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 ALL_CONFIGS=(gcc clang asan aarch64 tsan fuzz)
-FUZZ_SECONDS=${FUZZ_SECONDS:-60}
+FUZZ_SECONDS=${FUZZ_SECONDS:-120}
+FUZZ_RUNS=${FUZZ_RUNS:-20000}
+FUZZ_SEED=${FUZZ_SEED:-1}
 CI=${CI:-}
 
 # ---- which configurations -------------------------------------------------------
@@ -35,7 +40,7 @@ CONFIGS=()
 for a in "$@"; do
     case "$a" in
     -h | --help)
-        sed -n '2,27p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'
+        sed -n '2,28p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'
         exit 0
         ;;
     gcc | clang | asan | aarch64 | tsan | fuzz) CONFIGS+=("$a") ;;
@@ -314,9 +319,9 @@ config_fuzz() {
     local work=$dir/fuzz-corpus art=$dir/fuzz-artifacts/ log=build/test-fuzz.log
     mkdir -p "$work" "$art"
     san_env "detect_leaks=1:"
-    echo "   fuzzing for ${FUZZ_SECONDS}s (corpus $work, crashes to $art)"
-    if env "${TEST_ENV[@]}" "$dir/tests/fuzz/cylray_fuzz" -max_total_time="$FUZZ_SECONDS" \
-        -timeout=20 -max_len=1024 -print_final_stats=1 -artifact_prefix="$art" \
+    echo "   fuzzing: $FUZZ_RUNS inputs, seed $FUZZ_SEED, at most ${FUZZ_SECONDS}s (corpus $work, crashes to $art)"
+    if env "${TEST_ENV[@]}" "$dir/tests/fuzz/cylray_fuzz" -runs="$FUZZ_RUNS" -seed="$FUZZ_SEED" \
+        -max_total_time="$FUZZ_SECONDS" -timeout=20 -max_len=1024 -print_final_stats=1 -artifact_prefix="$art" \
         "$work" tests/fuzz/corpus >"$log" 2>&1; then
         grep -E '^cylray-fuzz: executions|stat::number_of_executed_units' "$log" | sed 's/^/   /'
         note fuzz 1 0 $(($(date +%s) - t0)) ""
@@ -337,7 +342,7 @@ for cfg in "${CONFIGS[@]}"; do
     asan) what="clang, ASan + UBSan (+ fuzzer coverage), CYLRAY_TEST_QUICK=1" ;;
     aarch64) what="aarch64 cross, NEON, ASan + UBSan under qemu-user, CYLRAY_TEST_QUICK=1" ;;
     tsan) what="clang, ThreadSanitizer, the thread test" ;;
-    fuzz) what="libFuzzer + ASan + UBSan on the asan build, ${FUZZ_SECONDS}s" ;;
+    fuzz) what="libFuzzer + ASan + UBSan on the asan build, $FUZZ_RUNS inputs from seed $FUZZ_SEED" ;;
     esac
     echo "== [$i/${#CONFIGS[@]}] $cfg: $what"
     "config_$cfg"

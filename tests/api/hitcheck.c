@@ -44,7 +44,10 @@ double hc_tolerance(const hc_cyl *g, const float o[3], const float d[3], float t
         w += ((double)o[k] - g->c[k]) * ((double)o[k] - g->c[k]);
         dd += (double)d[k] * d[k];
     }
-    return slack * 0x1p-18 * (sqrt(w) + fabs((double)t) * sqrt(dd) + g->R);
+    /* The last term: t is a float, and below 2^-126 its spacing is 2^-149, which a
+     * direction of 2^100 turns into a step of 2^-49 along the ray. */
+    return slack * 0x1p-18 * (sqrt(w) + fabs((double)t) * sqrt(dd) + g->R) +
+           sqrt(dd) * 0x1p-149;
 }
 
 #define WHY_(...) (snprintf(why, whylen, __VA_ARGS__), 1)
