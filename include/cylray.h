@@ -55,7 +55,8 @@ typedef struct CYLRAY_ALIGN(64) cylray_prepared {
     float nscale;      /* 1 / (R v.v): scales v x (p x v) to a unit normal */
     float vk[3];       /* v * nscale */
     float bound2;      /* squared radius of a bounding sphere, with a margin */
-    float radius, half_height;
+    float rr_d;        /* R^2 2^-2j, for the discriminant: j keeps A R^2 in range */
+    float g_s;         /* 2^-j, which scales g there */
     uint32_t kind;     /* CYLRAY_KIND_*: infinite, open tube, capped */
     uint32_t axis_id;  /* 0 general, 1..3: along +-x, +-y, +-z */
     uint32_t magic;    /* set by cylray_prepare; kernels reject anything else */
@@ -65,7 +66,7 @@ typedef struct CYLRAY_ALIGN(64) cylray_prepared {
     float vr;          /* along a coordinate axis: its sign (v there is (0, 0, vr)) */
     float cap_up, cap_down; /* along a coordinate axis: the parts at renamed z = +-H */
     uint8_t order[3];  /* the renamed coordinates: the j-th is the user's order[j] */
-    uint8_t variant;   /* kind, plus 3 along a coordinate axis: selects the kernels */
+    uint8_t variant;   /* kind, plus 3 along a coordinate axis, plus 6 with j != 0 */
 } cylray_prepared;
 
 /* Returns CYLRAY_OK, or CYLRAY_EINVAL (leaving *out untouched) for NaN or Inf

@@ -42,7 +42,8 @@ static inline unsigned cylray_occ_index_(unsigned kind, unsigned flags)
 static inline int cylray_prepared_ok_(const cylray_prepared *p)
 {
     return p != 0 && p->magic == CYLRAY_MAGIC && p->kind < CYLRAY_KIND_COUNT &&
-           p->variant == p->kind + (p->axis_id ? CYLRAY_KIND_COUNT : 0u);
+           p->variant == p->kind + (p->axis_id ? CYLRAY_KIND_COUNT
+                                    : p->g_s != 1.0f ? 2 * CYLRAY_KIND_COUNT : 0u);
 }
 
 #if defined(__GNUC__) || defined(__clang__)

@@ -18,6 +18,8 @@
         active &= (uint32_t)((1ull << n) - 1u);                                        \
         if (!active || !ray || !hit || !cylray_prepared_ok_(P))                        \
             return 0;                                                                  \
+        if (cylray_variant_(P) >= 2 * CYLRAY_KIND_COUNT)                              \
+            return KW_(packet_generic, KW##n)(P, ray->ox, hit->t, n, active, flags);    \
         const KW_(packet_fn, KW##n) *t = n == KW_(vw, KW##n) ? KW_(isect1_table, KW##n)   \
                                                             : KW_(isect_table, KW##n);   \
         return t[cylray_isect_index_(cylray_variant_(P), flags)](                     \
@@ -30,6 +32,9 @@
         if (!active || !ray || !cylray_prepared_ok_(P))                                \
             return 0;                                                                  \
         /* the occluded kernels read tmax and never write through this pointer */      \
+        if (cylray_variant_(P) >= 2 * CYLRAY_KIND_COUNT)                              \
+            return KW_(packet_generic, KW##n)(P, (float *)(uintptr_t)ray->ox, NULL, n,    \
+                                              active, flags);                         \
         const KW_(packet_fn, KW##n) *t = n == KW_(vw, KW##n) ? KW_(occ1_table, KW##n)     \
                                                             : KW_(occ_table, KW##n);     \
         return t[cylray_occ_index_(cylray_variant_(P), flags)](                       \
@@ -44,6 +49,8 @@ static size_t KI_(intersect_stream)(const cylray_prepared *P, const cylray_rays 
 {
     if (!n || !rays || !hits || !cylray_prepared_ok_(P))
         return 0;
+    if (cylray_variant_(P) >= 2 * CYLRAY_KIND_COUNT)
+        return KW_(stream_generic, KW16)(P, rays, hits, NULL, n, flags);
     return KW_(isect_stream_table, KW16)[cylray_isect_index_(cylray_variant_(P), flags)](
         P, rays, hits, NULL, n, flags & CYLRAY_FACE_FORWARD);
 }
@@ -53,6 +60,8 @@ static size_t KI_(occluded_stream)(const cylray_prepared *P, const cylray_rays *
 {
     if (!n || !rays || !occluded || !cylray_prepared_ok_(P))
         return 0;
+    if (cylray_variant_(P) >= 2 * CYLRAY_KIND_COUNT)
+        return KW_(stream_generic, KW16)(P, rays, NULL, occluded, n, flags);
     return KW_(occ_stream_table, KW16)[cylray_occ_index_(cylray_variant_(P), flags)](
         P, rays, NULL, occluded, n, 0);
 }

@@ -198,7 +198,13 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
         nB = vsel(slide, nB2, nB), C = vsel(slide, C2, C), g = vsel(slide, g2, g);
     }
     /* Lagrange's form of B^2 - A C, over v.v, with both products exact. */
-    vf D = vdop_x(A, vset1(P->rr), g, g);
+    vf D;
+    if (!scaled) { /* a radius in [2^-20, 2^21): j = 0 */
+        D = vdop_x(A, vset1(P->rr), g, g);
+    } else { /* scaled by 2^-2j (cylray_prepared.rr_d), and sqrt_vv has 2^j */
+        vf gd = vmul(g, vset1(P->g_s));
+        D = vdop_x(A, vset1(P->rr_d), gd, gd);
+    }
     act = mand(act, veq(vfma(C, zero, vmul(D, zero)), zero));
 
     /* A ray within about one ulp of the axis direction is parallel: it meets the side
@@ -221,8 +227,8 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
     } else {
         sq = vsqrt(D);
     }
-    if (!aligned) /* |v| = 1 there */
-        sq = vmul(sq, vset1(P->sqrt_vv));
+    if (!aligned) /* |v| = 1 there, and j = 0 */
+        sq = vmul(sq, vset1(scaled ? P->sqrt_vv / P->g_s : P->sqrt_vv));
     vf q = vadd(nB, vxorsign(sq, nB)); /* -(B + sign(B) sqrt(disc)); sq >= 0 */
     vf r1 = fast ? vmul(q, vrcp_fast(A)) : vdiv(q, A);
     vf r2;
@@ -463,6 +469,29 @@ CYLRAY_NOINLINE uint32_t KFN(packet_rare)(const cylray_prepared *P, float *ray, 
     return KFN(block)(P, &R, &H, b, bits, ff, FL | CYLRAY_KF_SCALED);
 }
 
+/* The drivers for a cylinder whose radius is far from 1 (variant >= 6: j != 0), which
+ * runs the rare instance throughout; the flags select its branches at run time. */
+static unsigned KFN(generic_fl)(const cylray_prepared *P, unsigned flags, int occ)
+{
+    return P->kind << CYLRAY_KF_KIND_SHIFT | (occ ? CYLRAY_KF_OCCLUDED : 0u) |
+           (flags & ((occ ? 0u : CYLRAY_NORMAL) | CYLRAY_CULL_BACK | CYLRAY_REFINE |
+                     CYLRAY_FAST));
+}
+
+CYLRAY_MAYBE_UNUSED CYLRAY_NOINLINE uint32_t KFN(packet_generic)(const cylray_prepared *P, float *ray, float *hit,
+                                             size_t n, uint32_t active, unsigned flags)
+{
+    const unsigned FL = KFN(generic_fl)(P, flags, hit == NULL);
+    const unsigned ff = flags & CYLRAY_FACE_FORWARD;
+    uint32_t hits = 0;
+    for (size_t b = 0; b < n; b += VW) {
+        uint32_t a = (active >> b) & VFULL;
+        if (a)
+            hits |= KFN(packet_rare)(P, ray, hit, n, b, a, ff, FL) << b;
+    }
+    return hits;
+}
+
 /* A packet given as the packet structs themselves: field f of the rays at ray + f n,
  * of the hits at hit + f n. The views are built here, where they stay in registers,
  * rather than by the caller (a struct of pointers passed through memory costs a store
@@ -555,6 +584,14 @@ CYLRAY_INLINE size_t KFN(stream)(const cylray_prepared *P, const cylray_rays *R0
         }
     }
     return count;
+}
+
+CYLRAY_MAYBE_UNUSED CYLRAY_NOINLINE size_t KFN(stream_generic)(const cylray_prepared *P, const cylray_rays *R,
+                                           const cylray_hits *H, uint8_t *occluded, size_t n,
+                                           unsigned flags)
+{
+    return KFN(stream)(P, R, H, occluded, n, flags & CYLRAY_FACE_FORWARD,
+                       KFN(generic_fl)(P, flags, occluded != NULL) | CYLRAY_KF_SCALED);
 }
 
 /* The specialisations: 16 intersect variants (normal, cull, refine, fast) and 8

@@ -2,6 +2,7 @@
 #include "cylray_internal.h"
 
 #include <float.h>
+#include <stdlib.h>
 #include <string.h>
 
 /* Magnitudes beyond 2^62 would overflow R^2 v.v and the products of the kernel, and
@@ -68,6 +69,12 @@ cylray_status cylray_prepare(cylray_prepared *out, const cylray_cylinder *in)
     p.inv_vv = (float)(1.0 / vv);
     p.rr = (float)(R * R);
     p.rr_vv = (float)(R * R * vv);
+    /* The discriminant A R^2 - g^2 is formed as (A R^2 - g^2) 2^-2j, with R 2^-j near 1
+     * when R is far from it, so that A R^2 neither underflows (a radius of 1e-16 and a
+     * near-parallel ray) nor overflows (a radius of 2^62 and |d| = 8). */
+    const int j = abs(ilogb(R)) > 20 ? ilogb(R) : 0;
+    p.rr_d = (float)ldexp(R * R, -2 * j);
+    p.g_s = (float)ldexp(1.0, -j);
     p.sqrt_vv = (float)sv;
     p.h_v = isfinite(H) ? (float)(H * sv) : INFINITY;
     p.nscale = (float)(1.0 / (R * vv));
@@ -76,12 +83,12 @@ cylray_status cylray_prepare(cylray_prepared *out, const cylray_cylinder *in)
     p.par_eps = (float)(vv * 0x1p-46);
     /* The margin covers the rounding of the shifted origin many times over. */
     p.bound2 = isfinite(H) ? (float)((R * R + H * H) * (1.0 + 0x1p-12)) : INFINITY;
-    p.radius = (float)R;
-    p.half_height = (float)H;
     p.kind = !isfinite(H) ? CYLRAY_KIND_INFINITE
              : (in->flags & CYLRAY_CAPPED) ? CYLRAY_KIND_CAPPED
                                           : CYLRAY_KIND_OPEN;
-    p.axis_id = zeros == 2 ? (a[0] != 0 ? 1u : a[1] != 0 ? 2u : 3u) : 0u;
+    /* Only the rare instance of the general kernel (variant >= 6) takes the scaled
+     * form; the others, and the coordinate-axis kernels, take R^2 as it is. */
+    p.axis_id = zeros == 2 && j == 0 ? (a[0] != 0 ? 1u : a[1] != 0 ? 2u : 3u) : 0u;
     /* The renaming of cylray_internal.h: along x, (x, y, z) is read as (y, z, x); along
      * y, as (z, x, y); so that the axis is the third coordinate. */
     for (unsigned j = 0; j < 3; j++)
@@ -93,7 +100,7 @@ cylray_status cylray_prepare(cylray_prepared *out, const cylray_cylinder *in)
         p.cap_up = p.vr > 0 ? CYLRAY_CAP_HI : CYLRAY_CAP_LO;
         p.cap_down = p.vr > 0 ? CYLRAY_CAP_LO : CYLRAY_CAP_HI;
     }
-    p.variant = (uint8_t)(p.kind + (p.axis_id ? CYLRAY_KIND_COUNT : 0u));
+    p.variant = (uint8_t)(p.kind + (p.axis_id ? CYLRAY_KIND_COUNT : j ? 2 * CYLRAY_KIND_COUNT : 0u));
     p.magic = CYLRAY_MAGIC;
     *out = p;
     return CYLRAY_OK;

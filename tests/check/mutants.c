@@ -73,7 +73,7 @@ static uint32_t mutate(uint32_t m, uint32_t active, size_t n, unsigned flags, fl
         case MUT_DROP:
         case MUT_RIM_DROP: {
             int drop = mutation == MUT_DROP ? hit_counter % 7 == 0 : 0;
-            if (mutation == MUT_RIM_DROP && p->half_height < INFINITY && (part[j] & 0xf) != 1)
+            if (mutation == MUT_RIM_DROP && p->h_v < INFINITY && (part[j] & 0xf) != 1)
                 drop = 1; /* a cap hit: on rim rays, about half of them */
             if (drop) {
                 memcpy(&t[j], &before_t[j], sizeof(float));
