@@ -240,7 +240,9 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
     } else {
         r2 = vdiv(C, q);
     }
-    r2 = vsel(veq(q, zero), r1, r2);
+    /* By construction q^2 >= A C. Where rounding of C (a point on the surface, or a
+     * tangent ray) breaks that, C / q is no root: the two coincide at q / A. */
+    r2 = vsel(mor(veq(q, zero), vlt(vmul(q, q), vmul(C, A))), r1, r2);
     vf tn = vmin(r1, r2), tf = vmax(r1, r2);
 
     /* Entry and exit, relative to the shifted origin, and which part each one is. */
