@@ -471,27 +471,13 @@ CYLRAY_NOINLINE uint32_t KFN(packet_rare)(const cylray_prepared *P, float *ray, 
     return KFN(block)(P, &R, &H, b, bits, ff, FL | CYLRAY_KF_SCALED);
 }
 
-/* The drivers for a cylinder whose radius is far from 1 (variant >= 6: j != 0), which
- * runs the rare instance throughout; the flags select its branches at run time. */
+/* A cylinder whose radius is far from 1 (variant >= 6: j != 0) runs the rare instance
+ * throughout, through the drivers below; the flags select its branches at run time. */
 static unsigned KFN(generic_fl)(const cylray_prepared *P, unsigned flags, int occ)
 {
     return P->kind << CYLRAY_KF_KIND_SHIFT | (occ ? CYLRAY_KF_OCCLUDED : 0u) |
            (flags & ((occ ? 0u : CYLRAY_NORMAL) | CYLRAY_CULL_BACK | CYLRAY_REFINE |
                      CYLRAY_FAST));
-}
-
-CYLRAY_MAYBE_UNUSED CYLRAY_NOINLINE uint32_t KFN(packet_generic)(const cylray_prepared *P, float *ray, float *hit,
-                                             size_t n, uint32_t active, unsigned flags)
-{
-    const unsigned FL = KFN(generic_fl)(P, flags, hit == NULL);
-    const unsigned ff = flags & CYLRAY_FACE_FORWARD;
-    uint32_t hits = 0;
-    for (size_t b = 0; b < n; b += VW) {
-        uint32_t a = (active >> b) & VFULL;
-        if (a)
-            hits |= KFN(packet_rare)(P, ray, hit, n, b, a, ff, FL) << b;
-    }
-    return hits;
 }
 
 /* A packet given as the packet structs themselves: field f of the rays at ray + f n,
@@ -588,9 +574,18 @@ CYLRAY_INLINE size_t KFN(stream)(const cylray_prepared *P, const cylray_rays *R0
     return count;
 }
 
-CYLRAY_MAYBE_UNUSED CYLRAY_NOINLINE size_t KFN(stream_generic)(const cylray_prepared *P, const cylray_rays *R,
-                                           const cylray_hits *H, uint8_t *occluded, size_t n,
-                                           unsigned flags)
+/* The entry points' drivers for a cylinder whose radius is far from 1 (variant >= 6). */
+CYLRAY_MAYBE_UNUSED CYLRAY_NOINLINE uint32_t
+KFN(packet_generic)(const cylray_prepared *P, float *ray, float *hit, size_t n,
+                    uint32_t active, unsigned flags)
+{
+    return KFN(packet)(P, ray, hit, n, active, flags & CYLRAY_FACE_FORWARD,
+                       KFN(generic_fl)(P, flags, hit == NULL) | CYLRAY_KF_SCALED);
+}
+
+CYLRAY_MAYBE_UNUSED CYLRAY_NOINLINE size_t
+KFN(stream_generic)(const cylray_prepared *P, const cylray_rays *R, const cylray_hits *H,
+                    uint8_t *occluded, size_t n, unsigned flags)
 {
     return KFN(stream)(P, R, H, occluded, n, flags & CYLRAY_FACE_FORWARD,
                        KFN(generic_fl)(P, flags, occluded != NULL) | CYLRAY_KF_SCALED);

@@ -100,7 +100,8 @@ cylray_status cylray_prepare(cylray_prepared *out, const cylray_cylinder *in)
         p.cap_up = p.vr > 0 ? CYLRAY_CAP_HI : CYLRAY_CAP_LO;
         p.cap_down = p.vr > 0 ? CYLRAY_CAP_LO : CYLRAY_CAP_HI;
     }
-    p.variant = (uint8_t)(p.kind + (p.axis_id ? CYLRAY_KIND_COUNT : j ? 2 * CYLRAY_KIND_COUNT : 0u));
+    p.variant = (uint8_t)(p.kind + (p.axis_id ? CYLRAY_KIND_COUNT
+                                    : j ? 2 * CYLRAY_KIND_COUNT : 0u));
     p.magic = CYLRAY_MAGIC;
     *out = p;
     return CYLRAY_OK;
