@@ -30,15 +30,18 @@ const char *cylray_strerror(cylray_status s);
 
 /* ---- cylinders ----------------------------------------------------------- */
 
-/* cylray_cylinder.flags */
-#define CYLRAY_CAPPED 0x1u /* the end discs are part of the surface: a closed solid */
+/* cylray_cylinder.flags. The low end is the one at axial coordinate -H, i.e. at
+ * center - H axis/|axis|; the high end at +H. */
+#define CYLRAY_CAPPED_LO 0x1u /* the disc at the low end is part of the surface */
+#define CYLRAY_CAPPED_HI 0x2u /* the disc at the high end is part of the surface */
+#define CYLRAY_CAPPED 0x3u    /* both discs: a closed solid */
 
 typedef struct cylray_cylinder {
     float center[3];    /* a point on the axis, halfway between the ends */
     float axis[3];      /* direction of the axis; any nonzero length, taken as exact */
     float radius;       /* > 0 */
     float half_height;  /* > 0; INFINITY for an infinite cylinder */
-    unsigned flags;     /* CYLRAY_CAPPED or 0 */
+    unsigned flags;     /* CYLRAY_CAPPED, CYLRAY_CAPPED_LO, CYLRAY_CAPPED_HI or 0 */
 } cylray_cylinder;
 
 /* What cylray_prepare derives once per cylinder; read-only for the kernels. The
@@ -66,7 +69,10 @@ typedef struct CYLRAY_ALIGN(64) cylray_prepared {
     float vr;          /* along a coordinate axis: its sign (v there is (0, 0, vr)) */
     float cap_up, cap_down; /* along a coordinate axis: the parts at renamed z = +-H */
     uint8_t order[3];  /* the renamed coordinates: the j-th is the user's order[j] */
-    uint8_t variant;   /* kind, plus 3 along a coordinate axis, plus 6 with j != 0 */
+    uint8_t variant;   /* which kernel table entry serves this cylinder */
+    float radius;      /* R, as given */
+    float half_height; /* H, as given */
+    uint32_t caps;     /* CYLRAY_CAPPED_LO | CYLRAY_CAPPED_HI of a finite cylinder */
 } cylray_prepared;
 
 /* Returns CYLRAY_OK, or CYLRAY_EINVAL (leaving *out untouched) for NaN or Inf
@@ -143,6 +149,81 @@ size_t cylray_intersect_stream(const cylray_prepared *cyl, const cylray_rays *ra
 size_t cylray_occluded_stream(const cylray_prepared *cyl, const cylray_rays *rays,
                               uint8_t *occluded, size_t n, unsigned flags);
 
+/* ---- leaves: one ray against up to 4, 8 or 16 cylinders ------------------ */
+
+/* One ray, x(t) = o + t d for t in [tmin, tmax], and one hit. */
+typedef struct cylray_ray1 {
+    float o[3], d[3], tmin, tmax;
+} cylray_ray1;
+
+typedef struct cylray_hit1 {
+    float t, n[3];  /* n only with CYLRAY_NORMAL */
+    int32_t part;   /* CYLRAY_SIDE, CYLRAY_CAP_LO or CYLRAY_CAP_HI, maybe | BACKFACE */
+    uint32_t id;    /* the id given to cylray_leaf_prepareM for the hit cylinder */
+    uint32_t lane;  /* its place in the leaf, 0..M-1 */
+} cylray_hit1;
+
+/* M prepared cylinders in SoA, 64 bytes a cylinder, aligned to the vector width.
+ * The fields are not part of the API. */
+#define CYLRAY_LEAF_(m, al)                                                       \
+    typedef struct CYLRAY_ALIGN(al) cylray_leaf##m {                              \
+        float geom_[14][m];                                                       \
+        uint32_t meta_[m], id_[m];                                                \
+    } cylray_leaf##m;
+CYLRAY_LEAF_(4, 16)
+CYLRAY_LEAF_(8, 32)
+CYLRAY_LEAF_(16, 64)
+#undef CYLRAY_LEAF_
+
+/* Builds a leaf from cyl[0..n) with the user's ids[0..n) (ids may be NULL: the ids are
+ * then 0..n-1). Returns CYLRAY_EINVAL, leaving *out untouched, when n > M, when a
+ * pointer is NULL, or when any cylinder is refused by the rules of cylray_prepare.
+ * Lanes n..M-1 are padding that never hits; n = 0 gives a leaf that never hits. */
+cylray_status cylray_leaf_prepare4(cylray_leaf4 *out, const cylray_cylinder *cyl,
+                                   const uint32_t *ids, size_t n);
+cylray_status cylray_leaf_prepare8(cylray_leaf8 *out, const cylray_cylinder *cyl,
+                                   const uint32_t *ids, size_t n);
+cylray_status cylray_leaf_prepare16(cylray_leaf16 *out, const cylray_cylinder *cyl,
+                                    const uint32_t *ids, size_t n);
+
+/* The closest hit over the leaf's cylinders in [tmin, tmax]: returns 1, writes *hit
+ * and sets ray->tmax = t; of cylinders hit at the same t the lowest lane wins.
+ * Returns 0 and writes nothing on a miss. Flags as for the packets. */
+int cylray_leaf_intersect4(const cylray_leaf4 *leaf, cylray_ray1 *ray, cylray_hit1 *hit,
+                           unsigned flags);
+int cylray_leaf_intersect8(const cylray_leaf8 *leaf, cylray_ray1 *ray, cylray_hit1 *hit,
+                           unsigned flags);
+int cylray_leaf_intersect16(const cylray_leaf16 *leaf, cylray_ray1 *ray, cylray_hit1 *hit,
+                            unsigned flags);
+/* 1 when any cylinder of the leaf is hit in [tmin, tmax]; writes nothing. */
+int cylray_leaf_occluded4(const cylray_leaf4 *leaf, const cylray_ray1 *ray, unsigned flags);
+int cylray_leaf_occluded8(const cylray_leaf8 *leaf, const cylray_ray1 *ray, unsigned flags);
+int cylray_leaf_occluded16(const cylray_leaf16 *leaf, const cylray_ray1 *ray, unsigned flags);
+
+/* ---- the endpoint form ------------------------------------------------------ */
+
+/* The cylinder around the segment p0 -> p1 with the given radius; flags as in
+ * cylray_cylinder, CYLRAY_CAPPED_LO being the disc at p0. The axis is p1 - p0 and the
+ * center (p0 + p1) / 2, each rounded once to float; the half height is |p1 - p0| / 2
+ * in world units, rounded once. Returns CYLRAY_EINVAL (leaving *out untouched) for
+ * p0 == p1, non-finite input, or what cylray_prepare would refuse. */
+cylray_status cylray_cylinder_from_endpoints(cylray_cylinder *out, const float p0[3],
+                                             const float p1[3], float radius,
+                                             unsigned flags);
+
+/* ---- secondary rays ----------------------------------------------------------- */
+
+/* For a hit of the ray o + t d at t on `part` of cyl: p, the hit point (moved onto
+ * the surface of that part where that pays), and *err, a bound on the distance from p
+ * to the exact surface of that part. */
+void cylray_hit_point(const cylray_prepared *cyl, const float o[3], const float d[3],
+                      float t, int32_t part, float p[3], float *err);
+/* The origin for a new ray that leaves that hit in direction w, to be traced with
+ * tmin = 0: strictly on w's side of every surface of cyl that passes within err of p
+ * (at a rim, of both). */
+void cylray_spawn_origin(const cylray_prepared *cyl, const float p[3], float err,
+                         int32_t part, const float w[3], float out[3]);
+
 /* ---- per-ISA access ------------------------------------------------------- */
 
 typedef enum cylray_isa {
@@ -170,6 +251,16 @@ typedef size_t (*cylray_intersect_stream_fn)(const cylray_prepared *, const cylr
                                              const cylray_hits *, size_t, unsigned);
 typedef size_t (*cylray_occluded_stream_fn)(const cylray_prepared *, const cylray_rays *,
                                             uint8_t *, size_t, unsigned);
+typedef int (*cylray_leaf_intersect4_fn)(const cylray_leaf4 *, cylray_ray1 *, cylray_hit1 *,
+                                         unsigned);
+typedef int (*cylray_leaf_intersect8_fn)(const cylray_leaf8 *, cylray_ray1 *, cylray_hit1 *,
+                                         unsigned);
+typedef int (*cylray_leaf_intersect16_fn)(const cylray_leaf16 *, cylray_ray1 *,
+                                          cylray_hit1 *, unsigned);
+typedef int (*cylray_leaf_occluded4_fn)(const cylray_leaf4 *, const cylray_ray1 *, unsigned);
+typedef int (*cylray_leaf_occluded8_fn)(const cylray_leaf8 *, const cylray_ray1 *, unsigned);
+typedef int (*cylray_leaf_occluded16_fn)(const cylray_leaf16 *, const cylray_ray1 *,
+                                         unsigned);
 
 typedef struct cylray_kernels {
     cylray_isa isa;
@@ -182,6 +273,12 @@ typedef struct cylray_kernels {
     cylray_occluded16_fn occluded16;
     cylray_intersect_stream_fn intersect_stream;
     cylray_occluded_stream_fn occluded_stream;
+    cylray_leaf_intersect4_fn leaf_intersect4;
+    cylray_leaf_intersect8_fn leaf_intersect8;
+    cylray_leaf_intersect16_fn leaf_intersect16;
+    cylray_leaf_occluded4_fn leaf_occluded4;
+    cylray_leaf_occluded8_fn leaf_occluded8;
+    cylray_leaf_occluded16_fn leaf_occluded16;
 } cylray_kernels;
 
 /* NULL when that path was not built or the CPU (or OS) lacks it. */

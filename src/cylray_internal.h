@@ -127,6 +127,25 @@ static inline cylray_hits cylray_hits_renamed_(const cylray_prepared *P, const c
     return q;
 }
 
+/* A leaf's fields: geom_[LF_*][lane], the meta_ bits, and its lane count by type. The
+ * axis v is the user's scaled by a power of two (exact), as in cylray_prepared. */
+enum {
+    CYLRAY_LF_CX, CYLRAY_LF_CY, CYLRAY_LF_CZ, /* center */
+    CYLRAY_LF_VX, CYLRAY_LF_VY, CYLRAY_LF_VZ, /* axis */
+    CYLRAY_LF_R,      /* radius, as given */
+    CYLRAY_LF_H,      /* half height, as given (INFINITY: infinite) */
+    CYLRAY_LF_RRVV,   /* R^2 v.v */
+    CYLRAY_LF_HV,     /* H |v| */
+    CYLRAY_LF_SQS,    /* |v| / g_s */
+    CYLRAY_LF_GS,     /* g_s = 2^-j (cylray_prepared.g_s) */
+    CYLRAY_LF_NSCALE, /* 1 / (R v.v) */
+    CYLRAY_LF_BOUND2, /* squared bounding-sphere radius; -1 for padding */
+    CYLRAY_LF_COUNT
+};
+/* meta_: the caps (CYLRAY_CAPPED_LO | CYLRAY_CAPPED_HI), finite, in use */
+#define CYLRAY_LM_FINITE 0x4u
+#define CYLRAY_LM_USED 0x8u
+
 #define CYLRAY_CAT_(a, b) a##b
 #define CYLRAY_CAT(a, b) CYLRAY_CAT_(a, b)
 
