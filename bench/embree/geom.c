@@ -1,0 +1,444 @@
+/* geom.c - builds the three Embree scenes of one eb_scene and holds the user-geometry
+ * callbacks through which Embree's BVH calls cylray. */
+#include "geom.h"
+
+#include "clock.h"
+#include "pending.h"
+#include "rays.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+const char *eb_variant_name(eb_variant v)
+{
+    static const char *const n[EB_NVARIANTS] = {"embree-curve", "cylray-single", "cylray-leaf"};
+    return v < EB_NVARIANTS ? n[v] : "?";
+}
+
+/* ---- Embree's SoA ray and hit layout for N rays (rtcore_ray.h, RTCRayHitN) ------------ */
+
+/* Ray fields: org x y z, tnear, dir x y z, time, tfar, mask, id, flags; then the hit:
+ * Ng x y z, u, v, primID, geomID, instID[levels]. Each is an array of N. */
+enum { R_OX, R_OY, R_OZ, R_TNEAR, R_DX, R_DY, R_DZ, R_TIME, R_TFAR };
+enum { H_NGX = 12, H_NGY, H_NGZ, H_U, H_V, H_PRIM, H_GEOM, H_INST };
+#define EB_F(base, N, field, i) (((float *)(base))[(field) * (N) + (i)])
+#define EB_U(base, N, field, i) (((unsigned *)(base))[(field) * (N) + (i)])
+
+float eb_curve_u(const eb_scene *s, uint32_t i, const float p[3])
+{
+    const float *a = s->vert[s->first[i]], *b = s->vert[s->first[i] + 1];
+    double ab = 0, ap = 0;
+    for (int k = 0; k < 3; k++) {
+        ab += ((double)b[k] - a[k]) * ((double)b[k] - a[k]);
+        ap += ((double)p[k] - a[k]) * ((double)b[k] - a[k]);
+    }
+    double u = ap / ab;
+    return (float)(u < 0 ? 0 : u > 1 ? 1 : u);
+}
+
+void eb_cylinder_bounds(const eb_scene *s, uint32_t i, struct RTCBounds *b)
+{
+    const float *p = s->vert[s->first[i]], *q = s->vert[s->first[i] + 1];
+    double a[3], aa = 0;
+    for (int k = 0; k < 3; k++)
+        a[k] = (double)q[k] - p[k], aa += a[k] * a[k];
+    float lo[3], hi[3];
+    for (int k = 0; k < 3; k++) {
+        /* a disc of radius r perpendicular to a reaches r sqrt(1 - a_k^2) along k */
+        double e = s->radius * sqrt(fmax(0.0, 1 - a[k] * a[k] / aa)) * (1 + 0x1p-18);
+        double mn = fmin(p[k], q[k]) - e, mx = fmax(p[k], q[k]) + e;
+        double pad = 0x1p-20 * fmax(fabs(mn), fabs(mx)) + 0x1p-20 * s->radius;
+        lo[k] = nextafterf((float)(mn - pad), -INFINITY);
+        hi[k] = nextafterf((float)(mx + pad), INFINITY);
+    }
+    b->lower_x = lo[0], b->lower_y = lo[1], b->lower_z = lo[2];
+    b->upper_x = hi[0], b->upper_y = hi[1], b->upper_z = hi[2];
+}
+
+/* Writes a hit into lane i of Embree's RTCRayHitN (N wide). v, which a curve uses for
+ * the place around its circumference, carries cylray's part (side or cap, and whether
+ * met from inside): the spawn helper needs it for the secondary rays. */
+static void put_hit(const struct RTCIntersectFunctionNArguments *a, const eb_scene *s,
+                    unsigned i, float t, const float n[3], uint32_t prim, int32_t part)
+{
+    void *rh = a->rayhit;
+    unsigned N = a->N;
+    float p[3];
+    for (int k = 0; k < 3; k++)
+        p[k] = EB_F(rh, N, R_OX + k, i) + t * EB_F(rh, N, R_DX + k, i);
+    EB_F(rh, N, R_TFAR, i) = t;
+    EB_F(rh, N, H_NGX, i) = n[0];
+    EB_F(rh, N, H_NGY, i) = n[1];
+    EB_F(rh, N, H_NGZ, i) = n[2];
+    EB_F(rh, N, H_U, i) = eb_curve_u(s, prim, p);
+    EB_F(rh, N, H_V, i) = (float)part;
+    EB_U(rh, N, H_PRIM, i) = prim;
+    EB_U(rh, N, H_GEOM, i) = a->geomID;
+    for (unsigned l = 0; l < RTC_MAX_INSTANCE_LEVEL_COUNT; l++)
+        EB_U(rh, N, H_INST + l, i) = a->context->instID[l];
+}
+
+/* The valid lanes of a call, in order. */
+static unsigned active_lanes(const int *valid, unsigned N, unsigned lane[16])
+{
+    unsigned n = 0;
+    for (unsigned i = 0; i < N; i++)
+        if (valid[i])
+            lane[n++] = i;
+    return n;
+}
+
+/* ---- single cylinders: one user primitive per cylinder, cylray's packet kernels ------ */
+
+/* Embree calls with N = 1, 4, 8 or 16 and often only a few valid lanes (its hybrid
+ * traversal hands a packet of K over with one lane set). The valid lanes are packed into
+ * the narrowest cylray packet that holds them, so a lone ray costs a 4-wide call. */
+#define EB_GATHER(W, pk, base, N, lane, n)                                                 \
+    do {                                                                                   \
+        for (unsigned j = 0; j < (n); j++) {                                               \
+            unsigned i_ = (lane)[j];                                                       \
+            (pk).ox[j] = EB_F(base, N, R_OX, i_), (pk).oy[j] = EB_F(base, N, R_OY, i_);   \
+            (pk).oz[j] = EB_F(base, N, R_OZ, i_), (pk).dx[j] = EB_F(base, N, R_DX, i_);   \
+            (pk).dy[j] = EB_F(base, N, R_DY, i_), (pk).dz[j] = EB_F(base, N, R_DZ, i_);   \
+            (pk).tmin[j] = EB_F(base, N, R_TNEAR, i_);                                     \
+            (pk).tmax[j] = EB_F(base, N, R_TFAR, i_);                                      \
+        }                                                                                  \
+    } while (0)
+
+#define EB_SINGLE_ISECT(W)                                                                 \
+    static void single_isect##W(const struct RTCIntersectFunctionNArguments *a,            \
+                                const eb_geom *g, const unsigned *lane, unsigned n)        \
+    {                                                                                      \
+        cylray_ray##W ray;                                                                 \
+        cylray_hit##W hit;                                                                 \
+        EB_GATHER(W, ray, a->rayhit, a->N, lane, n);                                       \
+        uint32_t m = g->k->intersect##W(&g->prep[a->primID], &ray, &hit,                   \
+                                        (uint32_t)((1ull << n) - 1), CYLRAY_NORMAL);       \
+        for (unsigned j = 0; m; j++, m >>= 1)                                              \
+            if (m & 1) {                                                                   \
+                float nn[3] = {hit.nx[j], hit.ny[j], hit.nz[j]};                           \
+                put_hit(a, g->src, lane[j], hit.t[j], nn, a->primID, hit.part[j]);                      \
+            }                                                                              \
+    }
+EB_SINGLE_ISECT(4)
+EB_SINGLE_ISECT(8)
+EB_SINGLE_ISECT(16)
+
+#define EB_SINGLE_OCC(W)                                                                   \
+    static void single_occ##W(const struct RTCOccludedFunctionNArguments *a,               \
+                              const eb_geom *g, const unsigned *lane, unsigned n)          \
+    {                                                                                      \
+        cylray_ray##W ray;                                                                 \
+        EB_GATHER(W, ray, a->ray, a->N, lane, n);                                          \
+        uint32_t m = g->k->occluded##W(&g->prep[a->primID], &ray,                          \
+                                       (uint32_t)((1ull << n) - 1), 0);                    \
+        for (unsigned j = 0; m; j++, m >>= 1)                                              \
+            if (m & 1)                                                                     \
+                EB_F(a->ray, a->N, R_TFAR, lane[j]) = -INFINITY;                           \
+    }
+EB_SINGLE_OCC(4)
+EB_SINGLE_OCC(8)
+EB_SINGLE_OCC(16)
+
+static void single_intersect(const struct RTCIntersectFunctionNArguments *a)
+{
+    const eb_geom *g = a->geometryUserPtr;
+    unsigned lane[16], n = active_lanes(a->valid, a->N, lane);
+    if (n == 0)
+        return;
+    if (n <= 4)
+        single_isect4(a, g, lane, n);
+    else if (n <= 8)
+        single_isect8(a, g, lane, n);
+    else
+        single_isect16(a, g, lane, n);
+}
+
+static void single_occluded(const struct RTCOccludedFunctionNArguments *a)
+{
+    const eb_geom *g = a->geometryUserPtr;
+    unsigned lane[16], n = active_lanes(a->valid, a->N, lane);
+    if (n == 0)
+        return;
+    if (n <= 4)
+        single_occ4(a, g, lane, n);
+    else if (n <= 8)
+        single_occ8(a, g, lane, n);
+    else
+        single_occ16(a, g, lane, n);
+}
+
+static void single_bounds(const struct RTCBoundsFunctionArguments *a)
+{
+    const eb_geom *g = a->geometryUserPtr;
+    eb_cylinder_bounds(g->src, a->primID, a->bounds_o);
+}
+
+/* ---- leaves: one user primitive per M cylinders, one ray at a time ------------------- */
+
+static void load_ray1(cylray_ray1 *r, const void *base, unsigned N, unsigned i)
+{
+    for (int k = 0; k < 3; k++) {
+        r->o[k] = EB_F(base, N, R_OX + k, i);
+        r->d[k] = EB_F(base, N, R_DX + k, i);
+    }
+    r->tmin = EB_F(base, N, R_TNEAR, i);
+    r->tmax = EB_F(base, N, R_TFAR, i);
+}
+
+#define EB_LEAF_FNS(M)                                                                     \
+    static void leaf_intersect##M(const struct RTCIntersectFunctionNArguments *a)          \
+    {                                                                                      \
+        const eb_geom *g = a->geometryUserPtr;                                             \
+        const cylray_leaf##M *leaf = (const cylray_leaf##M *)g->leaves + a->primID;        \
+        for (unsigned i = 0; i < a->N; i++) {                                              \
+            if (!a->valid[i])                                                              \
+                continue;                                                                  \
+            cylray_ray1 r;                                                                 \
+            cylray_hit1 h;                                                                 \
+            load_ray1(&r, a->rayhit, a->N, i);                                             \
+            if (g->k->leaf_intersect##M(leaf, &r, &h, CYLRAY_NORMAL))                      \
+                put_hit(a, g->src, i, h.t, h.n, h.id, h.part);                                     \
+        }                                                                                  \
+    }                                                                                      \
+    static void leaf_occluded##M(const struct RTCOccludedFunctionNArguments *a)            \
+    {                                                                                      \
+        const eb_geom *g = a->geometryUserPtr;                                             \
+        const cylray_leaf##M *leaf = (const cylray_leaf##M *)g->leaves + a->primID;        \
+        for (unsigned i = 0; i < a->N; i++) {                                              \
+            if (!a->valid[i])                                                              \
+                continue;                                                                  \
+            cylray_ray1 r;                                                                 \
+            load_ray1(&r, a->ray, a->N, i);                                                \
+            if (g->k->leaf_occluded##M(leaf, &r, 0))                                       \
+                EB_F(a->ray, a->N, R_TFAR, i) = -INFINITY;                                 \
+        }                                                                                  \
+    }
+EB_LEAF_FNS(4)
+EB_LEAF_FNS(8)
+EB_LEAF_FNS(16)
+
+static void leaf_bounds(const struct RTCBoundsFunctionArguments *a)
+{
+    const eb_geom *g = a->geometryUserPtr;
+    *a->bounds_o = g->lbox[a->primID];
+}
+
+/* Spreads the low 10 bits of x to every third bit. */
+static uint32_t spread3(uint32_t x)
+{
+    x &= 0x3ff;
+    x = (x | x << 16) & 0x030000ff;
+    x = (x | x << 8) & 0x0300f00f;
+    x = (x | x << 4) & 0x030c30c3;
+    x = (x | x << 2) & 0x09249249;
+    return x;
+}
+
+typedef struct keyed {
+    uint32_t key, id;
+} keyed;
+
+static int by_key(const void *pa, const void *pb)
+{
+    const keyed *a = pa, *b = pb;
+    return a->key != b->key ? (a->key < b->key ? -1 : 1) : (a->id < b->id ? -1 : a->id > b->id);
+}
+
+/* Cylinder ids sorted along a Morton curve through their centres, so that the M of a
+ * leaf lie close together and its box stays small. */
+static uint32_t *morton_order(const eb_scene *s)
+{
+    keyed *k = malloc(s->ns * sizeof *k);
+    uint32_t *order = malloc(s->ns * sizeof *order);
+    if (!k || !order) {
+        free(k);
+        free(order);
+        return NULL;
+    }
+    float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (size_t i = 0; i < s->ns; i++)
+        for (int c = 0; c < 3; c++) {
+            lo[c] = fminf(lo[c], s->cyl[i].center[c]);
+            hi[c] = fmaxf(hi[c], s->cyl[i].center[c]);
+        }
+    for (size_t i = 0; i < s->ns; i++) {
+        uint32_t code = 0;
+        for (int c = 0; c < 3; c++) {
+            double ext = (double)hi[c] - lo[c];
+            double f = ext > 0 ? ((double)s->cyl[i].center[c] - lo[c]) / ext : 0;
+            code |= spread3((uint32_t)(f * 1023.0)) << c;
+        }
+        k[i].key = code;
+        k[i].id = (uint32_t)i;
+    }
+    qsort(k, s->ns, sizeof *k, by_key);
+    for (size_t i = 0; i < s->ns; i++)
+        order[i] = k[i].id;
+    free(k);
+    return order;
+}
+
+/* ---- building ---------------------------------------------------------------------- */
+
+int eb_variant_available(eb_variant v, const cylray_kernels *k, const char **why)
+{
+    *why = "";
+    if (v == EB_LEAF && !(cylray_leaf_prepare4 && cylray_leaf_prepare8 &&
+                          cylray_leaf_prepare16 && k->leaf_intersect4 && k->leaf_intersect8 && k->leaf_intersect16 &&
+                          k->leaf_occluded4 && k->leaf_occluded8 && k->leaf_occluded16)) {
+        *why = "this cylray build has no leaf kernels";
+        return 0;
+    }
+    return 1;
+}
+
+static RTCGeometry native_geometry(RTCDevice dev, const eb_scene *s)
+{
+    RTCGeometry geo = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_CONE_LINEAR_CURVE);
+    float *v = rtcSetNewGeometryBuffer(geo, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4,
+                                       4 * sizeof(float), s->nv);
+    unsigned *idx = rtcSetNewGeometryBuffer(geo, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT,
+                                            sizeof(unsigned), s->ns);
+    unsigned char *fl = rtcSetNewGeometryBuffer(geo, RTC_BUFFER_TYPE_FLAGS, 0,
+                                                RTC_FORMAT_UCHAR, 1, s->ns);
+    if (!v || !idx || !fl) {
+        rtcReleaseGeometry(geo);
+        return NULL;
+    }
+    for (size_t i = 0; i < s->nv; i++) {
+        memcpy(v + 4 * i, s->vert[i], 3 * sizeof(float));
+        v[4 * i + 3] = s->radius;
+    }
+    /* A segment is closed where it has no neighbour: Embree caps a cone curve's end
+     * unless the flag says a segment joins there. */
+    for (size_t i = 0; i < s->ns; i++) {
+        idx[i] = s->first[i];
+        fl[i] = (unsigned char)(((s->caps[i] & CYLRAY_CAPPED_LO) ? 0
+                                                                 : RTC_CURVE_FLAG_NEIGHBOR_LEFT) |
+                                ((s->caps[i] & CYLRAY_CAPPED_HI) ? 0
+                                                                 : RTC_CURVE_FLAG_NEIGHBOR_RIGHT));
+    }
+    return geo;
+}
+
+static int prepare_all(eb_geom *g)
+{
+    const eb_scene *s = g->src;
+    g->prep = bench_alloc(s->ns * sizeof *g->prep);
+    if (!g->prep)
+        return -1;
+    for (size_t i = 0; i < s->ns; i++)
+        if (cylray_prepare(&g->prep[i], &s->cyl[i]) != CYLRAY_OK)
+            return -1;
+    return 0;
+}
+
+#define EB_LEAF_BUILD(M)                                                                   \
+    static int build_leaves##M(eb_geom *g, const uint32_t *order)                          \
+    {                                                                                      \
+        const eb_scene *s = g->src;                                                        \
+        cylray_leaf##M *lv = bench_alloc(g->nleaves * sizeof *lv);                         \
+        if (!lv)                                                                           \
+            return -1;                                                                     \
+        g->leaves = lv;                                                                    \
+        for (size_t l = 0; l < g->nleaves; l++) {                                          \
+            size_t a = l * M, n = s->ns - a < M ? s->ns - a : M;                           \
+            cylray_cylinder c[M];                                                          \
+            for (size_t j = 0; j < n; j++)                                                 \
+                c[j] = s->cyl[order[a + j]];                                               \
+            if (cylray_leaf_prepare##M(&lv[l], c, order + a, n) != CYLRAY_OK)              \
+                return -1;                                                                 \
+        }                                                                                  \
+        return 0;                                                                          \
+    }
+EB_LEAF_BUILD(4)
+EB_LEAF_BUILD(8)
+EB_LEAF_BUILD(16)
+
+static RTCGeometry leaf_geometry(RTCDevice dev, eb_geom *g)
+{
+    const eb_scene *s = g->src;
+    int M = g->leaf_m;
+    uint32_t *order = morton_order(s);
+    if (!order)
+        return NULL;
+    g->nleaves = (s->ns + (size_t)M - 1) / (size_t)M;
+    g->lbox = malloc(g->nleaves * sizeof *g->lbox);
+    int bad = !g->lbox || (M == 4    ? build_leaves4(g, order)
+                           : M == 8  ? build_leaves8(g, order)
+                                     : build_leaves16(g, order));
+    for (size_t l = 0; !bad && l < g->nleaves; l++) {
+        struct RTCBounds *u = &g->lbox[l];
+        for (size_t j = l * (size_t)M; j < s->ns && j < (l + 1) * (size_t)M; j++) {
+            struct RTCBounds b;
+            eb_cylinder_bounds(s, order[j], &b);
+            if (j == l * (size_t)M)
+                *u = b;
+            u->lower_x = fminf(u->lower_x, b.lower_x), u->upper_x = fmaxf(u->upper_x, b.upper_x);
+            u->lower_y = fminf(u->lower_y, b.lower_y), u->upper_y = fmaxf(u->upper_y, b.upper_y);
+            u->lower_z = fminf(u->lower_z, b.lower_z), u->upper_z = fmaxf(u->upper_z, b.upper_z);
+        }
+    }
+    free(order);
+    if (bad)
+        return NULL;
+    RTCGeometry geo = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_USER);
+    rtcSetGeometryUserPrimitiveCount(geo, (unsigned)g->nleaves);
+    rtcSetGeometryUserData(geo, g);
+    rtcSetGeometryBoundsFunction(geo, leaf_bounds, NULL);
+    rtcSetGeometryIntersectFunction(geo, M == 4 ? leaf_intersect4 : M == 8 ? leaf_intersect8
+                                                                             : leaf_intersect16);
+    rtcSetGeometryOccludedFunction(geo, M == 4 ? leaf_occluded4 : M == 8 ? leaf_occluded8
+                                                                           : leaf_occluded16);
+    return geo;
+}
+
+int eb_geom_build(eb_geom *g, RTCDevice dev, const eb_scene *s, eb_variant v, int leaf_m,
+                  const cylray_kernels *k)
+{
+    memset(g, 0, sizeof *g);
+    g->variant = v;
+    g->src = s;
+    g->k = k;
+    g->leaf_m = leaf_m;
+    double t0 = clk_ns();
+    RTCGeometry geo = NULL;
+    if (v == EB_NATIVE) {
+        geo = native_geometry(dev, s);
+    } else if (prepare_all(g) == 0) {
+        if (v == EB_SINGLE) {
+            geo = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_USER);
+            rtcSetGeometryUserPrimitiveCount(geo, (unsigned)s->ns);
+            rtcSetGeometryUserData(geo, g);
+            rtcSetGeometryBoundsFunction(geo, single_bounds, NULL);
+            rtcSetGeometryIntersectFunction(geo, single_intersect);
+            rtcSetGeometryOccludedFunction(geo, single_occluded);
+        } else if (leaf_m == 4 || leaf_m == 8 || leaf_m == 16) {
+            geo = leaf_geometry(dev, g);
+        }
+    }
+    if (!geo) {
+        eb_geom_free(g);
+        return -1;
+    }
+    rtcCommitGeometry(geo);
+    g->scene = rtcNewScene(dev);
+    rtcAttachGeometry(g->scene, geo);
+    rtcReleaseGeometry(geo);
+    rtcCommitScene(g->scene);
+    g->build_s = (clk_ns() - t0) * 1e-9;
+    return rtcGetDeviceError(dev) == RTC_ERROR_NONE ? 0 : -1;
+}
+
+void eb_geom_free(eb_geom *g)
+{
+    if (g->scene)
+        rtcReleaseScene(g->scene);
+    bench_free(g->prep);
+    bench_free(g->leaves);
+    free(g->lbox);
+    memset(g, 0, sizeof *g);
+}
