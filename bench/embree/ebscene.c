@@ -164,51 +164,49 @@ static void pipes(builder *b, rng *g)
     s->scale = 60;
 }
 
-/* Integer vectors of integer length (a^2 + b^2 + c^2 = m^2). */
-static const int quads[][4] = {{1, 2, 2, 3},  {2, 3, 6, 7},   {1, 4, 8, 9},   {4, 4, 7, 9},
-                               {2, 6, 9, 11}, {6, 6, 7, 11},  {2, 5, 14, 15}, {2, 10, 11, 15},
-                               {1, 12, 12, 17}, {8, 9, 12, 17}, {0, 3, 4, 5},  {0, 5, 12, 13},
-                               {0, 8, 15, 17}, {3, 4, 12, 13}, {2, 14, 23, 27}};
+/* Integer vectors of integer length (a^2 + b^2 + c^2 = m^2): the coordinate axes, and
+ * tilts of 1.1 to 6.4 degrees off them ((m^2 - 1, 2m, m^2 + 1) for m = 100, 60, 30, 18).
+ * Rods near an axis keep their boxes slim, so the BVH stays useful for rods this long. */
+static const int quads[][4] = {{0, 0, 1, 1},           {0, 0, 1, 1},
+                               {0, 200, 9999, 10001},  {0, 120, 3599, 3601},
+                               {0, 60, 899, 901},      {0, 36, 323, 325}};
 
-/* A random direction from the table, permuted and signed, times s (exact). */
-static void int_direction(rng *g, double s, double out[3], double *len)
+/* A direction from the table, its coordinates permuted and signed; *len = m. */
+static void int_direction(rng *g, double out[3], double *len)
 {
     const int *q = quads[(int)(rng_unit(g) * (sizeof quads / sizeof quads[0]))];
     int perm = (int)(rng_unit(g) * 6);
     static const int P[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
     for (int c = 0; c < 3; c++)
-        out[c] = s * q[P[perm][c]] * (rng_unit(g) < 0.5 ? -1 : 1);
-    *len = s * q[3];
+        out[c] = q[P[perm][c]] * (rng_unit(g) < 0.5 ? -1 : 1);
+    *len = q[3];
 }
 
-/* Long thin rods (length 1e4 radii) in a cluster 48,000 units from the world origin,
+/* Long thin rods (length 1e4 radii) around a point 48,000 units from the world origin,
  * the camera among them: every coordinate is large, every radius small. */
 static void far_rods(builder *b, rng *g)
 {
     eb_scene *s = b->s;
     b->quantum = 0x1p-6;
-    s->radius = 0.1f;
+    s->radius = 0.25f;
     const double C[3] = {41000, 23000, 11000};
-    for (int r = 0; r < 3000; r++) {
-        double c[3], u[3];
+    for (int r = 0; r < 1000; r++) {
+        double c[3], u[3], m;
         for (int k = 0; k < 3; k++)
-            c[k] = nearbyint((C[k] + rng_range(g, -600, 600)) * 64) / 64;
-        /* half length about 500 = 5e3 radii, a multiple of 1/16 per unit of m */
-        double m = 0;
-        int_direction(g, 1, u, &m);
-        double sc = nearbyint(500 / m * 16) / 16;
-        for (int k = 0; k < 3; k++)
-            u[k] *= sc;
+            c[k] = nearbyint((C[k] + rng_range(g, -150, 150)) * 64) / 64;
+        /* half length about 1250 = 5e3 radii, exact: a multiple of 1/16 per unit of m */
+        int_direction(g, u, &m);
+        double sc = nearbyint(1250 / m * 16) / 16;
         double pts[2][3];
         for (int k = 0; k < 3; k++)
-            pts[0][k] = c[k] - u[k], pts[1][k] = c[k] + u[k];
+            pts[0][k] = c[k] - sc * u[k], pts[1][k] = c[k] + sc * u[k];
         add_polyline(b, (const double(*)[3])pts, 2);
     }
-    set3(s->eye, C[0] - 700, C[1] + 150, C[2] - 500);
+    set3(s->eye, C[0] - 260, C[1] + 40, C[2] - 190);
     set3(s->look, C[0], C[1], C[2]);
     set3(s->light, C[0] - 300, C[1] + 3000, C[2] + 200);
-    s->fov_deg = 35;
-    s->scale = 1000;
+    s->fov_deg = 30;
+    s->scale = 300;
 }
 
 /* A jungle gym: rods along x, y and z through every point of a 21^3 grid of spacing 2,
@@ -264,7 +262,8 @@ static int finish(builder *b)
     eb_scene *s = b->s;
     if (b->failed || !(s->cyl = malloc(s->ns * sizeof *s->cyl)))
         return -1;
-    if (!cylray_cylinder_from_endpoints)
+    static int said;
+    if (!cylray_cylinder_from_endpoints && !said++)
         fprintf(stderr, "ebscene: the library has no cylray_cylinder_from_endpoints yet; "
                         "the harness converts the endpoints itself\n");
     for (size_t i = 0; i < s->ns; i++)

@@ -389,10 +389,10 @@ static RTCGeometry leaf_geometry(RTCDevice dev, eb_geom *g)
     rtcSetGeometryUserPrimitiveCount(geo, (unsigned)g->nleaves);
     rtcSetGeometryUserData(geo, g);
     rtcSetGeometryBoundsFunction(geo, leaf_bounds, NULL);
-    rtcSetGeometryIntersectFunction(geo, M == 4 ? leaf_intersect4 : M == 8 ? leaf_intersect8
-                                                                             : leaf_intersect16);
-    rtcSetGeometryOccludedFunction(geo, M == 4 ? leaf_occluded4 : M == 8 ? leaf_occluded8
-                                                                           : leaf_occluded16);
+    g->isect = M == 4 ? leaf_intersect4 : M == 8 ? leaf_intersect8 : leaf_intersect16;
+    g->occ = M == 4 ? leaf_occluded4 : M == 8 ? leaf_occluded8 : leaf_occluded16;
+    rtcSetGeometryIntersectFunction(geo, g->isect);
+    rtcSetGeometryOccludedFunction(geo, g->occ);
     return geo;
 }
 
@@ -414,8 +414,8 @@ int eb_geom_build(eb_geom *g, RTCDevice dev, const eb_scene *s, eb_variant v, in
             rtcSetGeometryUserPrimitiveCount(geo, (unsigned)s->ns);
             rtcSetGeometryUserData(geo, g);
             rtcSetGeometryBoundsFunction(geo, single_bounds, NULL);
-            rtcSetGeometryIntersectFunction(geo, single_intersect);
-            rtcSetGeometryOccludedFunction(geo, single_occluded);
+            rtcSetGeometryIntersectFunction(geo, g->isect = single_intersect);
+            rtcSetGeometryOccludedFunction(geo, g->occ = single_occluded);
         } else if (leaf_m == 4 || leaf_m == 8 || leaf_m == 16) {
             geo = leaf_geometry(dev, g);
         }

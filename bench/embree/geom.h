@@ -22,6 +22,8 @@ typedef struct eb_geom {
     struct RTCBounds *lbox;   /* a box per leaf: the union of its cylinders' */
     int leaf_m;               /* 4, 8 or 16 */
     double build_s;           /* seconds to prepare and to build Embree's BVH */
+    RTCIntersectFunctionN isect; /* the user variants' callbacks, for direct tests */
+    RTCOccludedFunctionN occ;
 } eb_geom;
 
 /* 1 when the library offers what the variant needs (the leaf variant needs the leaf

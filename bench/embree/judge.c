@@ -9,13 +9,15 @@ int eb_err_init(eb_err *e, size_t cap)
 {
     memset(e, 0, sizeof *e);
     e->t_ulps = malloc((cap ? cap : 1) * sizeof *e->t_ulps);
+    e->t_beyond = malloc((cap ? cap : 1) * sizeof *e->t_beyond);
     e->n_rad = malloc((cap ? cap : 1) * sizeof *e->n_rad);
-    return e->t_ulps && e->n_rad ? 0 : -1;
+    return e->t_ulps && e->t_beyond && e->n_rad ? 0 : -1;
 }
 
 void eb_err_free(eb_err *e)
 {
     free(e->t_ulps);
+    free(e->t_beyond);
     free(e->n_rad);
     memset(e, 0, sizeof *e);
 }
@@ -64,6 +66,15 @@ void eb_judge(eb_err *e, const eb_ref *ref, const eb_sample *s, uint32_t vprim, 
                 e->phantom++;
             return;
         }
+        /* past a few ulps, part of the error is what the float inputs leave open (a
+         * near-parallel ray's side hit, a graze): the band says how much is not */
+        double beyond = 0;
+        if (u > 2) {
+            cylref_band b;
+            eb_ref_band(&ref->s->cyl[vprim], s->xh.part, s->o, s->d, s->tmin, s->tmax, &b);
+            cylref_judge(&b, 1, s->xh.part, vt, &beyond);
+        }
+        e->t_beyond[e->nt] = beyond;
         e->t_ulps[e->nt++] = u;
         e->n_rad[e->nn++] = angle_unsigned(vng, s->xh.n);
         return;

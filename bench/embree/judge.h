@@ -22,7 +22,9 @@ typedef struct eb_err {
     size_t phantom;   /* of those: a hit where, or before, there is none */
     size_t excused;   /* disagreements within the reference's tolerance band */
     size_t nt, nn;    /* t and normal errors collected (hits on the exact cylinder) */
-    double *t_ulps, *n_rad;
+    double *t_ulps;   /* |t - t_exact| in float ulps */
+    double *t_beyond; /* float ulps outside the tolerance band (0 inside) */
+    double *n_rad;    /* angle to the exact normal, up to sign */
     size_t sec, self; /* secondary rays judged, and those that hit their own surface */
 } eb_err;
 

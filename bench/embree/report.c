@@ -64,22 +64,25 @@ static void errors(FILE *f, const eb_row *r, size_t n)
     fprintf(f, "\nError against the exact reference (binary128) on sampled rays:\n"
                "wrong = unexcused wrong hit/miss or wrong cylinder (leak: went past the true\n"
                "first surface; phantom: a hit where there is none); excused = inside the\n"
-               "tolerance band; t in float ulps, normal in radians (up to sign); self =\n"
+               "tolerance band; t in float ulps (beyond: outside the band), normal in\n"
+               "radians (up to sign); self =\n"
                "secondary rays from a front face that hit their own cylinder\n");
-    fprintf(f, "%-7s %-9s %-16s %-6s %6s %5s %5s %5s %5s %9s %9s %9s %9s %11s\n", "isa",
-            "scene", "variant", "set", "rays", "wrong", "leak", "phant", "exc", "t med",
-            "t p99", "t max", "n p99", "self/sec");
+    fprintf(f, "%-7s %-9s %-16s %-6s %6s %5s %5s %5s %5s %8s %8s %8s %8s %8s %11s\n",
+            "isa", "scene", "variant", "set", "rays", "wrong", "leak", "phant", "exc", "t med",
+            "t p99", "t max", "beyond", "n p99", "self/sec");
     for (size_t i = 0; i < n; i++) {
         if (r[i].skipped)
             continue;
         for (int s = 0; s < EB_NSETS; s++) {
             eb_err e = r[i].err[s];
-            double med, p99, mx, nm, np, nx;
+            double med, p99, mx, nm, np, nx, bm, bp, bx;
             eb_quantiles(e.t_ulps, e.nt, &med, &p99, &mx);
+            eb_quantiles(e.t_beyond, e.nt, &bm, &bp, &bx);
             eb_quantiles(e.n_rad, e.nn, &nm, &np, &nx);
-            fprintf(f, "%-7s %-9s %-16s %-6s %6zu %5zu %5zu %5zu %5zu %9.3g %9.3g %9.3g %9.2e",
+            fprintf(f, "%-7s %-9s %-16s %-6s %6zu %5zu %5zu %5zu %5zu %8.3g %8.3g %8.3g %8.3g "
+                       "%8.2g",
                     r[i].isa, r[i].scene, r[i].variant, eb_set_name(s), e.rays, e.wrong,
-                    e.leak, e.phantom, e.excused, med, p99, mx, np);
+                    e.leak, e.phantom, e.excused, med, p99, mx, bx, np);
             if (s == EB_SET_CAMERA)
                 fprintf(f, " %5zu/%-5zu", e.self, e.sec);
             fprintf(f, "\n");
@@ -113,9 +116,9 @@ void eb_report_csv(FILE *f, const eb_row *r, size_t n)
     fprintf(f, ",primary_1thread_mrays");
     for (int s = 0; s < EB_NSETS; s++)
         fprintf(f, ",%s_rays,%s_wrong,%s_leak,%s_phantom,%s_excused,%s_t_p99_ulps,"
-                   "%s_n_p99_rad",
+                   "%s_t_beyond_max_ulps,%s_n_p99_rad",
                 eb_set_name(s), eb_set_name(s), eb_set_name(s), eb_set_name(s),
-                eb_set_name(s), eb_set_name(s), eb_set_name(s));
+                eb_set_name(s), eb_set_name(s), eb_set_name(s), eb_set_name(s));
     fprintf(f, ",secondary,self_intersections,diff_pixels\n");
     for (size_t i = 0; i < n; i++) {
         if (r[i].skipped)
@@ -128,11 +131,12 @@ void eb_report_csv(FILE *f, const eb_row *r, size_t n)
         fprintf(f, ",%.4g", r[i].scaling[1]);
         for (int s = 0; s < EB_NSETS; s++) {
             eb_err e = r[i].err[s];
-            double med, p99, mx, nm, np, nx;
+            double med, p99, mx, nm, np, nx, bm, bp, bx;
             eb_quantiles(e.t_ulps, e.nt, &med, &p99, &mx);
+            eb_quantiles(e.t_beyond, e.nt, &bm, &bp, &bx);
             eb_quantiles(e.n_rad, e.nn, &nm, &np, &nx);
-            fprintf(f, ",%zu,%zu,%zu,%zu,%zu,%.4g,%.4g", e.rays, e.wrong, e.leak, e.phantom,
-                    e.excused, p99, np);
+            fprintf(f, ",%zu,%zu,%zu,%zu,%zu,%.4g,%.4g,%.4g", e.rays, e.wrong, e.leak,
+                    e.phantom, e.excused, p99, bx, np);
         }
         fprintf(f, ",%zu,%zu,%zu\n", r[i].err[0].sec, r[i].err[0].self, r[i].diff_pixels);
     }
