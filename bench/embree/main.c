@@ -365,8 +365,10 @@ static int run_scene(const opts *o, RTCDevice dev, cylray_isa isa, int which, eb
             if (built[v])
                 rows[first_row + v].scaling[t] =
                     timed(geo[v].scene, &fr[v].prim, NULL, 1, t, 0, o->reps);
+    /* Embree offers a packet no wider than its ISA's vectors */
+    int widest = isa == CYLRAY_ISA_SSE41 ? 4 : isa == CYLRAY_ISA_AVX2 ? 8 : 16;
     for (int q = 0; q < EB_NPACKETS; q++) {
-        if (!o->packet_on[q])
+        if (!o->packet_on[q] || eb_packets[q] > widest)
             continue;
         for (int v = 0; v < EB_NVARIANTS; v++)
             if (built[v])
@@ -381,7 +383,7 @@ static int run_scene(const opts *o, RTCDevice dev, cylray_isa isa, int which, eb
         memcpy(fr[v].shadow_tfar, fr[v].shadow.tfar, npix * sizeof(float));
     }
     for (int q = 0; q < EB_NPACKETS; q++) {
-        if (!o->packet_on[q])
+        if (!o->packet_on[q] || eb_packets[q] > widest)
             continue;
         for (int v = 0; v < EB_NVARIANTS; v++)
             if (built[v]) {

@@ -13,13 +13,22 @@ const char *eb_set_name(int set)
 
 static const char *const phase_name[EB_NPHASES] = {"primary", "shadow", "bounce"};
 
+/* A column is shown when some row measured it. */
+static int col_on(const eb_row *r, size_t n, int p, int k)
+{
+    for (size_t i = 0; i < n; i++)
+        if (!r[i].skipped && !isnan(r[i].mrays[p][k]))
+            return 1;
+    return 0;
+}
+
 static void speed(FILE *f, const eb_row *r, size_t n)
 {
     fprintf(f, "\nM rays/s (%d threads; packet = rays per Embree call)\n", r[0].threads);
     fprintf(f, "%-7s %-9s %-16s %8s", "isa", "scene", "variant", "build s");
     for (int p = 0; p < EB_NPHASES; p++)
         for (int k = 0; k < EB_NPACKETS; k++) {
-            if (isnan(r[0].mrays[p][k]))
+            if (!col_on(r, n, p, k))
                 continue;
             char h[24];
             snprintf(h, sizeof h, "%s/%d", phase_name[p], eb_packets[k]);
@@ -35,8 +44,12 @@ static void speed(FILE *f, const eb_row *r, size_t n)
         fprintf(f, " %8.2f", r[i].build_s);
         for (int p = 0; p < EB_NPHASES; p++)
             for (int k = 0; k < EB_NPACKETS; k++)
-                if (!isnan(r[0].mrays[p][k]))
-                    fprintf(f, " %10.2f", r[i].mrays[p][k]);
+                if (col_on(r, n, p, k)) {
+                    if (isnan(r[i].mrays[p][k]))
+                        fprintf(f, " %10s", "-");
+                    else
+                        fprintf(f, " %10.2f", r[i].mrays[p][k]);
+                }
         fprintf(f, "\n");
     }
 }
