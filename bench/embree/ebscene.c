@@ -134,8 +134,9 @@ static void molecule(builder *b, rng *g)
     s->scale = N;
 }
 
-/* A plant's pipe runs: Manhattan polylines on an integer grid, 3-10 straight pieces of
- * length 2-7 each, never turning back on themselves. */
+/* A plant's pipe runs: Manhattan polylines on an integer grid in a 60^3 box, 3-11
+ * straight pieces of length 2-7 each, never turning back on themselves (two runs may
+ * share a stretch of grid line: coincident surfaces, where either answer is right). */
 static void pipes(builder *b, rng *g)
 {
     eb_scene *s = b->s;
@@ -153,7 +154,10 @@ static void pipes(builder *b, rng *g)
             while (a == last);
             last = a;
             memcpy(pts[i], pts[i - 1], sizeof pts[i]);
-            pts[i][a] += (rng_unit(g) < 0.5 ? -1 : 1) * floor(rng_range(g, 2, 8));
+            double step = (rng_unit(g) < 0.5 ? -1 : 1) * floor(rng_range(g, 2, 8));
+            if (pts[i][a] + step < 0 || pts[i][a] + step > 60)
+                step = -step; /* stay in the plant's box, away from the camera */
+            pts[i][a] += step;
         }
         add_polyline(b, (const double(*)[3])pts, n);
     }

@@ -80,8 +80,13 @@ void eb_judge(eb_err *e, const eb_ref *ref, const eb_sample *s, uint32_t vprim, 
         return;
     }
     if (vhit && s->xhit) {
-        /* another cylinder at the same place (a joint, a crossing): a tie, not an error */
-        double tol = 8 * cylref_float_ulp(s->xh.t);
+        /* another cylinder at the same place (a joint, a crossing, a shared stretch):
+         * a tie, not an error. Where t is small against the coordinates, their
+         * rounding decides which is first. */
+        float m = fmaxf(fabsf(s->o[0]), fmaxf(fabsf(s->o[1]), fabsf(s->o[2])));
+        double dl = sqrt((double)s->d[0] * s->d[0] + (double)s->d[1] * s->d[1] +
+                         (double)s->d[2] * s->d[2]);
+        double tol = 8 * fmax(cylref_float_ulp(s->xh.t), cylref_float_ulp(m) / dl);
         if (fabs(vt - s->xh.t) <= tol)
             return;
     }
