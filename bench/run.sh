@@ -42,7 +42,8 @@ if [ "$embree_args" = off ]; then
 elif [ ! -e /usr/include/embree3/rtcore.h ]; then
     sudo=()
     [ "$(id -u)" -eq 0 ] || sudo=(sudo -n)
-    if command -v apt-get >/dev/null 2>&1 && { [ "$(id -u)" -eq 0 ] || sudo -n true 2>/dev/null; }; then
+    if command -v apt-get >/dev/null 2>&1 &&
+        { [ "$(id -u)" -eq 0 ] || sudo -n true 2>/dev/null; }; then
         echo "run.sh: installing libembree-dev for the Embree comparison" >&2
         "${sudo[@]}" apt-get update -qq || true
         DEBIAN_FRONTEND=noninteractive "${sudo[@]}" apt-get install -y -qq --no-install-recommends \

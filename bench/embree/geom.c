@@ -95,13 +95,13 @@ static unsigned active_lanes(const int *valid, unsigned N, unsigned lane[16])
 /* Embree calls with N = 1, 4, 8 or 16 and often only a few valid lanes (its hybrid
  * traversal hands a packet of K over with one lane set). The valid lanes are packed into
  * the narrowest cylray packet that holds them, so a lone ray costs a 4-wide call. */
-#define EB_GATHER(W, pk, base, N, lane, n)                                                 \
+#define EB_GATHER(pk, base, N, lane, n)                                                    \
     do {                                                                                   \
         for (unsigned j = 0; j < (n); j++) {                                               \
             unsigned i_ = (lane)[j];                                                       \
-            (pk).ox[j] = EB_F(base, N, R_OX, i_), (pk).oy[j] = EB_F(base, N, R_OY, i_);   \
-            (pk).oz[j] = EB_F(base, N, R_OZ, i_), (pk).dx[j] = EB_F(base, N, R_DX, i_);   \
-            (pk).dy[j] = EB_F(base, N, R_DY, i_), (pk).dz[j] = EB_F(base, N, R_DZ, i_);   \
+            (pk).ox[j] = EB_F(base, N, R_OX, i_), (pk).oy[j] = EB_F(base, N, R_OY, i_);    \
+            (pk).oz[j] = EB_F(base, N, R_OZ, i_), (pk).dx[j] = EB_F(base, N, R_DX, i_);    \
+            (pk).dy[j] = EB_F(base, N, R_DY, i_), (pk).dz[j] = EB_F(base, N, R_DZ, i_);    \
             (pk).tmin[j] = EB_F(base, N, R_TNEAR, i_);                                     \
             (pk).tmax[j] = EB_F(base, N, R_TFAR, i_);                                      \
         }                                                                                  \
@@ -113,13 +113,13 @@ static unsigned active_lanes(const int *valid, unsigned N, unsigned lane[16])
     {                                                                                      \
         cylray_ray##W ray;                                                                 \
         cylray_hit##W hit;                                                                 \
-        EB_GATHER(W, ray, a->rayhit, a->N, lane, n);                                       \
+        EB_GATHER(ray, a->rayhit, a->N, lane, n);                                          \
         uint32_t m = g->k->intersect##W(&g->prep[a->primID], &ray, &hit,                   \
                                         (uint32_t)((1ull << n) - 1), CYLRAY_NORMAL);       \
         for (unsigned j = 0; m; j++, m >>= 1)                                              \
             if (m & 1) {                                                                   \
                 float nn[3] = {hit.nx[j], hit.ny[j], hit.nz[j]};                           \
-                put_hit(a, g->src, lane[j], hit.t[j], nn, a->primID, hit.part[j]);                      \
+                put_hit(a, g->src, lane[j], hit.t[j], nn, a->primID, hit.part[j]);         \
             }                                                                              \
     }
 EB_SINGLE_ISECT(4)
@@ -131,7 +131,7 @@ EB_SINGLE_ISECT(16)
                               const eb_geom *g, const unsigned *lane, unsigned n)          \
     {                                                                                      \
         cylray_ray##W ray;                                                                 \
-        EB_GATHER(W, ray, a->ray, a->N, lane, n);                                          \
+        EB_GATHER(ray, a->ray, a->N, lane, n);                                             \
         uint32_t m = g->k->occluded##W(&g->prep[a->primID], &ray,                          \
                                        (uint32_t)((1ull << n) - 1), 0);                    \
         for (unsigned j = 0; m; j++, m >>= 1)                                              \
@@ -200,7 +200,7 @@ static void load_ray1(cylray_ray1 *r, const void *base, unsigned N, unsigned i)
             cylray_hit1 h;                                                                 \
             load_ray1(&r, a->rayhit, a->N, i);                                             \
             if (g->k->leaf_intersect##M(leaf, &r, &h, CYLRAY_NORMAL))                      \
-                put_hit(a, g->src, i, h.t, h.n, h.id, h.part);                                     \
+                put_hit(a, g->src, i, h.t, h.n, h.id, h.part);                             \
         }                                                                                  \
     }                                                                                      \
     static void leaf_occluded##M(const struct RTCOccludedFunctionNArguments *a)            \
@@ -286,9 +286,10 @@ static uint32_t *morton_order(const eb_scene *s)
 int eb_variant_available(eb_variant v, const cylray_kernels *k, const char **why)
 {
     *why = "";
-    if (v == EB_LEAF && !(cylray_leaf_prepare4 && cylray_leaf_prepare8 &&
-                          cylray_leaf_prepare16 && k->leaf_intersect4 && k->leaf_intersect8 && k->leaf_intersect16 &&
-                          k->leaf_occluded4 && k->leaf_occluded8 && k->leaf_occluded16)) {
+    if (v == EB_LEAF &&
+        !(cylray_leaf_prepare4 && cylray_leaf_prepare8 && cylray_leaf_prepare16 &&
+          k->leaf_intersect4 && k->leaf_intersect8 && k->leaf_intersect16 &&
+          k->leaf_occluded4 && k->leaf_occluded8 && k->leaf_occluded16)) {
         *why = "this cylray build has no leaf kernels";
         return 0;
     }

@@ -55,7 +55,8 @@ size_t eb_diff(const eb_rays *pa, const eb_rays *sa, const eb_rays *pb, const eb
     for (size_t i = 0; i < pa->n; i++) {
         int x, y;
         eb_pixel_of(i, w, h, &x, &y);
-        int ha = pa->prim[i] != RTC_INVALID_GEOMETRY_ID, hb = pb->prim[i] != RTC_INVALID_GEOMETRY_ID;
+        int ha = pa->prim[i] != RTC_INVALID_GEOMETRY_ID;
+        int hb = pb->prim[i] != RTC_INVALID_GEOMETRY_ID;
         double c[3] = {0, 0, 0};
         if (ha != hb) {
             c[0] = 1, bad++;

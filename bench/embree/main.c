@@ -175,7 +175,8 @@ static void aimed(eb_sample *s, const eb_scene *sc, int set, rng *g)
             return;
         }
         double out = hi ? 1 : -1, th = pow(10, rng_range(g, -7, -3));
-        double rr = closed ? 0 : R * rng_range(g, 0, 0.5), dist = closed ? R * rng_range(g, 2, 20) : 0;
+        double rr = closed ? 0 : R * rng_range(g, 0, 0.5);
+        double dist = closed ? R * rng_range(g, 2, 20) : 0;
         /* closed: outside, looking back at the disc; open: inside, looking along */
         for (int k = 0; k < 3; k++) {
             o[k] = E[k] + out * dist * a[k] + rr * (cos(ph) * e1[k] + sin(ph) * e2[k]);
@@ -406,15 +407,11 @@ static int run_scene(const opts *o, RTCDevice dev, cylray_isa isa, int which, eb
         if (img)
             eb_shade(&sc, &fr[v].prim, &fr[v].shadow, &fr[v].bounce, o->w, o->h,
                      img + npix * 3 * (size_t)v);
-        if (base >= 0 && v != base) {
-            uint8_t *scratch = img ? img + npix * 3 * EB_NVARIANTS : NULL;
-            uint8_t tmp[3];
-            (void)tmp;
-            if (scratch)
-                rows[first_row + v].diff_pixels =
-                    eb_diff(&fr[base].prim, &fr[base].shadow, &fr[v].prim, &fr[v].shadow,
-                            o->w, o->h, scratch);
-        }
+        /* the last panel ends up with the last cylray variant's difference */
+        if (base >= 0 && v != base && img)
+            rows[first_row + v].diff_pixels =
+                eb_diff(&fr[base].prim, &fr[base].shadow, &fr[v].prim, &fr[v].shadow, o->w,
+                        o->h, img + npix * 3 * EB_NVARIANTS);
     }
     if (img) {
         /* the panels side by side: the variants, then the difference of the last
