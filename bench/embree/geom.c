@@ -94,11 +94,13 @@ static unsigned active_lanes(const int *valid, unsigned N, unsigned lane[16])
 
 /* Embree calls with N = 1, 4, 8 or 16 and often only a few valid lanes (its hybrid
  * traversal hands a packet of K over with one lane set). The valid lanes are packed into
- * the narrowest cylray packet that holds them, so a lone ray costs a 4-wide call. */
-#define EB_GATHER(pk, base, N, lane, n)                                                    \
+ * the narrowest cylray packet that holds them, so a lone ray costs a 4-wide call. The
+ * unused lanes repeat the first ray: the kernel computes them too, and stack garbage
+ * there (subnormals, NaNs) would cost microcode assists on every operation. */
+#define EB_GATHER(pk, base, N, lane, n, W)                                                 \
     do {                                                                                   \
-        for (unsigned j = 0; j < (n); j++) {                                               \
-            unsigned i_ = (lane)[j];                                                       \
+        for (unsigned j = 0; j < (W); j++) {                                               \
+            unsigned i_ = (lane)[j < (n) ? j : 0];                                         \
             (pk).ox[j] = EB_F(base, N, R_OX, i_), (pk).oy[j] = EB_F(base, N, R_OY, i_);    \
             (pk).oz[j] = EB_F(base, N, R_OZ, i_), (pk).dx[j] = EB_F(base, N, R_DX, i_);    \
             (pk).dy[j] = EB_F(base, N, R_DY, i_), (pk).dz[j] = EB_F(base, N, R_DZ, i_);    \
@@ -113,7 +115,7 @@ static unsigned active_lanes(const int *valid, unsigned N, unsigned lane[16])
     {                                                                                      \
         cylray_ray##W ray;                                                                 \
         cylray_hit##W hit;                                                                 \
-        EB_GATHER(ray, a->rayhit, a->N, lane, n);                                          \
+        EB_GATHER(ray, a->rayhit, a->N, lane, n, W);                                       \
         uint32_t m = g->k->intersect##W(&g->prep[a->primID], &ray, &hit,                   \
                                         (uint32_t)((1ull << n) - 1), CYLRAY_NORMAL);       \
         for (unsigned j = 0; m; j++, m >>= 1)                                              \
@@ -131,7 +133,7 @@ EB_SINGLE_ISECT(16)
                               const eb_geom *g, const unsigned *lane, unsigned n)          \
     {                                                                                      \
         cylray_ray##W ray;                                                                 \
-        EB_GATHER(ray, a->ray, a->N, lane, n);                                             \
+        EB_GATHER(ray, a->ray, a->N, lane, n, W);                                          \
         uint32_t m = g->k->occluded##W(&g->prep[a->primID], &ray,                          \
                                        (uint32_t)((1ull << n) - 1), 0);                    \
         for (unsigned j = 0; m; j++, m >>= 1)                                              \
