@@ -116,9 +116,12 @@ void eb_judge_secondary(eb_err *e, const eb_sample *s, const float w[3], uint32_
         e->self++;
 }
 
+/* NaN (a NaN t or normal from a variant) sorts last, so that it shows as the maximum. */
 static int cmp_d(const void *pa, const void *pb)
 {
     double a = *(const double *)pa, b = *(const double *)pb;
+    if (isnan(a) || isnan(b))
+        return isnan(a) - isnan(b);
     return a < b ? -1 : a > b;
 }
 
@@ -129,7 +132,7 @@ void eb_quantiles(double *v, size_t n, double *med, double *p99, double *max)
         return;
     }
     qsort(v, n, sizeof *v, cmp_d);
-    *med = v[n / 2];
+    *med = v[(n - 1) / 2];
     *p99 = v[(size_t)(0.99 * (double)(n - 1))];
     *max = v[n - 1];
 }
