@@ -132,3 +132,18 @@ size_t cylray_occluded_stream(const cylray_prepared *cyl, const cylray_rays *ray
 {
     return cylray_kernels_best()->occluded_stream(cyl, rays, occluded, n, flags);
 }
+
+#define LEAF_ENTRY_(m)                                                                  \
+    int cylray_leaf_intersect##m(const cylray_leaf##m *leaf, cylray_ray1 *ray,            \
+                                 cylray_hit1 *hit, unsigned flags)                      \
+    {                                                                                   \
+        return cylray_kernels_best()->leaf_intersect##m(leaf, ray, hit, flags);          \
+    }                                                                                   \
+    int cylray_leaf_occluded##m(const cylray_leaf##m *leaf, const cylray_ray1 *ray,       \
+                                unsigned flags)                                         \
+    {                                                                                   \
+        return cylray_kernels_best()->leaf_occluded##m(leaf, ray, flags);                \
+    }
+LEAF_ENTRY_(4)
+LEAF_ENTRY_(8)
+LEAF_ENTRY_(16)
