@@ -3,13 +3,14 @@
 
 Usage: consumers.py pkgconfig|cmake|subproject  (the rest comes from the environment
 that tests/install/meson.build sets: CYLRAY_SOURCE_ROOT, CYLRAY_BUILD_ROOT, CYLRAY_WORK,
-CYLRAY_PREFIX, CYLRAY_LIBDIR, CYLRAY_MESON, CC)
+CYLRAY_PREFIX, CYLRAY_LIBDIR, CYLRAY_DEFAULT_LIBRARY, CYLRAY_MESON, CC)
 
   pkgconfig   meson install into a staging directory, then compile with the flags
-              `pkg-config cylray` gives for that tree, and run against its shared library
-  cmake       the same staging, then a CMake project with find_package(cylray): once
-              with the shared library, once with cylray_USE_STATIC=ON (and the program
-              must then not need libcylray at run time)
+              `pkg-config cylray` gives for that tree, and run against its library
+  cmake       the same staging, then a CMake project with find_package(cylray): as
+              it comes (the shared library, where one is installed) and with
+              cylray_USE_STATIC=ON where the static one is (the program must then not
+              need libcylray at run time)
   subproject  a meson project with this source tree as subprojects/cylray
 
 Exits 77 (skipped) when the tool a way needs (pkg-config, cmake, meson) is missing.
@@ -89,7 +90,9 @@ def way_pkgconfig(work):
     env['PKG_CONFIG_LIBDIR'] = os.path.join(libdir_of(root), 'pkgconfig')
     env['PKG_CONFIG_SYSROOT_DIR'] = destdir
     env.pop('PKG_CONFIG_PATH', None)
-    flags = shlex.split(run([pkg_config, '--cflags', '--libs', 'cylray'], env=env))
+    # With only the static library installed, -lcylray needs its private libraries too.
+    static = ['--static'] if os.environ['CYLRAY_DEFAULT_LIBRARY'] == 'static' else []
+    flags = shlex.split(run([pkg_config, '--cflags', '--libs', *static, 'cylray'], env=env))
     exe = os.path.join(work, 'consumer-pkgconfig')
     run([*cc(), '-std=c11', os.path.join(HERE, 'consumer.c'), '-o', exe, *flags])
     run_consumer(exe, library_path=libdir_of(root))
@@ -111,15 +114,21 @@ def way_cmake(work):
         return SKIP
     _, root = stage(work)
     generator = ['-G', 'Ninja'] if shutil.which('ninja') else []
-    for kind, extra in (('shared', []), ('static', ['-Dcylray_USE_STATIC=ON'])):
-        build = fresh(os.path.join(work, 'cmake-' + kind))
+    installed = os.environ['CYLRAY_DEFAULT_LIBRARY']
+    # cylray::cylray is the shared library where one is installed; with
+    # cylray_USE_STATIC (where the static one is) it is the static library.
+    legs = [('default', [], installed != 'static')]
+    if installed != 'shared':
+        legs.append(('static', ['-Dcylray_USE_STATIC=ON'], False))
+    for leg, extra, want_dynamic in legs:
+        build = fresh(os.path.join(work, 'cmake-' + leg))
         run([cmake, *generator, '-S', os.path.join(HERE, 'cmake'), '-B', build,
              '-DCMAKE_PREFIX_PATH=' + root, '-DCMAKE_BUILD_TYPE=Release', *extra])
         run([cmake, '--build', build])
         exe = os.path.join(build, 'consumer')
         dynamic = needs_libcylray(exe)
-        if dynamic is not None and dynamic != (kind == 'shared'):
-            raise Failed(f'the {kind} consumer {"needs" if dynamic else "does not need"} '
+        if dynamic is not None and dynamic != want_dynamic:
+            raise Failed(f'the {leg} consumer {"needs" if dynamic else "does not need"} '
                          'libcylray at run time')
         # CMake gives the shared consumer an rpath into the staged tree: no library path.
         run_consumer(exe)
