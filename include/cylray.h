@@ -19,9 +19,9 @@ extern "C" {
 #define CYLRAY_ALIGN(n) __attribute__((aligned(n)))
 #endif
 
-/* CYLRAY_API marks the functions the shared library exports; it hides everything else.
- * The library's build defines CYLRAY_BUILDING. On Windows a DLL's users import its
- * functions, and a program that links the static library defines CYLRAY_STATIC. */
+/* CYLRAY_API marks the functions the shared library exports: it is built with every
+ * other symbol hidden, and defines CYLRAY_BUILDING. On Windows a DLL's users import
+ * its functions, and a program that links the static library defines CYLRAY_STATIC. */
 #if defined(_WIN32) || defined(__CYGWIN__)
 #if defined(CYLRAY_STATIC)
 #define CYLRAY_API
