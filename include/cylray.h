@@ -19,6 +19,23 @@ extern "C" {
 #define CYLRAY_ALIGN(n) __attribute__((aligned(n)))
 #endif
 
+/* CYLRAY_API marks the functions the shared library exports: it is built with every
+ * other symbol hidden, and defines CYLRAY_BUILDING. On Windows a DLL's users import
+ * its functions, and a program that links the static library defines CYLRAY_STATIC. */
+#if defined(_WIN32) || defined(__CYGWIN__)
+#if defined(CYLRAY_STATIC)
+#define CYLRAY_API
+#elif defined(CYLRAY_BUILDING)
+#define CYLRAY_API __declspec(dllexport)
+#else
+#define CYLRAY_API __declspec(dllimport)
+#endif
+#elif defined(CYLRAY_BUILDING) && (defined(__GNUC__) || defined(__clang__))
+#define CYLRAY_API __attribute__((visibility("default")))
+#else
+#define CYLRAY_API
+#endif
+
 /* ---- status ------------------------------------------------------------ */
 
 typedef enum cylray_status {
@@ -26,7 +43,7 @@ typedef enum cylray_status {
     CYLRAY_EINVAL = 1     /* a cylinder that describes no valid solid */
 } cylray_status;
 
-const char *cylray_strerror(cylray_status s);
+CYLRAY_API const char *cylray_strerror(cylray_status s);
 
 /* ---- cylinders ----------------------------------------------------------- */
 
@@ -78,7 +95,7 @@ typedef struct CYLRAY_ALIGN(64) cylray_prepared {
 /* Returns CYLRAY_OK, or CYLRAY_EINVAL (leaving *out untouched) for NaN or Inf
  * coordinates, a zero or subnormal axis, a radius <= 0 or not finite, a half height
  * <= 0 or NaN, or unknown flag bits. Never aborts. */
-cylray_status cylray_prepare(cylray_prepared *out, const cylray_cylinder *in);
+CYLRAY_API cylray_status cylray_prepare(cylray_prepared *out, const cylray_cylinder *in);
 
 /* ---- hit output ----------------------------------------------------------- */
 
@@ -115,20 +132,20 @@ CYLRAY_PACKET_(16, 64)
 /* For every lane i whose bit is set in `active`: on a hit at t in [tmin, tmax] the
  * kernel writes lane i of *hit, sets ray->tmax[i] = t and sets bit i of the result.
  * Misses and inactive lanes are not written. A lane with NaN inputs never hits. */
-uint32_t cylray_intersect4(const cylray_prepared *cyl, cylray_ray4 *ray,
-                           cylray_hit4 *hit, uint32_t active, unsigned flags);
-uint32_t cylray_intersect8(const cylray_prepared *cyl, cylray_ray8 *ray,
-                           cylray_hit8 *hit, uint32_t active, unsigned flags);
-uint32_t cylray_intersect16(const cylray_prepared *cyl, cylray_ray16 *ray,
-                            cylray_hit16 *hit, uint32_t active, unsigned flags);
+CYLRAY_API uint32_t cylray_intersect4(const cylray_prepared *cyl, cylray_ray4 *ray,
+                                      cylray_hit4 *hit, uint32_t active, unsigned flags);
+CYLRAY_API uint32_t cylray_intersect8(const cylray_prepared *cyl, cylray_ray8 *ray,
+                                      cylray_hit8 *hit, uint32_t active, unsigned flags);
+CYLRAY_API uint32_t cylray_intersect16(const cylray_prepared *cyl, cylray_ray16 *ray,
+                                       cylray_hit16 *hit, uint32_t active, unsigned flags);
 
 /* Bit i set: lane i has some hit in [tmin, tmax]. Writes nothing. */
-uint32_t cylray_occluded4(const cylray_prepared *cyl, const cylray_ray4 *ray,
-                          uint32_t active, unsigned flags);
-uint32_t cylray_occluded8(const cylray_prepared *cyl, const cylray_ray8 *ray,
-                          uint32_t active, unsigned flags);
-uint32_t cylray_occluded16(const cylray_prepared *cyl, const cylray_ray16 *ray,
-                           uint32_t active, unsigned flags);
+CYLRAY_API uint32_t cylray_occluded4(const cylray_prepared *cyl, const cylray_ray4 *ray,
+                                     uint32_t active, unsigned flags);
+CYLRAY_API uint32_t cylray_occluded8(const cylray_prepared *cyl, const cylray_ray8 *ray,
+                                     uint32_t active, unsigned flags);
+CYLRAY_API uint32_t cylray_occluded16(const cylray_prepared *cyl, const cylray_ray16 *ray,
+                                      uint32_t active, unsigned flags);
 
 /* ---- streams (any length, any alignment) ---------------------------------- */
 
@@ -143,11 +160,11 @@ typedef struct cylray_hits {
 } cylray_hits;
 
 /* Same per-ray semantics as the packets; returns the number of hits. */
-size_t cylray_intersect_stream(const cylray_prepared *cyl, const cylray_rays *rays,
-                               const cylray_hits *hits, size_t n, unsigned flags);
+CYLRAY_API size_t cylray_intersect_stream(const cylray_prepared *cyl, const cylray_rays *rays,
+                                          const cylray_hits *hits, size_t n, unsigned flags);
 /* Sets occluded[i] = 1 for each ray with a hit, leaves the others; returns the count. */
-size_t cylray_occluded_stream(const cylray_prepared *cyl, const cylray_rays *rays,
-                              uint8_t *occluded, size_t n, unsigned flags);
+CYLRAY_API size_t cylray_occluded_stream(const cylray_prepared *cyl, const cylray_rays *rays,
+                                         uint8_t *occluded, size_t n, unsigned flags);
 
 /* ---- leaves: one ray against up to 4, 8 or 16 cylinders ------------------ */
 
@@ -179,26 +196,29 @@ CYLRAY_LEAF_(16, 64)
  * then 0..n-1). Returns CYLRAY_EINVAL, leaving *out untouched, when n > M, when a
  * pointer is NULL, or when any cylinder is refused by the rules of cylray_prepare.
  * Lanes n..M-1 are padding that never hits; n = 0 gives a leaf that never hits. */
-cylray_status cylray_leaf_prepare4(cylray_leaf4 *out, const cylray_cylinder *cyl,
-                                   const uint32_t *ids, size_t n);
-cylray_status cylray_leaf_prepare8(cylray_leaf8 *out, const cylray_cylinder *cyl,
-                                   const uint32_t *ids, size_t n);
-cylray_status cylray_leaf_prepare16(cylray_leaf16 *out, const cylray_cylinder *cyl,
-                                    const uint32_t *ids, size_t n);
+CYLRAY_API cylray_status cylray_leaf_prepare4(cylray_leaf4 *out, const cylray_cylinder *cyl,
+                                              const uint32_t *ids, size_t n);
+CYLRAY_API cylray_status cylray_leaf_prepare8(cylray_leaf8 *out, const cylray_cylinder *cyl,
+                                              const uint32_t *ids, size_t n);
+CYLRAY_API cylray_status cylray_leaf_prepare16(cylray_leaf16 *out, const cylray_cylinder *cyl,
+                                               const uint32_t *ids, size_t n);
 
 /* The closest hit over the leaf's cylinders in [tmin, tmax]: returns 1, writes *hit
  * and sets ray->tmax = t; of cylinders hit at the same t the lowest lane wins.
  * Returns 0 and writes nothing on a miss. Flags as for the packets. */
-int cylray_leaf_intersect4(const cylray_leaf4 *leaf, cylray_ray1 *ray, cylray_hit1 *hit,
-                           unsigned flags);
-int cylray_leaf_intersect8(const cylray_leaf8 *leaf, cylray_ray1 *ray, cylray_hit1 *hit,
-                           unsigned flags);
-int cylray_leaf_intersect16(const cylray_leaf16 *leaf, cylray_ray1 *ray, cylray_hit1 *hit,
-                            unsigned flags);
+CYLRAY_API int cylray_leaf_intersect4(const cylray_leaf4 *leaf, cylray_ray1 *ray,
+                                      cylray_hit1 *hit, unsigned flags);
+CYLRAY_API int cylray_leaf_intersect8(const cylray_leaf8 *leaf, cylray_ray1 *ray,
+                                      cylray_hit1 *hit, unsigned flags);
+CYLRAY_API int cylray_leaf_intersect16(const cylray_leaf16 *leaf, cylray_ray1 *ray,
+                                       cylray_hit1 *hit, unsigned flags);
 /* 1 when any cylinder of the leaf is hit in [tmin, tmax]; writes nothing. */
-int cylray_leaf_occluded4(const cylray_leaf4 *leaf, const cylray_ray1 *ray, unsigned flags);
-int cylray_leaf_occluded8(const cylray_leaf8 *leaf, const cylray_ray1 *ray, unsigned flags);
-int cylray_leaf_occluded16(const cylray_leaf16 *leaf, const cylray_ray1 *ray, unsigned flags);
+CYLRAY_API int cylray_leaf_occluded4(const cylray_leaf4 *leaf, const cylray_ray1 *ray,
+                                     unsigned flags);
+CYLRAY_API int cylray_leaf_occluded8(const cylray_leaf8 *leaf, const cylray_ray1 *ray,
+                                     unsigned flags);
+CYLRAY_API int cylray_leaf_occluded16(const cylray_leaf16 *leaf, const cylray_ray1 *ray,
+                                      unsigned flags);
 
 /* ---- the endpoint form ------------------------------------------------------ */
 
@@ -207,22 +227,22 @@ int cylray_leaf_occluded16(const cylray_leaf16 *leaf, const cylray_ray1 *ray, un
  * center (p0 + p1) / 2, each rounded once to float; the half height is |p1 - p0| / 2
  * in world units, rounded once. Returns CYLRAY_EINVAL (leaving *out untouched) for
  * p0 == p1, non-finite input, or what cylray_prepare would refuse. */
-cylray_status cylray_cylinder_from_endpoints(cylray_cylinder *out, const float p0[3],
-                                             const float p1[3], float radius,
-                                             unsigned flags);
+CYLRAY_API cylray_status cylray_cylinder_from_endpoints(cylray_cylinder *out, const float p0[3],
+                                                        const float p1[3], float radius,
+                                                        unsigned flags);
 
 /* ---- secondary rays ----------------------------------------------------------- */
 
 /* For a hit of the ray o + t d at t on `part` of cyl: p, the hit point (moved onto
  * the surface of that part where that pays), and *err, a bound on the distance from p
  * to the exact surface of that part. */
-void cylray_hit_point(const cylray_prepared *cyl, const float o[3], const float d[3],
-                      float t, int32_t part, float p[3], float *err);
+CYLRAY_API void cylray_hit_point(const cylray_prepared *cyl, const float o[3], const float d[3],
+                                 float t, int32_t part, float p[3], float *err);
 /* The origin for a new ray that leaves that hit in direction w, to be traced with
  * tmin = 0: strictly on w's side of every surface of cyl that passes within err of p
  * (at a rim, of both). */
-void cylray_spawn_origin(const cylray_prepared *cyl, const float p[3], float err,
-                         int32_t part, const float w[3], float out[3]);
+CYLRAY_API void cylray_spawn_origin(const cylray_prepared *cyl, const float p[3], float err,
+                                    int32_t part, const float w[3], float out[3]);
 
 /* ---- per-ISA access ------------------------------------------------------- */
 
@@ -282,10 +302,10 @@ typedef struct cylray_kernels {
 } cylray_kernels;
 
 /* NULL when that path was not built or the CPU (or OS) lacks it. */
-const cylray_kernels *cylray_kernels_for(cylray_isa isa);
+CYLRAY_API const cylray_kernels *cylray_kernels_for(cylray_isa isa);
 /* The path the plain entry points use: the best the CPU has, or CYLRAY_ISA. */
-const cylray_kernels *cylray_kernels_best(void);
-const char *cylray_isa_name(cylray_isa isa);
+CYLRAY_API const cylray_kernels *cylray_kernels_best(void);
+CYLRAY_API const char *cylray_isa_name(cylray_isa isa);
 
 #ifdef __cplusplus
 }
