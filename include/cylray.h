@@ -122,7 +122,8 @@ typedef struct CYLRAY_ALIGN(64) cylray_prepared {
 
 /* Checks *in and derives what the kernels need into *out. Returns CYLRAY_OK, or
  * CYLRAY_EINVAL (leaving *out untouched) when a pointer is NULL or *in breaks one of
- * these limits, which keep every product the kernels form finite and normal:
+ * these limits (beyond them R^2 v.v and the kernels' products of it would overflow,
+ * or R^2 be subnormal):
  *   - every center and axis coordinate finite, with |x| <= 2^62;
  *   - an axis that is neither zero nor subnormal: its largest |component| is at least
  *     FLT_MIN (2^-126);
