@@ -17,9 +17,11 @@ const char *cylray_strerror(cylray_status s)
     case CYLRAY_OK:
         return "success";
     case CYLRAY_EINVAL:
-        return "invalid cylinder: a NaN, infinite or over 2^62 coordinate, a zero or "
-               "subnormal axis, a radius not in [2^-60, 2^62], a half height <= 0 or NaN, "
-               "or unknown flag bits";
+        return "invalid argument: a NULL pointer, more cylinders than the leaf holds, "
+               "equal endpoints, or a cylinder with a center or axis coordinate that is "
+               "NaN, infinite or beyond 2^62, a zero or subnormal axis, a radius outside "
+               "[2^-60, 2^62], a half height <= 0, NaN or finite beyond 2^62, or flag bits "
+               "other than CYLRAY_CAPPED_LO and CYLRAY_CAPPED_HI";
     }
     return "unknown cylray status";
 }
