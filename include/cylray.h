@@ -49,7 +49,7 @@ extern "C" {
 #endif
 
 #define CYLRAY_VERSION_MAJOR 0
-#define CYLRAY_VERSION_MINOR 1
+#define CYLRAY_VERSION_MINOR 2
 #define CYLRAY_VERSION_PATCH 0
 
 #if defined(_MSC_VER)

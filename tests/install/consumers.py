@@ -123,7 +123,8 @@ def way_cmake(work):
     for leg, extra, want_dynamic in legs:
         build = fresh(os.path.join(work, 'cmake-' + leg))
         run([cmake, *generator, '-S', os.path.join(HERE, 'cmake'), '-B', build,
-             '-DCMAKE_PREFIX_PATH=' + root, '-DCMAKE_BUILD_TYPE=Release', *extra])
+             '-DCMAKE_PREFIX_PATH=' + root, '-DCMAKE_BUILD_TYPE=Release',
+             '-DCYLRAY_WANT=' + '.'.join(os.environ['CYLRAY_VERSION'].split('.')[:2]), *extra])
         run([cmake, '--build', build])
         exe = os.path.join(build, 'consumer')
         dynamic = needs_libcylray(exe)
