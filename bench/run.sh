@@ -53,8 +53,9 @@ elif [ ! -e /usr/include/embree3/rtcore.h ]; then
         { [ "$(id -u)" -eq 0 ] || sudo -n true 2>/dev/null; }; then
         echo "run.sh: installing libembree-dev for the Embree comparison" >&2
         "${sudo[@]}" apt-get update -qq || true
-        DEBIAN_FRONTEND=noninteractive "${sudo[@]}" apt-get install -y -qq --no-install-recommends \
-            libembree-dev >/dev/null || embree_skip="apt-get could not install libembree-dev"
+        "${sudo[@]}" env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq \
+            --no-install-recommends libembree-dev >/dev/null ||
+            embree_skip="apt-get could not install libembree-dev"
     else
         embree_skip="Embree 3 is not installed and apt-get (as root or with sudo) is not available"
     fi

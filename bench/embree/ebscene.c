@@ -8,7 +8,6 @@
  * one exact reference judges both. */
 #include "ebscene.h"
 
-#include "pending.h"
 #include "rays.h"
 
 #include <math.h>
@@ -242,37 +241,15 @@ static void lattice(builder *b)
     s->scale = 40;
 }
 
-/* Where the library has no endpoint form yet: the same rule (centre and axis rounded
- * once, half height in world units), so that the scenes stay the same either way. */
-static cylray_status endpoints(cylray_cylinder *out, const float p0[3], const float p1[3],
-                               float r, unsigned flags)
-{
-    if (cylray_cylinder_from_endpoints)
-        return cylray_cylinder_from_endpoints(out, p0, p1, r, flags);
-    double ll = 0;
-    for (int k = 0; k < 3; k++) {
-        out->center[k] = (float)(0.5 * ((double)p0[k] + p1[k]));
-        out->axis[k] = (float)((double)p1[k] - p0[k]);
-        ll += ((double)p1[k] - p0[k]) * ((double)p1[k] - p0[k]);
-    }
-    out->radius = r;
-    out->half_height = (float)(0.5 * sqrt(ll));
-    out->flags = flags;
-    return ll > 0 ? CYLRAY_OK : CYLRAY_EINVAL;
-}
-
 static int finish(builder *b)
 {
     eb_scene *s = b->s;
     if (b->failed || !(s->cyl = malloc(s->ns * sizeof *s->cyl)))
         return -1;
-    static int said;
-    if (!cylray_cylinder_from_endpoints && !said++)
-        fprintf(stderr, "ebscene: the library has no cylray_cylinder_from_endpoints yet; "
-                        "the harness converts the endpoints itself\n");
     for (size_t i = 0; i < s->ns; i++)
-        if (endpoints(&s->cyl[i], s->vert[s->first[i]], s->vert[s->first[i] + 1], s->radius,
-                      s->caps[i]) != CYLRAY_OK) {
+        if (cylray_cylinder_from_endpoints(&s->cyl[i], s->vert[s->first[i]],
+                                           s->vert[s->first[i] + 1], s->radius,
+                                           s->caps[i]) != CYLRAY_OK) {
             fprintf(stderr, "ebscene: %s segment %zu refused\n", s->name, i);
             return -1;
         }

@@ -3,7 +3,6 @@
 #include "geom.h"
 
 #include "clock.h"
-#include "pending.h"
 #include "rays.h"
 
 #include <math.h>
@@ -284,19 +283,6 @@ static uint32_t *morton_order(const eb_scene *s)
 }
 
 /* ---- building ---------------------------------------------------------------------- */
-
-int eb_variant_available(eb_variant v, const cylray_kernels *k, const char **why)
-{
-    *why = "";
-    if (v == EB_LEAF &&
-        !(cylray_leaf_prepare4 && cylray_leaf_prepare8 && cylray_leaf_prepare16 &&
-          k->leaf_intersect4 && k->leaf_intersect8 && k->leaf_intersect16 &&
-          k->leaf_occluded4 && k->leaf_occluded8 && k->leaf_occluded16)) {
-        *why = "this cylray build has no leaf kernels";
-        return 0;
-    }
-    return 1;
-}
 
 static RTCGeometry native_geometry(RTCDevice dev, const eb_scene *s)
 {

@@ -26,10 +26,6 @@ typedef struct eb_geom {
     RTCOccludedFunctionN occ;
 } eb_geom;
 
-/* 1 when the library offers what the variant needs (the leaf variant needs the leaf
- * kernels); otherwise why not in *why. */
-int eb_variant_available(eb_variant v, const cylray_kernels *k, const char **why);
-
 /* Builds the variant; leaf_m (4, 8, 16) only for EB_LEAF. 0 on success. */
 int eb_geom_build(eb_geom *g, RTCDevice dev, const eb_scene *s, eb_variant v, int leaf_m,
                   const cylray_kernels *k);

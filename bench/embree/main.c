@@ -341,12 +341,6 @@ static int run_scene(const opts *o, RTCDevice dev, cylray_isa isa, int which, eb
         for (int p = 0; p < EB_NPHASES; p++)
             for (int q = 0; q < EB_NPACKETS; q++)
                 r->mrays[p][q] = NAN;
-        const char *why;
-        if (!eb_variant_available((eb_variant)v, k, &why)) {
-            r->skipped = 1;
-            snprintf(r->why, sizeof r->why, "%s", why);
-            continue;
-        }
         if (frame_alloc(&fr[v], npix) ||
             eb_geom_build(&geo[v], dev, &sc, (eb_variant)v, o->leaf_m, k)) {
             r->skipped = 1;

@@ -82,6 +82,8 @@ int eb_spawn(const eb_geom *g, const eb_rays *prim, eb_rays *shadow, eb_rays *bo
 {
     const eb_scene *s = g->src;
     int stand_in = 0;
+    shadow->incoherent = 0;
+    bounce->incoherent = 1;
     for (size_t i = 0; i < prim->n; i++) {
         shadow->valid[i] = bounce->valid[i] = 0;
         if (prim->prim[i] == RTC_INVALID_GEOMETRY_ID)

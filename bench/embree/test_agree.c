@@ -147,11 +147,6 @@ int main(void)
     static uint8_t valid0[W * H];
     int passed = 0, failed = 0;
     for (int v = EB_SINGLE; v < EB_NVARIANTS; v++) {
-        const char *why;
-        if (!eb_variant_available((eb_variant)v, k, &why)) {
-            printf("SKIP %s: %s\n", eb_variant_name((eb_variant)v), why);
-            continue;
-        }
         int ms[3] = {4, 8, 16};
         for (int mi = 0; mi < (v == EB_LEAF ? 3 : 1); mi++) {
             eb_geom g;

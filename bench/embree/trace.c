@@ -103,7 +103,8 @@ void eb_camera_rays(eb_rays *r, const eb_scene *s, int w, int h)
         int valid[N], any = 0;                                                             \
         struct RTCIntersectContext ctx;                                                    \
         rtcInitIntersectContext(&ctx);                                                     \
-        ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;                                   \
+        ctx.flags = r->incoherent ? RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT                  \
+                                  : RTC_INTERSECT_CONTEXT_FLAG_COHERENT;                   \
         for (int j = 0; j < N; j++) {                                                      \
             size_t i = i0 + (size_t)j;                                                     \
             valid[j] = i < r->n && r->valid[i] ? -1 : 0;                                   \

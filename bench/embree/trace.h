@@ -18,6 +18,7 @@ typedef struct eb_rays {
     float *ngx, *ngy, *ngz, *u, *v;
     uint32_t *prim;
     uint8_t *valid;
+    int incoherent; /* tells Embree whether neighbouring rays travel alike */
 } eb_rays;
 
 int eb_rays_alloc(eb_rays *r, size_t n); /* 0 on success */
