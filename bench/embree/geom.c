@@ -5,7 +5,9 @@
 #include "clock.h"
 #include "rays.h"
 
+#include <embree3/rtcore_builder.h>
 #include <math.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -325,8 +327,124 @@ static int prepare_all(eb_geom *g)
     return 0;
 }
 
+/* ---- grouping cylinders into leaves ------------------------------------------------- */
+
+/* Leaf l holds the cylinders order[first[l] .. first[l] + count[l]). */
+typedef struct grouping {
+    uint32_t *order;
+    size_t *first, *count;
+    size_t n;
+} grouping;
+
+static int grouping_alloc(grouping *gr, size_t ns)
+{
+    gr->n = 0;
+    gr->order = malloc(ns * sizeof *gr->order);
+    gr->first = malloc(ns * sizeof *gr->first);
+    gr->count = malloc(ns * sizeof *gr->count);
+    return gr->order && gr->first && gr->count ? 0 : -1;
+}
+
+static void grouping_free(grouping *gr)
+{
+    free(gr->order);
+    free(gr->first);
+    free(gr->count);
+}
+
+/* Consecutive runs of M along the Morton curve. */
+static int group_morton(const eb_scene *s, int M, grouping *gr)
+{
+    uint32_t *order = morton_order(s);
+    if (!order || grouping_alloc(gr, s->ns)) {
+        free(order);
+        return -1;
+    }
+    memcpy(gr->order, order, s->ns * sizeof *order);
+    free(order);
+    for (size_t a = 0; a < s->ns; a += (size_t)M) {
+        gr->first[gr->n] = a;
+        gr->count[gr->n++] = s->ns - a < (size_t)M ? s->ns - a : (size_t)M;
+    }
+    return 0;
+}
+
+/* Embree's own SAH builder (rtcBuildBVH) cuts the cylinders into leaves of at most M;
+ * only its leaves are kept. Its callbacks run on several threads: a leaf takes its
+ * slots with atomic counters. */
+typedef struct sah_ctx {
+    grouping *gr;
+    atomic_size_t used, leaves;
+} sah_ctx;
+
+static void *sah_node(RTCThreadLocalAllocator al, unsigned n, void *u)
+{
+    (void)n, (void)u;
+    return rtcThreadLocalAlloc(al, 16, 16);
+}
+
+static void sah_children(void *node, void **c, unsigned n, void *u)
+{
+    (void)node, (void)c, (void)n, (void)u;
+}
+
+static void sah_bounds(void *node, const struct RTCBounds **b, unsigned n, void *u)
+{
+    (void)node, (void)b, (void)n, (void)u;
+}
+
+static void *sah_leaf(RTCThreadLocalAllocator al, const struct RTCBuildPrimitive *p, size_t n,
+                      void *u)
+{
+    sah_ctx *c = u;
+    size_t at = atomic_fetch_add(&c->used, n), l = atomic_fetch_add(&c->leaves, 1);
+    for (size_t i = 0; i < n; i++)
+        c->gr->order[at + i] = p[i].primID;
+    c->gr->first[l] = at;
+    c->gr->count[l] = n;
+    return rtcThreadLocalAlloc(al, 16, 16);
+}
+
+static int group_sah(RTCDevice dev, const eb_scene *s, int M, grouping *gr)
+{
+    struct RTCBuildPrimitive *prims = bench_alloc(s->ns * sizeof *prims);
+    if (!prims || grouping_alloc(gr, s->ns)) {
+        bench_free(prims);
+        return -1;
+    }
+    for (size_t i = 0; i < s->ns; i++) {
+        struct RTCBounds b;
+        eb_cylinder_bounds(s, (uint32_t)i, &b);
+        prims[i] = (struct RTCBuildPrimitive){b.lower_x, b.lower_y, b.lower_z, 0,
+                                              b.upper_x, b.upper_y, b.upper_z, (unsigned)i};
+    }
+    sah_ctx c = {.gr = gr};
+    atomic_init(&c.used, 0);
+    atomic_init(&c.leaves, 0);
+    RTCBVH bvh = rtcNewBVH(dev);
+    struct RTCBuildArguments a = rtcDefaultBuildArguments();
+    a.buildQuality = RTC_BUILD_QUALITY_MEDIUM;
+    a.maxDepth = 64;
+    /* a leaf is one vector test whether it holds 1 or M: split only above M */
+    a.minLeafSize = (unsigned)M;
+    a.maxLeafSize = (unsigned)M;
+    a.bvh = bvh;
+    a.primitives = prims;
+    a.primitiveCount = a.primitiveArrayCapacity = s->ns;
+    a.createNode = sah_node;
+    a.setNodeChildren = sah_children;
+    a.setNodeBounds = sah_bounds;
+    a.createLeaf = sah_leaf;
+    a.userPtr = &c;
+    void *root = rtcBuildBVH(&a);
+    rtcReleaseBVH(bvh);
+    bench_free(prims);
+    gr->n = atomic_load(&c.leaves);
+    return root && atomic_load(&c.used) == s->ns ? 0 : -1;
+}
+
 #define EB_LEAF_BUILD(M)                                                                   \
-    static int build_leaves##M(eb_geom *g, const uint32_t *order)                          \
+    static int build_leaves##M(eb_geom *g, const grouping *gr)                             \
     {                                                                                      \
         const eb_scene *s = g->src;                                                        \
         cylray_leaf##M *lv = bench_alloc(g->nleaves * sizeof *lv);                         \
@@ -334,11 +452,11 @@ static int prepare_all(eb_geom *g)
             return -1;                                                                     \
         g->leaves = lv;                                                                    \
         for (size_t l = 0; l < g->nleaves; l++) {                                          \
-            size_t a = l * M, n = s->ns - a < M ? s->ns - a : M;                           \
+            const uint32_t *ids = gr->order + gr->first[l];                                \
             cylray_cylinder c[M];                                                          \
-            for (size_t j = 0; j < n; j++)                                                 \
-                c[j] = s->cyl[order[a + j]];                                               \
-            if (cylray_leaf_prepare##M(&lv[l], c, order + a, n) != CYLRAY_OK)              \
+            for (size_t j = 0; j < gr->count[l]; j++)                                      \
+                c[j] = s->cyl[ids[j]];                                                     \
+            if (cylray_leaf_prepare##M(&lv[l], c, ids, gr->count[l]) != CYLRAY_OK)         \
                 return -1;                                                                 \
         }                                                                                  \
         return 0;                                                                          \
@@ -347,31 +465,31 @@ EB_LEAF_BUILD(4)
 EB_LEAF_BUILD(8)
 EB_LEAF_BUILD(16)
 
-static RTCGeometry leaf_geometry(RTCDevice dev, eb_geom *g)
+static RTCGeometry leaf_geometry(RTCDevice dev, eb_geom *g, eb_grouping how)
 {
     const eb_scene *s = g->src;
     int M = g->leaf_m;
-    uint32_t *order = morton_order(s);
-    if (!order)
-        return NULL;
-    g->nleaves = (s->ns + (size_t)M - 1) / (size_t)M;
-    g->lbox = malloc(g->nleaves * sizeof *g->lbox);
-    int bad = !g->lbox || (M == 4    ? build_leaves4(g, order)
-                           : M == 8  ? build_leaves8(g, order)
-                                     : build_leaves16(g, order));
+    grouping gr;
+    memset(&gr, 0, sizeof gr);
+    int bad = how == EB_GROUP_SAH ? group_sah(dev, s, M, &gr) : group_morton(s, M, &gr);
+    g->nleaves = gr.n;
+    g->lbox = bad ? NULL : malloc(g->nleaves * sizeof *g->lbox);
+    bad = bad || !g->lbox || (M == 4   ? build_leaves4(g, &gr)
+                              : M == 8 ? build_leaves8(g, &gr)
+                                       : build_leaves16(g, &gr));
     for (size_t l = 0; !bad && l < g->nleaves; l++) {
         struct RTCBounds *u = &g->lbox[l];
-        for (size_t j = l * (size_t)M; j < s->ns && j < (l + 1) * (size_t)M; j++) {
+        for (size_t j = 0; j < gr.count[l]; j++) {
             struct RTCBounds b;
-            eb_cylinder_bounds(s, order[j], &b);
-            if (j == l * (size_t)M)
+            eb_cylinder_bounds(s, gr.order[gr.first[l] + j], &b);
+            if (j == 0)
                 *u = b;
             u->lower_x = fminf(u->lower_x, b.lower_x), u->upper_x = fmaxf(u->upper_x, b.upper_x);
             u->lower_y = fminf(u->lower_y, b.lower_y), u->upper_y = fmaxf(u->upper_y, b.upper_y);
             u->lower_z = fminf(u->lower_z, b.lower_z), u->upper_z = fmaxf(u->upper_z, b.upper_z);
         }
     }
-    free(order);
+    grouping_free(&gr);
     if (bad)
         return NULL;
     RTCGeometry geo = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_USER);
@@ -386,7 +504,7 @@ static RTCGeometry leaf_geometry(RTCDevice dev, eb_geom *g)
 }
 
 int eb_geom_build(eb_geom *g, RTCDevice dev, const eb_scene *s, eb_variant v, int leaf_m,
-                  const cylray_kernels *k)
+                  eb_grouping how, const cylray_kernels *k)
 {
     memset(g, 0, sizeof *g);
     g->variant = v;
@@ -406,7 +524,7 @@ int eb_geom_build(eb_geom *g, RTCDevice dev, const eb_scene *s, eb_variant v, in
             rtcSetGeometryIntersectFunction(geo, g->isect = single_intersect);
             rtcSetGeometryOccludedFunction(geo, g->occ = single_occluded);
         } else if (leaf_m == 4 || leaf_m == 8 || leaf_m == 16) {
-            geo = leaf_geometry(dev, g);
+            geo = leaf_geometry(dev, g, how);
         }
     }
     if (!geo) {

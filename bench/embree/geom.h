@@ -9,6 +9,10 @@
 
 typedef enum eb_variant { EB_NATIVE, EB_SINGLE, EB_LEAF, EB_NVARIANTS } eb_variant;
 
+/* How the leaf variant groups cylinders: Embree's SAH builder (rtcBuildBVH) cuts them
+ * into leaves of at most M, or runs of M along a Morton curve through the centres. */
+typedef enum eb_grouping { EB_GROUP_SAH, EB_GROUP_MORTON } eb_grouping;
+
 const char *eb_variant_name(eb_variant v);
 
 typedef struct eb_geom {
@@ -26,9 +30,9 @@ typedef struct eb_geom {
     RTCOccludedFunctionN occ;
 } eb_geom;
 
-/* Builds the variant; leaf_m (4, 8, 16) only for EB_LEAF. 0 on success. */
+/* Builds the variant; leaf_m (4, 8, 16) and how only for EB_LEAF. 0 on success. */
 int eb_geom_build(eb_geom *g, RTCDevice dev, const eb_scene *s, eb_variant v, int leaf_m,
-                  const cylray_kernels *k);
+                  eb_grouping how, const cylray_kernels *k);
 void eb_geom_free(eb_geom *g);
 
 /* The axial parameter of point p on cylinder i, 0 at its first vertex and 1 at its

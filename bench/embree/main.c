@@ -2,7 +2,8 @@
  * scenes, time and error side by side.
  *
  *   cylembree [--quick] [--scene=molecule,pipes,far-rods,lattice] [--isa=best|all|LIST]
- *             [--packet=1,4,8,16] [--threads=N] [--leaf=4|8|16] [--size=WxH]
+ *             [--packet=1,4,8,16] [--threads=N] [--leaf=4|8|16] [--group=sah|morton]
+ *             [--size=WxH]
  *             [--samples=N] [--reps=N] [--out=DIR]
  */
 #include "image.h"
@@ -22,6 +23,7 @@
 
 typedef struct opts {
     int quick, w, h, leaf_m, reps, threads, samples;
+    eb_grouping group;
     int scene_on[EB_NSCENES];
     int packet_on[EB_NPACKETS];
     int isa_on[CYLRAY_ISA_COUNT];
@@ -67,6 +69,10 @@ static int parse(opts *o, int argc, char **argv)
             o->threads = atoi(a + 10);
         else if (!strncmp(a, "--leaf=", 7))
             o->leaf_m = atoi(a + 7);
+        else if (!strcmp(a, "--group=sah"))
+            o->group = EB_GROUP_SAH;
+        else if (!strcmp(a, "--group=morton"))
+            o->group = EB_GROUP_MORTON;
         else if (!strncmp(a, "--size=", 7))
             sscanf(a + 7, "%dx%d", &o->w, &o->h);
         else if (!strncmp(a, "--samples=", 10))
@@ -336,13 +342,14 @@ static int run_scene(const opts *o, RTCDevice dev, cylray_isa isa, int which, eb
         snprintf(r->scene, sizeof r->scene, "%s", sc.name);
         snprintf(r->variant, sizeof r->variant, "%s", eb_variant_name((eb_variant)v));
         r->leaf_m = v == EB_LEAF ? o->leaf_m : 0;
+        snprintf(r->group, sizeof r->group, "%s", o->group == EB_GROUP_SAH ? "sah" : "morton");
         r->threads = o->threads;
         r->ns = sc.ns;
         for (int p = 0; p < EB_NPHASES; p++)
             for (int q = 0; q < EB_NPACKETS; q++)
                 r->mrays[p][q] = NAN;
         if (frame_alloc(&fr[v], npix) ||
-            eb_geom_build(&geo[v], dev, &sc, (eb_variant)v, o->leaf_m, k)) {
+            eb_geom_build(&geo[v], dev, &sc, (eb_variant)v, o->leaf_m, o->group, k)) {
             r->skipped = 1;
             snprintf(r->why, sizeof r->why, "build failed");
             continue;

@@ -24,7 +24,9 @@ static int col_on(const eb_row *r, size_t n, int p, int k)
 
 static void speed(FILE *f, const eb_row *r, size_t n)
 {
-    fprintf(f, "\nM rays/s (%d threads; packet = rays per Embree call)\n", r[0].threads);
+    fprintf(f, "\nM rays/s (%d threads; packet = rays per Embree call; cylray-leaf: up to %d "
+               "cylinders a leaf, grouped by %s)\n",
+            r[0].threads, r[EB_LEAF < n ? EB_LEAF : 0].leaf_m, r[0].group);
     fprintf(f, "%-7s %-9s %-16s %8s", "isa", "scene", "variant", "build s");
     for (int p = 0; p < EB_NPHASES; p++)
         for (int k = 0; k < EB_NPACKETS; k++) {

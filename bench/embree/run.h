@@ -16,6 +16,7 @@ extern const int eb_packets[EB_NPACKETS]; /* 1, 4, 8, 16 */
 typedef struct eb_row {
     char isa[16], scene[32], variant[16];
     int leaf_m, threads, skipped;
+    char group[8];                         /* how leaves were grouped: sah, morton */
     char why[80];
     size_t ns, nprim;
     double build_s;

@@ -147,10 +147,12 @@ int main(void)
     static uint8_t valid0[W * H];
     int passed = 0, failed = 0;
     for (int v = EB_SINGLE; v < EB_NVARIANTS; v++) {
+        /* leaves of 4, 8, 16, grouped by Embree's SAH builder and along the Morton curve */
         int ms[3] = {4, 8, 16};
-        for (int mi = 0; mi < (v == EB_LEAF ? 3 : 1); mi++) {
+        for (int mi = 0; mi < (v == EB_LEAF ? 6 : 1); mi++) {
             eb_geom g;
-            if (eb_geom_build(&g, dev, &s, (eb_variant)v, ms[mi], k)) {
+            eb_grouping how = mi < 3 ? EB_GROUP_SAH : EB_GROUP_MORTON;
+            if (eb_geom_build(&g, dev, &s, (eb_variant)v, ms[mi % 3], how, k)) {
                 printf("FAIL %s: build\n", eb_variant_name((eb_variant)v));
                 failed++;
                 continue;
@@ -171,8 +173,9 @@ int main(void)
                     }
                     eb_trace(g.scene, &r, packets[p], 2, occ);
                     char what[96];
-                    snprintf(what, sizeof what, "%s M=%d packet %d %s",
-                             eb_variant_name((eb_variant)v), v == EB_LEAF ? ms[mi] : 1,
+                    snprintf(what, sizeof what, "%s M=%d%s packet %d %s",
+                             eb_variant_name((eb_variant)v), v == EB_LEAF ? ms[mi % 3] : 1,
+                             v != EB_LEAF ? "" : how == EB_GROUP_SAH ? " sah" : " morton",
                              packets[p], occ ? "occluded" : "intersect");
                     int bad = check(what, &g, &r, tfar0, valid0, occ, v == EB_SINGLE);
                     printf("%s %s (%d disagreements)\n", bad ? "FAIL" : "ok  ", what, bad);
