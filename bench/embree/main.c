@@ -205,9 +205,10 @@ static double mrays(size_t n, double s)
     return s > 0 ? (double)n / s * 1e-6 : NAN;
 }
 
-/* Best of `reps` passes (min time: the machine is shared, a busy spell only slows). */
+/* Best of `reps` passes (min time: the machine is shared, a busy spell only slows);
+ * *cores (if not NULL) gets the CPU time over the wall time of that pass. */
 static double timed(RTCScene sc, eb_rays *r, const float *tfar0, int packet, int threads,
-                    int occ, int reps)
+                    int occ, int reps, double *cores)
 {
     double best = INFINITY;
     size_t valid = 0;
@@ -216,7 +217,9 @@ static double timed(RTCScene sc, eb_rays *r, const float *tfar0, int packet, int
     for (int k = 0; k < reps; k++) {
         for (size_t i = 0; i < r->n; i++)
             r->tfar[i] = tfar0 ? tfar0[i] : INFINITY;
-        double s = eb_trace(sc, r, packet, threads, occ);
+        double cpu, s = eb_trace(sc, r, packet, threads, occ, &cpu);
+        if (s < best && cores)
+            *cores = cpu / s;
         best = s < best ? s : best;
     }
     return mrays(valid, best);
@@ -244,7 +247,7 @@ static void judge_variant(eb_row *row, const eb_geom *g, const eb_ref *ref,
                 one.ox[0] = x->o[0], one.oy[0] = x->o[1], one.oz[0] = x->o[2];
                 one.dx[0] = x->d[0], one.dy[0] = x->d[1], one.dz[0] = x->d[2];
                 one.tnear[0] = x->tmin, one.tfar[0] = x->tmax, one.valid[0] = 1;
-                eb_trace(g->scene, &one, 1, 1, 0);
+                eb_trace(g->scene, &one, 1, 1, 0, NULL);
                 prim = one.prim[0], t = one.tfar[0];
                 ng[0] = one.ngx[0], ng[1] = one.ngy[0], ng[2] = one.ngz[0];
                 eb_rays_free(&one);
@@ -266,7 +269,7 @@ static void judge_variant(eb_row *row, const eb_geom *g, const eb_ref *ref,
                 one.tnear[0] = sec[k]->tnear[p];
                 one.tfar[0] = k == 0 ? f->shadow_tfar[p] : INFINITY;
                 one.valid[0] = 1;
-                eb_trace(g->scene, &one, 1, 1, 0);
+                eb_trace(g->scene, &one, 1, 1, 0, NULL);
                 float w[3] = {one.dx[0], one.dy[0], one.dz[0]};
                 eb_judge_secondary(e, x, w, one.prim[0]);
                 eb_rays_free(&one);
@@ -366,7 +369,8 @@ static int run_scene(const opts *o, RTCDevice dev, cylray_isa isa, int which, eb
         for (int v = 0; v < EB_NVARIANTS; v++)
             if (built[v])
                 rows[first_row + v].scaling[t] =
-                    timed(geo[v].scene, &fr[v].prim, NULL, 1, t, 0, o->reps);
+                    timed(geo[v].scene, &fr[v].prim, NULL, 1, t, 0, o->reps,
+                          &rows[first_row + v].cores[t]);
     /* Embree offers a packet no wider than its ISA's vectors */
     int widest = isa == CYLRAY_ISA_SSE41 ? 4 : isa == CYLRAY_ISA_AVX2 ? 8 : 16;
     for (int q = 0; q < EB_NPACKETS; q++) {
@@ -375,7 +379,8 @@ static int run_scene(const opts *o, RTCDevice dev, cylray_isa isa, int which, eb
         for (int v = 0; v < EB_NVARIANTS; v++)
             if (built[v])
                 rows[first_row + v].mrays[EB_PRIMARY][q] =
-                    timed(geo[v].scene, &fr[v].prim, NULL, eb_packets[q], o->threads, 0, o->reps);
+                    timed(geo[v].scene, &fr[v].prim, NULL, eb_packets[q], o->threads, 0,
+                          o->reps, NULL);
     }
     for (int v = 0; v < EB_NVARIANTS; v++) {
         if (!built[v])
@@ -391,9 +396,9 @@ static int run_scene(const opts *o, RTCDevice dev, cylray_isa isa, int which, eb
             if (built[v]) {
                 eb_row *r = &rows[first_row + v];
                 r->mrays[EB_BOUNCE][q] = timed(geo[v].scene, &fr[v].bounce, NULL,
-                                               eb_packets[q], o->threads, 0, o->reps);
+                                               eb_packets[q], o->threads, 0, o->reps, NULL);
                 r->mrays[EB_SHADOW][q] = timed(geo[v].scene, &fr[v].shadow, fr[v].shadow_tfar,
-                                               eb_packets[q], o->threads, 1, o->reps);
+                                               eb_packets[q], o->threads, 1, o->reps, NULL);
             }
     }
 

@@ -59,17 +59,18 @@ static void speed(FILE *f, const eb_row *r, size_t n)
 static void scaling(FILE *f, const eb_row *r, size_t n)
 {
     int T = r[0].threads;
-    fprintf(f, "\nScaling: primary rays, one ray a call, M rays/s at 1..%d threads\n", T);
+    fprintf(f, "\nScaling: primary rays, one ray a call, M rays/s at 1..%d threads (in\n"
+               "brackets the cores the process got: CPU time over wall time)\n", T);
     fprintf(f, "%-7s %-9s %-16s", "isa", "scene", "variant");
     for (int t = 1; t <= T; t++)
-        fprintf(f, "   T=%-4d", t);
+        fprintf(f, "   T=%-9d", t);
     fprintf(f, " speedup\n");
     for (size_t i = 0; i < n; i++) {
         if (r[i].skipped)
             continue;
         fprintf(f, "%-7s %-9s %-16s", r[i].isa, r[i].scene, r[i].variant);
         for (int t = 1; t <= T; t++)
-            fprintf(f, " %8.2f", r[i].scaling[t]);
+            fprintf(f, " %6.2f (%.1f)", r[i].scaling[t], r[i].cores[t]);
         fprintf(f, " %7.2fx\n", r[i].scaling[T] / r[i].scaling[1]);
     }
 }

@@ -22,6 +22,7 @@ typedef struct eb_row {
     double build_s;
     double mrays[EB_NPHASES][EB_NPACKETS]; /* at `threads` threads; NAN: not run */
     double scaling[EB_MAXT + 1];           /* primary, one ray a call, at 1..threads */
+    double cores[EB_MAXT + 1];             /* CPU time / wall time in those runs */
     eb_err err[EB_NSETS];
     size_t diff_pixels;                    /* red + yellow against embree-curve */
     int stand_in;                          /* the spawn helper was missing */

@@ -171,7 +171,7 @@ int main(void)
                         tfar0[i] = r.tfar[i];
                         valid0[i] = r.valid[i];
                     }
-                    eb_trace(g.scene, &r, packets[p], 2, occ);
+                    eb_trace(g.scene, &r, packets[p], 2, occ, NULL);
                     char what[96];
                     snprintf(what, sizeof what, "%s M=%d%s packet %d %s",
                              eb_variant_name((eb_variant)v), v == EB_LEAF ? ms[mi % 3] : 1,

@@ -9,6 +9,7 @@
 #include <pthread.h>
 #include <stdatomic.h>
 #include <string.h>
+#include <time.h>
 
 int eb_rays_alloc(eb_rays *r, size_t n)
 {
@@ -198,7 +199,15 @@ static void *worker(void *arg)
     }
 }
 
-double eb_trace(RTCScene scene, eb_rays *r, int packet, int threads, int occluded)
+static double process_cpu_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+double eb_trace(RTCScene scene, eb_rays *r, int packet, int threads, int occluded,
+                double *cpu_s)
 {
     enum { MAXT = 256 };
     job jb = {.scene = scene, .r = r, .packet = packet, .occ = occluded};
@@ -208,7 +217,7 @@ double eb_trace(RTCScene scene, eb_rays *r, int packet, int threads, int occlude
         threads = 1;
     if (threads > MAXT)
         threads = MAXT;
-    double t0 = clk_ns();
+    double t0 = clk_ns(), c0 = process_cpu_s();
     int started = 0;
     for (int k = 1; k < threads; k++)
         if (pthread_create(&th[started], NULL, worker, &jb) == 0)
@@ -216,5 +225,7 @@ double eb_trace(RTCScene scene, eb_rays *r, int packet, int threads, int occlude
     worker(&jb);
     for (int k = 0; k < started; k++)
         pthread_join(th[k], NULL);
+    if (cpu_s)
+        *cpu_s = process_cpu_s() - c0;
     return (clk_ns() - t0) * 1e-9;
 }

@@ -38,7 +38,10 @@ void eb_camera_ray(const eb_scene *s, int w, int h, double x, double y, float o[
 
 /* Traces the valid rays of r through scene: rtcIntersect (occluded = 0) or rtcOccluded
  * (occluded = 1), `packet` rays to a call (1, 4, 8 or 16), on `threads` threads that take
- * 256 rays (one tile) at a time. Returns the wall time in seconds. */
-double eb_trace(RTCScene scene, eb_rays *r, int packet, int threads, int occluded);
+ * 256 rays (one tile) at a time. Returns the wall time in seconds; *cpu_s (if not NULL)
+ * gets the CPU time the process got meanwhile, which shows how many cores a shared
+ * machine actually gave. */
+double eb_trace(RTCScene scene, eb_rays *r, int packet, int threads, int occluded,
+                double *cpu_s);
 
 #endif
