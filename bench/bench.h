@@ -66,7 +66,6 @@ typedef struct workload {
     unsigned widths;            /* bit per BW_* measured (before the --width filter) */
     int textbook;               /* also time and check the textbook baseline */
     int big;                    /* stream over arrays far larger than the caches */
-    int target;                 /* the speed target applies to these rows */
     ref_answer *ref;            /* per ray, or NULL without a reference */
     ref_answer *ref_open;       /* the same with every cylinder an open tube: what the
                                    textbook (which has no caps) is judged against */

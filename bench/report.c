@@ -1,9 +1,10 @@
-/* report.c - what a person reads: the stdout tables (time and error per ISA, the speed
- * targets, the skips, the big stream, the scene), and the files: results.csv,
+/* report.c - what a person reads: the stdout tables (time and error per ISA, the rates,
+ * the skips, the big stream, the scene), and the files: results.csv,
  * results.json, table.txt (every configuration, one per line), and the two plots. */
 #include "report.h"
 
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -115,7 +116,7 @@ static void print_group(FILE *f, const result_list *l, const char *group, const 
     }
 }
 
-/* ---- M rays/s per ISA and width, and the targets -------------------------------- */
+/* ---- M rays/s per ISA and width ------------------------------------------------------ */
 
 static void print_rates(FILE *f, const result_list *l)
 {
@@ -159,49 +160,7 @@ static double ratio(const result *a, const result *b)
     return a && b && b->ns.med > 0 ? a->ns.med / b->ns.med : 0;
 }
 
-static void print_targets(FILE *f, const result_list *l)
-{
-    struct {
-        const char *what;
-        double got, goal;
-        const char *unit;
-    } t[6];
-    int n = 0;
-    const result *a;
-#define TARGET(w, g, gl, u) (t[n].what = (w), t[n].got = (g), t[n].goal = (gl), t[n].unit = (u), n++)
-    a = find_result(l, "incoherent", CYLRAY_ISA_AVX2, BW_8, OP_NORMAL);
-    TARGET("AVX2 8-wide, capped, normals, L1", a ? a->mrays : 0, 250, "M rays/s");
-    a = find_result(l, "incoherent", CYLRAY_ISA_AVX512, BW_16, OP_NORMAL);
-    TARGET("AVX-512 16-wide, capped, normals, L1", a ? a->mrays : 0, 400, "M rays/s");
-    a = find_result(l, "incoherent", CYLRAY_ISA_SSE41, BW_4, OP_NORMAL);
-    TARGET("SSE4.1 4-wide, capped, normals, L1", a ? a->mrays : 0, 120, "M rays/s");
-    TARGET("occluded vs intersect+normals (AVX2 8)",
-           ratio(find_result(l, "incoherent", CYLRAY_ISA_AVX2, BW_8, OP_NORMAL),
-                 find_result(l, "incoherent", CYLRAY_ISA_AVX2, BW_8, OP_OCC)),
-           1.3, "x faster");
-    TARGET("axis-aligned vs general axis (AVX2 8)",
-           ratio(find_result(l, "general", CYLRAY_ISA_AVX2, BW_8, OP_NORMAL),
-                 find_result(l, "aligned", CYLRAY_ISA_AVX2, BW_8, OP_NORMAL)),
-           1.25, "x faster");
-    TARGET("all-miss vs all-hit packet (AVX2 8)",
-           ratio(find_result(l, "all-hit", CYLRAY_ISA_AVX2, BW_8, OP_NORMAL),
-                 find_result(l, "all-miss", CYLRAY_ISA_AVX2, BW_8, OP_NORMAL)),
-           3.0, "x faster");
-#undef TARGET
-    fprintf(f, "\n== speed targets of issues 3 and 5 (reported, not asserted) ==\n");
-    for (int i = 0; i < n; i++) {
-        if (t[i].got <= 0) {
-            fprintf(f, "  %-42s %10s            goal >= %6.2f %-9s  not measured\n",
-                    t[i].what, "-", t[i].goal, t[i].unit);
-            continue;
-        }
-        fprintf(f, "  %-42s %10.2f %-9s  goal >= %6.2f %-9s  %s (%.0f%% of goal)\n", t[i].what,
-                t[i].got, t[i].unit, t[i].goal, t[i].unit, t[i].got >= t[i].goal ? "MET" : "NOT MET",
-                100 * t[i].got / t[i].goal);
-    }
-}
-
-/* ---- what each skip saves (issue 5) -------------------------------------------- */
+/* ---- what each skip saves ------------------------------------------------------------ */
 
 static void print_skips(FILE *f, const result_list *l)
 {
@@ -383,6 +342,151 @@ static void print_scene(FILE *f, const result_list *l, const scene_report *sc)
 
 /* ---- files ---------------------------------------------------------------------------- */
 
+/* One column of the per-configuration outputs. results.csv, results.json and table.txt
+ * are all written from the list below, so a new figure is one line there. */
+typedef enum col_kind {
+    K_TEXT,  /* a string */
+    K_COUNT, /* an integer */
+    K_REAL,  /* a real number, printed with fmt */
+    K_ULPS,  /* a real number of ulps: fmt in CSV, fmt_ulps in table.txt */
+    K_MARK   /* yes or no: 0/1 in CSV, true/false in JSON, fmt in table.txt when yes */
+} col_kind;
+
+typedef enum col_when {
+    ON_ALL,
+    ON_ERR, /* only with an error side (an exact reference in the build) */
+    ON_BIG  /* only for big streams */
+} col_when;
+
+/* Where a column's value lives: a field of the result, or a function of the result and
+ * the machine. */
+typedef enum col_type { T_STR, T_WIDTH, T_INT, T_SIZE, T_DBL, T_FN } col_type;
+typedef double (*col_fn)(const result *r, const machine_info *m);
+
+typedef struct column {
+    const char *name;  /* the CSV heading and the JSON key */
+    const char *unit;  /* "" for names and plain counts */
+    col_kind kind;
+    col_when when;
+    const char *fmt;
+    const char *head;  /* the table.txt heading; NULL: not in table.txt */
+    int width;         /* its table.txt width; negative: left-aligned */
+    col_type type;
+    size_t off;
+    col_fn fn;
+} column;
+
+#define STR(f) T_STR, offsetof(result, f), NULL
+#define INT(f) T_INT, offsetof(result, f), NULL
+#define SIZE(f) T_SIZE, offsetof(result, f), NULL
+#define DBL(f) T_DBL, offsetof(result, f), NULL
+#define FN(f) T_FN, 0, f
+
+static double core_cycles(const result *r, const machine_info *m)
+{
+    return r->ns.med * m->core_ghz;
+}
+
+static const column columns[] = {
+    {"scenario", "", K_TEXT, ON_ALL, "%s", "scenario", -19, STR(scenario)},
+    {"group", "", K_TEXT, ON_ALL, "%s", NULL, 0, STR(group)},
+    {"isa", "", K_TEXT, ON_ALL, "%s", "isa", -14, STR(isa)},
+    {"width", "rays per packet", K_TEXT, ON_ALL, "%s", "width", -6, T_WIDTH, 0, NULL},
+    {"flags", "", K_TEXT, ON_ALL, "%s", "flags", -8, STR(op)},
+    {"rays_per_pass", "rays", K_COUNT, ON_ALL, NULL, NULL, 0, SIZE(rays_timed)},
+    {"tests_per_ray", "cylinders", K_COUNT, ON_ALL, NULL, NULL, 0, INT(ncyl)},
+    {"reps", "samples", K_COUNT, ON_ALL, NULL, NULL, 0, INT(reps)},
+    {"ns_med", "ns per ray and cylinder", K_REAL, ON_ALL, "%.4f", "ns/ray", 8, DBL(ns.med)},
+    {"cpu_timed", "", K_MARK, ON_ALL, "~", "~", 1, INT(cpu_timed)},
+    {"ns_min", "ns per ray and cylinder", K_REAL, ON_ALL, "%.4f", "min", 8, DBL(ns.min)},
+    {"ns_max", "ns per ray and cylinder", K_REAL, ON_ALL, "%.4f", "max", 8, DBL(ns.max)},
+    {"ns_q1", "ns per ray and cylinder", K_REAL, ON_ALL, "%.4f", NULL, 0, DBL(ns.q1)},
+    {"ns_q3", "ns per ray and cylinder", K_REAL, ON_ALL, "%.4f", NULL, 0, DBL(ns.q3)},
+    {"mrays_s", "M rays/s", K_REAL, ON_ALL, "%.2f", "M rays/s", 9, DBL(mrays)},
+    {"tsc_ticks", "TSC ticks per ray", K_REAL, ON_ALL, "%.3f", "ticks", 8, DBL(ticks)},
+    {"core_cycles", "core cycles per ray", K_REAL, ON_ALL, "%.2f", "cycles", 8,
+     FN(core_cycles)},
+    {"speedup_vs_scalar", "x", K_REAL, ON_ALL, "%.3f", "xscalar", 8, DBL(speedup)},
+    {"hit_frac", "share of rays", K_REAL, ON_ALL, "%.4f", "hit", 6, DBL(hit_frac)},
+    {"samples", "samples", K_COUNT, ON_ALL, NULL, NULL, 0, INT(samples)},
+    {"clean_samples", "samples", K_COUNT, ON_ALL, NULL, NULL, 0, INT(clean)},
+    {"err_compared", "rays", K_COUNT, ON_ERR, NULL, NULL, 0, SIZE(n_cmp)},
+    {"ref_hits", "rays", K_COUNT, ON_ERR, NULL, NULL, 0, SIZE(n_hits_ref)},
+    {"ulp_med", "ulps", K_ULPS, ON_ERR, "%.4g", "med", 6, DBL(ulp_med)},
+    {"ulp_p99", "ulps", K_ULPS, ON_ERR, "%.4g", "p99", 6, DBL(ulp_p99)},
+    {"ulp_max", "ulps", K_ULPS, ON_ERR, "%.4g", "max ulp", 7, DBL(ulp_max)},
+    {"beyond_band_p99", "ulps", K_ULPS, ON_ERR, "%.4g", NULL, 0, DBL(xs_p99)},
+    {"beyond_band_max", "ulps", K_ULPS, ON_ERR, "%.4g", NULL, 0, DBL(xs_max)},
+    {"extra_hits", "rays", K_COUNT, ON_ERR, NULL, "extra", 5, SIZE(extra_hits)},
+    {"lost_hits", "rays", K_COUNT, ON_ERR, NULL, "lost", 5, SIZE(lost_hits)},
+    {"part_diff", "rays", K_COUNT, ON_ERR, NULL, "part", 5, SIZE(part_diff)},
+    {"unexcused", "rays", K_COUNT, ON_ERR, NULL, "unexc", 5, SIZE(unexcused)},
+    {"gbytes_s", "GB/s", K_REAL, ON_BIG, "%.3f", NULL, 0, DBL(gbytes_s)},
+    {"memcpy_gbytes_s", "GB/s", K_REAL, ON_BIG, "%.3f", NULL, 0, DBL(memcpy_gbytes_s)},
+};
+#define NCOLUMNS (sizeof columns / sizeof columns[0])
+
+#undef STR
+#undef INT
+#undef SIZE
+#undef DBL
+#undef FN
+
+static int col_present(const column *c, const result *r)
+{
+    return c->when == ON_ALL || (c->when == ON_ERR && r->have_err) ||
+           (c->when == ON_BIG && r->gbytes_s > 0);
+}
+
+static const char *col_text(const column *c, const result *r)
+{
+    if (c->type == T_WIDTH)
+        return bench_width_name[r->width_id];
+    return (const char *)r + c->off;
+}
+
+static double col_num(const column *c, const result *r, const machine_info *m)
+{
+    const char *p = (const char *)r + c->off;
+    int i;
+    size_t z;
+    double d;
+    switch (c->type) {
+    case T_INT:
+        memcpy(&i, p, sizeof i);
+        return i;
+    case T_SIZE:
+        memcpy(&z, p, sizeof z);
+        return (double)z;
+    case T_DBL:
+        memcpy(&d, p, sizeof d);
+        return d;
+    case T_FN:
+        return c->fn(r, m);
+    default:
+        return 0;
+    }
+}
+
+/* The value as CSV shows it (and table.txt, except for ulps and marks). */
+static const char *col_format(const column *c, const result *r, const machine_info *m,
+                              char *buf, size_t n)
+{
+    double x = c->kind == K_TEXT ? 0 : col_num(c, r, m);
+    switch (c->kind) {
+    case K_TEXT:
+        snprintf(buf, n, "%s", col_text(c, r));
+        break;
+    case K_COUNT:
+    case K_MARK:
+        snprintf(buf, n, "%.0f", x);
+        break;
+    default:
+        snprintf(buf, n, c->fmt, x);
+    }
+    return buf;
+}
+
 static FILE *open_out(const options *opt, const char *name, char *path, size_t n)
 {
     snprintf(path, n, "%s/%s", opt->out_dir, name);
@@ -394,36 +498,25 @@ static FILE *open_out(const options *opt, const char *name, char *path, size_t n
 
 static void write_csv(const result_list *l, const machine_info *m, const options *opt)
 {
-    char path[1024], ml[512];
+    char path[1024], ml[512], cell[64];
     FILE *f = open_out(opt, "results.csv", path, sizeof path);
     if (!f)
         return;
     machine_line(m, ml, sizeof ml);
-    fprintf(f, "# cylbench %s; %s; %s\n", m->date, ml, m->pinned);
-    fprintf(f, "scenario,group,isa,width,flags,rays_per_pass,tests_per_ray,reps,ns_med,ns_min,"
-               "ns_max,ns_q1,ns_q3,mrays_s,tsc_ticks,core_cycles,speedup_vs_scalar,hit_frac,samples,"
-               "clean_samples,cpu_timed,err_compared,ref_hits,ulp_med,ulp_p99,ulp_max,"
-               "beyond_band_p99,beyond_band_max,extra_hits,lost_hits,part_diff,unexcused,"
-               "gbytes_s,memcpy_gbytes_s\n");
-    for (size_t i = 0; i < l->n; i++) {
-        const result *r = &l->r[i];
-        fprintf(f, "%s,%s,%s,%s,%s,%zu,%d,%d,%.4f,%.4f,%.4f,%.4f,%.4f,%.2f,%.3f,%.2f,%.3f,%.4f,"
-                   "%d,%d,%d,",
-                r->scenario, r->group, r->isa, bench_width_name[r->width_id], r->op,
-                r->rays_timed, r->ncyl, r->reps, r->ns.med, r->ns.min, r->ns.max, r->ns.q1,
-                r->ns.q3, r->mrays, r->ticks, r->ns.med * m->core_ghz, r->speedup, r->hit_frac,
-                r->samples, r->clean, r->cpu_timed);
-        if (r->have_err)
-            fprintf(f, "%zu,%zu,%.4g,%.4g,%.4g,%.4g,%.4g,%zu,%zu,%zu,%zu,", r->n_cmp,
-                    r->n_hits_ref, r->ulp_med, r->ulp_p99, r->ulp_max, r->xs_p99, r->xs_max,
-                    r->extra_hits, r->lost_hits, r->part_diff, r->unexcused);
-        else
-            fprintf(f, ",,,,,,,,,,,");
-        if (r->gbytes_s > 0)
-            fprintf(f, "%.3f,%.3f\n", r->gbytes_s, r->memcpy_gbytes_s);
-        else
-            fprintf(f, ",\n");
-    }
+    fprintf(f, "# cylbench %s; %s; %s\n# units:", m->date, ml, m->pinned);
+    for (size_t c = 0; c < NCOLUMNS; c++)
+        if (*columns[c].unit)
+            fprintf(f, " %s: %s;", columns[c].name, columns[c].unit);
+    fprintf(f, "\n");
+    for (size_t c = 0; c < NCOLUMNS; c++)
+        fprintf(f, "%s%s", columns[c].name, c + 1 < NCOLUMNS ? "," : "\n");
+    for (size_t i = 0; i < l->n; i++)
+        for (size_t c = 0; c < NCOLUMNS; c++) {
+            const column *col = &columns[c];
+            if (col_present(col, &l->r[i]))
+                fputs(col_format(col, &l->r[i], m, cell, sizeof cell), f);
+            fputs(c + 1 < NCOLUMNS ? "," : "\n", f);
+        }
     fclose(f);
 }
 
@@ -454,29 +547,24 @@ static void write_json(const result_list *l, const machine_info *m, const option
     FILE *f = open_out(opt, "results.json", path, sizeof path);
     if (!f)
         return;
-    fprintf(f, "{\n  \"machine\": {\"cpu\": ");
-    json_str(f, m->cpu);
-    fprintf(f, ", \"cpuid\": ");
-    json_str(f, m->cpuid);
-    fprintf(f, ", \"cores\": %d, \"virtual\": %s, \"tsc_ghz\": ", m->cores,
+    const struct {
+        const char *key, *val;
+    } mtext[] = {{"cpu", m->cpu},         {"cpuid", m->cpuid},        {"compiler", m->compiler},
+                 {"buildtype", m->buildtype}, {"os", m->os},           {"paths", m->isas},
+                 {"pinning", m->pinned},  {"date", m->date}};
+    fprintf(f, "{\n  \"machine\": {\"cores\": %d, \"virtual\": %s, \"tsc_ghz\": ", m->cores,
             m->hypervisor ? "true" : "false");
     json_num(f, m->tsc_ghz);
-    fprintf(f, ", \"compiler\": ");
-    json_str(f, m->compiler);
-    fprintf(f, ", \"buildtype\": ");
-    json_str(f, m->buildtype);
-    fprintf(f, ", \"os\": ");
-    json_str(f, m->os);
-    fprintf(f, ", \"paths\": ");
-    json_str(f, m->isas);
-    fprintf(f, ", \"pinning\": ");
-    json_str(f, m->pinned);
-    fprintf(f, ", \"date\": ");
-    json_str(f, m->date);
+    fprintf(f, ", \"core_ghz\": ");
+    json_num(f, m->core_ghz);
     fprintf(f, ", \"load_start\": ");
     json_num(f, m->load_start);
     fprintf(f, ", \"load_end\": ");
     json_num(f, m->load_end);
+    for (size_t k = 0; k < sizeof mtext / sizeof mtext[0]; k++) {
+        fprintf(f, ", \"%s\": ", mtext[k].key);
+        json_str(f, mtext[k].val);
+    }
     fprintf(f, "},\n  \"settings\": {\"quick\": %s, \"reps\": %d, \"sample_ms\": %.3f, "
                "\"batch_rays\": %d, \"big_stream_rays\": %zu, \"exact_reference\": %s, "
                "\"wall_s\": %.1f},\n",
@@ -489,54 +577,33 @@ static void write_json(const result_list *l, const machine_info *m, const option
         json_str(f, sc->image);
         fprintf(f, "},\n");
     }
-    fprintf(f, "  \"results\": [\n");
+    fprintf(f, "  \"units\": {");
+    const char *sep = "";
+    for (size_t c = 0; c < NCOLUMNS; c++)
+        if (*columns[c].unit) {
+            fprintf(f, "%s\"%s\": ", sep, columns[c].name);
+            json_str(f, columns[c].unit);
+            sep = ", ";
+        }
+    fprintf(f, "},\n  \"results\": [\n");
     for (size_t i = 0; i < l->n; i++) {
         const result *r = &l->r[i];
-        fprintf(f, "    {\"scenario\": \"%s\", \"group\": \"%s\", \"isa\": \"%s\", "
-                   "\"width\": \"%s\", \"flags\": \"%s\", \"rays_per_pass\": %zu, "
-                   "\"tests_per_ray\": %d, \"reps\": %d, \"ns_per_ray\": {\"median\": ",
-                r->scenario, r->group, r->isa, bench_width_name[r->width_id], r->op,
-                r->rays_timed, r->ncyl, r->reps);
-        json_num(f, r->ns.med);
-        fprintf(f, ", \"min\": ");
-        json_num(f, r->ns.min);
-        fprintf(f, ", \"max\": ");
-        json_num(f, r->ns.max);
-        fprintf(f, ", \"q1\": ");
-        json_num(f, r->ns.q1);
-        fprintf(f, ", \"q3\": ");
-        json_num(f, r->ns.q3);
-        fprintf(f, "}, \"mrays_s\": ");
-        json_num(f, r->mrays);
-        fprintf(f, ", \"tsc_ticks_per_ray\": ");
-        json_num(f, r->ticks);
-        fprintf(f, ", \"speedup_vs_scalar\": ");
-        json_num(f, r->speedup);
-        fprintf(f, ", \"hit_frac\": ");
-        json_num(f, r->hit_frac);
-        fprintf(f, ", \"samples\": %d, \"clean_samples\": %d, \"cpu_timed\": %s", r->samples,
-                r->clean, r->cpu_timed ? "true" : "false");
-        if (r->have_err) {
-            fprintf(f, ", \"error\": {\"compared\": %zu, \"ref_hits\": %zu, \"ulp_median\": ",
-                    r->n_cmp, r->n_hits_ref);
-            json_num(f, r->ulp_med);
-            fprintf(f, ", \"ulp_p99\": ");
-            json_num(f, r->ulp_p99);
-            fprintf(f, ", \"ulp_max\": ");
-            json_num(f, r->ulp_max);
-            fprintf(f, ", \"beyond_band_p99\": ");
-            json_num(f, r->xs_p99);
-            fprintf(f, ", \"beyond_band_max\": ");
-            json_num(f, r->xs_max);
-            fprintf(f, ", \"extra_hits\": %zu, \"lost_hits\": %zu, \"part_diff\": %zu, "
-                       "\"unexcused\": %zu}",
-                    r->extra_hits, r->lost_hits, r->part_diff, r->unexcused);
-        }
-        if (r->gbytes_s > 0) {
-            fprintf(f, ", \"gbytes_s\": ");
-            json_num(f, r->gbytes_s);
-            fprintf(f, ", \"memcpy_gbytes_s\": ");
-            json_num(f, r->memcpy_gbytes_s);
+        fprintf(f, "    {");
+        sep = "";
+        for (size_t c = 0; c < NCOLUMNS; c++) {
+            const column *col = &columns[c];
+            if (!col_present(col, r))
+                continue; /* absent, not null: null is a figure that is not finite */
+            fprintf(f, "%s\"%s\": ", sep, col->name);
+            sep = ", ";
+            if (col->kind == K_TEXT)
+                json_str(f, col_text(col, r));
+            else if (col->kind == K_MARK)
+                fputs(col_num(col, r, m) != 0 ? "true" : "false", f);
+            else if (col->kind == K_COUNT)
+                fprintf(f, "%.0f", col_num(col, r, m));
+            else
+                json_num(f, col_num(col, r, m));
         }
         fprintf(f, "}%s\n", i + 1 < l->n ? "," : "");
     }
@@ -544,36 +611,44 @@ static void write_json(const result_list *l, const machine_info *m, const option
     fclose(f);
 }
 
-/* Every configuration on its own line, all figures: the long form of the tables. */
+/* Every configuration on its own line, the columns that have a heading: the long form
+ * of the stdout tables. */
 static void write_long(const result_list *l, const machine_info *m, const options *opt)
 {
-    char path[1024], ml[512];
+    char path[1024], ml[512], cell[64];
     FILE *f = open_out(opt, "table.txt", path, sizeof path);
     if (!f)
         return;
     machine_line(m, ml, sizeof ml);
     fprintf(f, "cylbench %s\n%s; %s\n\n", m->date, ml, m->pinned);
     fprintf(f, "ticks: TSC ticks per ray (%.3f GHz); cycles: ns x the measured core clock "
-               "(%.2f GHz); ~: CPU-timed (busy machine)\n\n", m->tsc_ghz, m->core_ghz);
-    fprintf(f, "%-19s %-14s %-6s %-8s %8s %8s %8s %9s %8s %8s %7s %6s | %6s %6s %7s %5s %5s "
-               "%5s %5s\n",
-            "scenario", "isa", "width", "flags", "ns/ray", "min", "max", "M rays/s",
-            "ticks", "cycles", "xscalar", "hit%", "med", "p99", "max ulp", "extra", "lost",
-            "part", "unexc");
+               "(%.2f GHz); ~: CPU-timed (busy machine); -: not measured\n\n",
+            m->tsc_ghz, m->core_ghz);
+    const char *sep = "";
+    for (size_t c = 0; c < NCOLUMNS; c++)
+        if (columns[c].head) {
+            fprintf(f, "%s%*s", sep, columns[c].width, columns[c].head);
+            sep = " ";
+        }
+    fprintf(f, "\n");
     for (size_t i = 0; i < l->n; i++) {
         const result *r = &l->r[i];
-        fprintf(f, "%-19s %-14s %-6s %-8s %8.3f%c%8.3f %8.3f %9.1f %8.2f %8.1f %6.2fx %6.1f |",
-                r->scenario, r->isa, bench_width_name[r->width_id], r->op, r->ns.med,
-                r->cpu_timed ? '~' : ' ', r->ns.min, r->ns.max, r->mrays, r->ticks,
-                r->ns.med * m->core_ghz, r->speedup, 100 * r->hit_frac);
-        if (r->have_err) {
-            char a[16], b[16], c[16];
-            fprintf(f, " %6s %6s %7s %5zu %5zu %5zu %5zu\n", fmt_ulps(r->ulp_med, a, sizeof a),
-                    fmt_ulps(r->ulp_p99, b, sizeof b), fmt_ulps(r->ulp_max, c, sizeof c),
-                    r->extra_hits, r->lost_hits, r->part_diff, r->unexcused);
-        } else {
-            fprintf(f, " %6s\n", "-");
+        sep = "";
+        for (size_t c = 0; c < NCOLUMNS; c++) {
+            const column *col = &columns[c];
+            if (!col->head)
+                continue;
+            const char *s = "-";
+            if (col->kind == K_MARK)
+                s = col_num(col, r, m) != 0 ? col->fmt : "";
+            else if (col->kind == K_ULPS && col_present(col, r))
+                s = fmt_ulps(col_num(col, r, m), cell, sizeof cell);
+            else if (col_present(col, r))
+                s = col_format(col, r, m, cell, sizeof cell);
+            fprintf(f, "%s%*s", sep, col->width, s);
+            sep = " ";
         }
+        fprintf(f, "\n");
     }
     fclose(f);
 }
@@ -611,11 +686,10 @@ void report_all(const result_list *l, const machine_info *m, const options *opt,
                 : "no reference built: error columns empty");
 
     print_group(f, l, "main", "main scenarios: packets of 4, 8, 16 and the stream API");
-    print_group(f, l, "skips", "skips (issue 5): the same work with less to do");
+    print_group(f, l, "skips", "skips: the same work with less to do");
     print_group(f, l, "stress", "stress categories of tests/ref/gen.h (16 rays per cylinder; "
                                 "textbook: the seed's float formulas)");
     print_rates(f, l);
-    print_targets(f, l);
     print_skips(f, l);
     print_stream(f, l);
     print_errors(f, l);

@@ -27,7 +27,7 @@ typedef struct scen_def {
     int cyl_kind;     /* 0 infinite, 1 open, 2 capped */
     int ops;          /* OP_* bits, or -1 for the default of the group */
     unsigned widths;
-    int textbook, big, target;
+    int textbook, big;
     int gen_category; /* S_GEN: the cylgen category */
 } scen_def;
 
@@ -46,36 +46,36 @@ static void init_table(void)
     const unsigned occn = (1u << OP_NORMAL) | (1u << OP_OCC);
     const scen_def fixed[] = {
         {"coherent", "main", "camera rays in 4x4 pixel tiles at a capped cylinder, general axis",
-         S_PLAIN, RK_CAMERA, 2, ALL_OPS, ALL_WIDTHS, 0, 0, 0, 0},
+         S_PLAIN, RK_CAMERA, 2, ALL_OPS, ALL_WIDTHS, 0, 0, 0},
         {"incoherent", "main",
          "ordinary rays: random origins 3-6 sizes away at a capped cylinder, general axis",
-         S_PLAIN, RK_INCOHERENT, 2, ALL_OPS, ALL_WIDTHS, 0, 0, 1, 0},
+         S_PLAIN, RK_INCOHERENT, 2, ALL_OPS, ALL_WIDTHS, 0, 0, 0},
         {"shadow", "main", "shadow rays from a floor to a point light past a capped cylinder",
-         S_PLAIN, RK_SHADOW, 2, (1u << OP_OCC) | (1u << OP_T), ALL_WIDTHS, 0, 0, 0, 0},
+         S_PLAIN, RK_SHADOW, 2, (1u << OP_OCC) | (1u << OP_T), ALL_WIDTHS, 0, 0, 0},
         {"bvh-leaf", "main",
          "one packet against 32 capped cylinders (a BVH leaf, all in L1), closest hit; "
          "ns per ray and cylinder",
-         S_CLUSTER, RK_CLUSTER, 2, (1u << OP_T) | occn, ALL_WIDTHS, 0, 0, 0, 0},
+         S_CLUSTER, RK_CLUSTER, 2, (1u << OP_T) | occn, ALL_WIDTHS, 0, 0, 0},
         {"miss-mix", "main", "90% misses and 10% hits, mixed across lanes (capped)",
-         S_PLAIN, RK_MISS_MIX, 2, (int)occn, ALL_WIDTHS, 0, 0, 0, 0},
+         S_PLAIN, RK_MISS_MIX, 2, (int)occn, ALL_WIDTHS, 0, 0, 0},
         {"hit-mix", "main", "90% hits and 10% misses, mixed across lanes (capped)",
-         S_PLAIN, RK_HIT_MIX, 2, (int)occn, ALL_WIDTHS, 0, 0, 0, 0},
+         S_PLAIN, RK_HIT_MIX, 2, (int)occn, ALL_WIDTHS, 0, 0, 0},
         {"big-stream", "stream",
          "a stream far larger than the caches (incoherent rays, capped); bytes of rays per "
          "second against memcpy",
-         S_PLAIN, RK_INCOHERENT, 2, (1u << OP_T) | occn, 1u << BW_STREAM, 0, 1, 0, 0},
+         S_PLAIN, RK_INCOHERENT, 2, (1u << OP_T) | occn, 1u << BW_STREAM, 0, 1, 0},
         {"aligned", "skips", "capped cylinder along +z (axis-aligned kernel), incoherent rays",
-         S_ALIGNED, RK_INCOHERENT, 2, 1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0, 0},
+         S_ALIGNED, RK_INCOHERENT, 2, 1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0},
         {"general", "skips", "the same rays and cylinder rotated to a general axis (capped)",
-         S_GENERAL, RK_INCOHERENT, 2, 1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0, 0},
+         S_GENERAL, RK_INCOHERENT, 2, 1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0},
         {"open", "skips", "the `general` rays against the open tube (no caps)",
-         S_GENERAL, RK_INCOHERENT, 1, 1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0, 0},
+         S_GENERAL, RK_INCOHERENT, 1, 1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0},
         {"infinite", "skips", "the `general` rays against the infinite cylinder",
-         S_GENERAL, RK_INCOHERENT, 0, 1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0, 0},
+         S_GENERAL, RK_INCOHERENT, 0, 1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0},
         {"all-miss", "skips", "every ray misses even the infinite cylinder (capped)",
-         S_PLAIN, RK_ALL_MISS, 2, 1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0, 0},
+         S_PLAIN, RK_ALL_MISS, 2, 1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0},
         {"all-hit", "skips", "every ray hits (capped)", S_PLAIN, RK_ALL_HIT, 2,
-         1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0, 0},
+         1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0},
     };
     for (size_t i = 0; i < sizeof fixed / sizeof fixed[0]; i++)
         table[ntable++] = fixed[i];
@@ -85,7 +85,7 @@ static void init_table(void)
         scen_def s = {gen_names[c], "stress", cylgen_category_description(c), S_GEN,
                       RK_INCOHERENT, 2,
                       (1 << OP_NORMAL) | (1 << OP_REFINE) | (1 << OP_FAST),
-                      1u << BW_16, 1, 0, 0, c};
+                      1u << BW_16, 1, 0, c};
         table[ntable++] = s;
     }
 #endif
@@ -184,7 +184,6 @@ int workloads_build(int idx, workload *w, const options *opt)
     w->widths = s->widths;
     w->textbook = s->textbook;
     w->big = s->big;
-    w->target = s->target;
     size_t n = s->big ? opt->big_rays : 8 * (size_t)BENCH_BATCH;
     w->batch = s->big ? n : BENCH_BATCH;
     if (raysoa_alloc(&w->rays, n))
