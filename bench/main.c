@@ -23,7 +23,9 @@ static void usage(FILE *f)
 {
     fprintf(f,
             "usage: cylbench [options]\n"
-            "  --isa=LIST       scalar,sse41,avx2,avx512,neon,textbook (default: all this CPU runs)\n"
+            "  --isa=LIST       scalar,sse41,avx2,avx512,neon, and the textbook peer's builds\n"
+            "                   textbook (scalar), auto-sse41, auto-avx2, auto-avx512,\n"
+            "                   auto-neon (default: all this CPU runs)\n"
             "  --width=LIST     4,8,16,stream (default: each scenario's own)\n"
             "  --scenario=LIST  names or groups: main, stream, skips, stress, scene, all\n"
             "                   (main: coherent incoherent shadow bvh-leaf miss-mix hit-mix;\n"
@@ -130,7 +132,9 @@ static int isa_runs(const options *o, int isa)
 {
     if (!(o->isa_mask >> isa & 1u))
         return 0;
-    return isa == BENCH_ISA_TEXTBOOK || cylray_kernels_for((cylray_isa)isa) != NULL;
+    if (bench_is_textbook(isa))
+        return tb_variant(isa - BENCH_ISA_TEXTBOOK) != NULL;
+    return cylray_kernels_for((cylray_isa)isa) != NULL;
 }
 
 static unsigned widths_of(const workload *w, const options *o)
@@ -161,12 +165,14 @@ static int for_configs(workload *w, const options *o, config_fn fn, void *ctx)
                     n++;
                 }
         }
-        /* The textbook computes t and normals only, one ray at a time. */
-        if (w->textbook && op == OP_NORMAL && isa_runs(o, BENCH_ISA_TEXTBOOK)) {
-            if (fn)
-                fn(ctx, w, op, BW_STREAM, BENCH_ISA_TEXTBOOK);
-            n++;
-        }
+        /* The textbook peer: a stream with normals, each of its builds. */
+        if (w->textbook && op == OP_NORMAL)
+            for (int isa = BENCH_ISA_TEXTBOOK; isa < BENCH_NISA; isa++)
+                if (isa_runs(o, isa)) {
+                    if (fn)
+                        fn(ctx, w, op, BW_STREAM, isa);
+                    n++;
+                }
     }
     return n;
 }
@@ -254,7 +260,7 @@ static void note(run_ctx *c, const char *what)
 }
 
 /* Speedup over the scalar path in the same run: same scenario, width and flag set (the
- * textbook against scalar's stream). */
+ * textbook builds against scalar's stream, or its first width measured). */
 static void compute_speedups(result_list *l)
 {
     for (size_t i = 0; i < l->n; i++) {
@@ -264,7 +270,7 @@ static void compute_speedups(result_list *l)
             if (s->isa_id == CYLRAY_ISA_SCALAR && !strcmp(s->scenario, r->scenario) &&
                 s->op_id == r->op_id &&
                 (s->width_id == r->width_id ||
-                 (r->isa_id == BENCH_ISA_TEXTBOOK && r->speedup == 0)) &&
+                 (bench_is_textbook(r->isa_id) && r->speedup == 0)) &&
                 r->ns.med > 0) {
                 r->speedup = s->ns.med / r->ns.med;
                 if (s->width_id == r->width_id)

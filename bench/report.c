@@ -10,11 +10,18 @@
 
 #define NCOLS BENCH_NISA
 
-/* The ISAs (and the textbook) that have rows among the results of one group. */
+/* The auto-vectorized builds of the textbook have a table of their own (print_peer);
+ * the others show the scalar textbook only, beside the paths. */
+static int is_auto(int isa)
+{
+    return bench_is_textbook(isa) && isa != BENCH_ISA_TEXTBOOK;
+}
+
+/* The ISAs (and the scalar textbook) that have rows among the results of one group. */
 static int isas_in(const result_list *l, const char *group, int cols[NCOLS])
 {
     int n = 0;
-    for (int isa = 0; isa < BENCH_NISA; isa++)
+    for (int isa = 0; isa <= BENCH_ISA_TEXTBOOK; isa++)
         for (size_t i = 0; i < l->n; i++)
             if (l->r[i].isa_id == isa && (!group || !strcmp(l->r[i].group, group))) {
                 cols[n++] = isa;
@@ -52,7 +59,7 @@ static void print_group(FILE *f, const result_list *l, const char *group, const 
     const char *last = "";
     for (size_t i = 0; i < l->n; i++) {
         const result *r = &l->r[i];
-        if (strcmp(r->group, group))
+        if (strcmp(r->group, group) || is_auto(r->isa_id))
             continue;
         /* The textbook shares the rows of the paths; it opens one only when it ran
          * alone (--isa=textbook). */
@@ -160,6 +167,77 @@ static double ratio(const result *a, const result *b)
     return a && b && b->ns.med > 0 ? a->ns.med / b->ns.med : 0;
 }
 
+/* ---- cylray against the textbook peer ------------------------------------------------- */
+
+/* The textbook build of the same ISA: TB_* follows the order of cylray_isa. */
+_Static_assert(TB_SCALAR == (int)CYLRAY_ISA_SCALAR && TB_SSE41 == (int)CYLRAY_ISA_SSE41 &&
+                   TB_AVX2 == (int)CYLRAY_ISA_AVX2 && TB_AVX512 == (int)CYLRAY_ISA_AVX512 &&
+                   TB_NEON == (int)CYLRAY_ISA_NEON,
+               "the textbook builds pair with the cylray ISAs by index");
+
+static const char *disagree_cell(const result *r, char *buf, size_t n)
+{
+    char u[16];
+    if (!r || !r->have_err) {
+        snprintf(buf, n, "-");
+        return buf;
+    }
+    size_t d = r->extra_hits + r->lost_hits + r->part_diff;
+    int k = snprintf(buf, n, "%s", fmt_ulps(r->ulp_p99, u, sizeof u));
+    if (d && k > 0 && (size_t)k < n)
+        k += snprintf(buf + k, n - (size_t)k, " d%zu", d);
+    if (r->unexcused && k > 0 && (size_t)k < n)
+        snprintf(buf + k, n - (size_t)k, "!%zu", r->unexcused);
+    return buf;
+}
+
+static void print_peer(FILE *f, const result_list *l)
+{
+    int any = 0;
+    for (size_t i = 0; i < l->n && !any; i++)
+        any = is_auto(l->r[i].isa_id) && !strcmp(l->r[i].group, "main");
+    if (!any)
+        return;
+    fprintf(f, "\n== cylray against the textbook loop a user would write (naive.c, built per ISA "
+               "and auto-vectorized): same rays,\n   same capped cylinder, normals, calls of "
+               "%d rays in L1 ==\n", BENCH_BATCH);
+    fprintf(f, "   M rays/s; x peer: the peer's time over cylray's (>= 1: accuracy for free); "
+               "error: p99 ulps, dN hit/miss or part\n   disagreements with the exact "
+               "answer, !M of them unexcused by the tolerance band\n");
+    fprintf(f, "%-11s %-7s %9s %9s %-6s %-12s %9s %7s %7s | %-15s %-15s\n", "scenario", "isa",
+            "stream", "packet", "width", "peer", "peer", "x peer", "x peer", "cylray error",
+            "peer error");
+    fprintf(f, "%-11s %-7s %9s %9s %-6s %-12s %9s %7s %7s |\n", "", "", "", "(best)", "", "", "",
+            "stream", "packet");
+    for (size_t i = 0; i < l->n; i++) {
+        const result *pr = &l->r[i];
+        if (!bench_is_textbook(pr->isa_id) || strcmp(pr->group, "main"))
+            continue;
+        int isa = pr->isa_id - BENCH_ISA_TEXTBOOK;
+        const result *st = find_result(l, pr->scenario, isa, BW_STREAM, OP_NORMAL);
+        const result *pk = NULL;
+        for (int w = BW_4; w < BW_STREAM; w++) {
+            const result *q = find_result(l, pr->scenario, isa, w, OP_NORMAL);
+            if (q && (!pk || q->ns.med < pk->ns.med))
+                pk = q;
+        }
+        char e1[32], e2[32];
+        fprintf(f, "%-11s %-7s ", pr->scenario, bench_isa_name(isa));
+        if (st)
+            fprintf(f, "%9.1f ", st->mrays);
+        else
+            fprintf(f, "%9s ", "-");
+        if (pk)
+            fprintf(f, "%9.1f %-6s ", pk->mrays, bench_width_name[pk->width_id]);
+        else
+            fprintf(f, "%9s %-6s ", "-", "");
+        fprintf(f, "%-12s %8.1f%c %6.2fx %6.2fx | %-15s %-15s\n", pr->isa, pr->mrays,
+                pr->cpu_timed ? '~' : ' ', st ? pr->ns.med / st->ns.med : 0,
+                pk ? pr->ns.med / pk->ns.med : 0, disagree_cell(st, e1, sizeof e1),
+                disagree_cell(pr, e2, sizeof e2));
+    }
+}
+
 /* ---- what each skip saves ------------------------------------------------------------ */
 
 static void print_skips(FILE *f, const result_list *l)
@@ -259,19 +337,20 @@ static void print_errors(FILE *f, const result_list *l)
                "disagreements, !M of them outside the\n   reference's tolerance band "
                "(unexcused); *: differs between widths. med: worst median; >band: worst "
                "p99/max of\n   the error beyond the band (what input rounding cannot "
-               "explain). textbook: the seed's formulas, judged as open tubes\n");
+               "explain). textbook: the textbook formulas in plain float (naive.c)\n");
     fprintf(f, "%-19s %-8s", "scenario", "flags");
     for (int c = 0; c < nc; c++)
         fprintf(f, "| %-20s", bench_isa_name(cols[c]));
     fprintf(f, "| %5s %s\n", "med", ">band");
     for (size_t i = 0; i < l->n; i++) {
         const result *r = &l->r[i];
-        if (!r->have_err || r->op_id == OP_OCC)
+        if (!r->have_err || r->op_id == OP_OCC || is_auto(r->isa_id))
             continue;
         /* one row per (scenario, flags), opened by its first result */
         int seen = 0;
         for (size_t j = 0; j < l->n && !seen; j++)
-            seen = j != i && l->r[j].have_err && !strcmp(l->r[j].scenario, r->scenario) &&
+            seen = j != i && l->r[j].have_err && !is_auto(l->r[j].isa_id) &&
+                   !strcmp(l->r[j].scenario, r->scenario) &&
                    l->r[j].op_id == r->op_id &&
                    (j < i ? 1 : r->isa_id == BENCH_ISA_TEXTBOOK &&
                                     l->r[j].isa_id != BENCH_ISA_TEXTBOOK);
@@ -688,8 +767,9 @@ void report_all(const result_list *l, const machine_info *m, const options *opt,
     print_group(f, l, "main", "main scenarios: packets of 4, 8, 16 and the stream API");
     print_group(f, l, "skips", "skips: the same work with less to do");
     print_group(f, l, "stress", "stress categories of tests/ref/gen.h (16 rays per cylinder; "
-                                "textbook: the seed's float formulas)");
+                                "textbook: the textbook formulas in plain float)");
     print_rates(f, l);
+    print_peer(f, l);
     print_skips(f, l);
     print_stream(f, l);
     print_errors(f, l);

@@ -81,7 +81,7 @@ int svg_time_vs_error(const char *path, const result_list *l, const machine_info
         for (int isa = 0; isa < BENCH_NISA; isa++)
             for (int v = 0; v < 3; v++) {
                 const result *r = NULL;
-                if (isa == BENCH_ISA_TEXTBOOK) {
+                if (bench_is_textbook(isa)) {
                     if (v == 0)
                         r = find_result(l, cats[c], isa, -1, OP_NORMAL);
                 } else {
@@ -90,7 +90,7 @@ int svg_time_vs_error(const char *path, const result_list *l, const machine_info
                 if (!r || !r->have_err || np >= 64)
                     continue;
                 point p = {r->ns.med, r->ulp_p99 > floor_ulp ? r->ulp_p99 : floor_ulp,
-                           isa == BENCH_ISA_TEXTBOOK ? 3 : v, c, isa};
+                           bench_is_textbook(isa) ? 3 : v, c, isa};
                 pts[np++] = p;
             }
     FILE *f = fopen(path, "w");
@@ -115,7 +115,7 @@ int svg_time_vs_error(const char *path, const result_list *l, const machine_info
     log_ticks(f, x0, x1, 0);
     log_ticks(f, y0, y1, 1);
     fprintf(f, "<text x=\"%d\" y=\"%d\" font-size=\"13\" text-anchor=\"middle\">ns per ray "
-               "(median; 16-wide packets, capped/open/infinite mix, normals; log)</text>\n",
+               "(median; 16-wide packets, textbook streams; normals; log)</text>\n",
             (ML + W - MR) / 2, H - MB + 40);
     fprintf(f, "<text transform=\"translate(22 %d) rotate(-90)\" font-size=\"13\" "
                "text-anchor=\"middle\">p99 t error, ulps (log; 0 drawn at 0.1)</text>\n",
@@ -149,10 +149,10 @@ int svg_time_vs_error(const char *path, const result_list *l, const machine_info
             lx0 - 5, ly0 + 115, lx0 + 12, ly0 + 124, cat_label[1]);
     fprintf(f, "<text x=\"%d\" y=\"%d\" font-size=\"10\" fill=\"#444\">R: REFINE, F: FAST</text>\n",
             lx0 - 5, ly0 + 150);
-    fprintf(f, "<text x=\"%d\" y=\"%d\" font-size=\"10\" fill=\"#444\">textbook: the seed's "
-               "float formulas,</text>\n", lx0 - 5, ly0 + 166);
-    fprintf(f, "<text x=\"%d\" y=\"%d\" font-size=\"10\" fill=\"#444\">scalar, judged as open "
-               "tubes</text>\n", lx0 - 5, ly0 + 180);
+    fprintf(f, "<text x=\"%d\" y=\"%d\" font-size=\"10\" fill=\"#444\">textbook: naive.c, "
+               "plain float; scalar</text>\n", lx0 - 5, ly0 + 166);
+    fprintf(f, "<text x=\"%d\" y=\"%d\" font-size=\"10\" fill=\"#444\">and auto-vectorized "
+               "per ISA (streams)</text>\n", lx0 - 5, ly0 + 180);
     fprintf(f, "</svg>\n");
     return fclose(f) ? -1 : 0;
 }

@@ -46,10 +46,10 @@ static void init_table(void)
     const unsigned occn = (1u << OP_NORMAL) | (1u << OP_OCC);
     const scen_def fixed[] = {
         {"coherent", "main", "camera rays in 4x4 pixel tiles at a capped cylinder, general axis",
-         S_PLAIN, RK_CAMERA, 2, ALL_OPS, ALL_WIDTHS, 0, 0, 0},
+         S_PLAIN, RK_CAMERA, 2, ALL_OPS, ALL_WIDTHS, 1, 0, 0},
         {"incoherent", "main",
          "ordinary rays: random origins 3-6 sizes away at a capped cylinder, general axis",
-         S_PLAIN, RK_INCOHERENT, 2, ALL_OPS, ALL_WIDTHS, 0, 0, 0},
+         S_PLAIN, RK_INCOHERENT, 2, ALL_OPS, ALL_WIDTHS, 1, 0, 0},
         {"shadow", "main", "shadow rays from a floor to a point light past a capped cylinder",
          S_PLAIN, RK_SHADOW, 2, (1u << OP_OCC) | (1u << OP_T), ALL_WIDTHS, 0, 0, 0},
         {"bvh-leaf", "main",
