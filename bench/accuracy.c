@@ -43,6 +43,12 @@ static int cyl_index(const workload *w, size_t i)
     return c0;
 }
 
+/* Rays in inactive packet lanes hold a fill, not a ray: never compared. */
+static int ray_active(const workload *w, size_t i)
+{
+    return w->lanes >> (i % 32) & 1u;
+}
+
 static void ray_of(const workload *w, size_t i, float o[3], float d[3], float *tmin,
                    float *tmax)
 {
@@ -82,7 +88,8 @@ void accuracy_reference(workload *w)
         return;
     }
     for (size_t i = 0; i < n; i += st)
-        ref_closest(w, i, &w->ref[i]);
+        if (ray_active(w, i))
+            ref_closest(w, i, &w->ref[i]);
 }
 
 void accuracy_release(workload *w)
@@ -149,16 +156,20 @@ void accuracy_measure(const workload *w, int isa, int width_id, int op, result *
     if (!hit || !t || !part || !ulps || !xs ||
         bench_run_once(w, isa, width_id, op, hit, t, part) != 0)
         goto done;
-    size_t nh = 0;
-    for (size_t i = 0; i < n; i++)
+    size_t nh = 0, na = 0;
+    for (size_t i = 0; i < n; i++) {
         nh += hit[i];
-    r->hit_frac = (double)nh / (double)n;
+        na += (size_t)ray_active(w, i);
+    }
+    r->hit_frac = (double)nh / (double)na;
     const ref_answer *ref = w->ref;
     if (!ref)
         goto done;
     const int occ = op == OP_OCC;
     size_t nu = 0;
     for (size_t i = 0; i < n; i += st) {
+        if (!ray_active(w, i))
+            continue;
         const ref_answer *R = &ref[i];
         r->n_hits_ref += (size_t)R->hit;
         if (hit[i] != R->hit) {

@@ -70,6 +70,8 @@ typedef struct workload {
     unsigned widths;            /* bit per BW_* measured (before the --width filter) */
     int textbook;               /* also time and check the textbook peer */
     int big;                    /* stream over arrays far larger than the caches */
+    uint32_t lanes;             /* the packets' active lanes (bit per lane; all: ~0u);
+                                   the rays of the others hold a fill, never looked at */
     ref_answer *ref;            /* per ray, or NULL without a reference */
     size_t ref_stride;          /* big streams check every ref_stride-th ray */
     void **bands;               /* per ray, computed when a disagreement needs judging */

@@ -272,6 +272,35 @@ static void print_skips(FILE *f, const result_list *l)
         }
 }
 
+/* ---- inactive lanes: zeros against subnormals ------------------------------------------ */
+
+static void print_lanes(FILE *f, const result_list *l)
+{
+    int any = 0;
+    for (size_t i = 0; i < l->n && !any; i++)
+        any = !strcmp(l->r[i].scenario, "half-subnormal");
+    if (!any)
+        return;
+    fprintf(f, "\n== inactive lanes: packets with every other lane inactive, those lanes all zeros "
+               "or all subnormals (1e-40) ==\n");
+    fprintf(f, "   ns per packet call (median; the active lanes hold the same incoherent rays "
+               "in both); subnormal/zero: > 1 means the\n   garbage in lanes whose results are "
+               "thrown away costs time\n");
+    fprintf(f, "%-8s %-6s %12s %16s %15s\n", "isa", "width", "zeros ns", "subnormals ns",
+            "subnormal/zero");
+    for (int isa = 0; isa < CYLRAY_ISA_COUNT; isa++)
+        for (int w = BW_4; w < BW_STREAM; w++) {
+            const result *z = find_result(l, "half-zero", isa, w, OP_NORMAL);
+            const result *s = find_result(l, "half-subnormal", isa, w, OP_NORMAL);
+            if (!z || !s)
+                continue;
+            double lanes = bench_width_lanes[w];
+            fprintf(f, "%-8s %-6s %11.2f%c %15.2f%c %14.2fx\n", bench_isa_name(isa),
+                    bench_width_name[w], z->ns.med * lanes, z->cpu_timed ? '~' : ' ',
+                    s->ns.med * lanes, s->cpu_timed ? '~' : ' ', ratio(s, z));
+        }
+}
+
 /* ---- the big stream -------------------------------------------------------------- */
 
 static void print_stream(FILE *f, const result_list *l)
@@ -771,6 +800,7 @@ void report_all(const result_list *l, const machine_info *m, const options *opt,
     print_rates(f, l);
     print_peer(f, l);
     print_skips(f, l);
+    print_lanes(f, l);
     print_stream(f, l);
     print_errors(f, l);
     print_scene(f, l, sc);

@@ -62,7 +62,7 @@ static unsigned popc(uint32_t m)
         const int nc = x->w->ncyl;                                                       \
         const size_t grp = (size_t)x->w->grouped, first = b * x->w->batch;               \
         const unsigned fl = x->flags;                                                    \
-        const uint32_t full = (uint32_t)((1ull << N) - 1u);                              \
+        const uint32_t full = (uint32_t)((1ull << N) - 1u) & x->w->lanes;                \
         uint64_t acc = 0;                                                                \
         if (x->op == OP_OCC) {                                                           \
             const cylray_occluded##N##_fn f = x->k->occluded##N;                         \
@@ -389,7 +389,7 @@ int bench_run_once(const workload *w, int isa, int width_id, int op, uint8_t *hi
         } else {
             /* The pass keeps only counts; the masks come from the same calls again. */
             const cylray_prepared *P = w->prep;
-            const uint32_t full = (uint32_t)((1ull << lanes) - 1u);
+            const uint32_t full = (uint32_t)((1ull << lanes) - 1u) & w->lanes;
             for (size_t g = 0; g < x.np; g++) {
                 uint32_t m = 0;
                 int c0 = 0, c1 = w->ncyl;

@@ -20,6 +20,9 @@
 
 enum { S_PLAIN, S_CLUSTER, S_ALIGNED, S_GENERAL, S_GEN };
 
+/* What the inactive lanes of a half-active packet hold. */
+enum { FILL_NONE, FILL_ZERO, FILL_SUBNORMAL };
+
 typedef struct scen_def {
     const char *name, *group, *what;
     int build;        /* S_*: how the cylinders and rays are made */
@@ -29,6 +32,7 @@ typedef struct scen_def {
     unsigned widths;
     int textbook, big;
     int gen_category; /* S_GEN: the cylgen category */
+    int fill;         /* FILL_*: every other lane inactive, holding this */
 } scen_def;
 
 #define MAX_SCEN 48
@@ -46,36 +50,45 @@ static void init_table(void)
     const unsigned occn = (1u << OP_NORMAL) | (1u << OP_OCC);
     const scen_def fixed[] = {
         {"coherent", "main", "camera rays in 4x4 pixel tiles at a capped cylinder, general axis",
-         S_PLAIN, RK_CAMERA, 2, ALL_OPS, ALL_WIDTHS, 1, 0, 0},
+         S_PLAIN, RK_CAMERA, 2, ALL_OPS, ALL_WIDTHS, 1, 0, 0, 0},
         {"incoherent", "main",
          "ordinary rays: random origins 3-6 sizes away at a capped cylinder, general axis",
-         S_PLAIN, RK_INCOHERENT, 2, ALL_OPS, ALL_WIDTHS, 1, 0, 0},
+         S_PLAIN, RK_INCOHERENT, 2, ALL_OPS, ALL_WIDTHS, 1, 0, 0, 0},
         {"shadow", "main", "shadow rays from a floor to a point light past a capped cylinder",
-         S_PLAIN, RK_SHADOW, 2, (1u << OP_OCC) | (1u << OP_T), ALL_WIDTHS, 0, 0, 0},
+         S_PLAIN, RK_SHADOW, 2, (1u << OP_OCC) | (1u << OP_T), ALL_WIDTHS, 0, 0, 0, 0},
         {"bvh-leaf", "main",
          "one packet against 32 capped cylinders (a BVH leaf, all in L1), closest hit; "
          "ns per ray and cylinder",
-         S_CLUSTER, RK_CLUSTER, 2, (1u << OP_T) | occn, ALL_WIDTHS, 0, 0, 0},
+         S_CLUSTER, RK_CLUSTER, 2, (1u << OP_T) | occn, ALL_WIDTHS, 0, 0, 0, 0},
         {"miss-mix", "main", "90% misses and 10% hits, mixed across lanes (capped)",
-         S_PLAIN, RK_MISS_MIX, 2, (int)occn, ALL_WIDTHS, 0, 0, 0},
+         S_PLAIN, RK_MISS_MIX, 2, (int)occn, ALL_WIDTHS, 0, 0, 0, 0},
         {"hit-mix", "main", "90% hits and 10% misses, mixed across lanes (capped)",
-         S_PLAIN, RK_HIT_MIX, 2, (int)occn, ALL_WIDTHS, 0, 0, 0},
+         S_PLAIN, RK_HIT_MIX, 2, (int)occn, ALL_WIDTHS, 0, 0, 0, 0},
         {"big-stream", "stream",
          "a stream far larger than the caches (incoherent rays, capped); bytes of rays per "
          "second against memcpy",
-         S_PLAIN, RK_INCOHERENT, 2, (1u << OP_T) | occn, 1u << BW_STREAM, 0, 1, 0},
+         S_PLAIN, RK_INCOHERENT, 2, (1u << OP_T) | occn, 1u << BW_STREAM, 0, 1, 0, 0},
         {"aligned", "skips", "capped cylinder along +z (axis-aligned kernel), incoherent rays",
-         S_ALIGNED, RK_INCOHERENT, 2, 1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0},
+         S_ALIGNED, RK_INCOHERENT, 2, 1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0, 0},
         {"general", "skips", "the same rays and cylinder rotated to a general axis (capped)",
-         S_GENERAL, RK_INCOHERENT, 2, 1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0},
+         S_GENERAL, RK_INCOHERENT, 2, 1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0, 0},
         {"open", "skips", "the `general` rays against the open tube (no caps)",
-         S_GENERAL, RK_INCOHERENT, 1, 1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0},
+         S_GENERAL, RK_INCOHERENT, 1, 1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0, 0},
         {"infinite", "skips", "the `general` rays against the infinite cylinder",
-         S_GENERAL, RK_INCOHERENT, 0, 1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0},
+         S_GENERAL, RK_INCOHERENT, 0, 1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0, 0},
         {"all-miss", "skips", "every ray misses even the infinite cylinder (capped)",
-         S_PLAIN, RK_ALL_MISS, 2, 1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0},
+         S_PLAIN, RK_ALL_MISS, 2, 1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0, 0},
         {"all-hit", "skips", "every ray hits (capped)", S_PLAIN, RK_ALL_HIT, 2,
-         1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0},
+         1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0, 0},
+        {"half-zero", "lanes",
+         "incoherent rays in every other lane, the others inactive and all zeros (capped)",
+         S_PLAIN, RK_INCOHERENT, 2, 1u << OP_NORMAL, (1u << BW_8) | (1u << BW_16), 0, 0, 0,
+         FILL_ZERO},
+        {"half-subnormal", "lanes",
+         "the same packets with the inactive lanes holding subnormals: a tracer's dead rays "
+         "or stack garbage",
+         S_PLAIN, RK_INCOHERENT, 2, 1u << OP_NORMAL, (1u << BW_8) | (1u << BW_16), 0, 0, 0,
+         FILL_SUBNORMAL},
     };
     for (size_t i = 0; i < sizeof fixed / sizeof fixed[0]; i++)
         table[ntable++] = fixed[i];
@@ -85,7 +98,7 @@ static void init_table(void)
         scen_def s = {gen_names[c], "stress", cylgen_category_description(c), S_GEN,
                       RK_INCOHERENT, 2,
                       (1 << OP_NORMAL) | (1 << OP_REFINE) | (1 << OP_FAST),
-                      1u << BW_16, 1, 0, c};
+                      1u << BW_16, 1, 0, c, 0};
         table[ntable++] = s;
     }
 #endif
@@ -141,7 +154,8 @@ int workloads_check_list(const char *list)
         char word[64];
         snprintf(word, sizeof word, "%.*s", (int)(k < 63 ? k : 63), p);
         int ok = !strcmp(word, "all") || !strcmp(word, "scene") || !strcmp(word, "main") ||
-                 !strcmp(word, "stream") || !strcmp(word, "skips") || !strcmp(word, "stress");
+                 !strcmp(word, "stream") || !strcmp(word, "skips") || !strcmp(word, "stress") ||
+                 !strcmp(word, "lanes");
         for (int i = 0; i < ntable && !ok; i++)
             ok = !strcmp(word, table[i].name);
         if (!ok) {
@@ -188,7 +202,8 @@ int workloads_build(int idx, workload *w, const options *opt)
     w->batch = s->big ? n : BENCH_BATCH;
     if (raysoa_alloc(&w->rays, n))
         return -1;
-    rng g = {seed_of(s->name)};
+    /* the half-active pair: the same rays in the active lanes */
+    rng g = {seed_of(s->fill ? "half" : s->name)};
     rng shared = {seed_of("skips")}; /* aligned, general, open, infinite: the same rays */
 
     switch (s->build) {
@@ -251,6 +266,16 @@ int workloads_build(int idx, workload *w, const options *opt)
 #endif
         break;
     }
+    }
+    w->lanes = ~0u;
+    if (s->fill) {
+        /* 1e-40: subnormal, and so is every product the kernel forms from it */
+        const float v = s->fill == FILL_SUBNORMAL ? 1e-40f : 0.0f;
+        raysoa *r = &w->rays;
+        w->lanes = 0x55555555u;
+        for (size_t i = 1; i < n; i += 2)
+            r->ox[i] = r->oy[i] = r->oz[i] = r->dx[i] = r->dy[i] = r->dz[i] = r->tmin[i] =
+                r->tmax[i] = v;
     }
     for (int c = 0; c < w->ncyl; c++) {
         if (cylray_prepare(&w->prep[c], &w->cyl[c]) != CYLRAY_OK) {
