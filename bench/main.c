@@ -7,6 +7,7 @@
  * time_vs_error.svg, speedup.svg and scene.png into DIR (default bench/out). */
 #include "bench.h"
 #include "clock.h"
+#include "leaf.h"
 #include "machine.h"
 #include "report.h"
 #include "scene.h"
@@ -27,10 +28,12 @@ static void usage(FILE *f)
             "                   textbook (scalar), auto-sse41, auto-avx2, auto-avx512,\n"
             "                   auto-neon (default: all this CPU runs)\n"
             "  --width=LIST     4,8,16,stream (default: each scenario's own)\n"
-            "  --scenario=LIST  names or groups: main, stream, skips, lanes, stress, scene, all\n"
+            "  --scenario=LIST  names or groups: main, stream, skips, lanes, stress, leaf,\n"
+            "                   scene, all\n"
             "                   (main: coherent incoherent shadow bvh-leaf miss-mix hit-mix;\n"
             "                    stream: big-stream; skips: aligned general open infinite\n"
             "                    all-miss all-hit; lanes: half-zero half-subnormal;\n"
+            "                    leaf: leaf-l1 leaf-l2;\n"
             "                    stress: stress-<category of tests/ref/gen.h>)\n"
             "  --quick          fewer and shorter samples, smaller big stream\n"
             "  --out=DIR        output directory (default bench/out)\n"
@@ -390,13 +393,23 @@ int main(int argc, char **argv)
         progress(&ctx, "scene", "rendering");
         scene_run(&opt, &sc, &results);
     }
+    leaf_report lr;
+    memset(&lr, 0, sizeof lr);
+    if (workloads_selected_name(opt.scenarios, "leaf-l1", "leaf") ||
+        workloads_selected_name(opt.scenarios, "leaf-l2", "leaf")) {
+        progress(&ctx, "leaf", "leaves against loops");
+        leaf_run(&opt, &results, &lr);
+        if (!lr.have)
+            fprintf(stderr, "%scylbench: leaf: the library has no leaf kernels; skipped\n",
+                    ctx.tty ? "\n" : "");
+    }
     if (ctx.tty)
         fprintf(stderr, "\r%-80s\r", "");
     compute_speedups(&results);
     m.load_end = machine_load();
 
     double wall = (clk_ns() - t_start) * 1e-9;
-    report_all(&results, &m, &opt, &sc, wall);
+    report_all(&results, &m, &opt, &sc, &lr, wall);
     free(results.r);
     return 0;
 }

@@ -301,6 +301,74 @@ static void print_lanes(FILE *f, const result_list *l)
         }
 }
 
+/* ---- leaves against loops ------------------------------------------------------------- */
+
+/* A row by its path's name (the loops have no ISA id); width_id < 0: any. */
+static const result *find_named(const result_list *l, const char *scenario, const char *isa,
+                                int width_id, int op)
+{
+    for (size_t i = 0; i < l->n; i++) {
+        const result *r = &l->r[i];
+        if (r->op_id == op && !strcmp(r->isa, isa) && !strcmp(r->scenario, scenario) &&
+            (width_id < 0 || r->width_id == width_id))
+            return r;
+    }
+    return NULL;
+}
+
+static void print_leaf_row(FILE *f, const result_list *l, const char *scen, const char *isa,
+                           int wid, const char *m, const char *loop, const char *lane)
+{
+    const int ops[3] = {OP_T, OP_NORMAL, OP_OCC};
+    const result *r[3];
+    for (int o = 0; o < 3; o++)
+        r[o] = find_named(l, scen, isa, wid, ops[o]);
+    if (!r[0] && !r[1] && !r[2])
+        return;
+    fprintf(f, "%-8s %-14s %-3s", scen, isa, m);
+    for (int o = 0; o < 3; o++) {
+        if (r[o])
+            fprintf(f, " %9.1f%c", r[o]->mrays, r[o]->cpu_timed ? '~' : ' ');
+        else
+            fprintf(f, " %10s", "-");
+    }
+    /* the same op class of the loops: the ratios of intersect with normals */
+    double xl = ratio(find_named(l, scen, loop, -1, OP_NORMAL), r[1]);
+    double x1 = ratio(find_named(l, scen, lane, -1, OP_NORMAL), r[1]);
+    double oc = ratio(r[1], r[2]);
+    fprintf(f, " | %7.2fx %8.2fx %10.2fx\n", xl, x1, oc);
+}
+
+static void print_leaf(FILE *f, const result_list *l, const leaf_report *lr)
+{
+    if (!lr->have)
+        return;
+    char lane[32];
+    snprintf(lane, sizeof lane, "1-lane:%s", lr->best);
+    fprintf(f, "\n== leaf: one incoherent ray against %d cylinders (molecule bonds, pipes) in "
+               "leaves of M; scenes of %d (leaf-l1)\n   and %d (leaf-l2) cylinders ==\n",
+            lr->run, lr->ncyl[0], lr->ncyl[1]);
+    fprintf(f, "   M ray-cylinder tests/s (median) for t, normal, occluded. With normals: x loop "
+               "= the scalar loop's time over this\n   one's (scalar-loop: the scalar path, a "
+               "4-wide packet call with one active lane per cylinder), x 1-lane = the\n   "
+               "same over one-lane intersect8 calls of %s; occ/normal = intersect with normals "
+               "over occluded.\n   Leaf bytes per cylinder: %d (M = 4), %d (8), %d (16); "
+               "answers that differ from the scalar loop's: %zu (L1), %zu (L2)\n",
+            lr->best, lr->bytes_per_cyl[0], lr->bytes_per_cyl[1], lr->bytes_per_cyl[2],
+            lr->diff[0], lr->diff[1]);
+    fprintf(f, "%-8s %-14s %-3s %10s %10s %10s | %8s %9s %11s\n", "data", "path", "M", "t",
+            "normal", "occluded", "x loop", "x 1-lane", "occ/normal");
+    const char *scen[2] = {"leaf-l1", "leaf-l2"};
+    for (int s = 0; s < 2; s++) {
+        for (int isa = 0; isa < CYLRAY_ISA_COUNT; isa++)
+            for (int w = BW_4; w < BW_STREAM; w++)
+                print_leaf_row(f, l, scen[s], bench_isa_name(isa), w, bench_width_name[w],
+                               "scalar-loop", lane);
+        print_leaf_row(f, l, scen[s], "scalar-loop", -1, "1", "scalar-loop", lane);
+        print_leaf_row(f, l, scen[s], lane, -1, "1", "scalar-loop", lane);
+    }
+}
+
 /* ---- the big stream -------------------------------------------------------------- */
 
 static void print_stream(FILE *f, const result_list *l)
@@ -762,7 +830,7 @@ static void write_long(const result_list *l, const machine_info *m, const option
 }
 
 void report_all(const result_list *l, const machine_info *m, const options *opt,
-                const scene_report *sc, double wall)
+                const scene_report *sc, const leaf_report *lr, double wall)
 {
     FILE *f = stdout;
     char ml[512];
@@ -801,6 +869,7 @@ void report_all(const result_list *l, const machine_info *m, const options *opt,
     print_peer(f, l);
     print_skips(f, l);
     print_lanes(f, l);
+    print_leaf(f, l, lr);
     print_stream(f, l);
     print_errors(f, l);
     print_scene(f, l, sc);

@@ -145,6 +145,11 @@ int workloads_selected(int i, const char *list)
     return in_list(list, table[i].name) || in_list(list, table[i].group);
 }
 
+int workloads_selected_name(const char *list, const char *name, const char *group)
+{
+    return !list || in_list(list, "all") || in_list(list, name) || in_list(list, group);
+}
+
 int workloads_check_list(const char *list)
 {
     init_table();
@@ -155,7 +160,8 @@ int workloads_check_list(const char *list)
         snprintf(word, sizeof word, "%.*s", (int)(k < 63 ? k : 63), p);
         int ok = !strcmp(word, "all") || !strcmp(word, "scene") || !strcmp(word, "main") ||
                  !strcmp(word, "stream") || !strcmp(word, "skips") || !strcmp(word, "stress") ||
-                 !strcmp(word, "lanes");
+                 !strcmp(word, "lanes") || !strcmp(word, "leaf") || !strcmp(word, "leaf-l1") ||
+                 !strcmp(word, "leaf-l2");
         for (int i = 0; i < ntable && !ok; i++)
             ok = !strcmp(word, table[i].name);
         if (!ok) {
