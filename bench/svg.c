@@ -130,9 +130,11 @@ int svg_time_vs_error(const char *path, const result_list *l, const machine_info
             fprintf(f, "<rect x=\"%.1f\" y=\"%.1f\" width=\"10\" height=\"10\" fill=\"none\" "
                        "stroke=\"%s\" stroke-width=\"2\"/>\n",
                     x - 5, y - 5, var_col[p->variant]);
-        /* labels staggered by variant, so points at one error level stay readable */
+        /* labels staggered by variant, so points at one error level stay readable; the
+         * textbook builds share one error level, so they alternate above and below */
+        int stagger = p->variant == 3 ? 22 * ((p->isa - BENCH_ISA_TEXTBOOK) % 2) : 10 * p->variant;
         fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" font-size=\"9\" fill=\"%s\">%s%s</text>\n",
-                x + 7, y - 8 + 10 * (p->variant % 3), var_col[p->variant], bench_isa_name(p->isa),
+                x + 7, y - 8 + stagger, var_col[p->variant], bench_isa_name(p->isa),
                 p->variant == 0 || p->variant == 3 ? "" : p->variant == 1 ? " R" : " F");
     }
     /* legend */
