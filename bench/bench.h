@@ -40,6 +40,7 @@ typedef struct options {
     unsigned width_mask;    /* bit per BW_* */
     const char *scenarios;  /* comma-separated names or groups, NULL for all */
     int quick;
+    int flush_subnormals;   /* --flush-subnormals: DAZ/FTZ set for the whole run */
     const char *out_dir;
     int reps;               /* timed samples per configuration */
     double sample_ns;       /* length of one sample */

@@ -36,6 +36,9 @@ static void usage(FILE *f)
             "                    leaf: leaf-l1 leaf-l2;\n"
             "                    stress: stress-<category of tests/ref/gen.h>)\n"
             "  --quick          fewer and shorter samples, smaller big stream\n"
+            "  --flush-subnormals  run with subnormals flushed to zero (x86 DAZ and FTZ,\n"
+            "                   AArch64 FZ): shows what subnormals cost; the error figures\n"
+            "                   are then those of that environment\n"
             "  --out=DIR        output directory (default bench/out)\n"
             "  --reps=N         timed samples per configuration (default 15, quick 7)\n"
             "  --sample-ms=X    length of one sample in ms (default 1, quick 0.4)\n");
@@ -92,6 +95,8 @@ static int parse_options(int argc, char **argv, options *o)
                 return -1;
         } else if (!strcmp(a, "--quick")) {
             o->quick = 1;
+        } else if (!strcmp(a, "--flush-subnormals")) {
+            o->flush_subnormals = 1;
         } else if (!strncmp(a, "--out=", 6)) {
             o->out_dir = a + 6;
         } else if (!strncmp(a, "--reps=", 7)) {
@@ -293,6 +298,10 @@ int main(int argc, char **argv)
     if (mkdir_p(opt.out_dir)) {
         fprintf(stderr, "cylbench: cannot create %s\n", opt.out_dir);
         return 1;
+    }
+    if (opt.flush_subnormals && !clk_flush_subnormals()) {
+        fprintf(stderr, "cylbench: --flush-subnormals: not supported on this CPU\n");
+        return 2;
     }
     machine_info m;
     machine_probe(&m);

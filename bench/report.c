@@ -679,7 +679,8 @@ static void write_csv(const result_list *l, const machine_info *m, const options
     if (!f)
         return;
     machine_line(m, ml, sizeof ml);
-    fprintf(f, "# cylbench %s; %s; %s\n# units:", m->date, ml, m->pinned);
+    fprintf(f, "# cylbench %s; %s; %s%s\n# units:", m->date, ml, m->pinned,
+            opt->flush_subnormals ? "; subnormals flushed to zero (--flush-subnormals)" : "");
     for (size_t c = 0; c < NCOLUMNS; c++)
         if (*columns[c].unit)
             fprintf(f, " %s: %s;", columns[c].name, columns[c].unit);
@@ -743,9 +744,10 @@ static void write_json(const result_list *l, const machine_info *m, const option
     }
     fprintf(f, "},\n  \"settings\": {\"quick\": %s, \"reps\": %d, \"sample_ms\": %.3f, "
                "\"batch_rays\": %d, \"big_stream_rays\": %zu, \"exact_reference\": %s, "
-               "\"wall_s\": %.1f},\n",
+               "\"flush_subnormals\": %s, \"wall_s\": %.1f},\n",
             opt->quick ? "true" : "false", opt->reps, opt->sample_ns * 1e-6, BENCH_BATCH,
-            opt->big_rays, accuracy_available() ? "true" : "false", wall);
+            opt->big_rays, accuracy_available() ? "true" : "false",
+            opt->flush_subnormals ? "true" : "false", wall);
     if (sc->have) {
         fprintf(f, "  \"scene\": {\"width\": %d, \"height\": %d, \"cylinders\": %d, "
                    "\"primary_rays\": %zu, \"shadow_rays\": %zu, \"image\": ",
@@ -796,7 +798,8 @@ static void write_long(const result_list *l, const machine_info *m, const option
     if (!f)
         return;
     machine_line(m, ml, sizeof ml);
-    fprintf(f, "cylbench %s\n%s; %s\n\n", m->date, ml, m->pinned);
+    fprintf(f, "cylbench %s\n%s; %s%s\n\n", m->date, ml, m->pinned,
+            opt->flush_subnormals ? "; subnormals flushed to zero (--flush-subnormals)" : "");
     fprintf(f, "ticks: TSC ticks per ray (%.3f GHz); cycles: ns x the measured core clock "
                "(%.2f GHz); ~: CPU-timed (busy machine); -: not measured\n\n",
             m->tsc_ghz, m->core_ghz);
@@ -845,6 +848,9 @@ void report_all(const result_list *l, const machine_info *m, const options *opt,
                "cylray_kernels_for(isa); tmax restored\n         per packet inside the timed "
                "loop; hit counts summed into a volatile sink%s\n",
             BENCH_BATCH, opt->reps, opt->sample_ns * 1e-6, opt->quick ? "; --quick" : "");
+    if (opt->flush_subnormals)
+        fprintf(f, "         --flush-subnormals: subnormal inputs read as 0 and subnormal results "
+                   "flushed to 0 throughout\n");
     size_t busy = 0, timed = 0;
     for (size_t i = 0; i < l->n; i++)
         if (strcmp(l->r[i].scenario, "scene")) {
