@@ -496,7 +496,7 @@ void leaf_run(const options *opt, result_list *results, leaf_report *rep)
     }
 }
 
-#else /* the library has no leaf kernels yet */
+#else /* a library without the leaf kernels */
 
 int leaf_available(void)
 {
