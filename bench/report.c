@@ -345,17 +345,27 @@ static void print_leaf(FILE *f, const result_list *l, const leaf_report *lr)
         return;
     char lane[32];
     snprintf(lane, sizeof lane, "1-lane:%s", lr->best);
+    /* the scene sizes run (a size not selected has no cylinders) */
+    char sizes[96] = "", diffs[96] = "";
+    const char *tag[2] = {"leaf-l1", "leaf-l2"};
+    for (int s = 0, ks = 0, kd = 0; s < 2; s++) {
+        if (!lr->ncyl[s])
+            continue;
+        ks += snprintf(sizes + ks, sizeof sizes - (size_t)ks, "%s%d (%s)", ks ? ", " : "",
+                       lr->ncyl[s], tag[s]);
+        kd += snprintf(diffs + kd, sizeof diffs - (size_t)kd, "%s%zu (%s)", kd ? ", " : "",
+                       lr->diff[s], tag[s]);
+    }
     fprintf(f, "\n== leaf: one incoherent ray against %d cylinders (molecule bonds, pipes) in "
-               "leaves of M; scenes of %d (leaf-l1)\n   and %d (leaf-l2) cylinders ==\n",
-            lr->run, lr->ncyl[0], lr->ncyl[1]);
+               "leaves of M; scenes of %s cylinders ==\n",
+            lr->run, sizes);
     fprintf(f, "   M ray-cylinder tests/s (median) for t, normal, occluded. With normals: x loop "
                "= the scalar loop's time over this\n   one's (scalar-loop: the scalar path, a "
                "4-wide packet call with one active lane per cylinder), x 1-lane = the\n   "
                "same over one-lane intersect8 calls of %s; occ/normal = intersect with normals "
                "over occluded.\n   Leaf bytes per cylinder: %d (M = 4), %d (8), %d (16); "
-               "answers that differ from the scalar loop's: %zu (L1), %zu (L2)\n",
-            lr->best, lr->bytes_per_cyl[0], lr->bytes_per_cyl[1], lr->bytes_per_cyl[2],
-            lr->diff[0], lr->diff[1]);
+               "answers that differ from the scalar loop's: %s\n",
+            lr->best, lr->bytes_per_cyl[0], lr->bytes_per_cyl[1], lr->bytes_per_cyl[2], diffs);
     fprintf(f, "%-8s %-14s %-3s %10s %10s %10s | %8s %9s %11s\n", "data", "path", "M", "t",
             "normal", "occluded", "x loop", "x 1-lane", "occ/normal");
     const char *scen[2] = {"leaf-l1", "leaf-l2"};
