@@ -15,6 +15,10 @@
 
 #define CYLRAY_MAGIC 0x63796c72u /* "cylr" */
 
+/* A ray is parallel to the axis where A <= CYLRAY_PAR_EPS v.v d.d: an angle below
+ * 2^-23 rad, about one float ulp of the direction, where the side's roots are noise. */
+#define CYLRAY_PAR_EPS 0x1p-46
+
 /* Internal kernel flags, beside the public CYLRAY_* kernel flags (all below 0x20). */
 #define CYLRAY_KF_OCCLUDED 0x100u
 #define CYLRAY_KF_ALIGNED 0x200u

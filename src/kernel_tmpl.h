@@ -17,6 +17,35 @@
  *   A = e.e,  B = e.f,  C = f.f - R^2 v.v,  disc = v.v (A R^2 - g^2),  g = e.w'.
  */
 
+#ifndef CYLRAY_KERNEL_MARGINS_
+#define CYLRAY_KERNEL_MARGINS_
+/* The margins the kernel decides with, each with why it is safe.
+ *
+ * KM_DD_LO, KM_DD_HI: an active lane whose |d|^2 lies outside [2^-40, 2^40] goes to the
+ *   rare instance (2^-40 keeps A R^2 clear of underflow for the smallest radius prepare
+ *   takes with j = 0, 2^-20 squared twice over; 2^40 keeps d.d times coordinates of
+ *   2^62 below the float range after the shift).
+ * KM_SPHERE: the slack of the sphere rejection, relative to |w|^2. The rounding of
+ *   w, w.w, w.d and the refined reciprocal moves the closest approach's squared
+ *   distance by less than 2^-19 |w|^2; 2^-17 leaves a factor 4.
+ * KM_TUBE_A, KM_TUBE_WW: the tube rejection. g0 = e.w from the rounded w is off from
+ *   g by d <= 2^-21 sqrt(A ww); the line misses when |g| > R sqrt(A), and
+ *   (R sqrt(A) + d)^2 <= A R^2 (1 + 2^-9) + 2^9 d^2 + d^2 < A R^2 (1 + 2^-9) + 2^-30 A ww
+ *   (2ab <= 2^-9 a^2 + 2^9 b^2), which leaves room for the products' own rounding.
+ * KM_TINY: the hardware estimates treat subnormals as zero; below 2^-100 the exact
+ *   operation serves (CYLRAY_FAST).
+ * KM_NORMAL_OFF: a normal whose squared length is off 1 by more than 2^-10 (a hit point
+ *   that rounding moved well off a tiny radius) is normalised exactly; below that one
+ *   Newton step of 1/sqrt takes the error to rounding level. */
+#define KM_DD_LO 0x1p-40f
+#define KM_DD_HI 0x1p40f
+#define KM_SPHERE 0x1p-17f
+#define KM_TUBE_A (1.0f + 0x1p-9f)
+#define KM_TUBE_WW 0x1p-30f
+#define KM_TINY 0x1p-100f
+#define KM_NORMAL_OFF 0x1p-10f
+#endif
+
 typedef uint32_t (*KFN(packet_fn))(const cylray_prepared *, float *, float *, size_t,
                                    uint32_t, unsigned);
 typedef size_t (*KFN(stream_fn))(const cylray_prepared *, const cylray_rays *,
@@ -118,13 +147,23 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
      * stream drivers (cylray_internal.h), so that its axis is the third one. */
     vf ox = KR_(ox), oy = KR_(oy), oz = KR_(oz);
     vf dx = KR_(dx), dy = KR_(dy), dz = KR_(dz);
+    /* Inactive lanes may hold anything, and subnormals there would cost microcode
+     * assists in every operation (20x on some cores): they take a ray that the packet
+     * rejection drops, a line 2^40 from the origin. */
+    const int partial = !leaf && bits != VFULL;
+    const vm live = mfrom_bits(bits);
+    const vf far = vset1(0x1p40f);
+    if (partial) {
+        ox = vsel(live, ox, far), oy = vsel(live, oy, zero), oz = vsel(live, oz, zero);
+        dx = vsel(live, dx, zero), dy = vsel(live, dy, one), dz = vsel(live, dz, zero);
+    }
 
     /* An Inf or NaN anywhere but in d turns C or D into NaN below, which takes the
      * lane out there. Inactive lanes are computed like the others (their garbage
      * cannot disturb a lane) and taken out where the hits are decided. */
     vf A = aligned ? vfma(dx, dx, vmul(dy, dy)) : zero; /* the side's |d_perp|^2 */
     vf dd = aligned ? vfma(dz, dz, A) : KDOT(dx, dy, dz, dx, dy, dz);
-    vm act = mand(vge(dd, vset1(0x1p-40f)), vle(dd, vset1(0x1p40f)));
+    vm act = mand(vge(dd, vset1(KM_DD_LO)), vle(dd, vset1(KM_DD_HI)));
     /* A direction far from unit length makes A, D and their products under- or
      * overflow (|d| = 2^-56 loses a tiny radius, 2^64 overflows d.d). A vector with
      * such an active lane (or a bad one) goes to the rare instance, where every lane
@@ -173,10 +212,10 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
     if (finite) {
         /* ww + s wd = ww - wd^2 / dd is the squared distance of the closest approach
          * to the center; a finite cylinder lies in a sphere, and a ray that passes
-         * outside it misses. The slack covers the cancellation of a far origin: the
-         * rounding of wh, ww, wd and the reciprocal move pp by less than 2^-19 ww. */
+         * outside it misses. The slack (KM_SPHERE) covers the cancellation of a far
+         * origin. */
         vf wd2 = vmul(vmul(wd, wd), rdd); /* wd^2 / dd; wd^2 is formed beside rdd */
-        act = mand(act, vle(vfnma(ww, vset1(0x1p-17f), vsub(ww, wd2)), KC_(bound2, KL_(BOUND2))));
+        act = mand(act, vle(vfnma(ww, vset1(KM_SPHERE), vsub(ww, wd2)), KC_(bound2, KL_(BOUND2))));
         /* A shift that brings the origin less than a factor sqrt(2) closer gains less
          * than it costs: a small t would lose its low bits in s + t'. (ww > 2 pp.) */
         s = leaf ? vsel(fin, vkeep(vgt(vadd(wd2, wd2), ww), s), s)
@@ -200,8 +239,7 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
      * rays all miss the sphere or the tube ends here, before the exact work, at one
      * branch (two would mispredict on a mix of the two kinds of miss). */
     act = mandn(act, vgt(vmul(g0, g0),
-                         vmul(vmul(A, vset1(1.0f + 0x1p-9f)),
-                              vfma(ww, vset1(0x1p-30f), rr))));
+                         vmul(vmul(A, vset1(KM_TUBE_A)), vfma(ww, vset1(KM_TUBE_WW), rr))));
     if (!many(act))
         return 0;
     /* Past the rejection, the inputs are read again rather than kept across it: a
@@ -209,6 +247,8 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
      * reload them from the stack instead). */
     CYLRAY_REREAD();
     ox = KR_(ox), oy = KR_(oy), oz = KR_(oz);
+    if (partial)
+        ox = vsel(live, ox, far), oy = vsel(live, oy, zero), oz = vsel(live, oz, zero);
     cx = KCEN_(0, CX), cy = KCEN_(1, CY), cz = KCEN_(2, CZ);
 
     vf bx = vsub(whx, ox), by = vsub(why, oy), bz = vsub(whz, oz);
@@ -272,7 +312,8 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
 
     /* A ray within about one ulp of the axis direction is parallel: it meets the side
      * nowhere, and no division by its tiny A may make a hit. */
-    vm par = vle(A, vmul(dd, KC_(par_eps, vmul(KDOT(vx, vy, vz, vx, vy, vz), vset1(0x1p-46f)))));
+    const vf par_eps = KC_(par_eps, vmul(KDOT(vx, vy, vz, vx, vy, vz), vset1(CYLRAY_PAR_EPS)));
+    vm par = vle(A, vmul(dd, par_eps));
     vm side = mand(act, mandn(vge(D, zero), par));
     vm inpar = mand(act, mand(par, vle(C, zero))); /* parallel and inside the tube */
     if (capped ? !many(mor(side, inpar)) : !many(side))
@@ -280,7 +321,7 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
 
     /* The estimates see subnormal inputs as zero: below 2^-100 (rare where the
      * coordinates are near 1, and D = 0 at a tangency) the exact operation serves. */
-    const vf tiny = vset1(0x1p-100f);
+    const vf tiny = vset1(KM_TINY);
     vf sq;
     if (fast) {
         sq = vmul(D, vrsqrt_fast(vmax(D, tiny)));
@@ -311,10 +352,10 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
         /* Both roots are polished before anything is decided from them, so that the
          * entry test, the clip and the range test all see the t that is reported: a
          * call with tmax set to a reported t then reports it again. */
-        tn = KFN(polish)(rr_vv, rr, aligned, side, tn, A, dx, dy, dz, ex, ey, ez, vx, vy, vz, px, py,
-                         pz);
-        tf = KFN(polish)(rr_vv, rr, aligned, side, tf, A, dx, dy, dz, ex, ey, ez, vx, vy, vz, px, py,
-                         pz);
+        tn = KFN(polish)(rr_vv, rr, aligned, side, tn, A, dx, dy, dz, ex, ey, ez, vx, vy, vz,
+                         px, py, pz);
+        tf = KFN(polish)(rr_vv, rr, aligned, side, tf, A, dx, dy, dz, ex, ey, ez, vx, vy, vz,
+                         px, py, pz);
     }
 
     /* Entry and exit, relative to the shifted origin, and which part each one is. */
@@ -388,19 +429,22 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
      * bounds are clamped to finite values, so that no infinite t ever hits. */
     vf tmin = vmax(vset1(-FLT_MAX), KR_(tmin)); /* a NaN bound stays */
     vf tmax = vmin(vset1(FLT_MAX), KR_(tmax));
+    if (partial)
+        tmin = vsel(live, tmin, zero), tmax = vsel(live, tmax, zero);
     vf T_in = vadd(s, t_in), T_out = vadd(s, t_out);
     /* With a scaled direction the range test is made where no scaling rounds: a
      * shrunk d (m < 1) moves the bounds to t' (exact, or overflowing as it should), a
-     * grown one moves T to t (the same); tcu takes t' there, tout takes that to t. */
-    vf tcu = one, tout = one;
+     * grown one moves T to t (the same): t_to_test takes t' there, t_to_user takes
+     * that to t. */
+    vf t_to_test = one, t_to_user = one;
     if (scaled) {
         vm shrunk = vlt(tscale, one);
         vf rs = vdiv(one, tscale);
         tmin = vsel(shrunk, vmul(tmin, rs), tmin);
         tmax = vsel(shrunk, vmul(tmax, rs), tmax);
-        tcu = vsel(shrunk, one, tscale);
-        tout = vsel(shrunk, tscale, one);
-        T_in = vmul(T_in, tcu), T_out = vmul(T_out, tcu);
+        t_to_test = vsel(shrunk, one, tscale);
+        t_to_user = vsel(shrunk, tscale, one);
+        T_in = vmul(T_in, t_to_test), T_out = vmul(T_out, t_to_test);
     }
     vm front = mand(ok_in, vge(T_in, tmin));
     vm cand = cull ? front : mor(front, ok_out);
@@ -408,7 +452,7 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
     vf T = vsel(front, T_in, T_out);
     vm hit = mand(cand, mand(vge(T, tmin), vle(T, tmax)));
     if (bits != VFULL) /* a whole packet is the common case, and needs no mask */
-        hit = mand(hit, mfrom_bits(bits));
+        hit = mand(hit, live);
     vm back = mandn(hit, front);
     front = mand(hit, front);
     if (occ || !many(hit))
@@ -429,7 +473,7 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
     part = vadd(part, vkeep(back, vset1(CYLRAY_BACKFACE)));
 
     if (scaled)
-        T = vmul(T, tout);
+        T = vmul(T, t_to_user);
     vstore_m(H->t + i, hit, T);
     if (!leaf) /* a leaf's driver sets tmax once, from the closest lane */
         vstore_m(R->tmax + i, hit, T);
@@ -468,7 +512,7 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
         vf corr = vfnma(vset1(0.5f), l2, vset1(1.5f));
         /* A hit point that rounding moved well off the surface (a radius far below the
          * coordinates' ulp) gets a true normalisation; it is rare enough to branch. */
-        vm off = mand(hit, vgt(vabs(vsub(l2, one)), vset1(0x1p-10f)));
+        vm off = mand(hit, vgt(vabs(vsub(l2, one)), vset1(KM_NORMAL_OFF)));
         if (many(off)) {
             /* Divided by its largest component first, so that a length whose square
              * underflows or overflows still normalises. */

@@ -82,7 +82,7 @@ cylray_status cylray_prepare(cylray_prepared *out, const cylray_cylinder *in)
     p.nscale = (float)(1.0 / (R * vv));
     for (int k = 0; k < 3; k++)
         p.vk[k] = (float)(v[k] / (R * vv));
-    p.par_eps = (float)(vv * 0x1p-46);
+    p.par_eps = (float)(vv * CYLRAY_PAR_EPS);
     /* The margin covers the rounding of the shifted origin many times over. */
     p.bound2 = isfinite(H) ? (float)((R * R + H * H) * (1.0 + 0x1p-12)) : INFINITY;
     p.radius = in->radius;
