@@ -96,8 +96,8 @@ static unsigned active_lanes(const int *valid, unsigned N, unsigned lane[16])
 /* Embree calls with N = 1, 4, 8 or 16 and often only a few valid lanes (its hybrid
  * traversal hands a packet of K over with one lane set). The valid lanes are packed into
  * the narrowest cylray packet that holds them, so a lone ray costs a 4-wide call. The
- * unused lanes repeat the first ray: the kernel computes them too, and stack garbage
- * there (subnormals, NaNs) would cost microcode assists on every operation. */
+ * unused lanes repeat the first ray rather than hold stack garbage, which a kernel
+ * without its own guard computed at the price of microcode assists (subnormals). */
 #define EB_GATHER(pk, base, N, lane, n, W)                                                 \
     do {                                                                                   \
         for (unsigned j = 0; j < (W); j++) {                                               \
