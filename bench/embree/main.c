@@ -234,45 +234,28 @@ static void judge_variant(eb_row *row, const eb_geom *g, const eb_ref *ref,
         eb_err_init(e, nset[s]);
         for (size_t i = 0; i < nset[s]; i++) {
             const eb_sample *x = &sets[s][i];
+            size_t p = x->pixel;
             uint32_t prim;
-            float t, ng[3];
-            if (x->pixel != SIZE_MAX) {
-                size_t p = x->pixel;
+            float t = 0, ng[3] = {0, 0, 0};
+            if (p != SIZE_MAX) {
                 prim = f->prim.prim[p], t = f->prim.tfar[p];
                 ng[0] = f->prim.ngx[p], ng[1] = f->prim.ngy[p], ng[2] = f->prim.ngz[p];
             } else {
-                eb_rays one;
-                if (eb_rays_alloc(&one, 1))
-                    continue;
-                one.ox[0] = x->o[0], one.oy[0] = x->o[1], one.oz[0] = x->o[2];
-                one.dx[0] = x->d[0], one.dy[0] = x->d[1], one.dz[0] = x->d[2];
-                one.tnear[0] = x->tmin, one.tfar[0] = x->tmax, one.valid[0] = 1;
-                eb_trace(g->scene, &one, 1, 1, 0, NULL);
-                prim = one.prim[0], t = one.tfar[0];
-                ng[0] = one.ngx[0], ng[1] = one.ngy[0], ng[2] = one.ngz[0];
-                eb_rays_free(&one);
+                prim = eb_trace1(g->scene, x->o, x->d, x->tmin, x->tmax, &t, ng);
             }
             eb_judge(e, ref, x, prim, t, ng);
-            /* secondary rays of a primary hit on the exact cylinder */
-            if (x->pixel == SIZE_MAX || prim != x->xid || !x->xhit)
+            /* the secondary rays of a primary hit on the exact cylinder */
+            if (p == SIZE_MAX || prim != x->xid || !x->xhit)
                 continue;
             const eb_rays *sec[2] = {&f->shadow, &f->bounce};
             for (int k = 0; k < 2; k++) {
-                size_t p = x->pixel;
                 if (!sec[k]->valid[p])
                     continue;
-                eb_rays one;
-                if (eb_rays_alloc(&one, 1))
-                    continue;
-                one.ox[0] = sec[k]->ox[p], one.oy[0] = sec[k]->oy[p], one.oz[0] = sec[k]->oz[p];
-                one.dx[0] = sec[k]->dx[p], one.dy[0] = sec[k]->dy[p], one.dz[0] = sec[k]->dz[p];
-                one.tnear[0] = sec[k]->tnear[p];
-                one.tfar[0] = k == 0 ? f->shadow_tfar[p] : INFINITY;
-                one.valid[0] = 1;
-                eb_trace(g->scene, &one, 1, 1, 0, NULL);
-                float w[3] = {one.dx[0], one.dy[0], one.dz[0]};
-                eb_judge_secondary(e, x, w, one.prim[0]);
-                eb_rays_free(&one);
+                float o[3], w[3], st, sn[3];
+                eb_rays_get(sec[k], p, o, w);
+                uint32_t hit = eb_trace1(g->scene, o, w, sec[k]->tnear[p],
+                                         k == 0 ? f->shadow_tfar[p] : INFINITY, &st, sn);
+                eb_judge_secondary(e, x, w, hit);
             }
         }
     }

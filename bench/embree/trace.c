@@ -171,6 +171,25 @@ static void single(RTCScene sc, eb_rays *r, size_t i, int occ)
     r->u[i] = rh.hit.u, r->v[i] = rh.hit.v;
 }
 
+uint32_t eb_trace1(RTCScene scene, const float o[3], const float d[3], float tnear,
+                   float tfar, float *t, float ng[3])
+{
+    struct RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    struct RTCRayHit rh;
+    rh.ray.org_x = o[0], rh.ray.org_y = o[1], rh.ray.org_z = o[2];
+    rh.ray.dir_x = d[0], rh.ray.dir_y = d[1], rh.ray.dir_z = d[2];
+    rh.ray.tnear = tnear, rh.ray.tfar = tfar, rh.ray.time = 0;
+    rh.ray.mask = ~0u, rh.ray.id = 0, rh.ray.flags = 0;
+    rh.hit.geomID = rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(scene, &ctx, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
+        return RTC_INVALID_GEOMETRY_ID;
+    *t = rh.ray.tfar;
+    ng[0] = rh.hit.Ng_x, ng[1] = rh.hit.Ng_y, ng[2] = rh.hit.Ng_z;
+    return rh.hit.primID;
+}
+
 typedef struct job {
     RTCScene scene;
     eb_rays *r;

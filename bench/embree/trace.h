@@ -44,4 +44,9 @@ void eb_camera_ray(const eb_scene *s, int w, int h, double x, double y, float o[
 double eb_trace(RTCScene scene, eb_rays *r, int packet, int threads, int occluded,
                 double *cpu_s);
 
+/* One ray, rtcIntersect1 on the calling thread: the hit's primID (or
+ * RTC_INVALID_GEOMETRY_ID), with *t and ng on a hit. */
+uint32_t eb_trace1(RTCScene scene, const float o[3], const float d[3], float tnear,
+                   float tfar, float *t, float ng[3]);
+
 #endif
