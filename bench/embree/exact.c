@@ -60,42 +60,6 @@ void eb_ref_free(eb_ref *r)
     memset(r, 0, sizeof *r);
 }
 
-int eb_ref_one(const cylray_cylinder *c, const float o[3], const float d[3], float tmin,
-               float tmax, cylref_hit *h)
-{
-    unsigned caps = c->flags & CYLRAY_CAPPED;
-    if (caps == 0 || caps == CYLRAY_CAPPED)
-        return cylref_intersect(c, o, d, tmin, tmax, 0, h) == 1;
-    /* Closed at one end. The closed solid's first hit is the answer unless it is the
-     * missing disc; then the answer is the nearer of the open tube's first hit and the
-     * present disc where the ray leaves the solid through it. */
-    cylray_cylinder cc = *c;
-    cc.flags = CYLRAY_CAPPED;
-    cylref_hit hc;
-    if (cylref_intersect(&cc, o, d, tmin, tmax, 0, &hc) != 1)
-        return h->hit = 0;
-    int absent = caps == CYLRAY_CAPPED_LO ? CYLRAY_CAP_HI : CYLRAY_CAP_LO;
-    if ((hc.part & CYLRAY_PART_MASK) != absent) {
-        *h = hc;
-        return 1;
-    }
-    cylray_cylinder open = *c;
-    open.flags = 0;
-    cylref_hit ho, he;
-    int got_o = cylref_intersect(&open, o, d, tmin, tmax, 0, &ho) == 1;
-    float after = nextafterf(nextafterf((float)hc.t, INFINITY), INFINITY);
-    int got_e = after <= tmax && cylref_intersect(&cc, o, d, after, tmax, 0, &he) == 1 &&
-                (he.part & CYLRAY_PART_MASK) != absent &&
-                (he.part & CYLRAY_PART_MASK) != CYLRAY_SIDE;
-    if (got_o && (!got_e || ho.t <= he.t))
-        *h = ho;
-    else if (got_e)
-        *h = he;
-    else
-        return h->hit = 0;
-    return 1;
-}
-
 /* Where the ray enters box b, in double (or INFINITY). */
 static double box_entry(const struct RTCBounds *b, const float o[3], const float d[3])
 {
@@ -154,7 +118,7 @@ int eb_ref_closest(const eb_ref *r, const float o[3], const float d[3], float tm
             if (found && cs[i].t > h->t)
                 break;
             cylref_hit x;
-            if (eb_ref_one(&r->s->cyl[cs[i].id], o, d, tmin, tmax, &x) &&
+            if (cylref_intersect(&r->s->cyl[cs[i].id], o, d, tmin, tmax, 0, &x) == 1 &&
                 (!found || x.t < h->t || (x.t == h->t && cs[i].id < *id))) {
                 *h = x;
                 *id = cs[i].id;
@@ -165,14 +129,4 @@ int eb_ref_closest(const eb_ref *r, const float o[3], const float d[3], float tm
     free(cs);
     free(c.ids);
     return found;
-}
-
-void eb_ref_band(const cylray_cylinder *c, int part, const float o[3], const float d[3],
-                 float tmin, float tmax, cylref_band *b)
-{
-    cylray_cylinder cc = *c;
-    unsigned caps = c->flags & CYLRAY_CAPPED;
-    if (caps && caps != CYLRAY_CAPPED)
-        cc.flags = (part & CYLRAY_PART_MASK) == CYLRAY_SIDE ? 0 : CYLRAY_CAPPED;
-    cylref_band_eval(&cc, o, d, tmin, tmax, 0, b);
 }

@@ -28,11 +28,10 @@ void eb_sample_solve(eb_sample *s, const eb_ref *ref)
 }
 
 /* Would a float kernel be excused for answering `hit` (at t) on cylinder id? */
-static int excused(const eb_ref *ref, const eb_sample *s, uint32_t id, int part, int hit,
-                   float t)
+static int excused(const eb_ref *ref, const eb_sample *s, uint32_t id, int hit, float t)
 {
     cylref_band b;
-    eb_ref_band(&ref->s->cyl[id], part, s->o, s->d, s->tmin, s->tmax, &b);
+    cylref_band_eval(&ref->s->cyl[id], s->o, s->d, s->tmin, s->tmax, 0, &b);
     if (b.hit_unstable)
         return 1;
     if (!hit)
@@ -57,7 +56,7 @@ void eb_judge(eb_err *e, const eb_ref *ref, const eb_sample *s, uint32_t vprim, 
         return;
     if (vhit && s->xhit && vprim == s->xid) {
         double u = cylref_ulps(vt, s->xh.t);
-        if (u > 64 && !excused(ref, s, vprim, s->xh.part, 1, vt)) {
+        if (u > 64 && !excused(ref, s, vprim, 1, vt)) {
             /* the right cylinder, the wrong surface of it (e.g. its far side) */
             e->wrong++;
             if (vt > s->xh.t)
@@ -71,7 +70,7 @@ void eb_judge(eb_err *e, const eb_ref *ref, const eb_sample *s, uint32_t vprim, 
         double beyond = 0;
         if (u > 2) {
             cylref_band b;
-            eb_ref_band(&ref->s->cyl[vprim], s->xh.part, s->o, s->d, s->tmin, s->tmax, &b);
+            cylref_band_eval(&ref->s->cyl[vprim], s->o, s->d, s->tmin, s->tmax, 0, &b);
             cylref_judge(&b, 1, s->xh.part, vt, &beyond);
         }
         e->t_beyond[e->nt] = beyond;
@@ -91,8 +90,7 @@ void eb_judge(eb_err *e, const eb_ref *ref, const eb_sample *s, uint32_t vprim, 
             return;
     }
     int leak = s->xhit && (!vhit || vt > s->xh.t);
-    int ok = leak ? excused(ref, s, s->xid, s->xh.part, 0, 0)
-                  : excused(ref, s, vprim, CYLRAY_SIDE, 1, vt);
+    int ok = leak ? excused(ref, s, s->xid, 0, 0) : excused(ref, s, vprim, 1, vt);
     if (ok) {
         e->excused++;
         return;
