@@ -34,6 +34,8 @@
  *   (2ab <= 2^-9 a^2 + 2^9 b^2), which leaves room for the products' own rounding.
  * KM_TINY: the hardware estimates treat subnormals as zero; below 2^-100 the exact
  *   operation serves (CYLRAY_FAST).
+ * KM_TANGENT: D below 2^-18 A R^2, some 32 ulps of its larger term, is near a tangency,
+ *   where only the direct form of the second root is safe (see there).
  * KM_NORMAL_OFF: a normal whose squared length is off 1 by more than 2^-10 (a hit point
  *   that rounding moved well off a tiny radius) is normalised exactly; below that one
  *   Newton step of 1/sqrt takes the error to rounding level. */
@@ -44,6 +46,7 @@
 #define KM_TUBE_WW 0x1p-30f
 #define KM_TINY 0x1p-100f
 #define KM_NORMAL_OFF 0x1p-10f
+#define KM_TANGENT 0x1p-18f
 #endif
 
 typedef uint32_t (*KFN(packet_fn))(const cylray_prepared *, float *, float *, size_t,
@@ -298,14 +301,17 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
         nB = vsel(slide, nB2, nB), C = vsel(slide, C2, C), g = vsel(slide, g2, g);
     }
     /* Lagrange's form of B^2 - A C, over v.v, with both products exact. */
-    vf D;
+    vf D, AR2; /* AR2: the larger term of D, which sets its rounding */
     if (!scaled && !leaf) { /* a radius in [2^-20, 2^21): j = 0 */
         D = vdop_x(A, rr, g, g);
+        AR2 = vmul(A, rr);
     } else { /* scaled by 2^-2j (cylray_prepared.rr_d), and sqrt_vv has 2^j */
         const vf gs = KC_(g_s, KL_(GS));
         const vf rs = vmul(rad, gs); /* a leaf's R 2^-j, exact */
+        const vf rr_d = KC_(rr_d, vmul(rs, rs));
         vf gd = vmul(g, gs);
-        D = vdop_x(A, KC_(rr_d, vmul(rs, rs)), gd, gd);
+        D = vdop_x(A, rr_d, gd, gd);
+        AR2 = vmul(A, rr_d);
     }
     act = mand(act, veq(vfma(C, zero, vmul(D, zero)), zero));
 
@@ -346,6 +352,14 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
     /* By construction q^2 >= A C. Where rounding of C (a point on the surface, or a
      * tangent ray) breaks that, C / q is no root: the two coincide at q / A. */
     r2 = vsel(mor(veq(q, zero), vlt(vmul(q, q), vmul(C, A))), r1, r2);
+    /* Near a tangency D is known only to a few ulps of A R^2 (the rounding of A, R^2
+     * and g), and C, at a point near the surface, only to a few ulps of R^2: C / q then
+     * divides one rounding error by another and can put the root anywhere, even past
+     * the origin (a ray leaving the surface reported as hitting it from inside). The
+     * direct form (nB - sign sq) / A errs by the error of sq alone. */
+    vm tangent = mand(side, vlt(D, vmul(AR2, vset1(KM_TANGENT))));
+    if (many(tangent))
+        r2 = vsel(tangent, vdiv(vsub(nB, vxorsign(sq, nB)), A), r2);
     vf tn = vmin(r1, r2), tf = vmax(r1, r2);
     if (refine && many(side)) {
         /* Both roots are polished before anything is decided from them, so that the

@@ -46,6 +46,14 @@ static const regress_case table[] = {
       0x1.ae14ep-56f, 0x1.cp-9f, CAP},
      {0x1.f4p+9f, -0x1.f4p+9f, 0x1.f46p+8f}, {0x1.e56e6ep-5f, -0x1.167e96p-2f, -0x1.fffffcp+8f},
      0, I},
+    /* Found by the secondary-ray tests (AVX2 and AVX-512): an origin 1e-6 outside an
+     * infinite tube, leaving it almost tangentially; D and C were each a few ulps of
+     * R^2 off, C / q put the second root past the origin, and a back-face hit at
+     * 6.05e-5 came back where both exact roots lie behind the origin. */
+    {"near-tangent, origin just outside, roots behind",
+     {{0x1.d7521ap+2f, 0x1.86ecdap+2f, 0x1.57858p+1f}, {0, -1, 0}, 0x1.142644p+1f, I, 0},
+     {0x1.fedb86p+2f, 0x1.8e8894p+2f, 0x1.3bbd54p-1f},
+     {-0x1.d0e582p-1f, -0x1.4588a8p-2f, -0x1.177294p-2f}, 0, I},
     /* Float-exact hand cases (R = 1, H = 2 along z unless said). */
     {"exactly through the rim, entering", {{0, 0, 0}, {0, 0, 1}, 1, 2, CAP}, {-2, 0, 3},
      {1, 0, -1}, 0, I},
