@@ -102,6 +102,9 @@ cylray_status cylray_prepare(cylray_prepared *out, const cylray_cylinder *in)
     }
     p.variant = (uint8_t)(p.kind + (p.axis_id ? CYLRAY_KIND_COUNT
                                     : j ? 2 * CYLRAY_KIND_COUNT : 0u));
+    p.radius = in->radius;
+    p.half_height = in->half_height;
+    p.caps = isfinite(H) ? (in->flags & CYLRAY_CAPPED) : 0u;
     p.magic = CYLRAY_MAGIC;
     *out = p;
     return CYLRAY_OK;
