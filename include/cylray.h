@@ -215,9 +215,9 @@ cylray_status cylray_cylinder_from_endpoints(cylray_cylinder *out, const float p
 
 /* The guarantee: a ray traced with tmin = 0 from the origin cylray_spawn_origin gives
  * never hits again, on any ISA, the surface it leaves at that point (nor, at a rim, the
- * other surface through it), and it starts strictly on its side of each of them, by the
- * kernels' own error margin and no more, as long as that offset stays below a quarter
- * of the radius and of the half height.
+ * other surface through it), and it starts strictly on its own side of each of them, by
+ * twice the kernels' tested tolerance and no more, whenever that offset is below a
+ * quarter of the radius and of the half height.
  *
  * For a hit of the ray o + t d at t on `part` of cyl: p, the hit point (moved onto
  * the surface of that part where that pays), and *err, a bound on the distance from p

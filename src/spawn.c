@@ -33,11 +33,13 @@
  * likewise, the radius and the half height by 2 ulps. A decision the kernel can get
  * wrong is therefore one whose exact answer those perturbations can flip: an origin
  * closer to a surface than
- *   m_side = 2 ulp(max|w_k|) |n|_1 + |z| tilt + 2 ulp(R),
- *   m_cap  = 2 ulp(max|w_k|) |n|_1 + rho tilt + 2 ulp(H),   tilt = 2 sqrt(3) ulp(max|v_k|)/|v|,
- * (z, rho: the origin's axial and radial coordinates) may be taken for lying on its other
- * side. The margins used are twice these (CYLRAY_SPAWN_SAFETY below). So the origin is moved along each surface's outward normal n_i, to w's side
- * (sign of dot(w, n_i), inward when 0), by
+ *   m_side = 2 ulp(X) |n|_1 + |z| tilt + 2 ulp(R),
+ *   m_cap  = 2 ulp(X) |n|_1 + rho tilt + 2 ulp(H),   tilt = 2 sqrt(3) ulp(max|v_k|)/|v|,
+ * with X = max|w_k| (z, rho: the origin's axial and radial coordinates) may be taken for
+ * lying on its other side. The margins m_i used are twice these, with X the larger of
+ * max|w_k| and the origin's own max|x_k| (CYLRAY_SPAWN_SAFETY below says why). So the
+ * origin is moved along each surface's outward normal n_i, to w's side (sign of
+ * dot(w, n_i), inward when 0), by
  *   a_i = max(0, -sign_i sigma_i) + e_d + m_i,
  * sigma_i being p's signed distance from surface i computed in double (off by at most
  * e_d = 2^-47 (|q|_1 + R + H)), for the part hit and for any other surface whose
@@ -53,10 +55,12 @@
 
 #include <string.h>
 
-/* The kernels' tolerance box is what the tests hold them to, not a proven bound, and
- * one spawned ray in 10^7 (a reflection 0.0015 rad off the tangent plane, its line
- * within 1e-8 R of tangency) was still taken for a hit with the origin at the box's
- * edge; the margins are therefore twice the box. */
+/* The kernels' tolerance box is what the tests hold them to, not a proven bound: one
+ * spawned ray in 10^7 (a reflection 0.0015 rad off the tangent plane, its line within
+ * 1e-8 R of tangency) was still taken for a hit with the origin at the box's edge. The
+ * margins are therefore twice the box, with the origin's rounding counted in ulps of its
+ * world coordinates as well as of those relative to the center (the FMA kernels took an
+ * origin 2.4e-6 outside a radius-2.2 tube, 2.5 ulps of its coordinate 8, for inside). */
 #define CYLRAY_SPAWN_SAFETY 2.0
 
 /* One cylinder's exact geometry, from a prepared cylinder or a leaf lane. */
@@ -263,6 +267,7 @@ static void spawn_geo(const geo *g, const float p[3], float err, int32_t part,
     const double vmax = max3(fabs(g->v[0]), fabs(g->v[1]), fabs(g->v[2]));
     const double tilt = 2 * 1.7320508075688774 * ulp_f(vmax) / g->sv;
     const double qmax = max3(fabs(q[0]), fabs(q[1]), fabs(q[2]));
+    const double pmax = max3(fabs((double)p[0]), fabs((double)p[1]), fabs((double)p[2]));
 
     surf S[3];
     int ns = 0;
@@ -286,7 +291,7 @@ static void spawn_geo(const geo *g, const float p[3], float err, int32_t part,
         }
         const double nl1 = fabs(x->n[0]) + fabs(x->n[1]) + fabs(x->n[2]);
         /* the margin at p, for the test of reach; refined below at the origin */
-        double m = CYLRAY_SPAWN_SAFETY * (2 * ulp_f(qmax) * nl1 +
+        double m = CYLRAY_SPAWN_SAFETY * (2 * ulp_f(dmax(qmax, pmax)) * nl1 +
                                           (i == 0 ? fabs(z) : rho) * tilt +
                                           2 * ulp_f(i == 0 ? g->R : g->H));
         if (!here && !(fabs(x->sigma) <= (double)err + m + e_d))
@@ -304,16 +309,14 @@ static void spawn_geo(const geo *g, const float p[3], float err, int32_t part,
     const double wmax = (qmax + move) * (1 + 0x1p-19);
     const double zmax = (fabs(z) + move) * (1 + 0x1p-19);
     const double rmax = (rho + move) * (1 + 0x1p-19);
-    double xmax = 0;
-    for (int k = 0; k < 3; k++)
-        xmax = dmax(xmax, fabs((double)p[k]) + move);
-    const double rnd = 1.7320508075688774 * ulp_f(xmax * (1 + 0x1p-19));
+    const double xmax = (pmax + move) * (1 + 0x1p-19);
+    const double rnd = 1.7320508075688774 * ulp_f(xmax);
     double delta[3] = {0, 0, 0};
     for (int i = 0; i < ns; i++) {
         surf *x = &S[i];
         const int side = x->side;
         const double nl1 = fabs(x->n[0]) + fabs(x->n[1]) + fabs(x->n[2]);
-        double m = CYLRAY_SPAWN_SAFETY * (2 * ulp_f(wmax) * nl1 + (side ? zmax : rmax) * tilt +
+        double m = CYLRAY_SPAWN_SAFETY * (2 * ulp_f(dmax(wmax, xmax)) * nl1 + (side ? zmax : rmax) * tilt +
                                           2 * ulp_f(side ? g->R : g->H));
         double a = dmax(0.0, -x->sign * x->sigma) + e_d + m;
         if (ns > 1)
