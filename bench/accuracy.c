@@ -43,12 +43,10 @@ static int cyl_index(const workload *w, size_t i)
     return c0;
 }
 
-static cylray_cylinder cyl_as(const workload *w, int c, int open)
+/* Rays in inactive packet lanes hold a fill, not a ray: never compared. */
+static int ray_active(const workload *w, size_t i)
 {
-    cylray_cylinder cy = w->cyl[c];
-    if (open)
-        cy.flags &= ~CYLRAY_CAPPED; /* what the textbook computes: no end discs */
-    return cy;
+    return w->lanes >> (i % 32) & 1u;
 }
 
 static void ray_of(const workload *w, size_t i, float o[3], float d[3], float *tmin,
@@ -60,7 +58,7 @@ static void ray_of(const workload *w, size_t i, float o[3], float d[3], float *t
 }
 
 /* The closest exact hit over the cylinders ray i meets. */
-static void ref_closest(const workload *w, size_t i, int open, ref_answer *out)
+static void ref_closest(const workload *w, size_t i, ref_answer *out)
 {
     float o[3], d[3], tmin, tmax;
     ray_of(w, i, o, d, &tmin, &tmax);
@@ -70,22 +68,13 @@ static void ref_closest(const workload *w, size_t i, int open, ref_answer *out)
     out->t = 0;
     out->part = 0;
     for (int c = c0; c < c1; c++) {
-        cylray_cylinder cy = cyl_as(w, c, open);
         cylref_hit h;
-        if (cylref_intersect(&cy, o, d, tmin, tmax, 0, &h) == 1 && (!out->hit || h.t < out->t)) {
+        if (cylref_intersect(&w->cyl[c], o, d, tmin, tmax, 0, &h) == 1 && (!out->hit || h.t < out->t)) {
             out->hit = 1;
             out->t = h.t;
             out->part = h.part;
         }
     }
-}
-
-static int any_capped(const workload *w)
-{
-    for (int c = 0; c < w->ncyl; c++)
-        if (w->cyl[c].flags & CYLRAY_CAPPED)
-            return 1;
-    return 0;
 }
 
 void accuracy_reference(workload *w)
@@ -99,46 +88,24 @@ void accuracy_reference(workload *w)
         return;
     }
     for (size_t i = 0; i < n; i += st)
-        ref_closest(w, i, 0, &w->ref[i]);
-    if (!w->textbook)
-        return;
-    if (!any_capped(w)) {
-        w->ref_open = w->ref; /* shared, released once */
-        w->bands_open = w->bands;
-        return;
-    }
-    w->ref_open = calloc(n, sizeof *w->ref_open);
-    w->bands_open = calloc(n, sizeof *w->bands_open);
-    if (!w->ref_open || !w->bands_open) {
-        free(w->ref_open), free(w->bands_open);
-        w->ref_open = NULL, w->bands_open = NULL;
-        return;
-    }
-    for (size_t i = 0; i < n; i += st)
-        ref_closest(w, i, 1, &w->ref_open[i]);
+        if (ray_active(w, i))
+            ref_closest(w, i, &w->ref[i]);
 }
 
 void accuracy_release(workload *w)
 {
     size_t n = w->rays.n;
-    int shared = w->bands_open == w->bands;
     for (size_t i = 0; w->bands && i < n; i++)
         free(w->bands[i]);
-    for (size_t i = 0; !shared && w->bands_open && i < n; i++)
-        free(w->bands_open[i]);
-    if (!shared) {
-        free(w->ref_open);
-        free(w->bands_open);
-    }
     free(w->ref);
     free(w->bands);
-    w->ref = w->ref_open = NULL;
-    w->bands = w->bands_open = NULL;
+    w->ref = NULL;
+    w->bands = NULL;
 }
 
-static const cylref_band *band_of(const workload *w, size_t i, int c, int open)
+static const cylref_band *band_of(const workload *w, size_t i, int c)
 {
-    void **cache = open ? w->bands_open : w->bands;
+    void **cache = w->bands;
     int single = w->grouped || w->ncyl == 1;
     if (single && cache[i])
         return cache[i];
@@ -147,8 +114,7 @@ static const cylref_band *band_of(const workload *w, size_t i, int c, int open)
         return NULL;
     float o[3], d[3], tmin, tmax;
     ray_of(w, i, o, d, &tmin, &tmax);
-    cylray_cylinder cy = cyl_as(w, c, open);
-    cylref_band_eval(&cy, o, d, tmin, tmax, 0, b);
+    cylref_band_eval(&w->cyl[c], o, d, tmin, tmax, 0, b);
     if (single)
         cache[i] = b;
     return b;
@@ -156,12 +122,12 @@ static const cylref_band *band_of(const workload *w, size_t i, int c, int open)
 
 /* 0: the kernel's outcome is one the tolerance band allows; 1: an unexcused hit/miss
  * disagreement; 2: an unexcused part disagreement. Occlusion judges hit/miss only. */
-static int judge(const workload *w, size_t i, int open, int occ, int hit, int part, float t)
+static int judge(const workload *w, size_t i, int occ, int hit, int part, float t)
 {
     int c0, c1;
     cyl_range(w, i, &c0, &c1);
     if (c1 - c0 == 1) {
-        const cylref_band *b = band_of(w, i, c0, open);
+        const cylref_band *b = band_of(w, i, c0);
         if (!b)
             return 0;
         if (occ)
@@ -172,7 +138,7 @@ static int judge(const workload *w, size_t i, int open, int occ, int hit, int pa
     /* Several cylinders (the BVH leaf): excused when any of them is near a decision. */
     int verdict = 1;
     for (int c = c0; c < c1 && verdict; c++) {
-        cylref_band *b = (cylref_band *)band_of(w, i, c, open);
+        cylref_band *b = (cylref_band *)band_of(w, i, c);
         if (b && b->decision_unstable)
             verdict = 0;
         free(b);
@@ -190,17 +156,20 @@ void accuracy_measure(const workload *w, int isa, int width_id, int op, result *
     if (!hit || !t || !part || !ulps || !xs ||
         bench_run_once(w, isa, width_id, op, hit, t, part) != 0)
         goto done;
-    size_t nh = 0;
-    for (size_t i = 0; i < n; i++)
+    size_t nh = 0, na = 0;
+    for (size_t i = 0; i < n; i++) {
         nh += hit[i];
-    r->hit_frac = (double)nh / (double)n;
-    int open = isa == BENCH_ISA_TEXTBOOK;
-    const ref_answer *ref = open ? w->ref_open : w->ref;
+        na += (size_t)ray_active(w, i);
+    }
+    r->hit_frac = (double)nh / (double)na;
+    const ref_answer *ref = w->ref;
     if (!ref)
         goto done;
     const int occ = op == OP_OCC;
     size_t nu = 0;
     for (size_t i = 0; i < n; i += st) {
+        if (!ray_active(w, i))
+            continue;
         const ref_answer *R = &ref[i];
         r->n_hits_ref += (size_t)R->hit;
         if (hit[i] != R->hit) {
@@ -208,7 +177,7 @@ void accuracy_measure(const workload *w, int isa, int width_id, int op, result *
                 r->extra_hits++;
             else
                 r->lost_hits++;
-            if (judge(w, i, open, occ, hit[i], part[i], t[i]))
+            if (judge(w, i, occ, hit[i], part[i], t[i]))
                 r->unexcused++;
             continue;
         }
@@ -220,7 +189,7 @@ void accuracy_measure(const workload *w, int isa, int width_id, int op, result *
             /* How far outside what the float inputs' rounding allows: the band of the
              * outcome the kernel chose. Only for rays off by more than 1 ulp (bands
              * are costly); cached per ray, so every configuration shares them. */
-            const cylref_band *b = band_of(w, i, cyl_index(w, i), open);
+            const cylref_band *b = band_of(w, i, cyl_index(w, i));
             double beyond = 0;
             if (b) {
                 cylref_judge(b, 1, part[i], t[i], &beyond);
@@ -232,7 +201,7 @@ void accuracy_measure(const workload *w, int isa, int width_id, int op, result *
         ulps[nu++] = u;
         if (part[i] != R->part) {
             r->part_diff++;
-            if (judge(w, i, open, occ, hit[i], part[i], t[i]))
+            if (judge(w, i, occ, hit[i], part[i], t[i]))
                 r->unexcused++;
         }
     }
@@ -264,7 +233,7 @@ int accuracy_available(void)
 
 void accuracy_reference(workload *w)
 {
-    w->ref = w->ref_open = NULL;
+    w->ref = NULL;
 }
 
 void accuracy_release(workload *w)

@@ -26,16 +26,21 @@ enum { OP_T, OP_NORMAL, OP_OCC, OP_REFINE, OP_FAST, OP_COUNT };
 extern const char *const bench_op_name[OP_COUNT];
 extern const unsigned bench_op_flags[OP_COUNT];
 
-/* The pseudo-ISA of the textbook baseline, after the real ones. */
+/* The builds of the textbook peer (TB_*) as pseudo-ISAs, after the real ones. */
 #define BENCH_ISA_TEXTBOOK CYLRAY_ISA_COUNT
-#define BENCH_NISA (CYLRAY_ISA_COUNT + 1)
+#define BENCH_NISA (CYLRAY_ISA_COUNT + TB_COUNT)
 const char *bench_isa_name(int isa);
+static inline int bench_is_textbook(int isa)
+{
+    return isa >= BENCH_ISA_TEXTBOOK;
+}
 
 typedef struct options {
-    unsigned isa_mask;      /* bit per cylray_isa (and BENCH_ISA_TEXTBOOK) */
+    unsigned isa_mask;      /* bit per cylray_isa and textbook build */
     unsigned width_mask;    /* bit per BW_* */
     const char *scenarios;  /* comma-separated names or groups, NULL for all */
     int quick;
+    int flush_subnormals;   /* --flush-subnormals: DAZ/FTZ set for the whole run */
     const char *out_dir;
     int reps;               /* timed samples per configuration */
     double sample_ns;       /* length of one sample */
@@ -61,18 +66,16 @@ typedef struct workload {
                                    cylinder i / k (the stress sets: 16 rays per cylinder) */
     cylray_cylinder *cyl;       /* ncyl */
     cylray_prepared *prep;      /* ncyl, 64-byte aligned */
-    tb_cylinder *tb;            /* ncyl, for the textbook baseline */
+    tb_cylinder *tb;            /* ncyl, for the textbook peer */
     unsigned ops;               /* bit per OP_* measured */
     unsigned widths;            /* bit per BW_* measured (before the --width filter) */
-    int textbook;               /* also time and check the textbook baseline */
+    int textbook;               /* also time and check the textbook peer */
     int big;                    /* stream over arrays far larger than the caches */
-    int target;                 /* the speed target applies to these rows */
+    uint32_t lanes;             /* the packets' active lanes (bit per lane; all: ~0u);
+                                   the rays of the others hold a fill, never looked at */
     ref_answer *ref;            /* per ray, or NULL without a reference */
-    ref_answer *ref_open;       /* the same with every cylinder an open tube: what the
-                                   textbook (which has no caps) is judged against */
     size_t ref_stride;          /* big streams check every ref_stride-th ray */
     void **bands;               /* per ray, computed when a disagreement needs judging */
-    void **bands_open;
 } workload;
 
 typedef struct result {
@@ -130,7 +133,7 @@ double bench_memcpy_gbs(const workload *w, const options *opt);
 
 /* accuracy.c */
 int accuracy_available(void);
-void accuracy_reference(workload *w);  /* fills w->ref and w->ref_open (or leaves NULL) */
+void accuracy_reference(workload *w);  /* fills w->ref (or leaves it NULL) */
 void accuracy_release(workload *w);
 /* Runs the configuration once more on the same rays and compares with w->ref. */
 void accuracy_measure(const workload *w, int isa, int width_id, int op, result *r);

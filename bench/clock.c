@@ -17,6 +17,22 @@
 #define HAVE_TSC 0
 #endif
 
+int clk_flush_subnormals(void)
+{
+#if HAVE_TSC
+    _mm_setcsr(_mm_getcsr() | 0x8040u); /* DAZ (bit 6) | FTZ (bit 15) */
+    return 1;
+#elif defined(__aarch64__)
+    uint64_t fpcr;
+    __asm__ volatile("mrs %0, fpcr" : "=r"(fpcr));
+    fpcr |= (uint64_t)1 << 24; /* FZ */
+    __asm__ volatile("msr fpcr, %0" : : "r"(fpcr));
+    return 1;
+#else
+    return 0;
+#endif
+}
+
 double clk_ns(void)
 {
     struct timespec ts;

@@ -24,4 +24,10 @@ double clk_tsc_ghz(void);
  * sample between two cores' caches. Writes what happened into desc; returns 1 if pinned. */
 int clk_pin(char *desc, size_t n);
 
+/* Makes this thread's floating point treat subnormal inputs as zero and flush
+ * subnormal results to zero (x86: MXCSR DAZ and FTZ; AArch64: FPCR.FZ). A diagnostic:
+ * it shows whether subnormals cost time, at the price of results that differ from the
+ * default environment's. Returns 1 when set, 0 where unsupported. */
+int clk_flush_subnormals(void);
+
 #endif

@@ -7,6 +7,7 @@
  * time_vs_error.svg, speedup.svg and scene.png into DIR (default bench/out). */
 #include "bench.h"
 #include "clock.h"
+#include "leaf.h"
 #include "machine.h"
 #include "report.h"
 #include "scene.h"
@@ -23,13 +24,21 @@ static void usage(FILE *f)
 {
     fprintf(f,
             "usage: cylbench [options]\n"
-            "  --isa=LIST       scalar,sse41,avx2,avx512,neon,textbook (default: all this CPU runs)\n"
+            "  --isa=LIST       scalar,sse41,avx2,avx512,neon, and the textbook peer's builds\n"
+            "                   textbook (scalar), auto-sse41, auto-avx2, auto-avx512,\n"
+            "                   auto-neon (default: all this CPU runs)\n"
             "  --width=LIST     4,8,16,stream (default: each scenario's own)\n"
-            "  --scenario=LIST  names or groups: main, stream, skips, stress, scene, all\n"
+            "  --scenario=LIST  names or groups: main, stream, skips, lanes, stress, leaf,\n"
+            "                   scene, all\n"
             "                   (main: coherent incoherent shadow bvh-leaf miss-mix hit-mix;\n"
             "                    stream: big-stream; skips: aligned general open infinite\n"
-            "                    all-miss all-hit; stress: stress-<category of tests/ref/gen.h>)\n"
+            "                    all-miss all-hit; lanes: half-zero half-subnormal;\n"
+            "                    leaf: leaf-l1 leaf-l2;\n"
+            "                    stress: stress-<category of tests/ref/gen.h>)\n"
             "  --quick          fewer and shorter samples, smaller big stream\n"
+            "  --flush-subnormals  run with subnormals flushed to zero (x86 DAZ and FTZ,\n"
+            "                   AArch64 FZ): shows what subnormals cost; the error figures\n"
+            "                   are then those of that environment\n"
             "  --out=DIR        output directory (default bench/out)\n"
             "  --reps=N         timed samples per configuration (default 15, quick 7)\n"
             "  --sample-ms=X    length of one sample in ms (default 1, quick 0.4)\n");
@@ -86,6 +95,8 @@ static int parse_options(int argc, char **argv, options *o)
                 return -1;
         } else if (!strcmp(a, "--quick")) {
             o->quick = 1;
+        } else if (!strcmp(a, "--flush-subnormals")) {
+            o->flush_subnormals = 1;
         } else if (!strncmp(a, "--out=", 6)) {
             o->out_dir = a + 6;
         } else if (!strncmp(a, "--reps=", 7)) {
@@ -130,7 +141,9 @@ static int isa_runs(const options *o, int isa)
 {
     if (!(o->isa_mask >> isa & 1u))
         return 0;
-    return isa == BENCH_ISA_TEXTBOOK || cylray_kernels_for((cylray_isa)isa) != NULL;
+    if (bench_is_textbook(isa))
+        return tb_variant(isa - BENCH_ISA_TEXTBOOK) != NULL;
+    return cylray_kernels_for((cylray_isa)isa) != NULL;
 }
 
 static unsigned widths_of(const workload *w, const options *o)
@@ -161,12 +174,14 @@ static int for_configs(workload *w, const options *o, config_fn fn, void *ctx)
                     n++;
                 }
         }
-        /* The textbook computes t and normals only, one ray at a time. */
-        if (w->textbook && op == OP_NORMAL && isa_runs(o, BENCH_ISA_TEXTBOOK)) {
-            if (fn)
-                fn(ctx, w, op, BW_STREAM, BENCH_ISA_TEXTBOOK);
-            n++;
-        }
+        /* The textbook peer: a stream with normals, each of its builds. */
+        if (w->textbook && op == OP_NORMAL)
+            for (int isa = BENCH_ISA_TEXTBOOK; isa < BENCH_NISA; isa++)
+                if (isa_runs(o, isa)) {
+                    if (fn)
+                        fn(ctx, w, op, BW_STREAM, isa);
+                    n++;
+                }
     }
     return n;
 }
@@ -254,7 +269,7 @@ static void note(run_ctx *c, const char *what)
 }
 
 /* Speedup over the scalar path in the same run: same scenario, width and flag set (the
- * textbook against scalar's stream). */
+ * textbook builds against scalar's stream, or its first width measured). */
 static void compute_speedups(result_list *l)
 {
     for (size_t i = 0; i < l->n; i++) {
@@ -264,7 +279,7 @@ static void compute_speedups(result_list *l)
             if (s->isa_id == CYLRAY_ISA_SCALAR && !strcmp(s->scenario, r->scenario) &&
                 s->op_id == r->op_id &&
                 (s->width_id == r->width_id ||
-                 (r->isa_id == BENCH_ISA_TEXTBOOK && r->speedup == 0)) &&
+                 (bench_is_textbook(r->isa_id) && r->speedup == 0)) &&
                 r->ns.med > 0) {
                 r->speedup = s->ns.med / r->ns.med;
                 if (s->width_id == r->width_id)
@@ -283,6 +298,10 @@ int main(int argc, char **argv)
     if (mkdir_p(opt.out_dir)) {
         fprintf(stderr, "cylbench: cannot create %s\n", opt.out_dir);
         return 1;
+    }
+    if (opt.flush_subnormals && !clk_flush_subnormals()) {
+        fprintf(stderr, "cylbench: --flush-subnormals: not supported on this CPU\n");
+        return 2;
     }
     machine_info m;
     machine_probe(&m);
@@ -383,13 +402,23 @@ int main(int argc, char **argv)
         progress(&ctx, "scene", "rendering");
         scene_run(&opt, &sc, &results);
     }
+    leaf_report lr;
+    memset(&lr, 0, sizeof lr);
+    if (workloads_selected_name(opt.scenarios, "leaf-l1", "leaf") ||
+        workloads_selected_name(opt.scenarios, "leaf-l2", "leaf")) {
+        progress(&ctx, "leaf", "leaves against loops");
+        leaf_run(&opt, &results, &lr);
+        if (!lr.have)
+            fprintf(stderr, "%scylbench: leaf: the library has no leaf kernels; skipped\n",
+                    ctx.tty ? "\n" : "");
+    }
     if (ctx.tty)
         fprintf(stderr, "\r%-80s\r", "");
     compute_speedups(&results);
     m.load_end = machine_load();
 
     double wall = (clk_ns() - t_start) * 1e-9;
-    report_all(&results, &m, &opt, &sc, wall);
+    report_all(&results, &m, &opt, &sc, &lr, wall);
     free(results.r);
     return 0;
 }

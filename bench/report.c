@@ -1,19 +1,27 @@
-/* report.c - what a person reads: the stdout tables (time and error per ISA, the speed
- * targets, the skips, the big stream, the scene), and the files: results.csv,
+/* report.c - what a person reads: the stdout tables (time and error per ISA, the rates,
+ * the skips, the big stream, the scene), and the files: results.csv,
  * results.json, table.txt (every configuration, one per line), and the two plots. */
 #include "report.h"
 
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <string.h>
 
 #define NCOLS BENCH_NISA
 
-/* The ISAs (and the textbook) that have rows among the results of one group. */
+/* The auto-vectorized builds of the textbook have a table of their own (print_peer);
+ * the others show the scalar textbook only, beside the paths. */
+static int is_auto(int isa)
+{
+    return bench_is_textbook(isa) && isa != BENCH_ISA_TEXTBOOK;
+}
+
+/* The ISAs (and the scalar textbook) that have rows among the results of one group. */
 static int isas_in(const result_list *l, const char *group, int cols[NCOLS])
 {
     int n = 0;
-    for (int isa = 0; isa < BENCH_NISA; isa++)
+    for (int isa = 0; isa <= BENCH_ISA_TEXTBOOK; isa++)
         for (size_t i = 0; i < l->n; i++)
             if (l->r[i].isa_id == isa && (!group || !strcmp(l->r[i].group, group))) {
                 cols[n++] = isa;
@@ -51,7 +59,7 @@ static void print_group(FILE *f, const result_list *l, const char *group, const 
     const char *last = "";
     for (size_t i = 0; i < l->n; i++) {
         const result *r = &l->r[i];
-        if (strcmp(r->group, group))
+        if (strcmp(r->group, group) || is_auto(r->isa_id))
             continue;
         /* The textbook shares the rows of the paths; it opens one only when it ran
          * alone (--isa=textbook). */
@@ -115,7 +123,7 @@ static void print_group(FILE *f, const result_list *l, const char *group, const 
     }
 }
 
-/* ---- M rays/s per ISA and width, and the targets -------------------------------- */
+/* ---- M rays/s per ISA and width ------------------------------------------------------ */
 
 static void print_rates(FILE *f, const result_list *l)
 {
@@ -159,49 +167,78 @@ static double ratio(const result *a, const result *b)
     return a && b && b->ns.med > 0 ? a->ns.med / b->ns.med : 0;
 }
 
-static void print_targets(FILE *f, const result_list *l)
+/* ---- cylray against the textbook peer ------------------------------------------------- */
+
+/* The textbook build of the same ISA: TB_* follows the order of cylray_isa. */
+_Static_assert(TB_SCALAR == (int)CYLRAY_ISA_SCALAR && TB_SSE41 == (int)CYLRAY_ISA_SSE41 &&
+                   TB_AVX2 == (int)CYLRAY_ISA_AVX2 && TB_AVX512 == (int)CYLRAY_ISA_AVX512 &&
+                   TB_NEON == (int)CYLRAY_ISA_NEON,
+               "the textbook builds pair with the cylray ISAs by index");
+
+static const char *disagree_cell(const result *r, char *buf, size_t n)
 {
-    struct {
-        const char *what;
-        double got, goal;
-        const char *unit;
-    } t[6];
-    int n = 0;
-    const result *a;
-#define TARGET(w, g, gl, u) (t[n].what = (w), t[n].got = (g), t[n].goal = (gl), t[n].unit = (u), n++)
-    a = find_result(l, "incoherent", CYLRAY_ISA_AVX2, BW_8, OP_NORMAL);
-    TARGET("AVX2 8-wide, capped, normals, L1", a ? a->mrays : 0, 250, "M rays/s");
-    a = find_result(l, "incoherent", CYLRAY_ISA_AVX512, BW_16, OP_NORMAL);
-    TARGET("AVX-512 16-wide, capped, normals, L1", a ? a->mrays : 0, 400, "M rays/s");
-    a = find_result(l, "incoherent", CYLRAY_ISA_SSE41, BW_4, OP_NORMAL);
-    TARGET("SSE4.1 4-wide, capped, normals, L1", a ? a->mrays : 0, 120, "M rays/s");
-    TARGET("occluded vs intersect+normals (AVX2 8)",
-           ratio(find_result(l, "incoherent", CYLRAY_ISA_AVX2, BW_8, OP_NORMAL),
-                 find_result(l, "incoherent", CYLRAY_ISA_AVX2, BW_8, OP_OCC)),
-           1.3, "x faster");
-    TARGET("axis-aligned vs general axis (AVX2 8)",
-           ratio(find_result(l, "general", CYLRAY_ISA_AVX2, BW_8, OP_NORMAL),
-                 find_result(l, "aligned", CYLRAY_ISA_AVX2, BW_8, OP_NORMAL)),
-           1.25, "x faster");
-    TARGET("all-miss vs all-hit packet (AVX2 8)",
-           ratio(find_result(l, "all-hit", CYLRAY_ISA_AVX2, BW_8, OP_NORMAL),
-                 find_result(l, "all-miss", CYLRAY_ISA_AVX2, BW_8, OP_NORMAL)),
-           3.0, "x faster");
-#undef TARGET
-    fprintf(f, "\n== speed targets of issues 3 and 5 (reported, not asserted) ==\n");
-    for (int i = 0; i < n; i++) {
-        if (t[i].got <= 0) {
-            fprintf(f, "  %-42s %10s            goal >= %6.2f %-9s  not measured\n",
-                    t[i].what, "-", t[i].goal, t[i].unit);
+    char u[16];
+    if (!r || !r->have_err) {
+        snprintf(buf, n, "-");
+        return buf;
+    }
+    size_t d = r->extra_hits + r->lost_hits + r->part_diff;
+    int k = snprintf(buf, n, "%s", fmt_ulps(r->ulp_p99, u, sizeof u));
+    if (d && k > 0 && (size_t)k < n)
+        k += snprintf(buf + k, n - (size_t)k, " d%zu", d);
+    if (r->unexcused && k > 0 && (size_t)k < n)
+        snprintf(buf + k, n - (size_t)k, "!%zu", r->unexcused);
+    return buf;
+}
+
+static void print_peer(FILE *f, const result_list *l)
+{
+    int any = 0;
+    for (size_t i = 0; i < l->n && !any; i++)
+        any = is_auto(l->r[i].isa_id) && !strcmp(l->r[i].group, "main");
+    if (!any)
+        return;
+    fprintf(f, "\n== cylray against the textbook loop a user would write (naive.c, built per ISA "
+               "and auto-vectorized): same rays,\n   same capped cylinder, normals, calls of "
+               "%d rays in L1 ==\n", BENCH_BATCH);
+    fprintf(f, "   M rays/s; x peer: the peer's time over cylray's (>= 1: accuracy for free); "
+               "error: p99 ulps, dN hit/miss or part\n   disagreements with the exact "
+               "answer, !M of them unexcused by the tolerance band\n");
+    fprintf(f, "%-11s %-7s %9s %9s %-6s %-12s %9s %7s %7s | %-15s %-15s\n", "scenario", "isa",
+            "stream", "packet", "width", "peer", "peer", "x peer", "x peer", "cylray error",
+            "peer error");
+    fprintf(f, "%-11s %-7s %9s %9s %-6s %-12s %9s %7s %7s |\n", "", "", "", "(best)", "", "", "",
+            "stream", "packet");
+    for (size_t i = 0; i < l->n; i++) {
+        const result *pr = &l->r[i];
+        if (!bench_is_textbook(pr->isa_id) || strcmp(pr->group, "main"))
             continue;
+        int isa = pr->isa_id - BENCH_ISA_TEXTBOOK;
+        const result *st = find_result(l, pr->scenario, isa, BW_STREAM, OP_NORMAL);
+        const result *pk = NULL;
+        for (int w = BW_4; w < BW_STREAM; w++) {
+            const result *q = find_result(l, pr->scenario, isa, w, OP_NORMAL);
+            if (q && (!pk || q->ns.med < pk->ns.med))
+                pk = q;
         }
-        fprintf(f, "  %-42s %10.2f %-9s  goal >= %6.2f %-9s  %s (%.0f%% of goal)\n", t[i].what,
-                t[i].got, t[i].unit, t[i].goal, t[i].unit, t[i].got >= t[i].goal ? "MET" : "NOT MET",
-                100 * t[i].got / t[i].goal);
+        char e1[32], e2[32];
+        fprintf(f, "%-11s %-7s ", pr->scenario, bench_isa_name(isa));
+        if (st)
+            fprintf(f, "%9.1f ", st->mrays);
+        else
+            fprintf(f, "%9s ", "-");
+        if (pk)
+            fprintf(f, "%9.1f %-6s ", pk->mrays, bench_width_name[pk->width_id]);
+        else
+            fprintf(f, "%9s %-6s ", "-", "");
+        fprintf(f, "%-12s %8.1f%c %6.2fx %6.2fx | %-15s %-15s\n", pr->isa, pr->mrays,
+                pr->cpu_timed ? '~' : ' ', st ? pr->ns.med / st->ns.med : 0,
+                pk ? pr->ns.med / pk->ns.med : 0, disagree_cell(st, e1, sizeof e1),
+                disagree_cell(pr, e2, sizeof e2));
     }
 }
 
-/* ---- what each skip saves (issue 5) -------------------------------------------- */
+/* ---- what each skip saves ------------------------------------------------------------ */
 
 static void print_skips(FILE *f, const result_list *l)
 {
@@ -233,6 +270,113 @@ static void print_skips(FILE *f, const result_list *l)
                     ratio(gen, find_result(l, "infinite", isa, w, OP_NORMAL)), ratio(ah, am),
                     ah ? ah->ns.med : 0, am ? am->ns.med : 0);
         }
+}
+
+/* ---- inactive lanes: zeros against subnormals ------------------------------------------ */
+
+static void print_lanes(FILE *f, const result_list *l)
+{
+    int any = 0;
+    for (size_t i = 0; i < l->n && !any; i++)
+        any = !strcmp(l->r[i].scenario, "half-subnormal");
+    if (!any)
+        return;
+    fprintf(f, "\n== inactive lanes: packets with every other lane inactive, those lanes all zeros "
+               "or all subnormals (1e-40) ==\n");
+    fprintf(f, "   ns per packet call (median; the active lanes hold the same incoherent rays "
+               "in both); subnormal/zero: > 1 means the\n   garbage in lanes whose results are "
+               "thrown away costs time\n");
+    fprintf(f, "%-8s %-6s %12s %16s %15s\n", "isa", "width", "zeros ns", "subnormals ns",
+            "subnormal/zero");
+    for (int isa = 0; isa < CYLRAY_ISA_COUNT; isa++)
+        for (int w = BW_4; w < BW_STREAM; w++) {
+            const result *z = find_result(l, "half-zero", isa, w, OP_NORMAL);
+            const result *s = find_result(l, "half-subnormal", isa, w, OP_NORMAL);
+            if (!z || !s)
+                continue;
+            double lanes = bench_width_lanes[w];
+            fprintf(f, "%-8s %-6s %11.2f%c %15.2f%c %14.2fx\n", bench_isa_name(isa),
+                    bench_width_name[w], z->ns.med * lanes, z->cpu_timed ? '~' : ' ',
+                    s->ns.med * lanes, s->cpu_timed ? '~' : ' ', ratio(s, z));
+        }
+}
+
+/* ---- leaves against loops ------------------------------------------------------------- */
+
+/* A row by its path's name (the loops have no ISA id); width_id < 0: any. */
+static const result *find_named(const result_list *l, const char *scenario, const char *isa,
+                                int width_id, int op)
+{
+    for (size_t i = 0; i < l->n; i++) {
+        const result *r = &l->r[i];
+        if (r->op_id == op && !strcmp(r->isa, isa) && !strcmp(r->scenario, scenario) &&
+            (width_id < 0 || r->width_id == width_id))
+            return r;
+    }
+    return NULL;
+}
+
+static void print_leaf_row(FILE *f, const result_list *l, const char *scen, const char *isa,
+                           int wid, const char *m, const char *loop, const char *lane)
+{
+    const int ops[3] = {OP_T, OP_NORMAL, OP_OCC};
+    const result *r[3];
+    for (int o = 0; o < 3; o++)
+        r[o] = find_named(l, scen, isa, wid, ops[o]);
+    if (!r[0] && !r[1] && !r[2])
+        return;
+    fprintf(f, "%-8s %-14s %-3s", scen, isa, m);
+    for (int o = 0; o < 3; o++) {
+        if (r[o])
+            fprintf(f, " %9.1f%c", r[o]->mrays, r[o]->cpu_timed ? '~' : ' ');
+        else
+            fprintf(f, " %10s", "-");
+    }
+    /* the same op class of the loops: the ratios of intersect with normals */
+    double xl = ratio(find_named(l, scen, loop, -1, OP_NORMAL), r[1]);
+    double x1 = ratio(find_named(l, scen, lane, -1, OP_NORMAL), r[1]);
+    double oc = ratio(r[1], r[2]);
+    fprintf(f, " | %7.2fx %8.2fx %10.2fx\n", xl, x1, oc);
+}
+
+static void print_leaf(FILE *f, const result_list *l, const leaf_report *lr)
+{
+    if (!lr->have)
+        return;
+    char lane[32];
+    snprintf(lane, sizeof lane, "1-lane:%s", lr->best);
+    /* the scene sizes run (a size not selected has no cylinders) */
+    char sizes[96] = "", diffs[96] = "";
+    const char *tag[2] = {"leaf-l1", "leaf-l2"};
+    for (int s = 0, ks = 0, kd = 0; s < 2; s++) {
+        if (!lr->ncyl[s])
+            continue;
+        ks += snprintf(sizes + ks, sizeof sizes - (size_t)ks, "%s%d (%s)", ks ? ", " : "",
+                       lr->ncyl[s], tag[s]);
+        kd += snprintf(diffs + kd, sizeof diffs - (size_t)kd, "%s%zu (%s)", kd ? ", " : "",
+                       lr->diff[s], tag[s]);
+    }
+    fprintf(f, "\n== leaf: one incoherent ray against %d cylinders (molecule bonds, pipes) in "
+               "leaves of M; scenes of %s cylinders ==\n",
+            lr->run, sizes);
+    fprintf(f, "   M ray-cylinder tests/s (median) for t, normal, occluded. With normals: x loop "
+               "= the scalar loop's time over this\n   one's (scalar-loop: the scalar path, a "
+               "4-wide packet call with one active lane per cylinder), x 1-lane = the\n   "
+               "same over one-lane intersect8 calls of %s; occ/normal = intersect with normals "
+               "over occluded.\n   Leaf bytes per cylinder: %d (M = 4), %d (8), %d (16); "
+               "answers that differ from the scalar loop's: %s\n",
+            lr->best, lr->bytes_per_cyl[0], lr->bytes_per_cyl[1], lr->bytes_per_cyl[2], diffs);
+    fprintf(f, "%-8s %-14s %-3s %10s %10s %10s | %8s %9s %11s\n", "data", "path", "M", "t",
+            "normal", "occluded", "x loop", "x 1-lane", "occ/normal");
+    const char *scen[2] = {"leaf-l1", "leaf-l2"};
+    for (int s = 0; s < 2; s++) {
+        for (int isa = 0; isa < CYLRAY_ISA_COUNT; isa++)
+            for (int w = BW_4; w < BW_STREAM; w++)
+                print_leaf_row(f, l, scen[s], bench_isa_name(isa), w, bench_width_name[w],
+                               "scalar-loop", lane);
+        print_leaf_row(f, l, scen[s], "scalar-loop", -1, "1", "scalar-loop", lane);
+        print_leaf_row(f, l, scen[s], lane, -1, "1", "scalar-loop", lane);
+    }
 }
 
 /* ---- the big stream -------------------------------------------------------------- */
@@ -300,19 +444,20 @@ static void print_errors(FILE *f, const result_list *l)
                "disagreements, !M of them outside the\n   reference's tolerance band "
                "(unexcused); *: differs between widths. med: worst median; >band: worst "
                "p99/max of\n   the error beyond the band (what input rounding cannot "
-               "explain). textbook: the seed's formulas, judged as open tubes\n");
+               "explain). textbook: the textbook formulas in plain float (naive.c)\n");
     fprintf(f, "%-19s %-8s", "scenario", "flags");
     for (int c = 0; c < nc; c++)
         fprintf(f, "| %-20s", bench_isa_name(cols[c]));
     fprintf(f, "| %5s %s\n", "med", ">band");
     for (size_t i = 0; i < l->n; i++) {
         const result *r = &l->r[i];
-        if (!r->have_err || r->op_id == OP_OCC)
+        if (!r->have_err || r->op_id == OP_OCC || is_auto(r->isa_id))
             continue;
         /* one row per (scenario, flags), opened by its first result */
         int seen = 0;
         for (size_t j = 0; j < l->n && !seen; j++)
-            seen = j != i && l->r[j].have_err && !strcmp(l->r[j].scenario, r->scenario) &&
+            seen = j != i && l->r[j].have_err && !is_auto(l->r[j].isa_id) &&
+                   !strcmp(l->r[j].scenario, r->scenario) &&
                    l->r[j].op_id == r->op_id &&
                    (j < i ? 1 : r->isa_id == BENCH_ISA_TEXTBOOK &&
                                     l->r[j].isa_id != BENCH_ISA_TEXTBOOK);
@@ -383,6 +528,151 @@ static void print_scene(FILE *f, const result_list *l, const scene_report *sc)
 
 /* ---- files ---------------------------------------------------------------------------- */
 
+/* One column of the per-configuration outputs. results.csv, results.json and table.txt
+ * are all written from the list below, so a new figure is one line there. */
+typedef enum col_kind {
+    K_TEXT,  /* a string */
+    K_COUNT, /* an integer */
+    K_REAL,  /* a real number, printed with fmt */
+    K_ULPS,  /* a real number of ulps: fmt in CSV, fmt_ulps in table.txt */
+    K_MARK   /* yes or no: 0/1 in CSV, true/false in JSON, fmt in table.txt when yes */
+} col_kind;
+
+typedef enum col_when {
+    ON_ALL,
+    ON_ERR, /* only with an error side (an exact reference in the build) */
+    ON_BIG  /* only for big streams */
+} col_when;
+
+/* Where a column's value lives: a field of the result, or a function of the result and
+ * the machine. */
+typedef enum col_type { T_STR, T_WIDTH, T_INT, T_SIZE, T_DBL, T_FN } col_type;
+typedef double (*col_fn)(const result *r, const machine_info *m);
+
+typedef struct column {
+    const char *name;  /* the CSV heading and the JSON key */
+    const char *unit;  /* "" for names and plain counts */
+    col_kind kind;
+    col_when when;
+    const char *fmt;
+    const char *head;  /* the table.txt heading; NULL: not in table.txt */
+    int width;         /* its table.txt width; negative: left-aligned */
+    col_type type;
+    size_t off;
+    col_fn fn;
+} column;
+
+#define STR(f) T_STR, offsetof(result, f), NULL
+#define INT(f) T_INT, offsetof(result, f), NULL
+#define SIZE(f) T_SIZE, offsetof(result, f), NULL
+#define DBL(f) T_DBL, offsetof(result, f), NULL
+#define FN(f) T_FN, 0, f
+
+static double core_cycles(const result *r, const machine_info *m)
+{
+    return r->ns.med * m->core_ghz;
+}
+
+static const column columns[] = {
+    {"scenario", "", K_TEXT, ON_ALL, "%s", "scenario", -19, STR(scenario)},
+    {"group", "", K_TEXT, ON_ALL, "%s", NULL, 0, STR(group)},
+    {"isa", "", K_TEXT, ON_ALL, "%s", "isa", -14, STR(isa)},
+    {"width", "rays per packet", K_TEXT, ON_ALL, "%s", "width", -6, T_WIDTH, 0, NULL},
+    {"flags", "", K_TEXT, ON_ALL, "%s", "flags", -8, STR(op)},
+    {"rays_per_pass", "rays", K_COUNT, ON_ALL, NULL, NULL, 0, SIZE(rays_timed)},
+    {"tests_per_ray", "cylinders", K_COUNT, ON_ALL, NULL, NULL, 0, INT(ncyl)},
+    {"reps", "samples", K_COUNT, ON_ALL, NULL, NULL, 0, INT(reps)},
+    {"ns_med", "ns per ray and cylinder", K_REAL, ON_ALL, "%.4f", "ns/ray", 8, DBL(ns.med)},
+    {"cpu_timed", "", K_MARK, ON_ALL, "~", "~", 1, INT(cpu_timed)},
+    {"ns_min", "ns per ray and cylinder", K_REAL, ON_ALL, "%.4f", "min", 8, DBL(ns.min)},
+    {"ns_max", "ns per ray and cylinder", K_REAL, ON_ALL, "%.4f", "max", 8, DBL(ns.max)},
+    {"ns_q1", "ns per ray and cylinder", K_REAL, ON_ALL, "%.4f", NULL, 0, DBL(ns.q1)},
+    {"ns_q3", "ns per ray and cylinder", K_REAL, ON_ALL, "%.4f", NULL, 0, DBL(ns.q3)},
+    {"mrays_s", "M rays/s", K_REAL, ON_ALL, "%.2f", "M rays/s", 9, DBL(mrays)},
+    {"tsc_ticks", "TSC ticks per ray", K_REAL, ON_ALL, "%.3f", "ticks", 8, DBL(ticks)},
+    {"core_cycles", "core cycles per ray", K_REAL, ON_ALL, "%.2f", "cycles", 8,
+     FN(core_cycles)},
+    {"speedup_vs_scalar", "x", K_REAL, ON_ALL, "%.3f", "xscalar", 8, DBL(speedup)},
+    {"hit_frac", "share of rays", K_REAL, ON_ALL, "%.4f", "hit", 6, DBL(hit_frac)},
+    {"samples", "samples", K_COUNT, ON_ALL, NULL, NULL, 0, INT(samples)},
+    {"clean_samples", "samples", K_COUNT, ON_ALL, NULL, NULL, 0, INT(clean)},
+    {"err_compared", "rays", K_COUNT, ON_ERR, NULL, NULL, 0, SIZE(n_cmp)},
+    {"ref_hits", "rays", K_COUNT, ON_ERR, NULL, NULL, 0, SIZE(n_hits_ref)},
+    {"ulp_med", "ulps", K_ULPS, ON_ERR, "%.4g", "med", 6, DBL(ulp_med)},
+    {"ulp_p99", "ulps", K_ULPS, ON_ERR, "%.4g", "p99", 6, DBL(ulp_p99)},
+    {"ulp_max", "ulps", K_ULPS, ON_ERR, "%.4g", "max ulp", 7, DBL(ulp_max)},
+    {"beyond_band_p99", "ulps", K_ULPS, ON_ERR, "%.4g", NULL, 0, DBL(xs_p99)},
+    {"beyond_band_max", "ulps", K_ULPS, ON_ERR, "%.4g", NULL, 0, DBL(xs_max)},
+    {"extra_hits", "rays", K_COUNT, ON_ERR, NULL, "extra", 5, SIZE(extra_hits)},
+    {"lost_hits", "rays", K_COUNT, ON_ERR, NULL, "lost", 5, SIZE(lost_hits)},
+    {"part_diff", "rays", K_COUNT, ON_ERR, NULL, "part", 5, SIZE(part_diff)},
+    {"unexcused", "rays", K_COUNT, ON_ERR, NULL, "unexc", 5, SIZE(unexcused)},
+    {"gbytes_s", "GB/s", K_REAL, ON_BIG, "%.3f", NULL, 0, DBL(gbytes_s)},
+    {"memcpy_gbytes_s", "GB/s", K_REAL, ON_BIG, "%.3f", NULL, 0, DBL(memcpy_gbytes_s)},
+};
+#define NCOLUMNS (sizeof columns / sizeof columns[0])
+
+#undef STR
+#undef INT
+#undef SIZE
+#undef DBL
+#undef FN
+
+static int col_present(const column *c, const result *r)
+{
+    return c->when == ON_ALL || (c->when == ON_ERR && r->have_err) ||
+           (c->when == ON_BIG && r->gbytes_s > 0);
+}
+
+static const char *col_text(const column *c, const result *r)
+{
+    if (c->type == T_WIDTH)
+        return bench_width_name[r->width_id];
+    return (const char *)r + c->off;
+}
+
+static double col_num(const column *c, const result *r, const machine_info *m)
+{
+    const char *p = (const char *)r + c->off;
+    int i;
+    size_t z;
+    double d;
+    switch (c->type) {
+    case T_INT:
+        memcpy(&i, p, sizeof i);
+        return i;
+    case T_SIZE:
+        memcpy(&z, p, sizeof z);
+        return (double)z;
+    case T_DBL:
+        memcpy(&d, p, sizeof d);
+        return d;
+    case T_FN:
+        return c->fn(r, m);
+    default:
+        return 0;
+    }
+}
+
+/* The value as CSV shows it (and table.txt, except for ulps and marks). */
+static const char *col_format(const column *c, const result *r, const machine_info *m,
+                              char *buf, size_t n)
+{
+    double x = c->kind == K_TEXT ? 0 : col_num(c, r, m);
+    switch (c->kind) {
+    case K_TEXT:
+        snprintf(buf, n, "%s", col_text(c, r));
+        break;
+    case K_COUNT:
+    case K_MARK:
+        snprintf(buf, n, "%.0f", x);
+        break;
+    default:
+        snprintf(buf, n, c->fmt, x);
+    }
+    return buf;
+}
+
 static FILE *open_out(const options *opt, const char *name, char *path, size_t n)
 {
     snprintf(path, n, "%s/%s", opt->out_dir, name);
@@ -394,36 +684,26 @@ static FILE *open_out(const options *opt, const char *name, char *path, size_t n
 
 static void write_csv(const result_list *l, const machine_info *m, const options *opt)
 {
-    char path[1024], ml[512];
+    char path[1024], ml[512], cell[64];
     FILE *f = open_out(opt, "results.csv", path, sizeof path);
     if (!f)
         return;
     machine_line(m, ml, sizeof ml);
-    fprintf(f, "# cylbench %s; %s; %s\n", m->date, ml, m->pinned);
-    fprintf(f, "scenario,group,isa,width,flags,rays_per_pass,tests_per_ray,reps,ns_med,ns_min,"
-               "ns_max,ns_q1,ns_q3,mrays_s,tsc_ticks,core_cycles,speedup_vs_scalar,hit_frac,samples,"
-               "clean_samples,cpu_timed,err_compared,ref_hits,ulp_med,ulp_p99,ulp_max,"
-               "beyond_band_p99,beyond_band_max,extra_hits,lost_hits,part_diff,unexcused,"
-               "gbytes_s,memcpy_gbytes_s\n");
-    for (size_t i = 0; i < l->n; i++) {
-        const result *r = &l->r[i];
-        fprintf(f, "%s,%s,%s,%s,%s,%zu,%d,%d,%.4f,%.4f,%.4f,%.4f,%.4f,%.2f,%.3f,%.2f,%.3f,%.4f,"
-                   "%d,%d,%d,",
-                r->scenario, r->group, r->isa, bench_width_name[r->width_id], r->op,
-                r->rays_timed, r->ncyl, r->reps, r->ns.med, r->ns.min, r->ns.max, r->ns.q1,
-                r->ns.q3, r->mrays, r->ticks, r->ns.med * m->core_ghz, r->speedup, r->hit_frac,
-                r->samples, r->clean, r->cpu_timed);
-        if (r->have_err)
-            fprintf(f, "%zu,%zu,%.4g,%.4g,%.4g,%.4g,%.4g,%zu,%zu,%zu,%zu,", r->n_cmp,
-                    r->n_hits_ref, r->ulp_med, r->ulp_p99, r->ulp_max, r->xs_p99, r->xs_max,
-                    r->extra_hits, r->lost_hits, r->part_diff, r->unexcused);
-        else
-            fprintf(f, ",,,,,,,,,,,");
-        if (r->gbytes_s > 0)
-            fprintf(f, "%.3f,%.3f\n", r->gbytes_s, r->memcpy_gbytes_s);
-        else
-            fprintf(f, ",\n");
-    }
+    fprintf(f, "# cylbench %s; %s; %s%s\n# units:", m->date, ml, m->pinned,
+            opt->flush_subnormals ? "; subnormals flushed to zero (--flush-subnormals)" : "");
+    for (size_t c = 0; c < NCOLUMNS; c++)
+        if (*columns[c].unit)
+            fprintf(f, " %s: %s;", columns[c].name, columns[c].unit);
+    fprintf(f, "\n");
+    for (size_t c = 0; c < NCOLUMNS; c++)
+        fprintf(f, "%s%s", columns[c].name, c + 1 < NCOLUMNS ? "," : "\n");
+    for (size_t i = 0; i < l->n; i++)
+        for (size_t c = 0; c < NCOLUMNS; c++) {
+            const column *col = &columns[c];
+            if (col_present(col, &l->r[i]))
+                fputs(col_format(col, &l->r[i], m, cell, sizeof cell), f);
+            fputs(c + 1 < NCOLUMNS ? "," : "\n", f);
+        }
     fclose(f);
 }
 
@@ -454,34 +734,30 @@ static void write_json(const result_list *l, const machine_info *m, const option
     FILE *f = open_out(opt, "results.json", path, sizeof path);
     if (!f)
         return;
-    fprintf(f, "{\n  \"machine\": {\"cpu\": ");
-    json_str(f, m->cpu);
-    fprintf(f, ", \"cpuid\": ");
-    json_str(f, m->cpuid);
-    fprintf(f, ", \"cores\": %d, \"virtual\": %s, \"tsc_ghz\": ", m->cores,
+    const struct {
+        const char *key, *val;
+    } mtext[] = {{"cpu", m->cpu},         {"cpuid", m->cpuid},        {"compiler", m->compiler},
+                 {"buildtype", m->buildtype}, {"os", m->os},           {"paths", m->isas},
+                 {"pinning", m->pinned},  {"date", m->date}};
+    fprintf(f, "{\n  \"machine\": {\"cores\": %d, \"virtual\": %s, \"tsc_ghz\": ", m->cores,
             m->hypervisor ? "true" : "false");
     json_num(f, m->tsc_ghz);
-    fprintf(f, ", \"compiler\": ");
-    json_str(f, m->compiler);
-    fprintf(f, ", \"buildtype\": ");
-    json_str(f, m->buildtype);
-    fprintf(f, ", \"os\": ");
-    json_str(f, m->os);
-    fprintf(f, ", \"paths\": ");
-    json_str(f, m->isas);
-    fprintf(f, ", \"pinning\": ");
-    json_str(f, m->pinned);
-    fprintf(f, ", \"date\": ");
-    json_str(f, m->date);
+    fprintf(f, ", \"core_ghz\": ");
+    json_num(f, m->core_ghz);
     fprintf(f, ", \"load_start\": ");
     json_num(f, m->load_start);
     fprintf(f, ", \"load_end\": ");
     json_num(f, m->load_end);
+    for (size_t k = 0; k < sizeof mtext / sizeof mtext[0]; k++) {
+        fprintf(f, ", \"%s\": ", mtext[k].key);
+        json_str(f, mtext[k].val);
+    }
     fprintf(f, "},\n  \"settings\": {\"quick\": %s, \"reps\": %d, \"sample_ms\": %.3f, "
                "\"batch_rays\": %d, \"big_stream_rays\": %zu, \"exact_reference\": %s, "
-               "\"wall_s\": %.1f},\n",
+               "\"flush_subnormals\": %s, \"wall_s\": %.1f},\n",
             opt->quick ? "true" : "false", opt->reps, opt->sample_ns * 1e-6, BENCH_BATCH,
-            opt->big_rays, accuracy_available() ? "true" : "false", wall);
+            opt->big_rays, accuracy_available() ? "true" : "false",
+            opt->flush_subnormals ? "true" : "false", wall);
     if (sc->have) {
         fprintf(f, "  \"scene\": {\"width\": %d, \"height\": %d, \"cylinders\": %d, "
                    "\"primary_rays\": %zu, \"shadow_rays\": %zu, \"image\": ",
@@ -489,54 +765,33 @@ static void write_json(const result_list *l, const machine_info *m, const option
         json_str(f, sc->image);
         fprintf(f, "},\n");
     }
-    fprintf(f, "  \"results\": [\n");
+    fprintf(f, "  \"units\": {");
+    const char *sep = "";
+    for (size_t c = 0; c < NCOLUMNS; c++)
+        if (*columns[c].unit) {
+            fprintf(f, "%s\"%s\": ", sep, columns[c].name);
+            json_str(f, columns[c].unit);
+            sep = ", ";
+        }
+    fprintf(f, "},\n  \"results\": [\n");
     for (size_t i = 0; i < l->n; i++) {
         const result *r = &l->r[i];
-        fprintf(f, "    {\"scenario\": \"%s\", \"group\": \"%s\", \"isa\": \"%s\", "
-                   "\"width\": \"%s\", \"flags\": \"%s\", \"rays_per_pass\": %zu, "
-                   "\"tests_per_ray\": %d, \"reps\": %d, \"ns_per_ray\": {\"median\": ",
-                r->scenario, r->group, r->isa, bench_width_name[r->width_id], r->op,
-                r->rays_timed, r->ncyl, r->reps);
-        json_num(f, r->ns.med);
-        fprintf(f, ", \"min\": ");
-        json_num(f, r->ns.min);
-        fprintf(f, ", \"max\": ");
-        json_num(f, r->ns.max);
-        fprintf(f, ", \"q1\": ");
-        json_num(f, r->ns.q1);
-        fprintf(f, ", \"q3\": ");
-        json_num(f, r->ns.q3);
-        fprintf(f, "}, \"mrays_s\": ");
-        json_num(f, r->mrays);
-        fprintf(f, ", \"tsc_ticks_per_ray\": ");
-        json_num(f, r->ticks);
-        fprintf(f, ", \"speedup_vs_scalar\": ");
-        json_num(f, r->speedup);
-        fprintf(f, ", \"hit_frac\": ");
-        json_num(f, r->hit_frac);
-        fprintf(f, ", \"samples\": %d, \"clean_samples\": %d, \"cpu_timed\": %s", r->samples,
-                r->clean, r->cpu_timed ? "true" : "false");
-        if (r->have_err) {
-            fprintf(f, ", \"error\": {\"compared\": %zu, \"ref_hits\": %zu, \"ulp_median\": ",
-                    r->n_cmp, r->n_hits_ref);
-            json_num(f, r->ulp_med);
-            fprintf(f, ", \"ulp_p99\": ");
-            json_num(f, r->ulp_p99);
-            fprintf(f, ", \"ulp_max\": ");
-            json_num(f, r->ulp_max);
-            fprintf(f, ", \"beyond_band_p99\": ");
-            json_num(f, r->xs_p99);
-            fprintf(f, ", \"beyond_band_max\": ");
-            json_num(f, r->xs_max);
-            fprintf(f, ", \"extra_hits\": %zu, \"lost_hits\": %zu, \"part_diff\": %zu, "
-                       "\"unexcused\": %zu}",
-                    r->extra_hits, r->lost_hits, r->part_diff, r->unexcused);
-        }
-        if (r->gbytes_s > 0) {
-            fprintf(f, ", \"gbytes_s\": ");
-            json_num(f, r->gbytes_s);
-            fprintf(f, ", \"memcpy_gbytes_s\": ");
-            json_num(f, r->memcpy_gbytes_s);
+        fprintf(f, "    {");
+        sep = "";
+        for (size_t c = 0; c < NCOLUMNS; c++) {
+            const column *col = &columns[c];
+            if (!col_present(col, r))
+                continue; /* absent, not null: null is a figure that is not finite */
+            fprintf(f, "%s\"%s\": ", sep, col->name);
+            sep = ", ";
+            if (col->kind == K_TEXT)
+                json_str(f, col_text(col, r));
+            else if (col->kind == K_MARK)
+                fputs(col_num(col, r, m) != 0 ? "true" : "false", f);
+            else if (col->kind == K_COUNT)
+                fprintf(f, "%.0f", col_num(col, r, m));
+            else
+                json_num(f, col_num(col, r, m));
         }
         fprintf(f, "}%s\n", i + 1 < l->n ? "," : "");
     }
@@ -544,42 +799,51 @@ static void write_json(const result_list *l, const machine_info *m, const option
     fclose(f);
 }
 
-/* Every configuration on its own line, all figures: the long form of the tables. */
+/* Every configuration on its own line, the columns that have a heading: the long form
+ * of the stdout tables. */
 static void write_long(const result_list *l, const machine_info *m, const options *opt)
 {
-    char path[1024], ml[512];
+    char path[1024], ml[512], cell[64];
     FILE *f = open_out(opt, "table.txt", path, sizeof path);
     if (!f)
         return;
     machine_line(m, ml, sizeof ml);
-    fprintf(f, "cylbench %s\n%s; %s\n\n", m->date, ml, m->pinned);
+    fprintf(f, "cylbench %s\n%s; %s%s\n\n", m->date, ml, m->pinned,
+            opt->flush_subnormals ? "; subnormals flushed to zero (--flush-subnormals)" : "");
     fprintf(f, "ticks: TSC ticks per ray (%.3f GHz); cycles: ns x the measured core clock "
-               "(%.2f GHz); ~: CPU-timed (busy machine)\n\n", m->tsc_ghz, m->core_ghz);
-    fprintf(f, "%-19s %-14s %-6s %-8s %8s %8s %8s %9s %8s %8s %7s %6s | %6s %6s %7s %5s %5s "
-               "%5s %5s\n",
-            "scenario", "isa", "width", "flags", "ns/ray", "min", "max", "M rays/s",
-            "ticks", "cycles", "xscalar", "hit%", "med", "p99", "max ulp", "extra", "lost",
-            "part", "unexc");
+               "(%.2f GHz); ~: CPU-timed (busy machine); -: not measured\n\n",
+            m->tsc_ghz, m->core_ghz);
+    const char *sep = "";
+    for (size_t c = 0; c < NCOLUMNS; c++)
+        if (columns[c].head) {
+            fprintf(f, "%s%*s", sep, columns[c].width, columns[c].head);
+            sep = " ";
+        }
+    fprintf(f, "\n");
     for (size_t i = 0; i < l->n; i++) {
         const result *r = &l->r[i];
-        fprintf(f, "%-19s %-14s %-6s %-8s %8.3f%c%8.3f %8.3f %9.1f %8.2f %8.1f %6.2fx %6.1f |",
-                r->scenario, r->isa, bench_width_name[r->width_id], r->op, r->ns.med,
-                r->cpu_timed ? '~' : ' ', r->ns.min, r->ns.max, r->mrays, r->ticks,
-                r->ns.med * m->core_ghz, r->speedup, 100 * r->hit_frac);
-        if (r->have_err) {
-            char a[16], b[16], c[16];
-            fprintf(f, " %6s %6s %7s %5zu %5zu %5zu %5zu\n", fmt_ulps(r->ulp_med, a, sizeof a),
-                    fmt_ulps(r->ulp_p99, b, sizeof b), fmt_ulps(r->ulp_max, c, sizeof c),
-                    r->extra_hits, r->lost_hits, r->part_diff, r->unexcused);
-        } else {
-            fprintf(f, " %6s\n", "-");
+        sep = "";
+        for (size_t c = 0; c < NCOLUMNS; c++) {
+            const column *col = &columns[c];
+            if (!col->head)
+                continue;
+            const char *s = "-";
+            if (col->kind == K_MARK)
+                s = col_num(col, r, m) != 0 ? col->fmt : "";
+            else if (col->kind == K_ULPS && col_present(col, r))
+                s = fmt_ulps(col_num(col, r, m), cell, sizeof cell);
+            else if (col_present(col, r))
+                s = col_format(col, r, m, cell, sizeof cell);
+            fprintf(f, "%s%*s", sep, col->width, s);
+            sep = " ";
         }
+        fprintf(f, "\n");
     }
     fclose(f);
 }
 
 void report_all(const result_list *l, const machine_info *m, const options *opt,
-                const scene_report *sc, double wall)
+                const scene_report *sc, const leaf_report *lr, double wall)
 {
     FILE *f = stdout;
     char ml[512];
@@ -594,6 +858,9 @@ void report_all(const result_list *l, const machine_info *m, const options *opt,
                "cylray_kernels_for(isa); tmax restored\n         per packet inside the timed "
                "loop; hit counts summed into a volatile sink%s\n",
             BENCH_BATCH, opt->reps, opt->sample_ns * 1e-6, opt->quick ? "; --quick" : "");
+    if (opt->flush_subnormals)
+        fprintf(f, "         --flush-subnormals: subnormal inputs read as 0 and subnormal results "
+                   "flushed to 0 throughout\n");
     size_t busy = 0, timed = 0;
     for (size_t i = 0; i < l->n; i++)
         if (strcmp(l->r[i].scenario, "scene")) {
@@ -611,12 +878,14 @@ void report_all(const result_list *l, const machine_info *m, const options *opt,
                 : "no reference built: error columns empty");
 
     print_group(f, l, "main", "main scenarios: packets of 4, 8, 16 and the stream API");
-    print_group(f, l, "skips", "skips (issue 5): the same work with less to do");
+    print_group(f, l, "skips", "skips: the same work with less to do");
     print_group(f, l, "stress", "stress categories of tests/ref/gen.h (16 rays per cylinder; "
-                                "textbook: the seed's float formulas)");
+                                "textbook: the textbook formulas in plain float)");
     print_rates(f, l);
-    print_targets(f, l);
+    print_peer(f, l);
     print_skips(f, l);
+    print_lanes(f, l);
+    print_leaf(f, l, lr);
     print_stream(f, l);
     print_errors(f, l);
     print_scene(f, l, sc);

@@ -4,10 +4,11 @@
 
 #include "bench.h"
 #include "machine.h"
+#include "leaf.h"
 #include "scene.h"
 
 void report_all(const result_list *l, const machine_info *m, const options *opt,
-                const scene_report *sc, double wall_s);
+                const scene_report *sc, const leaf_report *lr, double wall_s);
 
 /* svg.c */
 int svg_time_vs_error(const char *path, const result_list *l, const machine_info *m);

@@ -20,12 +20,19 @@ missing=()
 command -v meson >/dev/null 2>&1 || missing+=(meson)
 command -v ninja >/dev/null 2>&1 || missing+=(ninja-build)
 if ((${#missing[@]})); then
-    echo "run.sh: installing ${missing[*]}" >&2
+    echo "run.sh: installing ${missing[*]} (apt-get)" >&2
     sudo=()
-    [ "$(id -u)" -eq 0 ] || sudo=(sudo)
+    if [ "$(id -u)" -ne 0 ]; then
+        command -v sudo >/dev/null 2>&1 || {
+            echo "run.sh: not root and no sudo: install ${missing[*]} first" >&2
+            exit 1
+        }
+        sudo=(sudo)
+    fi
     "${sudo[@]}" apt-get update -qq
-    DEBIAN_FRONTEND=noninteractive "${sudo[@]}" apt-get install -y -qq --no-install-recommends \
-        "${missing[@]}" >/dev/null
+    # env: sudo would drop DEBIAN_FRONTEND from the environment
+    "${sudo[@]}" env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq \
+        --no-install-recommends "${missing[@]}" >/dev/null
 fi
 
 # A release build (-O3, NDEBUG) without the test suite: the harness compiles the exact

@@ -1,4 +1,5 @@
-/* textbook.h - the seed's textbook intersection, the baseline of the error comparison. */
+/* textbook.h - the peer a tracer author would write instead of using cylray: the
+ * textbook formulas in one plain loop (naive.c), built per ISA and auto-vectorized. */
 #ifndef CYLBENCH_TEXTBOOK_H
 #define CYLBENCH_TEXTBOOK_H
 
@@ -6,19 +7,28 @@
 
 #include <stddef.h>
 
-/* What the seed would precompute: the axis normalised in float, R^2, and the squared
- * radius R^2 + H^2 of its sphere-style finite clip. */
+/* What such a loop precomputes: the axis normalised in float, R^2, 1 / R, the half
+ * height in world units (INFINITY: infinite) and which ends are capped. */
 typedef struct tb_cylinder {
     float c[3], v[3];
-    float rr, clip;
+    float rr, inv_r, h;
+    unsigned caps;
 } tb_cylinder;
 
 void tb_prepare(tb_cylinder *out, const cylray_cylinder *in);
 
-/* The cylray stream contract (writes t, part, tmax and, with CYLRAY_NORMAL, the outward
- * normal on a hit), computed the textbook way in plain float, one ray at a time. The
- * seed has no end caps: every cylinder is an open tube here (infinite when H is). */
-size_t tb_intersect_stream(const tb_cylinder *cyl, const cylray_rays *rays,
-                           const cylray_hits *hits, size_t n, unsigned flags);
+/* The builds of naive.c: the scalar one (vectorizer off) and one per ISA. */
+enum { TB_SCALAR, TB_SSE41, TB_AVX2, TB_AVX512, TB_NEON, TB_COUNT };
+
+/* The cylray stream contract with CYLRAY_NORMAL on a hit (t, the outward normal, part,
+ * tmax = t), except that a miss writes too: t = INFINITY, part = CYLRAY_MISS, a
+ * meaningless normal, tmax unchanged. Returns the number of hits. */
+typedef size_t (*tb_stream_fn)(const tb_cylinder *cy, const cylray_rays *rays,
+                               const cylray_hits *hits, size_t n);
+
+/* NULL when that build is absent or this CPU cannot run it. */
+tb_stream_fn tb_variant(int v);
+/* "textbook" for the scalar build, "auto-<isa>" for the vectorized ones. */
+const char *tb_variant_name(int v);
 
 #endif

@@ -25,7 +25,8 @@ static volatile uint64_t sink; /* where every pass's hit count ends up */
 
 const char *bench_isa_name(int isa)
 {
-    return isa == BENCH_ISA_TEXTBOOK ? "textbook" : cylray_isa_name((cylray_isa)isa);
+    return bench_is_textbook(isa) ? tb_variant_name(isa - BENCH_ISA_TEXTBOOK)
+                                  : cylray_isa_name((cylray_isa)isa);
 }
 
 result *results_push(result_list *l)
@@ -61,7 +62,7 @@ static unsigned popc(uint32_t m)
         const int nc = x->w->ncyl;                                                       \
         const size_t grp = (size_t)x->w->grouped, first = b * x->w->batch;               \
         const unsigned fl = x->flags;                                                    \
-        const uint32_t full = (uint32_t)((1ull << N) - 1u);                              \
+        const uint32_t full = (uint32_t)((1ull << N) - 1u) & x->w->lanes;                \
         uint64_t acc = 0;                                                                \
         if (x->op == OP_OCC) {                                                           \
             const cylray_occluded##N##_fn f = x->k->occluded##N;                         \
@@ -146,7 +147,7 @@ static uint64_t pass_stream(const runner *x, size_t b)
     return acc;
 }
 
-/* The textbook baseline through the same stream contract (single cylinder or grouped). */
+/* The textbook peer through the same stream contract (single cylinder or grouped). */
 static uint64_t pass_textbook(const runner *x, size_t b)
 {
     const size_t n = x->w->batch, off = b * n;
@@ -158,7 +159,7 @@ static uint64_t pass_textbook(const runner *x, size_t b)
         cylray_rays R = stream_rays(x, g);
         cylray_hits H = stream_hits(x, g);
         const tb_cylinder *tb = &x->w->tb[x->w->grouped ? g / grp : 0];
-        acc += tb_intersect_stream(tb, &R, &H, grp, x->flags);
+        acc += x->tb(tb, &R, &H, grp);
     }
     return acc;
 }
@@ -190,8 +191,9 @@ int runner_init(runner *x, const workload *w, int isa, int width_id, int op)
     x->width_id = width_id;
     x->restore_outside = w->big;
     const raysoa *r = &w->rays;
-    if (isa == BENCH_ISA_TEXTBOOK) {
-        if (op == OP_OCC || width_id != BW_STREAM)
+    if (bench_is_textbook(isa)) {
+        x->tb = tb_variant(isa - BENCH_ISA_TEXTBOOK);
+        if (!x->tb || op != OP_NORMAL || width_id != BW_STREAM)
             return -1;
         x->pass = pass_textbook;
     } else {
@@ -387,7 +389,7 @@ int bench_run_once(const workload *w, int isa, int width_id, int op, uint8_t *hi
         } else {
             /* The pass keeps only counts; the masks come from the same calls again. */
             const cylray_prepared *P = w->prep;
-            const uint32_t full = (uint32_t)((1ull << lanes) - 1u);
+            const uint32_t full = (uint32_t)((1ull << lanes) - 1u) & w->lanes;
             for (size_t g = 0; g < x.np; g++) {
                 uint32_t m = 0;
                 int c0 = 0, c1 = w->ncyl;

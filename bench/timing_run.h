@@ -10,7 +10,8 @@ typedef uint64_t (*pass_fn)(const runner *x, size_t batch);
 
 struct runner {
     const workload *w;
-    const cylray_kernels *k;    /* NULL for the textbook baseline */
+    const cylray_kernels *k;    /* NULL for the textbook peer */
+    tb_stream_fn tb;            /* the textbook peer's build, or NULL */
     int op, width_id, restore_outside;
     unsigned flags;
     pass_fn pass;

@@ -20,6 +20,9 @@
 
 enum { S_PLAIN, S_CLUSTER, S_ALIGNED, S_GENERAL, S_GEN };
 
+/* What the inactive lanes of a half-active packet hold. */
+enum { FILL_NONE, FILL_ZERO, FILL_SUBNORMAL };
+
 typedef struct scen_def {
     const char *name, *group, *what;
     int build;        /* S_*: how the cylinders and rays are made */
@@ -27,8 +30,9 @@ typedef struct scen_def {
     int cyl_kind;     /* 0 infinite, 1 open, 2 capped */
     int ops;          /* OP_* bits, or -1 for the default of the group */
     unsigned widths;
-    int textbook, big, target;
+    int textbook, big;
     int gen_category; /* S_GEN: the cylgen category */
+    int fill;         /* FILL_*: every other lane inactive, holding this */
 } scen_def;
 
 #define MAX_SCEN 48
@@ -46,10 +50,10 @@ static void init_table(void)
     const unsigned occn = (1u << OP_NORMAL) | (1u << OP_OCC);
     const scen_def fixed[] = {
         {"coherent", "main", "camera rays in 4x4 pixel tiles at a capped cylinder, general axis",
-         S_PLAIN, RK_CAMERA, 2, ALL_OPS, ALL_WIDTHS, 0, 0, 0, 0},
+         S_PLAIN, RK_CAMERA, 2, ALL_OPS, ALL_WIDTHS, 1, 0, 0, 0},
         {"incoherent", "main",
          "ordinary rays: random origins 3-6 sizes away at a capped cylinder, general axis",
-         S_PLAIN, RK_INCOHERENT, 2, ALL_OPS, ALL_WIDTHS, 0, 0, 1, 0},
+         S_PLAIN, RK_INCOHERENT, 2, ALL_OPS, ALL_WIDTHS, 1, 0, 0, 0},
         {"shadow", "main", "shadow rays from a floor to a point light past a capped cylinder",
          S_PLAIN, RK_SHADOW, 2, (1u << OP_OCC) | (1u << OP_T), ALL_WIDTHS, 0, 0, 0, 0},
         {"bvh-leaf", "main",
@@ -76,6 +80,15 @@ static void init_table(void)
          S_PLAIN, RK_ALL_MISS, 2, 1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0, 0},
         {"all-hit", "skips", "every ray hits (capped)", S_PLAIN, RK_ALL_HIT, 2,
          1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0, 0},
+        {"half-zero", "lanes",
+         "incoherent rays in every other lane, the others inactive and all zeros (capped)",
+         S_PLAIN, RK_INCOHERENT, 2, 1u << OP_NORMAL, (1u << BW_8) | (1u << BW_16), 0, 0, 0,
+         FILL_ZERO},
+        {"half-subnormal", "lanes",
+         "the same packets with the inactive lanes holding subnormals: a tracer's dead rays "
+         "or stack garbage",
+         S_PLAIN, RK_INCOHERENT, 2, 1u << OP_NORMAL, (1u << BW_8) | (1u << BW_16), 0, 0, 0,
+         FILL_SUBNORMAL},
     };
     for (size_t i = 0; i < sizeof fixed / sizeof fixed[0]; i++)
         table[ntable++] = fixed[i];
@@ -85,7 +98,7 @@ static void init_table(void)
         scen_def s = {gen_names[c], "stress", cylgen_category_description(c), S_GEN,
                       RK_INCOHERENT, 2,
                       (1 << OP_NORMAL) | (1 << OP_REFINE) | (1 << OP_FAST),
-                      1u << BW_16, 1, 0, 0, c};
+                      1u << BW_16, 1, 0, c, 0};
         table[ntable++] = s;
     }
 #endif
@@ -132,6 +145,11 @@ int workloads_selected(int i, const char *list)
     return in_list(list, table[i].name) || in_list(list, table[i].group);
 }
 
+int workloads_selected_name(const char *list, const char *name, const char *group)
+{
+    return !list || in_list(list, "all") || in_list(list, name) || in_list(list, group);
+}
+
 int workloads_check_list(const char *list)
 {
     init_table();
@@ -141,7 +159,9 @@ int workloads_check_list(const char *list)
         char word[64];
         snprintf(word, sizeof word, "%.*s", (int)(k < 63 ? k : 63), p);
         int ok = !strcmp(word, "all") || !strcmp(word, "scene") || !strcmp(word, "main") ||
-                 !strcmp(word, "stream") || !strcmp(word, "skips") || !strcmp(word, "stress");
+                 !strcmp(word, "stream") || !strcmp(word, "skips") || !strcmp(word, "stress") ||
+                 !strcmp(word, "lanes") || !strcmp(word, "leaf") || !strcmp(word, "leaf-l1") ||
+                 !strcmp(word, "leaf-l2");
         for (int i = 0; i < ntable && !ok; i++)
             ok = !strcmp(word, table[i].name);
         if (!ok) {
@@ -184,12 +204,12 @@ int workloads_build(int idx, workload *w, const options *opt)
     w->widths = s->widths;
     w->textbook = s->textbook;
     w->big = s->big;
-    w->target = s->target;
     size_t n = s->big ? opt->big_rays : 8 * (size_t)BENCH_BATCH;
     w->batch = s->big ? n : BENCH_BATCH;
     if (raysoa_alloc(&w->rays, n))
         return -1;
-    rng g = {seed_of(s->name)};
+    /* the half-active pair: the same rays in the active lanes */
+    rng g = {seed_of(s->fill ? "half" : s->name)};
     rng shared = {seed_of("skips")}; /* aligned, general, open, infinite: the same rays */
 
     switch (s->build) {
@@ -252,6 +272,16 @@ int workloads_build(int idx, workload *w, const options *opt)
 #endif
         break;
     }
+    }
+    w->lanes = ~0u;
+    if (s->fill) {
+        /* 1e-40: subnormal, and so is every product the kernel forms from it */
+        const float v = s->fill == FILL_SUBNORMAL ? 1e-40f : 0.0f;
+        raysoa *r = &w->rays;
+        w->lanes = 0x55555555u;
+        for (size_t i = 1; i < n; i += 2)
+            r->ox[i] = r->oy[i] = r->oz[i] = r->dx[i] = r->dy[i] = r->dz[i] = r->tmin[i] =
+                r->tmax[i] = v;
     }
     for (int c = 0; c < w->ncyl; c++) {
         if (cylray_prepare(&w->prep[c], &w->cyl[c]) != CYLRAY_OK) {

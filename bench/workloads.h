@@ -14,6 +14,10 @@ const char *workloads_group(int i);
  * names, and "all". */
 int workloads_selected(int i, const char *list);
 
+/* Does the --scenario= list (NULL: everything) select a scenario outside the table,
+ * by its name or its group? */
+int workloads_selected_name(const char *list, const char *name, const char *group);
+
 /* Builds scenario i (rays drawn, cylinders prepared). 0 on success. */
 int workloads_build(int i, workload *w, const options *opt);
 void workloads_free(workload *w);

@@ -1,4 +1,43 @@
-/* cylray.h - SIMD ray/cylinder intersection kernels: the whole public API. */
+/* cylray.h - SIMD ray/cylinder intersection kernels: the whole public API.
+ * SPDX-License-Identifier: MIT
+ *
+ * A tracer prepares each cylinder once (cylray_prepare) and then asks for the closest
+ * hit of packets of 4, 8 or 16 rays, of streams of any length, or of one ray against a
+ * leaf of up to 16 cylinders. The answers are those of exact arithmetic on the float
+ * inputs to within a few float ulps, except where changing the inputs by 2 ulps could
+ * change the exact answer itself (docs/design.md, section 4).
+ *
+ * Rays. x(t) = o + t d for t in the closed interval [tmin, tmax]; d need not be unit
+ * length. tmin = -INFINITY and tmax = INFINITY mean no bound; a reported t is always
+ * finite. A call that finds a hit in [tmin, tmax] writes it and sets tmax = t, and
+ * writes nothing otherwise, so a tracer walks its cylinders with the same rays and
+ * keeps the closest hit. Because the interval is closed, a later cylinder hit at
+ * exactly the current tmax replaces the earlier hit: of hits at the same t the last
+ * call wins (within one leaf, the lowest lane).
+ *
+ * Working range. cylray_prepare refuses cylinders beyond its limits (see there). Any
+ * finite nonzero direction is answered as accurately as a unit one. The origin must
+ * lie within 2^62 of the center in each coordinate and the exact t within FLT_MAX;
+ * beyond that a lane may miss, but a hit it reports still lies on the surface.
+ *
+ * Alignment. The packet and leaf types carry the alignment of their vector width (16,
+ * 32 or 64 bytes), and it is required: the kernels may use aligned vector loads and
+ * stores on them. Automatic and static objects and aligned_alloc() have it; malloc()
+ * does not promise it. Streams take any alignment. The 64 bytes of cylray_prepared are
+ * advisory (the object then starts a cache line): the kernels read it with scalar
+ * loads and broadcasts only, and cylray_prepare needs 16 bytes (it may store with
+ * 16-byte vector moves), so one from malloc() on a 64-bit platform serves.
+ *
+ * Threads. Every function is re-entrant and keeps no state between calls but one: the
+ * path the plain entry points use, chosen once on first use (reading CYLRAY_ISA then),
+ * thread-safely. Prepared cylinders and leaves are only read by the kernels and may be
+ * shared between threads; rays being intersected are written (tmax) and may not.
+ *
+ * Versions and ABI. CYLRAY_VERSION_* name this header's version. While the major
+ * version is 0, a new minor version may change the API and the ABI, and the shared
+ * library's soname changes with it; a patch version changes neither. The sizes and
+ * alignments of the opaque types (cylray_prepared, cylray_leafM) are part of the ABI,
+ * since the caller allocates them; their fields are not part of the API. */
 #ifndef CYLRAY_H
 #define CYLRAY_H
 
@@ -10,7 +49,7 @@ extern "C" {
 #endif
 
 #define CYLRAY_VERSION_MAJOR 0
-#define CYLRAY_VERSION_MINOR 1
+#define CYLRAY_VERSION_MINOR 2
 #define CYLRAY_VERSION_PATCH 0
 
 #if defined(_MSC_VER)
@@ -19,34 +58,57 @@ extern "C" {
 #define CYLRAY_ALIGN(n) __attribute__((aligned(n)))
 #endif
 
+/* CYLRAY_API marks the functions the shared library exports: it is built with every
+ * other symbol hidden, and defines CYLRAY_BUILDING. On Windows a DLL's users import
+ * its functions, and a program that links the static library defines CYLRAY_STATIC. */
+#if defined(_WIN32) || defined(__CYGWIN__)
+#if defined(CYLRAY_STATIC)
+#define CYLRAY_API
+#elif defined(CYLRAY_BUILDING)
+#define CYLRAY_API __declspec(dllexport)
+#else
+#define CYLRAY_API __declspec(dllimport)
+#endif
+#elif defined(CYLRAY_BUILDING) && (defined(__GNUC__) || defined(__clang__))
+#define CYLRAY_API __attribute__((visibility("default")))
+#else
+#define CYLRAY_API
+#endif
+
 /* ---- status ------------------------------------------------------------ */
 
 typedef enum cylray_status {
     CYLRAY_OK = 0,
-    CYLRAY_EINVAL = 1     /* a cylinder that describes no valid solid */
+    CYLRAY_EINVAL = 1     /* an argument outside the documented limits (cylray_prepare) */
 } cylray_status;
 
-const char *cylray_strerror(cylray_status s);
+/* A constant English sentence for s (never NULL, also for an unknown status). */
+CYLRAY_API const char *cylray_strerror(cylray_status s);
 
 /* ---- cylinders ----------------------------------------------------------- */
 
 /* cylray_cylinder.flags. The low end is the one at axial coordinate -H, i.e. at
- * center - H axis/|axis|; the high end at +H. */
+ * center - H axis/|axis|; the high end at +H. An infinite cylinder has no ends and
+ * ignores these flags. */
 #define CYLRAY_CAPPED_LO 0x1u /* the disc at the low end is part of the surface */
 #define CYLRAY_CAPPED_HI 0x2u /* the disc at the high end is part of the surface */
 #define CYLRAY_CAPPED 0x3u    /* both discs: a closed solid */
 
 typedef struct cylray_cylinder {
     float center[3];    /* a point on the axis, halfway between the ends */
-    float axis[3];      /* direction of the axis; any nonzero length, taken as exact */
-    float radius;       /* > 0 */
-    float half_height;  /* > 0; INFINITY for an infinite cylinder */
+    float axis[3];      /* direction of the axis; any nonzero length (cylray_prepare),
+                         * taken as exact: never normalised, the floats given are the
+                         * geometry */
+    float radius;       /* in world units */
+    float half_height;  /* in world units whatever the axis length: the ends are at
+                         * center +- half_height axis/|axis|; INFINITY: infinite */
     unsigned flags;     /* CYLRAY_CAPPED, CYLRAY_CAPPED_LO, CYLRAY_CAPPED_HI or 0 */
 } cylray_cylinder;
 
 /* What cylray_prepare derives once per cylinder; read-only for the kernels. The
- * fields are not part of the API. 64-byte aligned so that broadcasts never split a
- * cache line. */
+ * fields are not part of the API; the size is part of the ABI. 64-byte aligned so that
+ * it starts a cache line; that alignment is advisory (see the top of this file): 16
+ * bytes serve. It holds no pointers: a memcpy of it is as good as it. */
 typedef struct CYLRAY_ALIGN(64) cylray_prepared {
     float c[3];        /* center */
     float v[3];        /* axis scaled by an exact power of two */
@@ -75,29 +137,44 @@ typedef struct CYLRAY_ALIGN(64) cylray_prepared {
     uint32_t caps;     /* CYLRAY_CAPPED_LO | CYLRAY_CAPPED_HI of a finite cylinder */
 } cylray_prepared;
 
-/* Returns CYLRAY_OK, or CYLRAY_EINVAL (leaving *out untouched) for NaN or Inf
- * coordinates, a zero or subnormal axis, a radius <= 0 or not finite, a half height
- * <= 0 or NaN, or unknown flag bits. Never aborts. */
-cylray_status cylray_prepare(cylray_prepared *out, const cylray_cylinder *in);
+/* Checks *in and derives what the kernels need into *out. Returns CYLRAY_OK, or
+ * CYLRAY_EINVAL (leaving *out untouched) when a pointer is NULL or *in breaks one of
+ * these limits (beyond them R^2 v.v and the kernels' products of it would overflow,
+ * or R^2 be subnormal):
+ *   - every center and axis coordinate finite, with |x| <= 2^62;
+ *   - an axis that is neither zero nor subnormal: its largest |component| is at least
+ *     FLT_MIN (2^-126);
+ *   - a radius in [2^-60, 2^62] (NaN is refused);
+ *   - a half height > 0 and not NaN: INFINITY, or finite and at most 2^62;
+ *   - no flag bits but CYLRAY_CAPPED_LO and CYLRAY_CAPPED_HI.
+ * Never aborts. A kernel given a cylray_prepared this did not fill (a zeroed one, say)
+ * returns 0 and writes nothing. */
+CYLRAY_API cylray_status cylray_prepare(cylray_prepared *out, const cylray_cylinder *in);
 
 /* ---- hit output ----------------------------------------------------------- */
 
 #define CYLRAY_MISS     0
 #define CYLRAY_SIDE     1
-#define CYLRAY_CAP_LO   2    /* the disc at axial coordinate -H */
-#define CYLRAY_CAP_HI   3    /* the disc at +H */
-#define CYLRAY_PART_MASK 0x0f
-#define CYLRAY_BACKFACE 0x10 /* met from inside the solid: dot(d, n_out) > 0 */
+#define CYLRAY_CAP_LO   2    /* the disc at axial coordinate -H: center - H axis/|axis| */
+#define CYLRAY_CAP_HI   3    /* the disc at +H: center + H axis/|axis| */
+#define CYLRAY_PART_MASK 0x0f /* part & CYLRAY_PART_MASK: SIDE, CAP_LO or CAP_HI */
+/* OR'ed into part: met from inside the solid, dot(d, n_out) > 0 with n_out the
+ * outward normal (also with one cap or none, where the surface is not closed) */
+#define CYLRAY_BACKFACE 0x10
 
-/* kernel flags */
+/* Kernel flags, OR'ed. Each selects a kernel compiled for it, so a flag not given
+ * costs nothing. Normals are unit length and outward unless CYLRAY_FACE_FORWARD. */
 #define CYLRAY_NORMAL       0x01u /* write nx, ny, nz; otherwise they stay untouched */
-#define CYLRAY_FACE_FORWARD 0x02u /* flip the normal to face the ray */
-#define CYLRAY_CULL_BACK    0x04u /* ignore hits met from inside */
+#define CYLRAY_FACE_FORWARD 0x02u /* flip the normal to face the ray: dot(n, d) <= 0 */
+#define CYLRAY_CULL_BACK    0x04u /* ignore hits met from inside (BACKFACE) */
 #define CYLRAY_REFINE       0x08u /* polish the root once more from the first hit */
-#define CYLRAY_FAST         0x10u /* approximate reciprocals and square roots */
+/* CYLRAY_FAST: reciprocal and square-root estimates refined by a Newton step instead
+ * of divisions and square roots; t is held to 8 ulps beyond the exact band instead of
+ * 4 (docs/design.md, section 4). */
+#define CYLRAY_FAST         0x10u
 #define CYLRAY_FLAGS_ALL    0x1fu
 
-/* ---- packets (SoA, aligned to their width in bytes) --------------------- */
+/* ---- packets (SoA, aligned to their width in bytes: required) ------------- */
 
 #define CYLRAY_PACKET_(n, al)                                                     \
     typedef struct CYLRAY_ALIGN(al) cylray_ray##n {                              \
@@ -112,22 +189,27 @@ CYLRAY_PACKET_(8, 32)
 CYLRAY_PACKET_(16, 64)
 #undef CYLRAY_PACKET_
 
-/* For every lane i whose bit is set in `active`: on a hit at t in [tmin, tmax] the
- * kernel writes lane i of *hit, sets ray->tmax[i] = t and sets bit i of the result.
- * Misses and inactive lanes are not written. A lane with NaN inputs never hits. */
-uint32_t cylray_intersect4(const cylray_prepared *cyl, cylray_ray4 *ray,
+/* For every lane i whose bit is set in `active` (bits at and beyond the width are
+ * ignored): on a hit at t in [tmin, tmax] the kernel writes lane i of *hit (t, part,
+ * and the normal with CYLRAY_NORMAL), sets ray->tmax[i] = t and sets bit i of the
+ * result. Misses and inactive lanes are not written; nothing else of *ray is. A lane
+ * never hits when a field is NaN or infinite (but tmin = -INFINITY, tmax = INFINITY),
+ * when its direction is zero, or when tmin > tmax; the other lanes' answers do not
+ * depend on it. */
+CYLRAY_API uint32_t cylray_intersect4(const cylray_prepared *cyl, cylray_ray4 *ray,
                            cylray_hit4 *hit, uint32_t active, unsigned flags);
-uint32_t cylray_intersect8(const cylray_prepared *cyl, cylray_ray8 *ray,
+CYLRAY_API uint32_t cylray_intersect8(const cylray_prepared *cyl, cylray_ray8 *ray,
                            cylray_hit8 *hit, uint32_t active, unsigned flags);
-uint32_t cylray_intersect16(const cylray_prepared *cyl, cylray_ray16 *ray,
+CYLRAY_API uint32_t cylray_intersect16(const cylray_prepared *cyl, cylray_ray16 *ray,
                             cylray_hit16 *hit, uint32_t active, unsigned flags);
 
-/* Bit i set: lane i has some hit in [tmin, tmax]. Writes nothing. */
-uint32_t cylray_occluded4(const cylray_prepared *cyl, const cylray_ray4 *ray,
+/* Bit i set: lane i has some hit in [tmin, tmax] (one the intersect call with the
+ * same flags would report). Writes nothing. */
+CYLRAY_API uint32_t cylray_occluded4(const cylray_prepared *cyl, const cylray_ray4 *ray,
                           uint32_t active, unsigned flags);
-uint32_t cylray_occluded8(const cylray_prepared *cyl, const cylray_ray8 *ray,
+CYLRAY_API uint32_t cylray_occluded8(const cylray_prepared *cyl, const cylray_ray8 *ray,
                           uint32_t active, unsigned flags);
-uint32_t cylray_occluded16(const cylray_prepared *cyl, const cylray_ray16 *ray,
+CYLRAY_API uint32_t cylray_occluded16(const cylray_prepared *cyl, const cylray_ray16 *ray,
                            uint32_t active, unsigned flags);
 
 /* ---- streams (any length, any alignment) ---------------------------------- */
@@ -142,12 +224,14 @@ typedef struct cylray_hits {
     int32_t *part;
 } cylray_hits;
 
-/* Same per-ray semantics as the packets; returns the number of hits. */
-size_t cylray_intersect_stream(const cylray_prepared *cyl, const cylray_rays *rays,
+/* Rays 0..n-1 of separate arrays, any length and alignment; nothing before or after
+ * them is read or written. Same per-ray semantics as the packets; returns the number
+ * of hits. */
+CYLRAY_API size_t cylray_intersect_stream(const cylray_prepared *cyl, const cylray_rays *rays,
                                const cylray_hits *hits, size_t n, unsigned flags);
 /* Sets occluded[i] = 1 for each ray with a hit, leaves the others; returns the count. */
-size_t cylray_occluded_stream(const cylray_prepared *cyl, const cylray_rays *rays,
-                              uint8_t *occluded, size_t n, unsigned flags);
+CYLRAY_API size_t cylray_occluded_stream(const cylray_prepared *cyl, const cylray_rays *rays,
+                                         uint8_t *occluded, size_t n, unsigned flags);
 
 /* ---- leaves: one ray against up to 4, 8 or 16 cylinders ------------------ */
 
@@ -163,8 +247,8 @@ typedef struct cylray_hit1 {
     uint32_t lane;  /* its place in the leaf, 0..M-1 */
 } cylray_hit1;
 
-/* M prepared cylinders in SoA, 64 bytes a cylinder, aligned to the vector width.
- * The fields are not part of the API. */
+/* M prepared cylinders in SoA, 64 bytes a cylinder, aligned to the vector width
+ * (required). The fields are not part of the API; the size is part of the ABI. */
 #define CYLRAY_LEAF_(m, al)                                                       \
     typedef struct CYLRAY_ALIGN(al) cylray_leaf##m {                              \
         float geom_[14][m];                                                       \
@@ -179,26 +263,29 @@ CYLRAY_LEAF_(16, 64)
  * then 0..n-1). Returns CYLRAY_EINVAL, leaving *out untouched, when n > M, when a
  * pointer is NULL, or when any cylinder is refused by the rules of cylray_prepare.
  * Lanes n..M-1 are padding that never hits; n = 0 gives a leaf that never hits. */
-cylray_status cylray_leaf_prepare4(cylray_leaf4 *out, const cylray_cylinder *cyl,
-                                   const uint32_t *ids, size_t n);
-cylray_status cylray_leaf_prepare8(cylray_leaf8 *out, const cylray_cylinder *cyl,
-                                   const uint32_t *ids, size_t n);
-cylray_status cylray_leaf_prepare16(cylray_leaf16 *out, const cylray_cylinder *cyl,
-                                    const uint32_t *ids, size_t n);
+CYLRAY_API cylray_status cylray_leaf_prepare4(cylray_leaf4 *out, const cylray_cylinder *cyl,
+                                              const uint32_t *ids, size_t n);
+CYLRAY_API cylray_status cylray_leaf_prepare8(cylray_leaf8 *out, const cylray_cylinder *cyl,
+                                              const uint32_t *ids, size_t n);
+CYLRAY_API cylray_status cylray_leaf_prepare16(cylray_leaf16 *out, const cylray_cylinder *cyl,
+                                               const uint32_t *ids, size_t n);
 
 /* The closest hit over the leaf's cylinders in [tmin, tmax]: returns 1, writes *hit
  * and sets ray->tmax = t; of cylinders hit at the same t the lowest lane wins.
  * Returns 0 and writes nothing on a miss. Flags as for the packets. */
-int cylray_leaf_intersect4(const cylray_leaf4 *leaf, cylray_ray1 *ray, cylray_hit1 *hit,
-                           unsigned flags);
-int cylray_leaf_intersect8(const cylray_leaf8 *leaf, cylray_ray1 *ray, cylray_hit1 *hit,
-                           unsigned flags);
-int cylray_leaf_intersect16(const cylray_leaf16 *leaf, cylray_ray1 *ray, cylray_hit1 *hit,
-                            unsigned flags);
+CYLRAY_API int cylray_leaf_intersect4(const cylray_leaf4 *leaf, cylray_ray1 *ray,
+                                      cylray_hit1 *hit, unsigned flags);
+CYLRAY_API int cylray_leaf_intersect8(const cylray_leaf8 *leaf, cylray_ray1 *ray,
+                                      cylray_hit1 *hit, unsigned flags);
+CYLRAY_API int cylray_leaf_intersect16(const cylray_leaf16 *leaf, cylray_ray1 *ray,
+                                       cylray_hit1 *hit, unsigned flags);
 /* 1 when any cylinder of the leaf is hit in [tmin, tmax]; writes nothing. */
-int cylray_leaf_occluded4(const cylray_leaf4 *leaf, const cylray_ray1 *ray, unsigned flags);
-int cylray_leaf_occluded8(const cylray_leaf8 *leaf, const cylray_ray1 *ray, unsigned flags);
-int cylray_leaf_occluded16(const cylray_leaf16 *leaf, const cylray_ray1 *ray, unsigned flags);
+CYLRAY_API int cylray_leaf_occluded4(const cylray_leaf4 *leaf, const cylray_ray1 *ray,
+                                     unsigned flags);
+CYLRAY_API int cylray_leaf_occluded8(const cylray_leaf8 *leaf, const cylray_ray1 *ray,
+                                     unsigned flags);
+CYLRAY_API int cylray_leaf_occluded16(const cylray_leaf16 *leaf, const cylray_ray1 *ray,
+                                      unsigned flags);
 
 /* ---- the endpoint form ------------------------------------------------------ */
 
@@ -207,9 +294,9 @@ int cylray_leaf_occluded16(const cylray_leaf16 *leaf, const cylray_ray1 *ray, un
  * center (p0 + p1) / 2, each rounded once to float; the half height is |p1 - p0| / 2
  * in world units, rounded once. Returns CYLRAY_EINVAL (leaving *out untouched) for
  * p0 == p1, non-finite input, or what cylray_prepare would refuse. */
-cylray_status cylray_cylinder_from_endpoints(cylray_cylinder *out, const float p0[3],
-                                             const float p1[3], float radius,
-                                             unsigned flags);
+CYLRAY_API cylray_status cylray_cylinder_from_endpoints(cylray_cylinder *out, const float p0[3],
+                                                        const float p1[3], float radius,
+                                                        unsigned flags);
 
 /* ---- secondary rays ----------------------------------------------------------- */
 
@@ -222,13 +309,13 @@ cylray_status cylray_cylinder_from_endpoints(cylray_cylinder *out, const float p
  * For a hit of the ray o + t d at t on `part` of cyl: p, the hit point (moved onto
  * the surface of that part where that pays), and *err, a bound on the distance from p
  * to the exact surface of that part. */
-void cylray_hit_point(const cylray_prepared *cyl, const float o[3], const float d[3],
-                      float t, int32_t part, float p[3], float *err);
+CYLRAY_API void cylray_hit_point(const cylray_prepared *cyl, const float o[3], const float d[3],
+                                 float t, int32_t part, float p[3], float *err);
 /* The origin for a new ray that leaves that hit in direction w, to be traced with
  * tmin = 0: strictly on w's side of every surface of cyl that passes within err of p
  * (at a rim, of both). */
-void cylray_spawn_origin(const cylray_prepared *cyl, const float p[3], float err,
-                         int32_t part, const float w[3], float out[3]);
+CYLRAY_API void cylray_spawn_origin(const cylray_prepared *cyl, const float p[3], float err,
+                                    int32_t part, const float w[3], float out[3]);
 
 /* Batched forms: plain loops over the lanes, the same answer as the scalar pair lane by
  * lane; a tracer that does not call them pays nothing. Hit points with their bounds,
@@ -245,21 +332,25 @@ CYLRAY_POINTS_(16, 64)
 /* Packets: for each lane i set in `mask` (the result of the intersect call), the hit
  * point of ray i (its o and d; t and part come from hit) into lane i of *pts. Other
  * lanes are not written. */
-void cylray_hit_points4(const cylray_prepared *cyl, const cylray_ray4 *ray,
-                        const cylray_hit4 *hit, uint32_t mask, cylray_points4 *pts);
-void cylray_hit_points8(const cylray_prepared *cyl, const cylray_ray8 *ray,
-                        const cylray_hit8 *hit, uint32_t mask, cylray_points8 *pts);
-void cylray_hit_points16(const cylray_prepared *cyl, const cylray_ray16 *ray,
-                         const cylray_hit16 *hit, uint32_t mask, cylray_points16 *pts);
+CYLRAY_API void cylray_hit_points4(const cylray_prepared *cyl, const cylray_ray4 *ray,
+                                   const cylray_hit4 *hit, uint32_t mask,
+                                   cylray_points4 *pts);
+CYLRAY_API void cylray_hit_points8(const cylray_prepared *cyl, const cylray_ray8 *ray,
+                                   const cylray_hit8 *hit, uint32_t mask,
+                                   cylray_points8 *pts);
+CYLRAY_API void cylray_hit_points16(const cylray_prepared *cyl, const cylray_ray16 *ray,
+                                    const cylray_hit16 *hit, uint32_t mask,
+                                    cylray_points16 *pts);
 /* For each lane i set in `mask`: out->dx..dz[i] hold the new direction on entry; the
  * spawned origin goes to out->ox..oz[i] and tmin[i] is set to 0 (tmax is the caller's:
  * INFINITY, or the distance to a light). *out may be the packet that was traced. */
-void cylray_spawn_rays4(const cylray_prepared *cyl, const cylray_points4 *pts,
-                        const cylray_hit4 *hit, uint32_t mask, cylray_ray4 *out);
-void cylray_spawn_rays8(const cylray_prepared *cyl, const cylray_points8 *pts,
-                        const cylray_hit8 *hit, uint32_t mask, cylray_ray8 *out);
-void cylray_spawn_rays16(const cylray_prepared *cyl, const cylray_points16 *pts,
-                         const cylray_hit16 *hit, uint32_t mask, cylray_ray16 *out);
+CYLRAY_API void cylray_spawn_rays4(const cylray_prepared *cyl, const cylray_points4 *pts,
+                                   const cylray_hit4 *hit, uint32_t mask, cylray_ray4 *out);
+CYLRAY_API void cylray_spawn_rays8(const cylray_prepared *cyl, const cylray_points8 *pts,
+                                   const cylray_hit8 *hit, uint32_t mask, cylray_ray8 *out);
+CYLRAY_API void cylray_spawn_rays16(const cylray_prepared *cyl, const cylray_points16 *pts,
+                                    const cylray_hit16 *hit, uint32_t mask,
+                                    cylray_ray16 *out);
 
 /* Streams: separate arrays (err may be NULL where no bound is read or written). */
 typedef struct cylray_points {
@@ -267,28 +358,32 @@ typedef struct cylray_points {
 } cylray_points;
 /* For each ray i whose hits->part[i] is not CYLRAY_MISS (the caller clears part before
  * the intersect call), its hit point into pts; returns how many were written. */
-size_t cylray_hit_points_stream(const cylray_prepared *cyl, const cylray_rays *rays,
-                                const cylray_hits *hits, const cylray_points *pts, size_t n);
+CYLRAY_API size_t cylray_hit_points_stream(const cylray_prepared *cyl,
+                                           const cylray_rays *rays, const cylray_hits *hits,
+                                           const cylray_points *pts, size_t n);
 /* For each i whose part[i] is not CYLRAY_MISS, the origin that leaves point i of pts in
  * direction (dirs->x, y, z)[i], into (origins->x, y, z)[i]; origins may alias dirs. */
-void cylray_spawn_stream(const cylray_prepared *cyl, const cylray_points *pts,
-                         const int32_t *part, const cylray_points *dirs,
-                         const cylray_points *origins, size_t n);
+CYLRAY_API void cylray_spawn_stream(const cylray_prepared *cyl, const cylray_points *pts,
+                                    const int32_t *part, const cylray_points *dirs,
+                                    const cylray_points *origins, size_t n);
 
 /* Leaves: the hit a leaf query returned (hit->lane names the cylinder; ray as it came
  * back from the query, whose o and d are unchanged). */
-void cylray_leaf_hit_point4(const cylray_leaf4 *leaf, const cylray_ray1 *ray,
-                            const cylray_hit1 *hit, float p[3], float *err);
-void cylray_leaf_hit_point8(const cylray_leaf8 *leaf, const cylray_ray1 *ray,
-                            const cylray_hit1 *hit, float p[3], float *err);
-void cylray_leaf_hit_point16(const cylray_leaf16 *leaf, const cylray_ray1 *ray,
-                             const cylray_hit1 *hit, float p[3], float *err);
-void cylray_leaf_spawn_origin4(const cylray_leaf4 *leaf, const cylray_hit1 *hit,
-                               const float p[3], float err, const float w[3], float out[3]);
-void cylray_leaf_spawn_origin8(const cylray_leaf8 *leaf, const cylray_hit1 *hit,
-                               const float p[3], float err, const float w[3], float out[3]);
-void cylray_leaf_spawn_origin16(const cylray_leaf16 *leaf, const cylray_hit1 *hit,
-                                const float p[3], float err, const float w[3], float out[3]);
+CYLRAY_API void cylray_leaf_hit_point4(const cylray_leaf4 *leaf, const cylray_ray1 *ray,
+                                       const cylray_hit1 *hit, float p[3], float *err);
+CYLRAY_API void cylray_leaf_hit_point8(const cylray_leaf8 *leaf, const cylray_ray1 *ray,
+                                       const cylray_hit1 *hit, float p[3], float *err);
+CYLRAY_API void cylray_leaf_hit_point16(const cylray_leaf16 *leaf, const cylray_ray1 *ray,
+                                        const cylray_hit1 *hit, float p[3], float *err);
+CYLRAY_API void cylray_leaf_spawn_origin4(const cylray_leaf4 *leaf, const cylray_hit1 *hit,
+                                          const float p[3], float err, const float w[3],
+                                          float out[3]);
+CYLRAY_API void cylray_leaf_spawn_origin8(const cylray_leaf8 *leaf, const cylray_hit1 *hit,
+                                          const float p[3], float err, const float w[3],
+                                          float out[3]);
+CYLRAY_API void cylray_leaf_spawn_origin16(const cylray_leaf16 *leaf,
+                                           const cylray_hit1 *hit, const float p[3],
+                                           float err, const float w[3], float out[3]);
 
 /* ---- per-ISA access ------------------------------------------------------- */
 
@@ -347,11 +442,16 @@ typedef struct cylray_kernels {
     cylray_leaf_occluded16_fn leaf_occluded16;
 } cylray_kernels;
 
-/* NULL when that path was not built or the CPU (or OS) lacks it. */
-const cylray_kernels *cylray_kernels_for(cylray_isa isa);
-/* The path the plain entry points use: the best the CPU has, or CYLRAY_ISA. */
-const cylray_kernels *cylray_kernels_best(void);
-const char *cylray_isa_name(cylray_isa isa);
+/* One path's table, for validation and microbenchmarks: the same signatures and
+ * contract as the plain entry points of the same names. NULL when that path was not
+ * built or the CPU (or the OS, which must save its registers) lacks it. */
+CYLRAY_API const cylray_kernels *cylray_kernels_for(cylray_isa isa);
+/* The path the plain entry points use, chosen on the first call: the best the CPU
+ * has, or the one the environment variable CYLRAY_ISA names (scalar, sse41, avx2,
+ * avx512, neon) if it is available; otherwise one line on stderr and the best. */
+CYLRAY_API const cylray_kernels *cylray_kernels_best(void);
+/* "scalar", "sse41", "avx2", "avx512", "neon"; "unknown" out of range. */
+CYLRAY_API const char *cylray_isa_name(cylray_isa isa);
 
 #ifdef __cplusplus
 }

@@ -11,39 +11,64 @@
 #define CYLRAY_KIND_OPEN 1u   /* finite, no end discs: a tube */
 #define CYLRAY_KIND_CAPPED 2u /* finite, closed solid */
 #define CYLRAY_KIND_COUNT 3u
+#define CYLRAY_KIND_LEAF 3u /* in the kernel flags only: a leaf's lanes, of any kind */
 
 #define CYLRAY_MAGIC 0x63796c72u /* "cylr" */
+
+/* A ray is parallel to the axis where A <= CYLRAY_PAR_EPS v.v d.d: an angle below
+ * 2^-23 rad, about one float ulp of the direction, where the side's roots are noise. */
+#define CYLRAY_PAR_EPS 0x1p-46
 
 /* Internal kernel flags, beside the public CYLRAY_* kernel flags (all below 0x20). */
 #define CYLRAY_KF_OCCLUDED 0x100u
 #define CYLRAY_KF_ALIGNED 0x200u
 #define CYLRAY_KF_KIND_SHIFT 10
 #define CYLRAY_KF_SCALED 0x1000u /* the rare-lane instance: d scaled to near unit length */
+#define CYLRAY_KF_ONE_END 0x2000u /* a capped cylinder with one disc only */
+/* The public flags every kernel reads at run time rather than being specialised for. */
+#define CYLRAY_KF_RUNTIME (CYLRAY_FACE_FORWARD | CYLRAY_CULL_BACK)
 /* What KFN(block) returns for a vector the rare instance must do (no lane is 31) */
 #define CYLRAY_RARE_ 0x80000000u
 
 /* The kernel tables are indexed by the cylinder's variant (its kind, plus 3 when the
- * axis is a coordinate axis) and the flags that select a kernel, packed into 4 bits;
- * face-forward is a sign flip applied to the result and needs no kernel of its own. */
+ * axis is a coordinate axis) and the flags a kernel is specialised for (normals and
+ * CYLRAY_FAST). A cylinder whose radius is far from 1 (j != 0) or that has one disc
+ * only has a variant from CYLRAY_VARIANT_GENERIC on, and runs the generic kernel, as
+ * does every call with CYLRAY_REFINE. */
+#define CYLRAY_VARIANT_GENERIC (2u * CYLRAY_KIND_COUNT)
+static inline unsigned cylray_variant_of_(unsigned kind, unsigned axis_id, int radius_scaled,
+                                          unsigned caps)
+{
+    if (radius_scaled || (kind == CYLRAY_KIND_CAPPED && caps != CYLRAY_CAPPED))
+        return CYLRAY_VARIANT_GENERIC + kind;
+    return kind + (axis_id ? CYLRAY_KIND_COUNT : 0u);
+}
 static inline unsigned cylray_variant_(const cylray_prepared *p)
 {
     return p->variant;
 }
-static inline unsigned cylray_isect_index_(unsigned kind, unsigned flags)
+static inline int cylray_generic_(const cylray_prepared *p, unsigned flags)
 {
-    return kind * 16u + (flags & CYLRAY_NORMAL) + ((flags & (CYLRAY_CULL_BACK | CYLRAY_REFINE |
-                                                          CYLRAY_FAST)) >> 1);
+    return p->variant >= CYLRAY_VARIANT_GENERIC || (flags & CYLRAY_REFINE);
 }
-static inline unsigned cylray_occ_index_(unsigned kind, unsigned flags)
+static inline unsigned cylray_spec_(unsigned flags) /* normals, fast: 0..3 */
 {
-    return kind * 8u + ((flags & (CYLRAY_CULL_BACK | CYLRAY_REFINE | CYLRAY_FAST)) >> 2);
+    return (flags & CYLRAY_NORMAL) | ((flags & CYLRAY_FAST) ? 2u : 0u);
+}
+static inline unsigned cylray_isect_index_(unsigned variant, unsigned flags)
+{
+    return variant * 4u + cylray_spec_(flags);
+}
+static inline unsigned cylray_occ_index_(unsigned variant, unsigned flags)
+{
+    return variant * 2u + ((flags & CYLRAY_FAST) ? 1u : 0u);
 }
 
 static inline int cylray_prepared_ok_(const cylray_prepared *p)
 {
     return p != 0 && p->magic == CYLRAY_MAGIC && p->kind < CYLRAY_KIND_COUNT &&
-           p->variant == p->kind + (p->axis_id ? CYLRAY_KIND_COUNT
-                                    : p->g_s != 1.0f ? 2 * CYLRAY_KIND_COUNT : 0u);
+           p->axis_id <= 3u && (p->caps & ~CYLRAY_CAPPED) == 0 &&
+           p->variant == cylray_variant_of_(p->kind, p->axis_id, p->g_s != 1.0f, p->caps);
 }
 
 #if defined(__GNUC__) || defined(__clang__)
@@ -142,9 +167,15 @@ enum {
     CYLRAY_LF_BOUND2, /* squared bounding-sphere radius; -1 for padding */
     CYLRAY_LF_COUNT
 };
-/* meta_: the caps (CYLRAY_CAPPED_LO | CYLRAY_CAPPED_HI), finite, in use */
-#define CYLRAY_LM_FINITE 0x4u
-#define CYLRAY_LM_USED 0x8u
+/* meta_ holds lane masks (bit k: lane k): [0] the lanes in use, [1] those whose low
+ * disc is part of the surface, [2] those whose high disc is; [3] is 0. The leaf
+ * starts with the fields a kernel reads, so it is passed to one as a float pointer. */
+enum { CYLRAY_LM_USED, CYLRAY_LM_LO, CYLRAY_LM_HI };
+static inline unsigned cylray_leaf_caps_(const uint32_t *meta, unsigned lane)
+{
+    return ((meta[CYLRAY_LM_LO] >> lane) & 1u ? CYLRAY_CAPPED_LO : 0u) |
+           ((meta[CYLRAY_LM_HI] >> lane) & 1u ? CYLRAY_CAPPED_HI : 0u);
+}
 
 #define CYLRAY_CAT_(a, b) a##b
 #define CYLRAY_CAT(a, b) CYLRAY_CAT_(a, b)

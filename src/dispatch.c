@@ -52,6 +52,22 @@ const cylray_kernels *cylray_kernels_for(cylray_isa isa)
     return built[isa];
 }
 
+/* The warning, as one line from one fprintf call; a name that is no path at all (a
+ * misspelling, another case) gets the list of the names that are. */
+static void warn_isa(const char *want, int known, const char *used)
+{
+    if (known) {
+        fprintf(stderr, "cylray: CYLRAY_ISA=%s is not available here; using %s\n", want, used);
+        return;
+    }
+    char list[96] = "";
+    size_t len = 0;
+    for (int i = 0; i < CYLRAY_ISA_COUNT && len < sizeof list; i++)
+        len += (size_t)snprintf(list + len, sizeof list - len, "%s%s", i ? ", " : "", names[i]);
+    fprintf(stderr, "cylray: CYLRAY_ISA=%s is unknown (known: %s); using %s\n", want, list,
+            used);
+}
+
 static const cylray_kernels *choose(void)
 {
     const cylray_kernels *best = built[CYLRAY_ISA_SCALAR];
@@ -64,18 +80,19 @@ static const cylray_kernels *choose(void)
     }
     const char *want = getenv("CYLRAY_ISA");
     if (want && *want) {
+        int known = 0;
         for (int i = 0; i < CYLRAY_ISA_COUNT; i++) {
             if (strcmp(want, names[i]) == 0) {
                 const cylray_kernels *k = cylray_kernels_for((cylray_isa)i);
                 if (k)
                     return k;
+                known = 1;
                 break;
             }
         }
         static atomic_int warned;
         if (!atomic_exchange(&warned, 1))
-            fprintf(stderr, "cylray: CYLRAY_ISA=%s is not available here; using %s\n", want,
-                    best->name);
+            warn_isa(want, known, best->name);
     }
     return best;
 }
@@ -132,3 +149,18 @@ size_t cylray_occluded_stream(const cylray_prepared *cyl, const cylray_rays *ray
 {
     return cylray_kernels_best()->occluded_stream(cyl, rays, occluded, n, flags);
 }
+
+#define LEAF_ENTRY_(m)                                                                  \
+    int cylray_leaf_intersect##m(const cylray_leaf##m *leaf, cylray_ray1 *ray,            \
+                                 cylray_hit1 *hit, unsigned flags)                      \
+    {                                                                                   \
+        return cylray_kernels_best()->leaf_intersect##m(leaf, ray, hit, flags);          \
+    }                                                                                   \
+    int cylray_leaf_occluded##m(const cylray_leaf##m *leaf, const cylray_ray1 *ray,       \
+                                unsigned flags)                                         \
+    {                                                                                   \
+        return cylray_kernels_best()->leaf_occluded##m(leaf, ray, flags);                \
+    }
+LEAF_ENTRY_(4)
+LEAF_ENTRY_(8)
+LEAF_ENTRY_(16)

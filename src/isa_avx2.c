@@ -32,4 +32,7 @@
 #define KW4 avx2_4
 #define KW8 avx2_8
 #define KW16 avx2_8
+#define KL4 avx2_4
+#define KL8 avx2_8
+#define KL16 avx2_8
 #include "isa_entry.h"

@@ -2,7 +2,8 @@
  * kernel instantiations its translation unit made.
  *
  * Parameters: KISA (suffix, e.g. avx2), KISA_ENUM, KISA_NAME, and KW4, KW8, KW16 (the
- * instantiation suffix that serves each packet width; streams use KW16's). */
+ * instantiation suffix that serves each packet width; streams use KW16's), and KL4,
+ * KL8, KL16 (the one that serves each leaf size). */
 
 #define KI_(name) CYLRAY_CAT(name, CYLRAY_CAT(_, KISA))
 #define KW_(name, w) CYLRAY_CAT(name, CYLRAY_CAT(_, w))
@@ -18,12 +19,12 @@
         active &= (uint32_t)((1ull << n) - 1u);                                        \
         if (!active || !ray || !hit || !cylray_prepared_ok_(P))                        \
             return 0;                                                                  \
-        if (cylray_variant_(P) >= 2 * CYLRAY_KIND_COUNT)                              \
+        if (cylray_generic_(P, flags))                                                \
             return KW_(packet_generic, KW##n)(P, ray->ox, hit->t, n, active, flags);    \
         const KW_(packet_fn, KW##n) *t = n == KW_(vw, KW##n) ? KW_(isect1_table, KW##n)   \
                                                             : KW_(isect_table, KW##n);   \
         return t[cylray_isect_index_(cylray_variant_(P), flags)](                     \
-            P, ray->ox, hit->t, n, active, flags & CYLRAY_FACE_FORWARD);               \
+            P, ray->ox, hit->t, n, active, flags & CYLRAY_KF_RUNTIME);                 \
     }                                                                                  \
     static uint32_t KI_(occluded##n)(const cylray_prepared *P, const cylray_ray##n *ray, \
                                      uint32_t active, unsigned flags)                  \
@@ -32,13 +33,13 @@
         if (!active || !ray || !cylray_prepared_ok_(P))                                \
             return 0;                                                                  \
         /* the occluded kernels read tmax and never write through this pointer */      \
-        if (cylray_variant_(P) >= 2 * CYLRAY_KIND_COUNT)                              \
+        if (cylray_generic_(P, flags))                                                \
             return KW_(packet_generic, KW##n)(P, (float *)(uintptr_t)ray->ox, NULL, n,    \
                                               active, flags);                         \
         const KW_(packet_fn, KW##n) *t = n == KW_(vw, KW##n) ? KW_(occ1_table, KW##n)     \
                                                             : KW_(occ_table, KW##n);     \
         return t[cylray_occ_index_(cylray_variant_(P), flags)](                       \
-            P, (float *)(uintptr_t)ray->ox, NULL, n, active, 0);                       \
+            P, (float *)(uintptr_t)ray->ox, NULL, n, active, flags & CYLRAY_CULL_BACK);  \
     }
 KPACKET_(4)
 KPACKET_(8)
@@ -49,10 +50,10 @@ static size_t KI_(intersect_stream)(const cylray_prepared *P, const cylray_rays 
 {
     if (!n || !rays || !hits || !cylray_prepared_ok_(P))
         return 0;
-    if (cylray_variant_(P) >= 2 * CYLRAY_KIND_COUNT)
+    if (cylray_generic_(P, flags))
         return KW_(stream_generic, KW16)(P, rays, hits, NULL, n, flags);
     return KW_(isect_stream_table, KW16)[cylray_isect_index_(cylray_variant_(P), flags)](
-        P, rays, hits, NULL, n, flags & CYLRAY_FACE_FORWARD);
+        P, rays, hits, NULL, n, flags & CYLRAY_KF_RUNTIME);
 }
 
 static size_t KI_(occluded_stream)(const cylray_prepared *P, const cylray_rays *rays,
@@ -60,19 +61,54 @@ static size_t KI_(occluded_stream)(const cylray_prepared *P, const cylray_rays *
 {
     if (!n || !rays || !occluded || !cylray_prepared_ok_(P))
         return 0;
-    if (cylray_variant_(P) >= 2 * CYLRAY_KIND_COUNT)
+    if (cylray_generic_(P, flags))
         return KW_(stream_generic, KW16)(P, rays, NULL, occluded, n, flags);
     return KW_(occ_stream_table, KW16)[cylray_occ_index_(cylray_variant_(P), flags)](
-        P, rays, NULL, occluded, n, 0);
+        P, rays, NULL, occluded, n, flags & CYLRAY_CULL_BACK);
 }
+
+/* Leaves: a leaf of M runs on the instantiation KLm (VW lanes at a time, M / VW times).
+ * A leaf is read as its field array: geom_, then meta_ and id_ (cylray_internal.h). */
+#define KLEAF_ENTRY_(m)                                                                  \
+    _Static_assert(offsetof(cylray_leaf##m, meta_) == CYLRAY_LF_COUNT * m * sizeof(float) && \
+                       offsetof(cylray_leaf##m, id_) == (CYLRAY_LF_COUNT + 1) * m * 4,      \
+                   "leaf fields are m-lane arrays, back to back");                      \
+    static int KI_(leaf_intersect##m)(const cylray_leaf##m *leaf, cylray_ray1 *ray,      \
+                                      cylray_hit1 *hit, unsigned flags)                 \
+    {                                                                                    \
+        if (!leaf || !ray || !hit)                                                       \
+            return 0;                                                                    \
+        if (flags & CYLRAY_REFINE)                                                       \
+            return KW_(leaf_generic, KL##m)(leaf->geom_[0], m, ray, hit, flags);          \
+        return KW_(leaf_table, KL##m)[cylray_spec_(flags)](leaf->geom_[0], m, ray, hit,    \
+                                                          flags & CYLRAY_KF_RUNTIME);    \
+    }                                                                                    \
+    static int KI_(leaf_occluded##m)(const cylray_leaf##m *leaf, const cylray_ray1 *ray, \
+                                     unsigned flags)                                    \
+    {                                                                                    \
+        if (!leaf || !ray)                                                               \
+            return 0;                                                                    \
+        /* the occluded kernels read the ray and never write through this pointer */    \
+        cylray_ray1 *r = (cylray_ray1 *)(uintptr_t)ray;                                  \
+        if (flags & CYLRAY_REFINE)                                                       \
+            return KW_(leaf_generic, KL##m)(leaf->geom_[0], m, r, NULL, flags);           \
+        return KW_(leaf_occ_table, KL##m)[(flags & CYLRAY_FAST) ? 1 : 0](                 \
+            leaf->geom_[0], m, r, NULL, flags & CYLRAY_CULL_BACK);                       \
+    }
+KLEAF_ENTRY_(4)
+KLEAF_ENTRY_(8)
+KLEAF_ENTRY_(16)
 
 const cylray_kernels CYLRAY_CAT(CYLRAY_CAT(cylray_kernels_, KISA), _) = {
     KISA_ENUM,          KISA_NAME,
     KI_(intersect4),    KI_(intersect8),       KI_(intersect16),
     KI_(occluded4),     KI_(occluded8),        KI_(occluded16),
     KI_(intersect_stream), KI_(occluded_stream),
+    KI_(leaf_intersect4), KI_(leaf_intersect8), KI_(leaf_intersect16),
+    KI_(leaf_occluded4),  KI_(leaf_occluded8),  KI_(leaf_occluded16),
 };
 
 #undef KI_
 #undef KW_
 #undef KPACKET_
+#undef KLEAF_ENTRY_

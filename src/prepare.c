@@ -17,9 +17,11 @@ const char *cylray_strerror(cylray_status s)
     case CYLRAY_OK:
         return "success";
     case CYLRAY_EINVAL:
-        return "invalid cylinder: a NaN, infinite or over 2^62 coordinate, a zero or "
-               "subnormal axis, a radius not in [2^-60, 2^62], a half height <= 0 or NaN, "
-               "or unknown flag bits";
+        return "invalid argument: a NULL pointer, more cylinders than the leaf holds, "
+               "equal endpoints, or a cylinder with a center or axis coordinate that is "
+               "NaN, infinite or beyond 2^62, a zero or subnormal axis, a radius outside "
+               "[2^-60, 2^62], a half height <= 0, NaN or finite beyond 2^62, or flag bits "
+               "other than CYLRAY_CAPPED_LO and CYLRAY_CAPPED_HI";
     }
     return "unknown cylray status";
 }
@@ -80,12 +82,15 @@ cylray_status cylray_prepare(cylray_prepared *out, const cylray_cylinder *in)
     p.nscale = (float)(1.0 / (R * vv));
     for (int k = 0; k < 3; k++)
         p.vk[k] = (float)(v[k] / (R * vv));
-    p.par_eps = (float)(vv * 0x1p-46);
+    p.par_eps = (float)(vv * CYLRAY_PAR_EPS);
     /* The margin covers the rounding of the shifted origin many times over. */
     p.bound2 = isfinite(H) ? (float)((R * R + H * H) * (1.0 + 0x1p-12)) : INFINITY;
+    p.radius = in->radius;
+    p.half_height = in->half_height;
+    p.caps = isfinite(H) ? in->flags & CYLRAY_CAPPED : 0u;
     p.kind = !isfinite(H) ? CYLRAY_KIND_INFINITE
-             : (in->flags & CYLRAY_CAPPED) ? CYLRAY_KIND_CAPPED
-                                          : CYLRAY_KIND_OPEN;
+             : p.caps     ? CYLRAY_KIND_CAPPED
+                          : CYLRAY_KIND_OPEN;
     /* Only the rare instance of the general kernel (variant >= 6) takes the scaled
      * form; the others, and the coordinate-axis kernels, take R^2 as it is. */
     p.axis_id = zeros == 2 && j == 0 ? (a[0] != 0 ? 1u : a[1] != 0 ? 2u : 3u) : 0u;
@@ -100,11 +105,7 @@ cylray_status cylray_prepare(cylray_prepared *out, const cylray_cylinder *in)
         p.cap_up = p.vr > 0 ? CYLRAY_CAP_HI : CYLRAY_CAP_LO;
         p.cap_down = p.vr > 0 ? CYLRAY_CAP_LO : CYLRAY_CAP_HI;
     }
-    p.variant = (uint8_t)(p.kind + (p.axis_id ? CYLRAY_KIND_COUNT
-                                    : j ? 2 * CYLRAY_KIND_COUNT : 0u));
-    p.radius = in->radius;
-    p.half_height = in->half_height;
-    p.caps = isfinite(H) ? (in->flags & CYLRAY_CAPPED) : 0u;
+    p.variant = (uint8_t)cylray_variant_of_(p.kind, p.axis_id, j != 0, p.caps);
     p.magic = CYLRAY_MAGIC;
     *out = p;
     return CYLRAY_OK;

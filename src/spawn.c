@@ -103,7 +103,7 @@ static geo geo_leaf(const float *geom, const uint32_t *meta, size_t m, size_t la
     }
     g.R = geom[CYLRAY_LF_R * m + lane];
     g.H = geom[CYLRAY_LF_H * m + lane];
-    g.caps = meta[lane] & CYLRAY_CAPPED;
+    g.caps = cylray_leaf_caps_(meta, (unsigned)lane);
     geo_finish(&g);
     return g;
 }

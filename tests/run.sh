@@ -88,8 +88,13 @@ if wants aarch64; then
     need libc6-dev-arm64-cross test -e /usr/aarch64-linux-gnu/include/stdio.h
     need qemu-user command -v qemu-aarch64
 fi
-# The header's C++ test needs some C++ compiler; it is skipped (not failed) without.
-if wants gcc || wants clang; then need g++ have_cxx; fi
+# The header's C++ test needs some C++ compiler, and the tests of an installed tree
+# cmake and pkg-config; each is skipped (not failed) without.
+if wants gcc || wants clang; then
+    need g++ have_cxx
+    need cmake command -v cmake
+    need pkgconf command -v pkg-config
+fi
 
 if [ ${#missing_pkgs[@]} -gt 0 ]; then
     # dedupe, keep order

@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "cylray.h"
+#include "flagsets.h"
 #include "guarded.h"
 #include "tcheck.h"
 
@@ -111,17 +112,6 @@ static const hcase cases[] = {
 };
 #define NCASES (sizeof cases / sizeof cases[0])
 
-static const unsigned flag_sets[] = {
-    0,
-    CYLRAY_NORMAL,
-    CYLRAY_NORMAL | CYLRAY_FACE_FORWARD,
-    CYLRAY_NORMAL | CYLRAY_CULL_BACK,
-    CYLRAY_NORMAL | CYLRAY_REFINE,
-    CYLRAY_NORMAL | CYLRAY_FAST,
-    CYLRAY_CULL_BACK | CYLRAY_FACE_FORWARD,
-    CYLRAY_FLAGS_ALL,
-};
-#define NFLAGS (sizeof flag_sets / sizeof flag_sets[0])
 
 static void fill_lane(gbatch *b, size_t i, const hcase *c)
 {
@@ -188,7 +178,7 @@ int main(void)
             continue;
         }
         for (int ii = 0; ii < nisa; ii++)
-            for (size_t fi = 0; fi < NFLAGS; fi++)
+            for (size_t fi = 0; fi < FLAG_SETS_ALL; fi++)
                 for (size_t wi = 0; wi < 4; wi++) {
                     const unsigned flags = flag_sets[fi];
                     const int w = widths[wi];

@@ -1,6 +1,7 @@
 /* isa_env.c - CYLRAY_ISA forces the path of the plain entry points: an available
  * choice is used silently; an unavailable or unknown one falls back to the best path
- * with exactly one line on stderr, however many calls follow. The choice is made once
+ * with exactly one line on stderr, however many calls follow, which says which of the
+ * two it is and, for an unknown name, lists the known ones. The choice is made once
  * per process, so each setting runs in a forked child (fork, not exec: under qemu-user
  * an exec'd foreign binary would not run) with its stderr captured through a pipe. */
 #define _POSIX_C_SOURCE 200809L
@@ -131,6 +132,15 @@ int main(void)
                   values[v], lines(err), err);
             CHECK(strstr(err, values[v]) != NULL,
                   "CYLRAY_ISA=%s: the warning does not name the request: \"%s\"", values[v], err);
+            /* A known name is unavailable here; any other is unknown, and the warning
+             * lists the names that would do. */
+            const char *says = isa >= 0 ? "not available" : "unknown";
+            CHECK(strstr(err, says) != NULL,
+                  "CYLRAY_ISA=%s: the warning does not say \"%s\": \"%s\"", values[v], says, err);
+            for (int i = 0; i < CYLRAY_ISA_COUNT && isa < 0; i++)
+                CHECK(strstr(err, cylray_isa_name((cylray_isa)i)) != NULL,
+                      "CYLRAY_ISA=%s: the warning does not list %s: \"%s\"", values[v],
+                      cylray_isa_name((cylray_isa)i), err);
         }
     }
     return tc_report("api-isa-env");

@@ -93,7 +93,7 @@ int main(void)
     }
 
     /* Unknown cylinder flag bits. */
-    const unsigned bad_flags[] = {0x2u, 0x3u, 0x80u, 0x80000000u, ~0u, CYLRAY_NORMAL << 4};
+    const unsigned bad_flags[] = {0x4u, 0x7u, 0x80u, 0x80000000u, ~0u, CYLRAY_NORMAL << 4};
     for (size_t i = 0; i < sizeof bad_flags / sizeof bad_flags[0]; i++) {
         cylray_cylinder c = good;
         c.flags = bad_flags[i];

@@ -12,21 +12,11 @@
 #include <string.h>
 
 #include "cylray.h"
+#include "flagsets.h"
 #include "guarded.h"
 #include "scene.h"
 #include "tcheck.h"
 
-static const unsigned flag_sets[] = {
-    0,
-    CYLRAY_NORMAL,
-    CYLRAY_NORMAL | CYLRAY_FACE_FORWARD,
-    CYLRAY_NORMAL | CYLRAY_CULL_BACK,
-    CYLRAY_NORMAL | CYLRAY_REFINE,
-    CYLRAY_NORMAL | CYLRAY_FAST,
-    CYLRAY_CULL_BACK | CYLRAY_REFINE | CYLRAY_FAST,
-    CYLRAY_FLAGS_ALL,
-};
-#define NFLAGS (sizeof flag_sets / sizeof flag_sets[0])
 
 /* Rays [first, first + w) of `all` as lanes [0, w). */
 static void slice(const gbatch *all, size_t first, size_t w, gbatch *out)
@@ -51,7 +41,7 @@ static void widths_agree(const cylray_kernels *k, const cylray_prepared *P, cons
             slice(all, first, w, &b);
             /* all lanes, then a random subset of them */
             const uint32_t full = (uint32_t)((1u << w) - 1u);
-            const uint32_t masks[2] = {full, (uint32_t)scene_next(seed) & full};
+            const uint32_t masks[2] = {full, (uint32_t)cylgen_splitmix64(seed) & full};
             for (int mi = 0; mi < 2; mi++) {
                 g_intersect(k, (int)w, P, &b, w, masks[mi], flags, 0, &r);
                 for (size_t i = 0; i < w; i++) {
@@ -156,7 +146,7 @@ int main(void)
             gbatch all;
             scene_rays((uint64_t)(ci * 100 + round), &cyl[ci], &all, 0, G_MAX);
             for (int ii = 0; ii < nisa; ii++)
-                for (size_t fi = 0; fi < NFLAGS; fi++)
+                for (size_t fi = 0; fi < FLAG_SETS_ALL; fi++)
                     widths_agree(isas[ii], &P, &all, flag_sets[fi], cname, &seed);
         }
     }

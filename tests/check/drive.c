@@ -180,7 +180,8 @@ typedef struct stream_buf {
     size_t n;
 } stream_buf;
 
-static void stream_alloc(stream_buf *s, size_t n)
+/* Poisoned stream arrays for n rays, holding the rays of rc[0..n). */
+static void stream_load(stream_buf *s, const ref_case *rc, size_t n)
 {
     size_t stride = n + 2 * GUARD + 1;
     s->n = n;
@@ -196,6 +197,13 @@ static void stream_alloc(stream_buf *s, size_t n)
     for (int f = 0; f < 12; f++)
         s->a[f] = s->block + (size_t)f * stride + GUARD + 1;
     s->part = (int32_t *)(void *)(s->block + 12 * stride + GUARD + 1);
+    for (size_t i = 0; i < n; i++) {
+        const cylgen_case *c = &rc[i].c;
+        const float in[8] = {c->o[0], c->o[1], c->o[2], c->d[0], c->d[1], c->d[2], c->tmin,
+                             c->tmax};
+        for (int f = 0; f < 8; f++)
+            s->a[f][i] = in[f];
+    }
 }
 
 static int guards_ok(const stream_buf *s)
@@ -231,14 +239,7 @@ void drive_streams(const cylray_kernels *k, unsigned flags, int category, const 
             continue;
         }
         stream_buf s;
-        stream_alloc(&s, n);
-        for (size_t i = 0; i < n; i++) {
-            const cylgen_case *c = &rc[i].c;
-            const float in[8] = {c->o[0], c->o[1], c->o[2], c->d[0],
-                                 c->d[1], c->d[2], c->tmin, c->tmax};
-            for (int f = 0; f < 8; f++)
-                s.a[f][i] = in[f];
-        }
+        stream_load(&s, rc, n);
         int normal = (flags & CYLRAY_NORMAL) != 0;
         /* Without CYLRAY_NORMAL the normal arrays may be NULL: pass NULL every other
          * length, poisoned arrays otherwise. */
@@ -301,14 +302,7 @@ void scalar_answers(const cylray_kernels *scalar, unsigned flags, const ref_case
         if (cylray_prepare(&p, &rc[0].c.cyl) != CYLRAY_OK)
             continue;
         stream_buf s;
-        stream_alloc(&s, n);
-        for (size_t i = 0; i < n; i++) {
-            const cylgen_case *c = &rc[i].c;
-            const float in[8] = {c->o[0], c->o[1], c->o[2], c->d[0],
-                                 c->d[1], c->d[2], c->tmin, c->tmax};
-            for (int f = 0; f < 8; f++)
-                s.a[f][i] = in[f];
-        }
+        stream_load(&s, rc, n);
         cylray_rays rays = {s.a[0], s.a[1], s.a[2], s.a[3], s.a[4], s.a[5], s.a[6], s.a[7]};
         cylray_hits hits = {s.a[8], s.a[9], s.a[10], s.a[11], s.part};
         scalar->intersect_stream(&p, &rays, &hits, n, flags);

@@ -5,6 +5,8 @@
 #include <math.h>
 #include <string.h>
 
+#include "frame.h"
+
 typedef struct reader {
     const uint8_t *p;
     size_t left;
@@ -39,37 +41,10 @@ static float value(reader *r)
     return f;
 }
 
-/* A unit axis and two perpendicular unit vectors, in double. */
-static void frame(const cylray_cylinder *c, double u[3], double e1[3], double e2[3])
-{
-    double l = 0;
-    for (int k = 0; k < 3; k++)
-        l += (double)c->axis[k] * c->axis[k];
-    l = sqrt(l);
-    if (!(l > 0) || !isfinite(l)) {
-        u[0] = 0, u[1] = 0, u[2] = 1;
-    } else {
-        for (int k = 0; k < 3; k++)
-            u[k] = c->axis[k] / l;
-    }
-    const int m = fabs(u[0]) < 0.5 ? 0 : fabs(u[1]) < 0.5 ? 1 : 2;
-    double a[3] = {0, 0, 0};
-    a[m] = 1;
-    e1[0] = a[1] * u[2] - a[2] * u[1];
-    e1[1] = a[2] * u[0] - a[0] * u[2];
-    e1[2] = a[0] * u[1] - a[1] * u[0];
-    l = sqrt(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]);
-    for (int k = 0; k < 3; k++)
-        e1[k] /= l;
-    e2[0] = u[1] * e1[2] - u[2] * e1[1];
-    e2[1] = u[2] * e1[0] - u[0] * e1[2];
-    e2[2] = u[0] * e1[1] - u[1] * e1[0];
-}
-
 static void aimed(reader *r, const cylray_cylinder *c, float out[G_NFIELD], uint8_t tag)
 {
     double u[3], e1[3], e2[3];
-    frame(c, u, e1, e2);
+    axis_frame(c->axis, u, e1, e2);
     float o[3] = {value(r), value(r), value(r)};
     const double ang = byte(r) * (6.283185307179586 / 256);
     const double zf = (int8_t)byte(r) / 100.0; /* -1.28 .. 1.27 of the half height */

@@ -1,4 +1,4 @@
-/* fuzz_kernels.c - the libFuzzer target (issue 6): arbitrary bytes become one kernel
+/* fuzz_kernels.c - the libFuzzer target: arbitrary bytes become one kernel
  * call (fuzz_input.h), run on every ISA this machine has, through the guarded runner
  * (canaries, poison, the memory contract). A failure prints the case in hex floats and
  * aborts, which libFuzzer records as a crash. What must hold:
@@ -8,7 +8,9 @@
  *   - every hit lies on the surface, inside [tmin, tmax], with a unit normal facing as
  *     the flags say (hitcheck.h);
  *   - every SIMD path agrees with the scalar one, except near a decision boundary
- *     (agree.h, which asks the exact reference when the geometry does not excuse it).
+ *     (agree.h, which asks the exact reference when the geometry does not excuse it);
+ *   - leaves of the cylinder and its variants answer as their lanes do alone, and as
+ *     the packet kernels do (fuzz_leaf.h).
  * Built with clang -fsanitize=fuzzer,address,undefined; with other compilers,
  * standalone.c supplies a main() that replays files and random inputs. */
 #include <stdio.h>
@@ -18,6 +20,7 @@
 #include "agree.h"
 #include "cylray.h"
 #include "fuzz_input.h"
+#include "fuzz_leaf.h"
 #include "guarded.h"
 #include "hitcheck.h"
 #include "tcheck.h"
@@ -120,5 +123,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             if (fz_agree(&c.cyl, ray, c.flags, &a, &b, why, sizeof why))
                 FAIL_("scalar and %s disagree on ray %zu: %s", isas[ii]->name, i, why);
         }
+    {
+        char why[768];
+        if (fz_leaf(&c, isas, nisa, why, sizeof why))
+            FAIL_("leaf: %s", why);
+    }
     return 0;
 }

@@ -53,6 +53,7 @@ int qin_from_float(qin *q, const cylray_cylinder *cyl, const float o[3], const f
     }
     q->R = cyl->radius;
     q->H = cyl->half_height;
+    q->caps = cyl->flags & CYLRAY_CAPPED;
     q->kind = !isfinite(cyl->half_height) ? QK_INFINITE
               : (cyl->flags & CYLRAY_CAPPED) ? QK_CAPPED
                                              : QK_OPEN;
@@ -90,6 +91,7 @@ void q_eval(const qin *q, cylq tmin, cylq tmax, qrec *r)
     memset(r, 0, sizeof *r);
     r->valid = 1;
     r->kind = q->kind;
+    r->caps = q->caps;
     const cylq inf = (cylq)INFINITY;
     cylq w[3], e[3], f[3];
     for (int k = 0; k < 3; k++) {
@@ -209,6 +211,14 @@ qout q_decide(const qrec *r, const unsigned char b[M_COUNT], int cull)
         pout = side_out ? P_SHI : P_BHI;
         int nonempty = slab_all || side_all || (b[M_X1] && b[M_X2]);
         ok_in = ok_out = nonempty;
+        /* A bound made by a disc that is not part of the surface is no hit: the ray
+         * passes through that open end (the solid still decides entry and exit). */
+        if (pin != P_SLO && !(r->caps & (slab_part(r, pin) == CYLRAY_CAP_LO ? CYLRAY_CAPPED_LO
+                                                                            : CYLRAY_CAPPED_HI)))
+            ok_in = 0;
+        if (pout != P_SHI && !(r->caps & (slab_part(r, pout) == CYLRAY_CAP_LO ? CYLRAY_CAPPED_LO
+                                                                              : CYLRAY_CAPPED_HI)))
+            ok_out = 0;
     } else {
         pin = P_SLO;
         pout = P_SHI;

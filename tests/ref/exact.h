@@ -13,6 +13,7 @@
 typedef struct qin {
     cylq o[3], d[3], c[3], v[3], R, H;
     int kind; /* QK_* */
+    unsigned caps; /* QK_CAPPED: CYLRAY_CAPPED_LO | CYLRAY_CAPPED_HI */
 } qin;
 
 enum { QK_INFINITE, QK_OPEN, QK_CAPPED };
@@ -41,6 +42,7 @@ enum {
 typedef struct qrec {
     int valid;     /* inputs describe a solid and a ray */
     int kind;
+    unsigned caps; /* the discs that are part of the surface */
     int par_exact; /* A == 0 exactly: the side roots do not exist at all */
     int dv_zero;   /* d.v == 0 exactly: the slab is all or nothing */
     int dv_pos;    /* d.v > 0: the slab is entered at -H (CAP_LO) */

@@ -246,6 +246,11 @@ static void category_cylinder(int cat, cylgen_rng *r, cylray_cylinder *out)
     case CYLGEN_RIM:
         s.kind = KIND_CAPPED;
         break;
+    case CYLGEN_ONE_END:
+        s.kind = KIND_CAPPED;
+        make_cylinder(r, &s, out);
+        out->flags = (cylgen_next(r) >> 63) ? CYLRAY_CAPPED_LO : CYLRAY_CAPPED_HI;
+        return;
     case CYLGEN_TINY:
         s.c_lo = 0.5e4;
         s.c_hi = 2e4;
@@ -462,6 +467,20 @@ static void gen_case(int cat, cylgen_rng *r, cylgen_case *c)
         c->tmax = (float)ldexp(c->tmax, -k);
         break;
     }
+    case CYLGEN_ONE_END: {
+        /* Both rims (the capped one must stay watertight, the open one lets rays
+         * through), from inside, down the axis through the open end, and ordinary. */
+        const double u = cylgen_uniform(r);
+        if (u < 0.35)
+            gen_rim(r, &f, c);
+        else if (u < 0.55)
+            ray_inside(r, &f, c);
+        else if (u < 0.7)
+            gen_parallel(r, &f, c);
+        else
+            ray_towards(r, &f, f.R * uni(r, 2, 20), 1.3, c);
+        break;
+    }
     case CYLGEN_ORDINARY:
     default:
         ray_towards(r, &f, f.R * uni(r, 2, 20), 1.3, c);
@@ -473,7 +492,7 @@ static void gen_case(int cat, cylgen_rng *r, cylgen_case *c)
 
 static const char *const names[CYLGEN_COUNT] = {
     "ordinary", "far", "parallel", "grazing", "surface", "inside",
-    "rim", "tiny", "huge", "unnormalized", "infinite", "scaled",
+    "rim", "tiny", "huge", "unnormalized", "infinite", "scaled", "onecap",
 };
 static const char *const descriptions[CYLGEN_COUNT] = {
     "random cylinder, origin 2-20 R away, aimed near the solid",
@@ -488,6 +507,7 @@ static const char *const descriptions[CYLGEN_COUNT] = {
     "|d| 1e-3..1e3",
     "infinite cylinders, outside and inside origins",
     "ordinary, parallel or grazing, d times 2^k (|k| <= 100), the interval over it",
+    "one disc only: aimed at either rim, from inside, down the axis, ordinary",
 };
 
 int cylgen_category_count(void)

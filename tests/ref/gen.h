@@ -31,6 +31,7 @@ enum {
     CYLGEN_UNNORMALIZED, /* "unnormalized": |d| 1e-3..1e3 */
     CYLGEN_INFINITE,     /* "infinite": half_height = INFINITY, outside and inside rays */
     CYLGEN_SCALED,       /* "scaled": ordinary, parallel or grazing, |d| 2^-100..2^100 */
+    CYLGEN_ONE_END,      /* "onecap": a disc at one end only; rims, inside, down the axis */
     CYLGEN_COUNT
 };
 

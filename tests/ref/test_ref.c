@@ -216,10 +216,13 @@ static void test_symmetry(void)
                   "%s #%d rotated: hit %d/%d t %.17g/%.17g part %d/%d",
                   cylgen_category_name(cat), i, h0.hit, h1.hit, h0.t, h1.t, h0.part, h1.part);
 
-            /* The axis reversed: the same solid, the caps swap names. */
+            /* The axis reversed: the same solid, the caps swap names (and so do the
+             * flags of a cylinder with one cap). */
             g = g0;
             for (int k = 0; k < 3; k++)
                 g.cyl.axis[k] = -g.cyl.axis[k];
+            if ((g.cyl.flags & CYLRAY_CAPPED) != CYLRAY_CAPPED)
+                g.cyl.flags ^= g.cyl.flags & CYLRAY_CAPPED ? CYLRAY_CAPPED : 0u;
             cylref_intersect(&g.cyl, g.o, g.d, c->tmin, c->tmax, 0, &h1);
             int p0 = h0.part & CYLRAY_PART_MASK, p1 = h1.part & CYLRAY_PART_MASK;
             int swapped = p0 == CYLRAY_SIDE ? p1 == CYLRAY_SIDE : p0 + p1 == 5;

@@ -22,6 +22,7 @@
 #include <string.h>
 
 #include "cylray.h"
+#include "flagsets.h"
 #include "guarded.h"
 #include "hitcheck.h"
 #include "scene.h"
@@ -126,13 +127,6 @@ static int make_bad(const float v[G_NFIELD], bad *out)
     return n;
 }
 
-static const unsigned flag_sets[] = {
-    0,
-    CYLRAY_NORMAL | CYLRAY_FACE_FORWARD,
-    CYLRAY_CULL_BACK | CYLRAY_REFINE,
-    CYLRAY_FLAGS_ALL,
-};
-#define NFLAGS (sizeof flag_sets / sizeof flag_sets[0])
 
 static void put(gbatch *b, size_t i, const float r[G_NFIELD])
 {
@@ -249,10 +243,8 @@ int main(void)
                                          cull ? CYLRAY_CULL_BACK : 0u, &bads[bi].band[cull]);
 #endif
             for (int ii = 0; ii < nisa; ii++)
-                for (size_t fi = 0; fi < NFLAGS; fi++) {
+                for (size_t fi = 0; fi < (quick ? FLAG_SETS_QUICK : FLAG_SETS_FEW); fi++) {
                     const unsigned flags = flag_sets[fi];
-                    if (quick && fi != 0 && fi != NFLAGS - 1)
-                        continue;
                     for (int wi = 0; wi < 4; wi++) {
                         const int w = widths[wi];
                         const size_t n = w == G_STREAM ? stream_n : (size_t)w;

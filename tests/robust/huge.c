@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "cylray.h"
+#include "frame.h"
 #include "guarded.h"
 #include "hitcheck.h"
 #include "tcheck.h"
@@ -27,17 +28,8 @@
  * lanes 8..15 pass at twice the radius or point away: they must miss. */
 static void rays_for(const cylray_cylinder *c, gbatch *b)
 {
-    double u[3], l = 0;
-    for (int k = 0; k < 3; k++)
-        l += (double)c->axis[k] * c->axis[k];
-    l = sqrt(l);
-    for (int k = 0; k < 3; k++)
-        u[k] = c->axis[k] / l;
-    /* e: a unit vector perpendicular to the axis */
-    double e[3] = {u[1] - u[2], u[2] - u[0], u[0] - u[1]};
-    double el = sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
-    for (int k = 0; k < 3; k++)
-        e[k] /= el;
+    double u[3], e[3], e2[3]; /* e: a unit vector perpendicular to the axis */
+    axis_frame(c->axis, u, e, e2);
     const double R = c->radius;
     const double H = isfinite(c->half_height) ? c->half_height : 4 * R;
     for (int i = 0; i < NRAYS; i++) {

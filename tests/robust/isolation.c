@@ -13,13 +13,11 @@
 #include <string.h>
 
 #include "cylray.h"
+#include "flagsets.h"
 #include "guarded.h"
 #include "scene.h"
 #include "tcheck.h"
 
-static const unsigned flag_sets[] = {0, CYLRAY_NORMAL, CYLRAY_NORMAL | CYLRAY_CULL_BACK,
-                                     CYLRAY_FLAGS_ALL};
-#define NFLAGS (sizeof flag_sets / sizeof flag_sets[0])
 
 /* What an inactive lane may hold: kind 0 keeps the lane's own (often hitting) ray. */
 #define NPOISON 4
@@ -49,7 +47,7 @@ static void masks(const cylray_kernels *k, const cylray_prepared *P, const gbatc
     g_intersect(k, w, P, rays, (size_t)w, full, flags, 0, &all);
     const uint32_t count = w <= 8 ? (1u << w) : (quick ? 40u : 300u);
     for (uint32_t mi = 0; mi < count; mi++) {
-        uint32_t m = w <= 8 ? mi : (uint32_t)scene_next(seed) & full;
+        uint32_t m = w <= 8 ? mi : (uint32_t)cylgen_splitmix64(seed) & full;
         if (w > 8 && mi < 16)
             m = 1u << mi; /* every single lane */
         for (int kind = 0; kind < NPOISON; kind++) {
@@ -173,9 +171,7 @@ int main(void)
         gbatch rays;
         scene_rays(4242u + (uint64_t)ci, &cyl[ci], &rays, 0, G_MAX);
         for (int ii = 0; ii < nisa; ii++) {
-            for (size_t fi = 0; fi < NFLAGS; fi++) {
-                if (quick && fi != 1 && fi != NFLAGS - 1)
-                    continue;
+            for (size_t fi = 0; fi < (quick ? FLAG_SETS_QUICK : FLAG_SETS_FEW); fi++) {
                 masks(isas[ii], &P, &rays, flag_sets[fi], 4, &seed, quick);
                 masks(isas[ii], &P, &rays, flag_sets[fi], 8, &seed, quick);
                 masks(isas[ii], &P, &rays, flag_sets[fi], 16, &seed, quick);

@@ -12,7 +12,6 @@
  * CYLRAY_TEST_QUICK=1 shrinks the counts about a hundredfold (sanitizers, emulators).
  * Every count is printed; any violation fails the test. */
 #include "cylray.h"
-#include "cylray_internal.h" /* the leaf's lane layout, to build leaves by hand */
 #include "cylref.h"
 #include "spawnref.h"
 
@@ -91,6 +90,14 @@ static uint32_t trace16(const cylray_kernels *k, int width, const cylray_prepare
         got |= res << base;
     }
     return got;
+}
+
+static long popcount(uint32_t m)
+{
+    long n = 0;
+    for (; m; m &= m - 1)
+        n++;
+    return n;
 }
 
 static int cmp(const void *a, const void *b)
@@ -280,7 +287,7 @@ static int run_self(void)
                 const int width = 4 << ((dir + k) % 3);
                 uint32_t got = trace16(isas[k], width, &P, (const float(*)[3])x0,
                                        (const float(*)[3])w, tmax, use, t, hp);
-                traced[k] += CYLRAY_POPCOUNT(use);
+                traced[k] += popcount(use);
                 for (int i = 0; i < 16; i++)
                     if ((got >> i & 1u) &&
                         sref_self_hit(cyl, x0[i], w[i], hit.part[i], hp[i], t[i])) {
@@ -472,17 +479,22 @@ static int run_batched(void)
         cylray_points sp = {sx, sy, sz, se}, dirs = {wx, wy, wz, NULL}, org = {ox, oy, oz, NULL};
         size_t ns = cylray_hit_points_stream(&P, &rs, &hs, &sp, 16);
         cylray_spawn_stream(&P, &sp, spart, &dirs, &org, 16);
+        /* a leaf of 6 with the cylinder in lane 5 behind five others */
         cylray_leaf16 leaf;
-        memset(&leaf, 0, sizeof leaf);
+        cylray_cylinder six[6];
         const size_t lane = 5;
-        for (int k = 0; k < 3; k++) {
-            leaf.geom_[CYLRAY_LF_CX + k][lane] = P.c[k];
-            leaf.geom_[CYLRAY_LF_VX + k][lane] = P.v[k];
+        for (int j = 0; j < 5; j++) {
+            six[j] = c[0].cyl;
+            six[j].center[0] += 1e5f;
+            six[j].radius = 1.0f + (float)j;
         }
-        leaf.geom_[CYLRAY_LF_R][lane] = P.radius;
-        leaf.geom_[CYLRAY_LF_H][lane] = P.half_height;
-        leaf.meta_[lane] = P.caps | CYLRAY_LM_USED | (isfinite(P.half_height) ? CYLRAY_LM_FINITE : 0u);
-        if (ns != (size_t)CYLRAY_POPCOUNT(m))
+        six[lane] = c[0].cyl;
+        if (cylray_leaf_prepare16(&leaf, six, NULL, 6) != CYLRAY_OK) {
+            diff++;
+            fail("batched", &c[0], "cylray_leaf_prepare16 refused the cylinder");
+            continue;
+        }
+        if (ns != (size_t)popcount(m))
             diff++;
         for (int i = 0; i < 16; i++) {
             if (!(m >> i & 1u))

@@ -1,6 +1,6 @@
 /* tcheck.h - counting test failures, and printing floats so that a failure replays.
  *
- * Every test program in api/ and robust/ reports through these: CHECK counts, prints
+ * The test programs of api/, robust/ and fuzz/ report through these: CHECK counts, prints
  * the first failures with file and line, and tc_report() turns the count into the exit
  * status meson reads. Floats are printed with %a (hex) so that a reported input can be
  * pasted back into a test bit for bit. */

@@ -9,11 +9,11 @@
 #include <stdint.h>
 
 #include "cylray.h"
+#include "gen.h"
 #include "guarded.h"
 
-/* A small PRNG (splitmix64): the same sequence on every platform. */
-uint64_t scene_next(uint64_t *state);
-/* Uniform in [lo, hi). */
+/* Uniform in [lo, hi), drawn with cylgen_splitmix64 (gen.h): the same sequence on every
+ * platform. */
 double scene_uniform(uint64_t *state, double lo, double hi);
 
 /* Fills rays [first, first + n) of b (first + n <= G_MAX) for cylinder c. */

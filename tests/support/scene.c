@@ -3,17 +3,11 @@
 
 #include <math.h>
 
-uint64_t scene_next(uint64_t *state)
-{
-    uint64_t z = (*state += 0x9e3779b97f4a7c15ull);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return z ^ (z >> 31);
-}
+#include "frame.h"
 
 double scene_uniform(uint64_t *state, double lo, double hi)
 {
-    return lo + (hi - lo) * (double)(scene_next(state) >> 11) * 0x1p-53;
+    return lo + (hi - lo) * (double)(cylgen_splitmix64(state) >> 11) * 0x1p-53;
 }
 
 static void unit_random(uint64_t *s, double v[3])
@@ -40,31 +34,14 @@ void scene_rays(uint64_t seed, const cylray_cylinder *c, gbatch *b, size_t first
 {
     uint64_t s = seed * 0x2545f4914f6cdd1dull + 1;
     double u[3], e1[3], e2[3];
-    double l = sqrt((double)c->axis[0] * c->axis[0] + (double)c->axis[1] * c->axis[1] +
-                    (double)c->axis[2] * c->axis[2]);
-    for (int k = 0; k < 3; k++)
-        u[k] = c->axis[k] / l;
-    /* e1: perpendicular to u, from the coordinate axis least aligned with it. */
-    int m = fabs(u[0]) < fabs(u[1]) ? (fabs(u[0]) < fabs(u[2]) ? 0 : 2)
-                                    : (fabs(u[1]) < fabs(u[2]) ? 1 : 2);
-    double a[3] = {0, 0, 0};
-    a[m] = 1;
-    e1[0] = a[1] * u[2] - a[2] * u[1];
-    e1[1] = a[2] * u[0] - a[0] * u[2];
-    e1[2] = a[0] * u[1] - a[1] * u[0];
-    l = sqrt(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]);
-    for (int k = 0; k < 3; k++)
-        e1[k] /= l;
-    e2[0] = u[1] * e1[2] - u[2] * e1[1];
-    e2[1] = u[2] * e1[0] - u[0] * e1[2];
-    e2[2] = u[0] * e1[1] - u[1] * e1[0];
+    axis_frame(c->axis, u, e1, e2);
 
     const double R = c->radius;
     const double H = isfinite(c->half_height) ? c->half_height : 4 * R;
     for (size_t i = first; i < first + n; i++) {
         double o[3], d[3], tgt[3], tmin = 0, tmax = INFINITY;
         const double ang = scene_uniform(&s, 0, 6.283185307179586);
-        switch (scene_next(&s) % 6) {
+        switch (cylgen_splitmix64(&s) % 6) {
         case 0: /* from outside at a point inside the solid: enters */
         case 1:
             at(c, u, e1, e2, scene_uniform(&s, -0.9, 0.9) * H, scene_uniform(&s, 0, 0.9) * R,
@@ -79,7 +56,7 @@ void scene_rays(uint64_t seed, const cylray_cylinder *c, gbatch *b, size_t first
             unit_random(&s, d);
             break;
         case 3: /* down onto a cap, a little tilted */
-            at(c, u, e1, e2, (scene_next(&s) & 1 ? 1 : -1) * scene_uniform(&s, 1.5, 4) * H,
+            at(c, u, e1, e2, (cylgen_splitmix64(&s) & 1 ? 1 : -1) * scene_uniform(&s, 1.5, 4) * H,
                scene_uniform(&s, 0, 0.95) * R, ang, o);
             at(c, u, e1, e2, 0, scene_uniform(&s, 0, 0.5) * R, -ang, tgt);
             for (int k = 0; k < 3; k++)

@@ -1,0 +1,512 @@
+/* leaf.c - the leaf scenario: single incoherent rays, each against a run of leaves
+ * (LEAF_RUN cylinders) of a scene of molecule bonds and pipes, with the cylinders in
+ * leaves of 4, 8 and 16 (the lanes run across cylinders) and, for the same work, a scalar
+ * loop over the cylinders and one-lane calls of the packet API.
+ *
+ * A BVH brings a ray to the leaves whose boxes it crosses: here the cylinders are sorted
+ * along a Morton curve, so that a run of LEAF_RUN consecutive ones is a compact cluster
+ * as a BVH's leaves are, and each ray is aimed at a random point of one run's box from a
+ * few box sizes away. The closest hit is kept through tmax across the run (occlusion
+ * stops at the first hit). The scene is sized so that its leaves sit in L1 (leaf-l1)
+ * or in L2 (leaf-l2). Rates are ray-cylinder tests per second: LEAF_RUN per ray.
+ *
+ * Built when the library has the leaf kernels (CYLBENCH_HAVE_LEAF, see meson.build). */
+#include "leaf.h"
+
+#include "clock.h"
+
+#include <stdio.h>
+#include <string.h>
+
+#ifdef CYLBENCH_HAVE_LEAF
+
+#include <math.h>
+#include <stdlib.h>
+
+#define LEAF_RUN 32   /* cylinders a ray meets: 8 leaves of 4, 4 of 8, 2 of 16 */
+#define LEAF_RAYS 256 /* rays per pass: 8 KB, beside the leaves in L1 */
+
+enum { LK_LEAF, LK_LOOP, LK_LANE }; /* leaf calls, scalar loop, one-lane packet calls */
+
+typedef struct leaf_scene {
+    int ncyl;
+    cylray_cylinder *cyl;
+    cylray_prepared *prep;
+    cylray_leaf4 *l4;
+    cylray_leaf8 *l8;
+    cylray_leaf16 *l16;
+    cylray_ray1 *ray; /* LEAF_RAYS; tmax here is never modified */
+    uint32_t *run;    /* per ray: the index of its run of LEAF_RUN cylinders */
+} leaf_scene;
+
+typedef struct leaf_cfg {
+    int kind, isa, m, op;
+    const cylray_kernels *k;
+    size_t row; /* its result */
+} leaf_cfg;
+
+static volatile uint64_t leaf_sink;
+
+static double urand(rng *g, double a, double b)
+{
+    return rng_range(g, a, b);
+}
+
+/* A cylinder around the segment p0 -> p1 (the endpoint form, built here in double). */
+static cylray_cylinder segment(const double p0[3], const double p1[3], double r, unsigned caps)
+{
+    cylray_cylinder c;
+    double len2 = 0;
+    for (int k = 0; k < 3; k++) {
+        c.center[k] = (float)(0.5 * (p0[k] + p1[k]));
+        c.axis[k] = (float)(p1[k] - p0[k]);
+        len2 += (p1[k] - p0[k]) * (p1[k] - p0[k]);
+    }
+    c.radius = (float)r;
+    c.half_height = (float)(0.5 * sqrt(len2));
+    c.flags = caps;
+    return c;
+}
+
+/* Bonds of a molecule: atoms on a jittered lattice of spacing 1.4, a bond between
+ * lattice neighbours kept with probability 1/2 (about three bonds an atom), radius
+ * 0.1-0.2 of the bond's length. Fills out[0..n) from the box corner `base`. */
+static int molecule(cylray_cylinder *out, int n, const double base[3], rng *g)
+{
+    const double a = 1.4;
+    const int side = (int)ceil(cbrt(n / 1.5)) + 1;
+    int k = 0;
+    for (int i = 0; i < side && k < n; i++)
+        for (int j = 0; j < side && k < n; j++)
+            for (int l = 0; l < side && k < n; l++) {
+                double p[3] = {base[0] + a * i, base[1] + a * j, base[2] + a * l};
+                for (int q = 0; q < 3; q++)
+                    p[q] += urand(g, -0.15, 0.15) * a;
+                for (int dir = 0; dir < 3 && k < n; dir++) {
+                    if (rng_unit(g) < 0.5)
+                        continue;
+                    double e[3] = {p[0], p[1], p[2]};
+                    e[dir] += a;
+                    for (int q = 0; q < 3; q++)
+                        e[q] += urand(g, -0.15, 0.15) * a;
+                    double len = sqrt((e[0] - p[0]) * (e[0] - p[0]) +
+                                      (e[1] - p[1]) * (e[1] - p[1]) + (e[2] - p[2]) * (e[2] - p[2]));
+                    out[k++] = segment(p, e, urand(g, 0.1, 0.2) * len, CYLRAY_CAPPED);
+                }
+            }
+    return k;
+}
+
+/* Pipes: runs of 4-9 straight segments turning by right angles, capped only at the two
+ * ends of a run (the inner joints are open), radius 0.15-0.3. */
+static int pipes(cylray_cylinder *out, int n, const double base[3], double size, rng *g)
+{
+    int k = 0;
+    while (k < n) {
+        double p[3] = {base[0] + urand(g, 0, size), base[1] + urand(g, 0, size),
+                       base[2] + urand(g, 0, size)};
+        const double r = urand(g, 0.15, 0.3);
+        const int segs = 4 + (int)(rng_unit(g) * 6);
+        int axis = (int)(rng_unit(g) * 3);
+        for (int s = 0; s < segs && k < n; s++) {
+            double e[3] = {p[0], p[1], p[2]};
+            double len = urand(g, 1.0, 3.0) * (rng_unit(g) < 0.5 ? -1 : 1);
+            e[axis] += len;
+            unsigned caps = (s == 0 ? CYLRAY_CAPPED_LO : 0u) |
+                            (s == segs - 1 || k == n - 1 ? CYLRAY_CAPPED_HI : 0u);
+            out[k++] = segment(p, e, r, caps);
+            memcpy(p, e, sizeof p);
+            axis = (axis + 1 + (int)(rng_unit(g) * 2)) % 3;
+        }
+    }
+    return k;
+}
+
+static uint32_t spread3(uint32_t x) /* 10 bits to every third of 30 */
+{
+    x &= 0x3ff;
+    x = (x | x << 16) & 0x030000ff;
+    x = (x | x << 8) & 0x0300f00f;
+    x = (x | x << 4) & 0x030c30c3;
+    x = (x | x << 2) & 0x09249249;
+    return x;
+}
+
+typedef struct keyed {
+    uint32_t key;
+    int idx;
+} keyed;
+
+static int by_key(const void *a, const void *b)
+{
+    const keyed *x = a, *y = b;
+    return x->key < y->key ? -1 : x->key > y->key;
+}
+
+/* Sorts the cylinders along a Morton curve of their centers. */
+static int morton_sort(cylray_cylinder *c, int n)
+{
+    float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (int i = 0; i < n; i++)
+        for (int k = 0; k < 3; k++) {
+            lo[k] = fminf(lo[k], c[i].center[k]);
+            hi[k] = fmaxf(hi[k], c[i].center[k]);
+        }
+    keyed *kv = malloc((size_t)n * sizeof *kv);
+    cylray_cylinder *tmp = malloc((size_t)n * sizeof *tmp);
+    if (!kv || !tmp) {
+        free(kv), free(tmp);
+        return -1;
+    }
+    for (int i = 0; i < n; i++) {
+        uint32_t q[3];
+        for (int k = 0; k < 3; k++)
+            q[k] = (uint32_t)(1023.0f * (c[i].center[k] - lo[k]) / fmaxf(hi[k] - lo[k], 1e-6f));
+        kv[i].key = spread3(q[0]) | spread3(q[1]) << 1 | spread3(q[2]) << 2;
+        kv[i].idx = i;
+    }
+    qsort(kv, (size_t)n, sizeof *kv, by_key);
+    for (int i = 0; i < n; i++)
+        tmp[i] = c[kv[i].idx];
+    memcpy(c, tmp, (size_t)n * sizeof *c);
+    free(kv), free(tmp);
+    return 0;
+}
+
+/* A cylinder the library refuses (the one-end cap flags in a build without them) is
+ * capped at both ends instead; 0 when every cylinder is accepted so. */
+static int prepare_all(leaf_scene *s)
+{
+    for (int i = 0; i < s->ncyl; i++)
+        if (cylray_prepare(&s->prep[i], &s->cyl[i]) != CYLRAY_OK) {
+            s->cyl[i].flags = CYLRAY_CAPPED;
+            if (cylray_prepare(&s->prep[i], &s->cyl[i]) != CYLRAY_OK)
+                return -1;
+        }
+    uint32_t ids[16];
+    for (int i = 0; i < s->ncyl; i += 16) {
+        for (int j = 0; j < 16; j++)
+            ids[j] = (uint32_t)(i + j);
+        for (int j = 0; j < 16; j += 4)
+            if (cylray_leaf_prepare4(&s->l4[(i + j) / 4], s->cyl + i + j, ids + j, 4))
+                return -1;
+        for (int j = 0; j < 16; j += 8)
+            if (cylray_leaf_prepare8(&s->l8[(i + j) / 8], s->cyl + i + j, ids + j, 8))
+                return -1;
+        if (cylray_leaf_prepare16(&s->l16[i / 16], s->cyl + i, ids, 16))
+            return -1;
+    }
+    return 0;
+}
+
+/* Rays: from 2-5 box diagonals away toward a random point of one run's box. */
+static void aim_rays(leaf_scene *s, rng *g)
+{
+    const int nrun = s->ncyl / LEAF_RUN;
+    for (int j = 0; j < LEAF_RAYS; j++) {
+        int run = (int)(rng_unit(g) * nrun);
+        double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+        for (int i = run * LEAF_RUN; i < (run + 1) * LEAF_RUN; i++) {
+            const cylray_cylinder *c = &s->cyl[i];
+            double al = sqrt((double)c->axis[0] * c->axis[0] + (double)c->axis[1] * c->axis[1] +
+                             (double)c->axis[2] * c->axis[2]);
+            for (int k = 0; k < 3; k++) {
+                double ext = fabs(c->axis[k] / al) * c->half_height + c->radius;
+                lo[k] = fmin(lo[k], c->center[k] - ext);
+                hi[k] = fmax(hi[k], c->center[k] + ext);
+            }
+        }
+        double diag = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                           (hi[2] - lo[2]) * (hi[2] - lo[2]));
+        double target[3], u[3], ul = 0;
+        for (int k = 0; k < 3; k++) {
+            target[k] = urand(g, lo[k], hi[k]);
+            u[k] = urand(g, -1, 1);
+            ul += u[k] * u[k];
+        }
+        ul = sqrt(ul) > 1e-3 ? sqrt(ul) : 1;
+        double dist = urand(g, 2, 5) * diag;
+        cylray_ray1 *r = &s->ray[j];
+        for (int k = 0; k < 3; k++) {
+            r->o[k] = (float)(target[k] + dist * u[k] / ul);
+            r->d[k] = (float)(-u[k] / ul);
+        }
+        r->tmin = 0;
+        r->tmax = INFINITY;
+        s->run[j] = (uint32_t)run;
+    }
+}
+
+static void scene_free(leaf_scene *s)
+{
+    free(s->cyl);
+    bench_free(s->prep);
+    bench_free(s->l4);
+    bench_free(s->l8);
+    bench_free(s->l16);
+    free(s->ray);
+    free(s->run);
+    memset(s, 0, sizeof *s);
+}
+
+static int scene_build(leaf_scene *s, int ncyl, uint64_t seed)
+{
+    memset(s, 0, sizeof *s);
+    s->ncyl = ncyl;
+    s->cyl = calloc((size_t)ncyl, sizeof *s->cyl);
+    s->prep = bench_alloc((size_t)ncyl * sizeof *s->prep);
+    s->l4 = bench_alloc((size_t)ncyl / 4 * sizeof *s->l4);
+    s->l8 = bench_alloc((size_t)ncyl / 8 * sizeof *s->l8);
+    s->l16 = bench_alloc((size_t)ncyl / 16 * sizeof *s->l16);
+    s->ray = calloc(LEAF_RAYS, sizeof *s->ray);
+    s->run = calloc(LEAF_RAYS, sizeof *s->run);
+    if (!s->cyl || !s->prep || !s->l4 || !s->l8 || !s->l16 || !s->ray || !s->run)
+        return -1;
+    rng g = {seed};
+    const int half = ncyl / 2;
+    const double size = 1.4 * cbrt(half / 1.5);
+    const double mol_base[3] = {0, 0, 0}, pipe_base[3] = {1.1 * size, 0, 0};
+    int k = molecule(s->cyl, half, mol_base, &g);
+    k += pipes(s->cyl + k, ncyl - k, pipe_base, size, &g);
+    if (k != ncyl || morton_sort(s->cyl, ncyl) || prepare_all(s))
+        return -1;
+    aim_rays(s, &g);
+    return 0;
+}
+
+/* ---- the timed passes: every ray against its run, closest hit (or any hit) ------ */
+
+/* The leaf calls of width M; the hit's id + 1 (or 1 for occluded) goes into the sum, so
+ * nothing can be dropped. */
+#define PASS_LEAF(M)                                                                     \
+    static uint64_t pass_leaf##M(const leaf_scene *s, const leaf_cfg *c, uint32_t *out)  \
+    {                                                                                    \
+        uint64_t acc = 0;                                                                \
+        const unsigned fl = bench_op_flags[c->op];                                       \
+        for (int j = 0; j < LEAF_RAYS; j++) {                                            \
+            cylray_ray1 r = s->ray[j];                                                   \
+            const cylray_leaf##M *L = s->l##M + s->run[j] * (LEAF_RUN / M);              \
+            uint32_t res = 0;                                                            \
+            if (c->op == OP_OCC) {                                                       \
+                for (int k = 0; k < LEAF_RUN / M && !res; k++)                           \
+                    res = (uint32_t)c->k->leaf_occluded##M(L + k, &r, fl);              \
+            } else {                                                                     \
+                cylray_hit1 h;                                                           \
+                for (int k = 0; k < LEAF_RUN / M; k++)                                   \
+                    if (c->k->leaf_intersect##M(L + k, &r, &h, fl))                      \
+                        res = h.id + 1;                                                  \
+            }                                                                            \
+            acc += res;                                                                  \
+            if (out)                                                                     \
+                out[j] = res;                                                            \
+        }                                                                                \
+        return acc;                                                                      \
+    }
+PASS_LEAF(4)
+PASS_LEAF(8)
+PASS_LEAF(16)
+
+/* The same work one cylinder at a time through a packet call with one active lane:
+ * the scalar path's 4-wide packet (the scalar loop) or the best path's 8-wide one. */
+#define PASS_LANE(N)                                                                     \
+    static uint64_t pass_lane##N(const leaf_scene *s, const leaf_cfg *c, uint32_t *out)  \
+    {                                                                                    \
+        uint64_t acc = 0;                                                                \
+        const unsigned fl = bench_op_flags[c->op];                                       \
+        cylray_ray##N pk;                                                                \
+        cylray_hit##N h;                                                                 \
+        memset(&pk, 0, sizeof pk);                                                       \
+        for (int j = 0; j < LEAF_RAYS; j++) {                                            \
+            const cylray_ray1 *r = &s->ray[j];                                           \
+            pk.ox[0] = r->o[0], pk.oy[0] = r->o[1], pk.oz[0] = r->o[2];                  \
+            pk.dx[0] = r->d[0], pk.dy[0] = r->d[1], pk.dz[0] = r->d[2];                  \
+            pk.tmin[0] = r->tmin, pk.tmax[0] = r->tmax;                                  \
+            const cylray_prepared *P = s->prep + s->run[j] * LEAF_RUN;                   \
+            uint32_t res = 0;                                                            \
+            if (c->op == OP_OCC) {                                                       \
+                for (int k = 0; k < LEAF_RUN && !res; k++)                               \
+                    res = c->k->occluded##N(P + k, &pk, 1u, fl);                         \
+            } else {                                                                     \
+                for (int k = 0; k < LEAF_RUN; k++)                                       \
+                    if (c->k->intersect##N(P + k, &pk, &h, 1u, fl))                      \
+                        res = s->run[j] * LEAF_RUN + (uint32_t)k + 1;                    \
+            }                                                                            \
+            acc += res;                                                                  \
+            if (out)                                                                     \
+                out[j] = res;                                                            \
+        }                                                                                \
+        return acc;                                                                      \
+    }
+PASS_LANE(4)
+PASS_LANE(8)
+
+static uint64_t run_pass(const leaf_scene *s, const leaf_cfg *c, uint32_t *out)
+{
+    if (c->kind == LK_LOOP)
+        return pass_lane4(s, c, out);
+    if (c->kind == LK_LANE)
+        return pass_lane8(s, c, out);
+    return c->m == 4 ? pass_leaf4(s, c, out) : c->m == 8 ? pass_leaf8(s, c, out)
+                                                          : pass_leaf16(s, c, out);
+}
+
+/* One round's sample of a configuration, as timing.c takes them: warm-up (which sizes
+ * the sample) on the first visit, an untimed pass, then K timed passes. */
+static void sample(const leaf_scene *s, const leaf_cfg *c, result *r, const options *opt,
+                   int first_of_isa)
+{
+    uint64_t acc = 0;
+    const double tests = (double)LEAF_RAYS * LEAF_RUN;
+    if (r->passes_per_sample == 0) {
+        double warm = first_of_isa ? opt->warm_ns : 2 * opt->sample_ns, pass_ns = 0;
+        int passes = 0;
+        double t0 = clk_ns();
+        do {
+            double a = clk_ns();
+            acc += run_pass(s, c, NULL);
+            pass_ns += clk_ns() - a;
+            passes++;
+        } while (passes < 2 || clk_ns() - t0 < warm);
+        pass_ns /= passes;
+        long k = (long)ceil(opt->sample_ns / (pass_ns > 1 ? pass_ns : 1));
+        r->passes_per_sample = k < 1 ? 1 : k;
+    }
+    for (int tries = 0; tries < 8 && r->samples < BENCH_MAXSAMP; tries++) {
+        acc += run_pass(s, c, NULL);
+        double p0 = clk_cpu_ns(), a0 = clk_ns();
+        uint64_t c0 = clk_ticks();
+        for (long k = 0; k < r->passes_per_sample; k++)
+            acc += run_pass(s, c, NULL);
+        uint64_t c1 = clk_ticks();
+        double a1 = clk_ns(), p1 = clk_cpu_ns();
+        double per = (double)r->passes_per_sample * tests;
+        int i = r->samples++;
+        r->s_wall[i] = (a1 - a0) / per;
+        r->s_cpu[i] = (p1 - p0) / per;
+        r->s_tick[i] = (double)(c1 - c0) / per;
+        r->s_clean[i] = p1 - p0 >= 0.95 * (a1 - a0);
+        if (r->s_clean[i])
+            break;
+    }
+    leaf_sink = leaf_sink + acc;
+}
+
+static const char *const size_name[2] = {"leaf-l1", "leaf-l2"};
+/* 256 cylinders: 16 KB of leaves (32 KB as cylray_prepared for the loops), in a 48 KB
+ * L1; 8192: 512 KB of leaves (1 MB prepared), past L1 and inside a 2 MB L2. */
+static const int size_cyl[2] = {256, 8192};
+
+int leaf_available(void)
+{
+    const cylray_kernels *k = cylray_kernels_for(CYLRAY_ISA_SCALAR);
+    return k && k->leaf_intersect4 != NULL;
+}
+
+void leaf_run(const options *opt, result_list *results, leaf_report *rep)
+{
+    memset(rep, 0, sizeof *rep);
+    const cylray_kernels *best = cylray_kernels_best();
+    if (!leaf_available() || !best)
+        return;
+    rep->have = 1;
+    rep->run = LEAF_RUN;
+    rep->bytes_per_cyl[0] = (int)(sizeof(cylray_leaf4) / 4);
+    rep->bytes_per_cyl[1] = (int)(sizeof(cylray_leaf8) / 8);
+    rep->bytes_per_cyl[2] = (int)(sizeof(cylray_leaf16) / 16);
+    snprintf(rep->best, sizeof rep->best, "%s", best->name);
+    for (int sz = 0; sz < 2; sz++) {
+        if (opt->scenarios && !workloads_selected_name(opt->scenarios, size_name[sz], "leaf"))
+            continue;
+        leaf_scene s;
+        if (scene_build(&s, size_cyl[sz], 0x1eaf0000u + (uint64_t)sz)) {
+            fprintf(stderr, "cylbench: %s: cannot build the scene; skipped\n", size_name[sz]);
+            scene_free(&s);
+            continue;
+        }
+        rep->ncyl[sz] = s.ncyl;
+        leaf_cfg cfg[CYLRAY_ISA_COUNT * 9 + 6];
+        int nc = 0;
+        const int ops[3] = {OP_T, OP_NORMAL, OP_OCC};
+        for (int o = 0; o < 3; o++) {
+            for (int isa = 0; isa < CYLRAY_ISA_COUNT; isa++) {
+                const cylray_kernels *k = cylray_kernels_for((cylray_isa)isa);
+                if (!k || !k->leaf_intersect4 || !(opt->isa_mask >> isa & 1u))
+                    continue;
+                for (int m = 4; m <= 16; m *= 2)
+                    cfg[nc++] = (leaf_cfg){LK_LEAF, isa, m, ops[o], k, 0};
+            }
+            cfg[nc++] = (leaf_cfg){LK_LOOP, CYLRAY_ISA_SCALAR, 1, ops[o],
+                                   cylray_kernels_for(CYLRAY_ISA_SCALAR), 0};
+            cfg[nc++] = (leaf_cfg){LK_LANE, best->isa, 1, ops[o], best, 0};
+        }
+        for (int i = 0; i < nc; i++) {
+            result *r = results_push(results);
+            if (!r) {
+                nc = i;
+                break;
+            }
+            leaf_cfg *c = &cfg[i];
+            c->row = results->n - 1;
+            snprintf(r->scenario, sizeof r->scenario, "%s", size_name[sz]);
+            snprintf(r->group, sizeof r->group, "leaf");
+            if (c->kind == LK_LEAF)
+                snprintf(r->isa, sizeof r->isa, "%s", c->k->name);
+            else if (c->kind == LK_LOOP)
+                snprintf(r->isa, sizeof r->isa, "scalar-loop");
+            else
+                snprintf(r->isa, sizeof r->isa, "1-lane:%s", c->k->name);
+            snprintf(r->op, sizeof r->op, "%s", bench_op_name[c->op]);
+            r->isa_id = c->kind == LK_LEAF ? c->isa : -1;
+            r->width_id = c->m == 4 ? BW_4 : c->m == 8 ? BW_8 : c->m == 16 ? BW_16 : BW_STREAM;
+            r->op_id = c->op;
+            r->rays_timed = LEAF_RAYS;
+            r->ncyl = LEAF_RUN;
+        }
+        /* rounds over all configurations, as the other scenarios are sampled */
+        int warmed[CYLRAY_ISA_COUNT] = {0};
+        for (int round = 0; round < opt->reps; round++)
+            for (int i = 0; i < nc; i++) {
+                int first = !warmed[cfg[i].isa];
+                warmed[cfg[i].isa] = 1;
+                sample(&s, &cfg[i], &results->r[cfg[i].row], opt, first);
+            }
+        /* The answers against the scalar loop's (same op class): hit or not and, for
+         * intersections, the cylinder; a near tie may differ legitimately. */
+        uint32_t *ref = malloc(LEAF_RAYS * sizeof *ref), *got = malloc(LEAF_RAYS * sizeof *got);
+        static const workload none; /* bench_summarize reads only `big` */
+        for (int i = 0; i < nc; i++) {
+            result *r = &results->r[cfg[i].row];
+            bench_summarize(&none, r, opt->reps);
+            if (!ref || !got)
+                continue;
+            leaf_cfg loop = {LK_LOOP, CYLRAY_ISA_SCALAR, 1, cfg[i].op,
+                             cylray_kernels_for(CYLRAY_ISA_SCALAR), 0};
+            run_pass(&s, &loop, ref);
+            run_pass(&s, &cfg[i], got);
+            size_t hits = 0, diff = 0;
+            for (int j = 0; j < LEAF_RAYS; j++) {
+                hits += got[j] != 0;
+                diff += cfg[i].op == OP_OCC ? (got[j] != 0) != (ref[j] != 0) : got[j] != ref[j];
+            }
+            r->hit_frac = (double)hits / LEAF_RAYS;
+            rep->diff[sz] += diff;
+        }
+        free(ref), free(got);
+        scene_free(&s);
+    }
+}
+
+#else /* a library without the leaf kernels */
+
+int leaf_available(void)
+{
+    return 0;
+}
+
+void leaf_run(const options *opt, result_list *results, leaf_report *rep)
+{
+    (void)opt, (void)results;
+    memset(rep, 0, sizeof *rep);
+}
+
+#endif
