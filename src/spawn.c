@@ -7,15 +7,16 @@
  * THE HIT POINT. Write u = 2^-53 (double) and q = (o + t d) - c, rounded; the rounding
  * of q only changes which point is projected, never how far the result is from the
  * surface, so the analysis starts at q.
- *   Side. s = (q.v)/(v.v) is off by at most 7u|q|/|v| (a 3-term dot product, the
- *   rounded v.v, the division), so r = q - s v keeps an axial part |alpha| <= 11.1u|q|
- *   (4.1u|q| more from the subtraction and the product). L = |r| and g = R/L carry
- *   relative errors 2.6u and 3.7u. P' = c + (s v + g r), rounded three times. The
- *   distance of P' from the axis is |g perp(r) + perp(e)| with |g perp(r)| = g sqrt(L^2 -
- *   alpha^2), hence within 3.7u R + R (alpha/L)^2 + 2u(|s v| + R) + u|P'| of R. Clamping
- *   s to [-H, H]/|v| (a finite side) adds at most 4.6u H to the axial position.
+ *   Side. s = (q.v)(1/(v.v)) is off by at most 8u|q|/|v| (a 3-term dot product, the
+ *   rounded v.v, its reciprocal, the product), so r = q - s v keeps an axial part
+ *   |alpha| <= 12.1u|q| (4.1u|q| more from the subtraction and the product). L = |r|
+ *   and g = R (1/L) carry relative errors 2.6u and 4.7u. P' = c + (s v + g r), rounded
+ *   three times. The distance of P' from the axis is |g perp(r) + perp(e)| with
+ *   |g perp(r)| = g sqrt(L^2 - alpha^2), hence within 4.7u R + R (alpha/L)^2 +
+ *   2u(|s v| + R) + u|P'| of R. Clamping s to [-H, H]/|v| (a finite side) adds at most
+ *   4.6u H to the axial position.
  *   Cap. P' = c + (+-H/|v|) v + r, with r scaled down to length R when longer: the axial
- *   position is off by at most 4.6u H + 11.1u|q| + 2u(H + R) + u|P'|, the radius by 3.7u R.
+ *   position is off by at most 4.6u H + 12.1u|q| + 2u(H + R) + u|P'|, the radius by 4.7u R.
  *   Every term is below env = 2^-47 (R + H + |q| + |P'|)(1 + R/L) + R (2^-49 |q|/L)^2
  *   (2^-47 = 64u; the factor R/L from g alpha; H counts only when finite).
  * Then P = fl(P'), and e = P - P' is exact in double (Sterbenz). Against the surface
@@ -67,6 +68,7 @@
 typedef struct geo {
     double c[3], v[3];
     double vv, sv;   /* v.v (exact but for one rounding) and |v| */
+    double inv_vv, inv_sv; /* their reciprocals: multiplications below, not divisions */
     double R, H;     /* H = INFINITY: infinite */
     unsigned caps;   /* CYLRAY_CAPPED_LO | CYLRAY_CAPPED_HI */
 } geo;
@@ -75,6 +77,8 @@ static void geo_finish(geo *g)
 {
     g->vv = g->v[0] * g->v[0] + g->v[1] * g->v[1] + g->v[2] * g->v[2];
     g->sv = sqrt(g->vv);
+    g->inv_vv = 1.0 / g->vv;
+    g->inv_sv = 1.0 / g->sv;
     if (!isfinite(g->H))
         g->caps = 0;
 }
@@ -180,7 +184,7 @@ static void hit_point_geo(const geo *g, const float o[3], const float d[3], floa
         q[k] = ((double)o[k] + (double)t * d[k]) - g->c[k]; /* t d_k is exact */
     const int P = part & CYLRAY_PART_MASK;
     const double Hf = isfinite(g->H) ? g->H : 0;
-    double s = dot3(q, g->v) / g->vv;
+    double s = dot3(q, g->v) * g->inv_vv;
     for (int k = 0; k < 3; k++)
         r[k] = q[k] - s * g->v[k];
     double L = norm3(r), qn = norm3(q);
@@ -188,18 +192,19 @@ static void hit_point_geo(const geo *g, const float o[3], const float d[3], floa
         any_perp(g, r);
         qn = L = norm3(r);
     }
+    const double inv_L = 1.0 / L;
     double env, rad, gain;
     if (P == CYLRAY_CAP_LO || P == CYLRAY_CAP_HI) {
-        s = (P == CYLRAY_CAP_HI ? g->H : -g->H) / g->sv;
-        gain = L > g->R ? g->R / L : 1.0; /* into the disc */
+        s = (P == CYLRAY_CAP_HI ? g->H : -g->H) * g->inv_sv;
+        gain = L > g->R ? g->R * inv_L : 1.0; /* into the disc */
         rad = L * gain;
     } else {
         if (isfinite(g->H))
             {
-                const double hs = g->H / g->sv;
+                const double hs = g->H * g->inv_sv;
                 s = s < -hs ? -hs : s > hs ? hs : s;
             }
-        gain = g->R / L;
+        gain = g->R * inv_L;
         rad = g->R;
     }
     for (int k = 0; k < 3; k++) {
@@ -207,16 +212,16 @@ static void hit_point_geo(const geo *g, const float o[3], const float d[3], floa
         Pd[k] = g->c[k] + m[k];
         p[k] = (float)Pd[k];
     }
-    const double Pn = norm3(Pd), side_gain = P == CYLRAY_SIDE ? g->R / L : 0.0;
+    const double Pn = norm3(Pd), side_gain = P == CYLRAY_SIDE ? gain : 0.0;
     env = 0x1p-47 * (g->R + Hf + qn + Pn) * (1 + side_gain) +
-          (P == CYLRAY_SIDE ? g->R * (0x1p-49 * qn / L) * (0x1p-49 * qn / L) : 0.0);
+          (P == CYLRAY_SIDE ? g->R * (0x1p-49 * qn * inv_L) * (0x1p-49 * qn * inv_L) : 0.0);
 
     /* e = P - P' exactly; n, the normal at P' */
     double e[3], n[3];
     for (int k = 0; k < 3; k++) {
         e[k] = (double)p[k] - Pd[k];
-        n[k] = P == CYLRAY_SIDE ? r[k] / L
-               : (P == CYLRAY_CAP_HI ? g->v[k] : -g->v[k]) / g->sv;
+        n[k] = P == CYLRAY_SIDE ? r[k] * inv_L
+               : (P == CYLRAY_CAP_HI ? g->v[k] : -g->v[k]) * g->inv_sv;
     }
     const double en = fabs(dot3(e, n)), ee = dot3(e, e), el = sqrt(ee);
     const double z = fabs(s) * g->sv;
@@ -249,23 +254,24 @@ static void spawn_geo(const geo *g, const float p[3], float err, int32_t part,
     double q[3], r[3];
     for (int k = 0; k < 3; k++)
         q[k] = (double)p[k] - g->c[k];
-    const double s = dot3(q, g->v) / g->vv, z = s * g->sv;
+    const double s = dot3(q, g->v) * g->inv_vv, z = s * g->sv;
     for (int k = 0; k < 3; k++)
         r[k] = q[k] - s * g->v[k];
     double rho = norm3(r);
     if (!(rho > 0)) {
         any_perp(g, r);
-        double l = norm3(r);
+        const double il = 1.0 / norm3(r);
         for (int k = 0; k < 3; k++)
-            r[k] /= l;
+            r[k] *= il;
         rho = 0;
     } else {
+        const double ir = 1.0 / rho;
         for (int k = 0; k < 3; k++)
-            r[k] /= rho;
+            r[k] *= ir;
     }
     const double e_d = 0x1p-47 * (fabs(q[0]) + fabs(q[1]) + fabs(q[2]) + g->R + Hf);
     const double vmax = max3(fabs(g->v[0]), fabs(g->v[1]), fabs(g->v[2]));
-    const double tilt = 2 * 1.7320508075688774 * ulp_f(vmax) / g->sv;
+    const double tilt = 2 * 1.7320508075688774 * ulp_f(vmax) * g->inv_sv;
     const double qmax = max3(fabs(q[0]), fabs(q[1]), fabs(q[2]));
     const double pmax = max3(fabs((double)p[0]), fabs((double)p[1]), fabs((double)p[2]));
 
@@ -283,7 +289,7 @@ static void spawn_geo(const geo *g, const float p[3], float err, int32_t part,
         } else {
             const double sg = i == 1 ? -1.0 : 1.0; /* CAP_LO, CAP_HI */
             for (int k = 0; k < 3; k++)
-                x->n[k] = sg * g->v[k] / g->sv;
+                x->n[k] = sg * g->v[k] * g->inv_sv;
             x->sigma = sg * z - g->H;
             here = P == (i == 1 ? CYLRAY_CAP_LO : CYLRAY_CAP_HI);
             if (!here && !(g->caps & (i == 1 ? CYLRAY_CAPPED_LO : CYLRAY_CAPPED_HI)))
@@ -316,7 +322,8 @@ static void spawn_geo(const geo *g, const float p[3], float err, int32_t part,
         surf *x = &S[i];
         const int side = x->side;
         const double nl1 = fabs(x->n[0]) + fabs(x->n[1]) + fabs(x->n[2]);
-        double m = CYLRAY_SPAWN_SAFETY * (2 * ulp_f(dmax(wmax, xmax)) * nl1 + (side ? zmax : rmax) * tilt +
+        double m = CYLRAY_SPAWN_SAFETY * (2 * ulp_f(dmax(wmax, xmax)) * nl1 +
+                                          (side ? zmax : rmax) * tilt +
                                           2 * ulp_f(side ? g->R : g->H));
         double a = dmax(0.0, -x->sign * x->sigma) + e_d + m;
         if (ns > 1)

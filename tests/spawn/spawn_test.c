@@ -500,17 +500,20 @@ static int run_batched(void)
             if (!(m >> i & 1u))
                 continue;
             lanes++;
-            const float a[3] = {pts.x[i], pts.y[i], pts.z[i]}, b[3] = {out.ox[i], out.oy[i], out.oz[i]};
+            const float a[3] = {pts.x[i], pts.y[i], pts.z[i]};
+            const float b[3] = {out.ox[i], out.oy[i], out.oz[i]};
             const float s1[3] = {sx[i], sy[i], sz[i]}, s2[3] = {ox[i], oy[i], oz[i]};
             int bad = !same3(a, p[i]) || pts.err[i] != err[i] || !same3(b, x[i]) ||
                       out.tmin[i] != 0.0f || !same3(s1, p[i]) || se[i] != err[i] ||
                       !same3(s2, x[i]);
             if (i < 8) {
-                const float a8[3] = {p8.x[i], p8.y[i], p8.z[i]}, b8[3] = {r8.ox[i], r8.oy[i], r8.oz[i]};
+                const float a8[3] = {p8.x[i], p8.y[i], p8.z[i]};
+                const float b8[3] = {r8.ox[i], r8.oy[i], r8.oz[i]};
                 bad |= !same3(a8, p[i]) || p8.err[i] != err[i] || !same3(b8, x[i]);
             }
             if (i < 4) {
-                const float a4[3] = {p4.x[i], p4.y[i], p4.z[i]}, b4[3] = {r4.ox[i], r4.oy[i], r4.oz[i]};
+                const float a4[3] = {p4.x[i], p4.y[i], p4.z[i]};
+                const float b4[3] = {r4.ox[i], r4.oy[i], r4.oz[i]};
                 bad |= !same3(a4, p[i]) || p4.err[i] != err[i] || !same3(b4, x[i]);
             }
             cylray_ray1 r1 = {{c[i].o[0], c[i].o[1], c[i].o[2]}, {c[i].d[0], c[i].d[1], c[i].d[2]},
