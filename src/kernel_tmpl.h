@@ -150,12 +150,11 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
     /* Inactive lanes may hold anything, and subnormals there would cost microcode
      * assists in every operation (20x on some cores): they take a ray that the packet
      * rejection drops, a line 2^40 from the origin. */
+#define KSANE_(f, dead) f = vsel(mfrom_bits(bits), f, dead)
     const int partial = !leaf && bits != VFULL;
-    const vm live = mfrom_bits(bits);
-    const vf far = vset1(0x1p40f);
     if (partial) {
-        ox = vsel(live, ox, far), oy = vsel(live, oy, zero), oz = vsel(live, oz, zero);
-        dx = vsel(live, dx, zero), dy = vsel(live, dy, one), dz = vsel(live, dz, zero);
+        KSANE_(ox, vset1(0x1p40f)), KSANE_(oy, zero), KSANE_(oz, zero);
+        KSANE_(dx, zero), KSANE_(dy, one), KSANE_(dz, zero);
     }
 
     /* An Inf or NaN anywhere but in d turns C or D into NaN below, which takes the
@@ -248,7 +247,7 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
     CYLRAY_REREAD();
     ox = KR_(ox), oy = KR_(oy), oz = KR_(oz);
     if (partial)
-        ox = vsel(live, ox, far), oy = vsel(live, oy, zero), oz = vsel(live, oz, zero);
+        KSANE_(ox, vset1(0x1p40f)), KSANE_(oy, zero), KSANE_(oz, zero);
     cx = KCEN_(0, CX), cy = KCEN_(1, CY), cz = KCEN_(2, CZ);
 
     vf bx = vsub(whx, ox), by = vsub(why, oy), bz = vsub(whz, oz);
@@ -429,8 +428,7 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
      * bounds are clamped to finite values, so that no infinite t ever hits. */
     vf tmin = vmax(vset1(-FLT_MAX), KR_(tmin)); /* a NaN bound stays */
     vf tmax = vmin(vset1(FLT_MAX), KR_(tmax));
-    if (partial)
-        tmin = vsel(live, tmin, zero), tmax = vsel(live, tmax, zero);
+    /* (min, max and comparisons take subnormals without an assist) */
     vf T_in = vadd(s, t_in), T_out = vadd(s, t_out);
     /* With a scaled direction the range test is made where no scaling rounds: a
      * shrunk d (m < 1) moves the bounds to t' (exact, or overflowing as it should), a
@@ -452,7 +450,7 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
     vf T = vsel(front, T_in, T_out);
     vm hit = mand(cand, mand(vge(T, tmin), vle(T, tmax)));
     if (bits != VFULL) /* a whole packet is the common case, and needs no mask */
-        hit = mand(hit, live);
+        hit = mand(hit, mfrom_bits(bits));
     vm back = mandn(hit, front);
     front = mand(hit, front);
     if (occ || !many(hit))
@@ -554,6 +552,7 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
 #undef KL_
 #undef KC_
 #undef KCEN_
+#undef KSANE_
 }
 
 static const cylray_hits KFN(no_hits) = {NULL, NULL, NULL, NULL, NULL}; /* occlusion */
