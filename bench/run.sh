@@ -4,9 +4,14 @@
 #
 #   bench/run.sh [harness options, e.g. --quick or --isa=avx2,avx512]
 #
+# Then, where Embree 3 is present (or apt can install libembree-dev), the Embree
+# comparison (bench/embree): cylray as Embree user geometry against Embree's curves.
+#
 # Environment: CYLBENCH_BUILD (build directory, default build-bench/ at the top of the
 # repository; not build/, which belongs to the main debug build), CYLBENCH_OUT (output
-# directory, default bench/out), CC (compiler, read by meson at the first setup).
+# directory, default bench/out), CC (compiler, read by meson at the first setup),
+# CYLBENCH_EMBREE (the comparison's options, default --quick; e.g. --scene=molecule for
+# one scene at full size; "off" skips it).
 set -euo pipefail
 
 start=$SECONDS
@@ -35,6 +40,27 @@ if ((${#missing[@]})); then
         --no-install-recommends "${missing[@]}" >/dev/null
 fi
 
+# Embree 3 for the comparison: the distribution's package, only when missing, only where
+# apt and root (or sudo) are at hand. Anything else skips the comparison, not the run.
+embree_args=${CYLBENCH_EMBREE:---quick}
+embree_skip=""
+if [ "$embree_args" = off ]; then
+    embree_skip="CYLBENCH_EMBREE=off"
+elif [ ! -e /usr/include/embree3/rtcore.h ]; then
+    sudo=()
+    [ "$(id -u)" -eq 0 ] || sudo=(sudo -n)
+    if command -v apt-get >/dev/null 2>&1 &&
+        { [ "$(id -u)" -eq 0 ] || sudo -n true 2>/dev/null; }; then
+        echo "run.sh: installing libembree-dev for the Embree comparison" >&2
+        "${sudo[@]}" apt-get update -qq || true
+        "${sudo[@]}" env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq \
+            --no-install-recommends libembree-dev >/dev/null ||
+            embree_skip="apt-get could not install libembree-dev"
+    else
+        embree_skip="Embree 3 is not installed and apt-get (as root or with sudo) is not available"
+    fi
+fi
+
 # A release build (-O3, NDEBUG) without the test suite: the harness compiles the exact
 # reference from tests/ref itself, so a test area under construction cannot stop it.
 if [ -f "$build/build.ninja" ]; then
@@ -43,14 +69,38 @@ else
     meson setup "$build" "$root" -Dbuildtype=release -Dtests=false -Dbench=true >/dev/null
 fi
 ninja -C "$build" bench/cylbench >/dev/null
+if [ -z "$embree_skip" ]; then
+    if ninja -C "$build" -t targets all | grep -q '^bench/embree/cylembree:'; then
+        ninja -C "$build" bench/embree/cylembree >/dev/null
+    else
+        embree_skip="meson did not find Embree 3 (see the setup log in $build/meson-logs)"
+    fi
+fi
 built=$SECONDS
 
 mkdir -p "$out"
 "$build/bench/cylbench" --out="$out" "$@"
 
+if [ -z "$embree_skip" ]; then
+    embree_start=$SECONDS
+    echo
+    echo "run.sh: the Embree comparison (cylembree $embree_args)"
+    # shellcheck disable=SC2086 # the options are words on purpose
+    "$build/bench/embree/cylembree" --out="$out" $embree_args
+    echo "run.sh: Embree comparison $((SECONDS - embree_start)) s"
+else
+    echo
+    echo "run.sh: skipping the Embree comparison: $embree_skip"
+fi
+
 echo
 echo "run.sh: build $((built - start)) s, harness $((SECONDS - built)) s, total $((SECONDS - start)) s"
 echo "run.sh: outputs in $out:"
-for f in results.csv results.json table.txt time_vs_error.svg speedup.svg scene.png; do
+for f in results.csv results.json table.txt time_vs_error.svg speedup.svg scene.png \
+         embree.txt embree.csv; do
     [ -e "$out/$f" ] && echo "  $out/$f"
 done
+for f in "$out"/embree_*.png; do
+    [ -e "$f" ] && echo "  $f"
+done
+exit 0

@@ -1,0 +1,317 @@
+/* ebscene.c - the four scenes of the Embree comparison, built from a seeded generator.
+ *
+ * Every vertex is rounded to a grid fine enough for the scene and coarse enough that
+ * the midpoint and the difference of two vertices are exact in float; where the
+ * directions are free (rods, lattice, pipes) they are integer vectors of integer
+ * length, so the half height is exact too. Then Embree's curve (made from the
+ * vertices) and cylray's cylinder (centre, axis, half height) describe one solid, and
+ * one exact reference judges both. */
+#include "ebscene.h"
+
+#include "rays.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char *const names[EB_NSCENES] = {"molecule", "pipes", "far-rods", "lattice"};
+
+const char *eb_scene_name(int which)
+{
+    return which >= 0 && which < EB_NSCENES ? names[which] : "?";
+}
+
+int eb_scene_find(const char *name)
+{
+    for (int k = 0; k < EB_NSCENES; k++)
+        if (!strcmp(name, names[k]))
+            return k;
+    return -1;
+}
+
+/* A growing scene under construction. */
+typedef struct builder {
+    eb_scene *s;
+    size_t cap_v, cap_f, cap_c;
+    double quantum;
+    int failed;
+} builder;
+
+static int grow(void **p, size_t *cap, size_t need, size_t elem)
+{
+    if (need <= *cap)
+        return 0;
+    size_t n = *cap ? *cap : 1024;
+    while (n < need)
+        n *= 2;
+    void *q = realloc(*p, n * elem);
+    if (!q)
+        return -1;
+    *p = q;
+    *cap = n;
+    return 0;
+}
+
+static uint32_t add_vertex(builder *b, const double p[3])
+{
+    eb_scene *s = b->s;
+    if (grow((void **)&s->vert, &b->cap_v, s->nv + 1, sizeof s->vert[0])) {
+        b->failed = 1;
+        return 0;
+    }
+    for (int k = 0; k < 3; k++)
+        s->vert[s->nv][k] = (float)(nearbyint(p[k] / b->quantum) * b->quantum);
+    return (uint32_t)s->nv++;
+}
+
+static void add_segment(builder *b, uint32_t v0, unsigned caps)
+{
+    eb_scene *s = b->s;
+    if (grow((void **)&s->first, &b->cap_f, s->ns + 1, sizeof s->first[0]) ||
+        grow((void **)&s->caps, &b->cap_c, s->ns + 1, sizeof s->caps[0])) {
+        b->failed = 1;
+        return;
+    }
+    s->first[s->ns] = v0;
+    s->caps[s->ns] = caps;
+    s->ns++;
+}
+
+/* A polyline through pts[0..n): closed at its two ends only. */
+static void add_polyline(builder *b, const double (*pts)[3], int n)
+{
+    uint32_t v = 0;
+    for (int i = 0; i < n; i++) {
+        uint32_t w = add_vertex(b, pts[i]);
+        if (i == 0)
+            v = w;
+    }
+    for (int i = 0; i + 1 < n; i++)
+        add_segment(b, v + (uint32_t)i,
+                    (i == 0 ? CYLRAY_CAPPED_LO : 0) | (i == n - 2 ? CYLRAY_CAPPED_HI : 0));
+}
+
+static void set3(float o[3], double x, double y, double z)
+{
+    o[0] = (float)x, o[1] = (float)y, o[2] = (float)z;
+}
+
+/* Ball-and-stick without the balls: atoms on a jittered cubic lattice, a bond to each
+ * of the three forward neighbours with probability 0.92 (about 105,000 bonds). */
+static void molecule(builder *b, rng *g)
+{
+    enum { N = 34 };
+    eb_scene *s = b->s;
+    b->quantum = 0x1p-12;
+    s->radius = 0.1f;
+    static double atom[N][N][N][3];
+    for (int i = 0; i < N; i++)
+        for (int j = 0; j < N; j++)
+            for (int k = 0; k < N; k++) {
+                double p[3] = {i, j, k};
+                for (int c = 0; c < 3; c++)
+                    atom[i][j][k][c] = p[c] + rng_range(g, -0.15, 0.15);
+            }
+    for (int i = 0; i < N; i++)
+        for (int j = 0; j < N; j++)
+            for (int k = 0; k < N; k++)
+                for (int a = 0; a < 3; a++) {
+                    int n[3] = {i, j, k};
+                    n[a]++;
+                    if (n[a] >= N || rng_unit(g) > 0.92)
+                        continue;
+                    double pts[2][3];
+                    memcpy(pts[0], atom[i][j][k], sizeof pts[0]);
+                    memcpy(pts[1], atom[n[0]][n[1]][n[2]], sizeof pts[1]);
+                    add_polyline(b, (const double(*)[3])pts, 2);
+                }
+    set3(s->eye, -14, 38.5, -21.5);
+    set3(s->look, 16.5, 16.5, 16.5);
+    set3(s->light, -30, 80, 10);
+    s->fov_deg = 40;
+    s->scale = N;
+}
+
+/* A plant's pipe runs: Manhattan polylines on an integer grid in a 60^3 box, 3-11
+ * straight pieces of length 2-7 each, never turning back on themselves (two runs may
+ * share a stretch of grid line: coincident surfaces, where either answer is right). */
+static void pipes(builder *b, rng *g)
+{
+    eb_scene *s = b->s;
+    b->quantum = 1;
+    s->radius = 0.3f;
+    for (int p = 0; p < 500; p++) {
+        double pts[12][3];
+        for (int c = 0; c < 3; c++)
+            pts[0][c] = floor(rng_range(g, 0, 60));
+        int n = 4 + (int)(rng_unit(g) * 8), last = -1;
+        for (int i = 1; i < n; i++) {
+            int a;
+            do
+                a = (int)(rng_unit(g) * 3);
+            while (a == last);
+            last = a;
+            memcpy(pts[i], pts[i - 1], sizeof pts[i]);
+            double step = (rng_unit(g) < 0.5 ? -1 : 1) * floor(rng_range(g, 2, 8));
+            if (pts[i][a] + step < 0 || pts[i][a] + step > 60)
+                step = -step; /* stay in the plant's box, away from the camera */
+            pts[i][a] += step;
+        }
+        add_polyline(b, (const double(*)[3])pts, n);
+    }
+    set3(s->eye, -35, 75, -45);
+    set3(s->look, 30, 28, 30);
+    set3(s->light, 10, 120, -20);
+    s->fov_deg = 45;
+    s->scale = 60;
+}
+
+/* Integer vectors of integer length (a^2 + b^2 + c^2 = m^2): the coordinate axes, and
+ * tilts of 1.1 to 6.4 degrees off them ((m^2 - 1, 2m, m^2 + 1) for m = 100, 60, 30, 18).
+ * Rods near an axis keep their boxes slim, so the BVH stays useful for rods this long. */
+static const int quads[][4] = {{0, 0, 1, 1},           {0, 0, 1, 1},
+                               {0, 200, 9999, 10001},  {0, 120, 3599, 3601},
+                               {0, 60, 899, 901},      {0, 36, 323, 325}};
+
+/* A direction from the table, its coordinates permuted and signed; *len = m. */
+static void int_direction(rng *g, double out[3], double *len)
+{
+    const int *q = quads[(int)(rng_unit(g) * (sizeof quads / sizeof quads[0]))];
+    int perm = (int)(rng_unit(g) * 6);
+    static const int P[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+    for (int c = 0; c < 3; c++)
+        out[c] = q[P[perm][c]] * (rng_unit(g) < 0.5 ? -1 : 1);
+    *len = q[3];
+}
+
+/* Long thin rods (length 1e4 radii) around a point 48,000 units from the world origin,
+ * the camera among them: every coordinate is large, every radius small. */
+static void far_rods(builder *b, rng *g)
+{
+    eb_scene *s = b->s;
+    b->quantum = 0x1p-6;
+    s->radius = 0.25f;
+    const double C[3] = {41000, 23000, 11000};
+    for (int r = 0; r < 1000; r++) {
+        double c[3], u[3], m;
+        for (int k = 0; k < 3; k++)
+            c[k] = nearbyint((C[k] + rng_range(g, -150, 150)) * 64) / 64;
+        /* half length about 1250 = 5e3 radii, exact: a multiple of 1/16 per unit of m */
+        int_direction(g, u, &m);
+        double sc = nearbyint(1250 / m * 16) / 16;
+        double pts[2][3];
+        for (int k = 0; k < 3; k++)
+            pts[0][k] = c[k] - sc * u[k], pts[1][k] = c[k] + sc * u[k];
+        add_polyline(b, (const double(*)[3])pts, 2);
+    }
+    set3(s->eye, C[0] - 260, C[1] + 40, C[2] - 190);
+    set3(s->look, C[0], C[1], C[2]);
+    set3(s->light, C[0] - 300, C[1] + 3000, C[2] + 200);
+    s->fov_deg = 30;
+    s->scale = 300;
+}
+
+/* A jungle gym: rods along x, y and z through every point of a 21^3 grid of spacing 2,
+ * each line one polyline, seen from a point on the axis of the middle z rod and in the
+ * plane of a layer of x rods: rays run down that rod's axis and edge-on along the
+ * layer. */
+static void lattice(builder *b)
+{
+    enum { K = 21 };
+    eb_scene *s = b->s;
+    b->quantum = 1;
+    s->radius = 0.08f;
+    for (int a = 0; a < 3; a++)
+        for (int i = 0; i < K; i++)
+            for (int j = 0; j < K; j++) {
+                double pts[K][3];
+                for (int t = 0; t < K; t++) {
+                    int idx[3];
+                    idx[a] = t, idx[(a + 1) % 3] = i, idx[(a + 2) % 3] = j;
+                    for (int c = 0; c < 3; c++)
+                        pts[t][c] = 2.0 * idx[c];
+                }
+                add_polyline(b, (const double(*)[3])pts, K);
+            }
+    set3(s->eye, 20, 20, 75);
+    set3(s->look, 20, 20, 0);
+    set3(s->light, 55, 70, 90);
+    s->fov_deg = 50;
+    s->scale = 40;
+}
+
+static int finish(builder *b)
+{
+    eb_scene *s = b->s;
+    if (b->failed || !(s->cyl = malloc(s->ns * sizeof *s->cyl)))
+        return -1;
+    for (size_t i = 0; i < s->ns; i++)
+        if (cylray_cylinder_from_endpoints(&s->cyl[i], s->vert[s->first[i]],
+                                           s->vert[s->first[i] + 1], s->radius,
+                                           s->caps[i]) != CYLRAY_OK) {
+            fprintf(stderr, "ebscene: %s segment %zu refused\n", s->name, i);
+            return -1;
+        }
+    s->up[0] = 0, s->up[1] = 1, s->up[2] = 0;
+    return 0;
+}
+
+int eb_scene_make(eb_scene *s, int which, uint64_t seed)
+{
+    memset(s, 0, sizeof *s);
+    snprintf(s->name, sizeof s->name, "%s", eb_scene_name(which));
+    builder b = {.s = s};
+    rng g = {seed * 0x2545f4914f6cdd1dull + (uint64_t)which};
+    switch (which) {
+    case EB_MOLECULE: molecule(&b, &g); break;
+    case EB_PIPES: pipes(&b, &g); break;
+    case EB_FAR_RODS: far_rods(&b, &g); break;
+    case EB_LATTICE: lattice(&b); break;
+    default: return -1;
+    }
+    if (finish(&b)) {
+        eb_scene_free(s);
+        return -1;
+    }
+    return 0;
+}
+
+int eb_scene_small(eb_scene *s, size_t n, uint64_t seed)
+{
+    memset(s, 0, sizeof *s);
+    snprintf(s->name, sizeof s->name, "small");
+    builder b = {.s = s, .quantum = 0x1p-10};
+    rng g = {seed};
+    s->radius = 0.35f;
+    static const unsigned kinds[4] = {0, CYLRAY_CAPPED_LO, CYLRAY_CAPPED_HI, CYLRAY_CAPPED};
+    for (size_t i = 0; i < n; i++) {
+        double p[3], q[3];
+        for (int k = 0; k < 3; k++) {
+            p[k] = rng_range(&g, -8, 8);
+            q[k] = p[k] + rng_range(&g, -3, 3);
+        }
+        uint32_t v = add_vertex(&b, p);
+        add_vertex(&b, q);
+        add_segment(&b, v, kinds[(int)(rng_unit(&g) * 4)]);
+    }
+    set3(s->eye, 0, 3, 24);
+    set3(s->look, 0, 0, 0);
+    set3(s->light, 10, 30, 20);
+    s->fov_deg = 55;
+    s->scale = 16;
+    if (finish(&b)) {
+        eb_scene_free(s);
+        return -1;
+    }
+    return 0;
+}
+
+void eb_scene_free(eb_scene *s)
+{
+    free(s->vert);
+    free(s->first);
+    free(s->caps);
+    free(s->cyl);
+    memset(s, 0, sizeof *s);
+}

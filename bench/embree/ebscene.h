@@ -1,0 +1,42 @@
+/* ebscene.h - the procedural scenes of the Embree comparison: polylines of cylinders of
+ * one radius, with a camera and a point light. */
+#ifndef EB_SCENE_H
+#define EB_SCENE_H
+
+#include "cylray.h"
+
+#include <stddef.h>
+#include <stdint.h>
+
+/* Segment s runs from vert[first[s]] to vert[first[s] + 1]. Consecutive segments of a
+ * polyline share their joint vertex, as Embree's linear curves expect (a segment with a
+ * left neighbour may read the vertex before its first). caps[s] says which ends are
+ * closed: CYLRAY_CAPPED_LO at the first vertex, CYLRAY_CAPPED_HI at the second; a
+ * polyline is closed only at its two ends. cyl[s] is the same segment in cylray's
+ * endpoint form. */
+typedef struct eb_scene {
+    char name[32];
+    size_t nv, ns;
+    float (*vert)[3];
+    uint32_t *first;
+    unsigned *caps;
+    cylray_cylinder *cyl;
+    float radius;
+    float eye[3], look[3], up[3], fov_deg;
+    float light[3];
+    float scale; /* a typical size of the scene, for the bounce rays' reach */
+} eb_scene;
+
+/* The scene names, in the order of eb_scene_make's `which`. */
+enum { EB_MOLECULE, EB_PIPES, EB_FAR_RODS, EB_LATTICE, EB_NSCENES };
+const char *eb_scene_name(int which);
+/* Returns the index of a scene name, or -1. */
+int eb_scene_find(const char *name);
+
+/* Builds scene `which`, the same for a given seed. 0 on success. */
+int eb_scene_make(eb_scene *s, int which, uint64_t seed);
+/* A scene of n random cylinders of every cap kind, for the agreement test. */
+int eb_scene_small(eb_scene *s, size_t n, uint64_t seed);
+void eb_scene_free(eb_scene *s);
+
+#endif

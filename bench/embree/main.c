@@ -1,0 +1,486 @@
+/* main.c - cylembree: cylray inside Embree 3 against Embree's own cone curves, on four
+ * scenes, time and error side by side.
+ *
+ *   cylembree [--quick] [--scene=molecule,pipes,far-rods,lattice] [--isa=best|all|LIST]
+ *             [--packet=1,4,8,16] [--threads=N] [--leaf=4|8|16] [--group=sah|morton]
+ *             [--size=WxH]
+ *             [--samples=N] [--reps=N] [--out=DIR]
+ */
+#include "image.h"
+#include "machine.h"
+#include "png.h"
+#include "rays.h"
+#include "run.h"
+#include "spawn.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+typedef struct opts {
+    int quick, w, h, leaf_m, reps, threads, samples;
+    eb_grouping group;
+    int scene_on[EB_NSCENES];
+    int packet_on[EB_NPACKETS];
+    int isa_on[CYLRAY_ISA_COUNT];
+    const char *out;
+} opts;
+
+static const char *embree_isa(cylray_isa i)
+{
+    return i == CYLRAY_ISA_SSE41 ? "sse4.2" : i == CYLRAY_ISA_AVX2 ? "avx2" : "avx512";
+}
+
+static int list_has(const char *list, const char *name)
+{
+    size_t n = strlen(name);
+    for (const char *p = list; p && *p;) {
+        const char *e = strchr(p, ',');
+        size_t l = e ? (size_t)(e - p) : strlen(p);
+        if (l == n && !strncmp(p, name, n))
+            return 1;
+        p = e ? e + 1 : NULL;
+    }
+    return 0;
+}
+
+static int parse(opts *o, int argc, char **argv)
+{
+    long nproc = sysconf(_SC_NPROCESSORS_ONLN);
+    *o = (opts){.w = 1024, .h = 768, .leaf_m = 8, .reps = 3, .samples = 20000,
+                .threads = nproc > 0 ? (int)(nproc < EB_MAXT ? nproc : EB_MAXT) : 1,
+                .out = "bench/out"};
+    const char *scenes = NULL, *isas = "best", *packets = NULL;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        if (!strcmp(a, "--quick"))
+            o->quick = 1;
+        else if (!strncmp(a, "--scene=", 8))
+            scenes = a + 8;
+        else if (!strncmp(a, "--isa=", 6))
+            isas = a + 6;
+        else if (!strncmp(a, "--packet=", 9))
+            packets = a + 9;
+        else if (!strncmp(a, "--threads=", 10))
+            o->threads = atoi(a + 10);
+        else if (!strncmp(a, "--leaf=", 7))
+            o->leaf_m = atoi(a + 7);
+        else if (!strcmp(a, "--group=sah"))
+            o->group = EB_GROUP_SAH;
+        else if (!strcmp(a, "--group=morton"))
+            o->group = EB_GROUP_MORTON;
+        else if (!strncmp(a, "--size=", 7))
+            sscanf(a + 7, "%dx%d", &o->w, &o->h);
+        else if (!strncmp(a, "--samples=", 10))
+            o->samples = atoi(a + 10);
+        else if (!strncmp(a, "--reps=", 7))
+            o->reps = atoi(a + 7);
+        else if (!strncmp(a, "--out=", 6))
+            o->out = a + 6;
+        else {
+            fprintf(stderr, "cylembree: unknown option %s (see the top of main.c)\n", a);
+            return -1;
+        }
+    }
+    if (o->quick) {
+        int explicit_size = 0;
+        for (int i = 1; i < argc; i++)
+            explicit_size |= !strncmp(argv[i], "--size=", 7);
+        if (!explicit_size)
+            o->w = o->h = 512;
+        o->samples = 2000;
+        o->reps = 1;
+    }
+    if (o->w < 16 || o->h < 16 || o->w % 16 || o->h % 16 || o->threads < 1 ||
+        o->threads > EB_MAXT || (o->leaf_m != 4 && o->leaf_m != 8 && o->leaf_m != 16)) {
+        fprintf(stderr, "cylembree: --size must be multiples of 16, --threads 1..%d, "
+                        "--leaf 4, 8 or 16\n", EB_MAXT);
+        return -1;
+    }
+    for (int s = 0; s < EB_NSCENES; s++)
+        o->scene_on[s] = !scenes || list_has(scenes, eb_scene_name(s));
+    for (int k = 0; k < EB_NPACKETS; k++) {
+        char b[8];
+        snprintf(b, sizeof b, "%d", eb_packets[k]);
+        o->packet_on[k] = packets ? list_has(packets, b) : (o->quick ? k == 0 || k == 2 : 1);
+    }
+    for (int i = CYLRAY_ISA_SSE41; i <= CYLRAY_ISA_AVX512; i++) {
+        int have = cylray_kernels_for((cylray_isa)i) != NULL;
+        o->isa_on[i] = have && (list_has(isas, "all") || list_has(isas, cylray_isa_name(i)));
+    }
+    if (list_has(isas, "best"))
+        for (int i = CYLRAY_ISA_AVX512; i >= CYLRAY_ISA_SSE41; i--)
+            if (cylray_kernels_for((cylray_isa)i)) {
+                o->isa_on[i] = 1;
+                break;
+            }
+    return 0;
+}
+
+/* ---- the aimed ray sets ------------------------------------------------------------ */
+
+static void unit_frame(const double a[3], double e1[3], double e2[3])
+{
+    double t[3] = {fabs(a[0]) < 0.6 ? 1 : 0, fabs(a[0]) < 0.6 ? 0 : 1, 0}, l = 0, m = 0;
+    e1[0] = a[1] * t[2] - a[2] * t[1], e1[1] = a[2] * t[0] - a[0] * t[2];
+    e1[2] = a[0] * t[1] - a[1] * t[0];
+    for (int k = 0; k < 3; k++)
+        l += e1[k] * e1[k];
+    for (int k = 0; k < 3; k++)
+        e1[k] /= sqrt(l);
+    e2[0] = a[1] * e1[2] - a[2] * e1[1], e2[1] = a[2] * e1[0] - a[0] * e1[2];
+    e2[2] = a[0] * e1[1] - a[1] * e1[0];
+    for (int k = 0; k < 3; k++)
+        m += e2[k] * e2[k];
+    for (int k = 0; k < 3; k++)
+        e2[k] /= sqrt(m);
+}
+
+static void to_float_ray(eb_sample *s, const double o[3], const double d[3])
+{
+    double l = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    for (int k = 0; k < 3; k++) {
+        s->o[k] = (float)o[k];
+        s->d[k] = (float)(d[k] / l);
+    }
+    s->tmin = 0;
+    s->tmax = INFINITY;
+    s->pixel = SIZE_MAX;
+}
+
+/* Rays from the eye at points of the rim of a closed end (where Embree's curves test
+ * side and disc apart), or down the axis: at a closed end from outside, at an open
+ * joint from inside the tube, within 1e-7..1e-3 rad of the axis. */
+static void aimed(eb_sample *s, const eb_scene *sc, int set, rng *g)
+{
+    for (;;) {
+        uint32_t id = (uint32_t)(rng_unit(g) * (double)sc->ns);
+        const float *p0 = sc->vert[sc->first[id]], *p1 = sc->vert[sc->first[id] + 1];
+        unsigned caps = sc->caps[id];
+        int hi = rng_unit(g) < 0.5;
+        int closed = (caps & (hi ? CYLRAY_CAPPED_HI : CYLRAY_CAPPED_LO)) != 0;
+        if (set == EB_SET_RIM && !closed)
+            continue;
+        double a[3], l = 0, e1[3], e2[3], E[3], o[3], d[3];
+        for (int k = 0; k < 3; k++)
+            a[k] = (double)p1[k] - p0[k], l += a[k] * a[k];
+        for (int k = 0; k < 3; k++) {
+            a[k] /= sqrt(l);
+            E[k] = hi ? p1[k] : p0[k];
+        }
+        unit_frame(a, e1, e2);
+        double R = sc->radius, ph = rng_range(g, 0, 6.283185307179586);
+        if (set == EB_SET_RIM) {
+            for (int k = 0; k < 3; k++)
+                d[k] = E[k] + R * (cos(ph) * e1[k] + sin(ph) * e2[k]) - sc->eye[k];
+            to_float_ray(s, (const double[]){sc->eye[0], sc->eye[1], sc->eye[2]}, d);
+            return;
+        }
+        double out = hi ? 1 : -1, th = pow(10, rng_range(g, -7, -3));
+        double rr = closed ? 0 : R * rng_range(g, 0, 0.5);
+        double dist = closed ? R * rng_range(g, 2, 20) : 0;
+        /* closed: outside, looking back at the disc; open: inside, looking along */
+        for (int k = 0; k < 3; k++) {
+            o[k] = E[k] + out * dist * a[k] + rr * (cos(ph) * e1[k] + sin(ph) * e2[k]);
+            d[k] = -out * a[k] + th * (cos(ph + 1) * e1[k] + sin(ph + 1) * e2[k]);
+        }
+        to_float_ray(s, o, d);
+        return;
+    }
+}
+
+/* ---- one scene --------------------------------------------------------------------- */
+
+typedef struct frame {
+    eb_rays prim, shadow, bounce;
+    float *shadow_tfar; /* the shadow rays' tfar before tracing */
+} frame;
+
+static double mrays(size_t n, double s)
+{
+    return s > 0 ? (double)n / s * 1e-6 : NAN;
+}
+
+/* Best of `reps` passes (min time: the machine is shared, a busy spell only slows);
+ * *cores (if not NULL) gets the CPU time over the wall time of that pass. */
+static double timed(RTCScene sc, eb_rays *r, const float *tfar0, int packet, int threads,
+                    int occ, int reps, double *cores)
+{
+    double best = INFINITY;
+    size_t valid = 0;
+    for (size_t i = 0; i < r->n; i++)
+        valid += r->valid[i];
+    for (int k = 0; k < reps; k++) {
+        for (size_t i = 0; i < r->n; i++)
+            r->tfar[i] = tfar0 ? tfar0[i] : INFINITY;
+        double cpu, s = eb_trace(sc, r, packet, threads, occ, &cpu);
+        if (s < best && cores)
+            *cores = cpu / s;
+        best = s < best ? s : best;
+    }
+    return mrays(valid, best);
+}
+
+static void judge_variant(eb_row *row, const eb_geom *g, const eb_ref *ref,
+                          eb_sample *const sets[EB_NSETS], const size_t nset[EB_NSETS],
+                          const frame *f)
+{
+    for (int s = 0; s < EB_NSETS; s++) {
+        eb_err *e = &row->err[s];
+        eb_err_init(e, nset[s]);
+        for (size_t i = 0; i < nset[s]; i++) {
+            const eb_sample *x = &sets[s][i];
+            size_t p = x->pixel;
+            uint32_t prim;
+            float t = 0, ng[3] = {0, 0, 0};
+            if (p != SIZE_MAX) {
+                prim = f->prim.prim[p], t = f->prim.tfar[p];
+                ng[0] = f->prim.ngx[p], ng[1] = f->prim.ngy[p], ng[2] = f->prim.ngz[p];
+            } else {
+                prim = eb_trace1(g->scene, x->o, x->d, x->tmin, x->tmax, &t, ng);
+            }
+            eb_judge(e, ref, x, prim, t, ng);
+            /* the secondary rays of a primary hit on the exact cylinder */
+            if (p == SIZE_MAX || prim != x->xid || !x->xhit)
+                continue;
+            const eb_rays *sec[2] = {&f->shadow, &f->bounce};
+            for (int k = 0; k < 2; k++) {
+                if (!sec[k]->valid[p])
+                    continue;
+                float o[3], w[3], st, sn[3];
+                eb_rays_get(sec[k], p, o, w);
+                uint32_t hit = eb_trace1(g->scene, o, w, sec[k]->tnear[p],
+                                         k == 0 ? f->shadow_tfar[p] : INFINITY, &st, sn);
+                eb_judge_secondary(e, x, w, hit);
+            }
+        }
+    }
+}
+
+static int frame_alloc(frame *f, size_t n)
+{
+    memset(f, 0, sizeof *f);
+    f->shadow_tfar = malloc(n * sizeof *f->shadow_tfar);
+    return !f->shadow_tfar || eb_rays_alloc(&f->prim, n) || eb_rays_alloc(&f->shadow, n) ||
+                   eb_rays_alloc(&f->bounce, n)
+               ? -1
+               : 0;
+}
+
+static void frame_free(frame *f)
+{
+    eb_rays_free(&f->prim);
+    eb_rays_free(&f->shadow);
+    eb_rays_free(&f->bounce);
+    free(f->shadow_tfar);
+}
+
+/* Runs every variant on one scene with one ISA; appends a row per variant. */
+static int run_scene(const opts *o, RTCDevice dev, cylray_isa isa, int which, eb_row *rows,
+                     size_t *nrows)
+{
+    eb_scene sc;
+    if (eb_scene_make(&sc, which, 20261201) != 0)
+        return -1;
+    const cylray_kernels *k = cylray_kernels_for(isa);
+    fprintf(stderr, "cylembree: %s/%s: %zu cylinders\n", cylray_isa_name(isa), sc.name, sc.ns);
+    size_t npix = (size_t)o->w * (size_t)o->h;
+
+    /* the judged rays and their exact answers, shared by the variants */
+    eb_ref ref;
+    if (eb_ref_init(&ref, dev, &sc)) {
+        eb_scene_free(&sc);
+        return -1;
+    }
+    size_t nset[EB_NSETS] = {(size_t)o->samples, (size_t)o->samples / 4, (size_t)o->samples / 4};
+    eb_sample *sets[EB_NSETS];
+    rng g = {77 + (uint64_t)which};
+    for (int s = 0; s < EB_NSETS; s++) {
+        sets[s] = calloc(nset[s] ? nset[s] : 1, sizeof *sets[s]);
+        for (size_t i = 0; sets[s] && i < nset[s]; i++) {
+            eb_sample *x = &sets[s][i];
+            if (s == EB_SET_CAMERA) {
+                size_t p = (size_t)(rng_unit(&g) * (double)npix);
+                int px, py;
+                eb_pixel_of(p, o->w, o->h, &px, &py);
+                eb_camera_ray(&sc, o->w, o->h, px + 0.5, py + 0.5, x->o, x->d);
+                x->tmin = 0, x->tmax = INFINITY, x->pixel = p;
+            } else {
+                aimed(x, &sc, s, &g);
+            }
+            eb_sample_solve(x, &ref);
+        }
+    }
+
+    frame fr[EB_NVARIANTS];
+    eb_geom geo[EB_NVARIANTS];
+    int built[EB_NVARIANTS] = {0};
+    size_t first_row = *nrows;
+    uint8_t *img = calloc(npix * 3 * (EB_NVARIANTS + 1), 1);
+    for (int v = 0; v < EB_NVARIANTS; v++) {
+        eb_row *r = &rows[(*nrows)++];
+        memset(r, 0, sizeof *r);
+        snprintf(r->isa, sizeof r->isa, "%s", cylray_isa_name(isa));
+        snprintf(r->scene, sizeof r->scene, "%s", sc.name);
+        snprintf(r->variant, sizeof r->variant, "%s", eb_variant_name((eb_variant)v));
+        r->leaf_m = v == EB_LEAF ? o->leaf_m : 0;
+        snprintf(r->group, sizeof r->group, "%s", o->group == EB_GROUP_SAH ? "sah" : "morton");
+        r->threads = o->threads;
+        r->ns = sc.ns;
+        for (int p = 0; p < EB_NPHASES; p++)
+            for (int q = 0; q < EB_NPACKETS; q++)
+                r->mrays[p][q] = NAN;
+        if (frame_alloc(&fr[v], npix) ||
+            eb_geom_build(&geo[v], dev, &sc, (eb_variant)v, o->leaf_m, o->group, k)) {
+            r->skipped = 1;
+            snprintf(r->why, sizeof r->why, "build failed");
+            continue;
+        }
+        built[v] = 1;
+        r->build_s = geo[v].build_s;
+        r->nprim = v == EB_LEAF ? geo[v].nleaves : sc.ns;
+        eb_camera_rays(&fr[v].prim, &sc, o->w, o->h);
+    }
+
+    /* Time: each measurement visits every variant in turn, so a busy spell of the
+     * shared machine does not land on one variant only. */
+    for (int t = 1; t <= o->threads; t++)
+        for (int v = 0; v < EB_NVARIANTS; v++)
+            if (built[v])
+                rows[first_row + v].scaling[t] =
+                    timed(geo[v].scene, &fr[v].prim, NULL, 1, t, 0, o->reps,
+                          &rows[first_row + v].cores[t]);
+    /* Embree offers a packet no wider than its ISA's vectors */
+    int widest = isa == CYLRAY_ISA_SSE41 ? 4 : isa == CYLRAY_ISA_AVX2 ? 8 : 16;
+    for (int q = 0; q < EB_NPACKETS; q++) {
+        if (!o->packet_on[q] || eb_packets[q] > widest)
+            continue;
+        for (int v = 0; v < EB_NVARIANTS; v++)
+            if (built[v])
+                rows[first_row + v].mrays[EB_PRIMARY][q] =
+                    timed(geo[v].scene, &fr[v].prim, NULL, eb_packets[q], o->threads, 0,
+                          o->reps, NULL);
+    }
+    for (int v = 0; v < EB_NVARIANTS; v++) {
+        if (!built[v])
+            continue;
+        rows[first_row + v].stand_in = eb_spawn(&geo[v], &fr[v].prim, &fr[v].shadow,
+                                                &fr[v].bounce);
+        memcpy(fr[v].shadow_tfar, fr[v].shadow.tfar, npix * sizeof(float));
+    }
+    for (int q = 0; q < EB_NPACKETS; q++) {
+        if (!o->packet_on[q] || eb_packets[q] > widest)
+            continue;
+        for (int v = 0; v < EB_NVARIANTS; v++)
+            if (built[v]) {
+                eb_row *r = &rows[first_row + v];
+                r->mrays[EB_BOUNCE][q] = timed(geo[v].scene, &fr[v].bounce, NULL,
+                                               eb_packets[q], o->threads, 0, o->reps, NULL);
+                r->mrays[EB_SHADOW][q] = timed(geo[v].scene, &fr[v].shadow, fr[v].shadow_tfar,
+                                               eb_packets[q], o->threads, 1, o->reps, NULL);
+            }
+    }
+
+    /* Error, pictures. */
+    int base = built[EB_NATIVE] ? EB_NATIVE : -1;
+    for (int v = 0; v < EB_NVARIANTS; v++) {
+        if (!built[v])
+            continue;
+        fprintf(stderr, "cylembree: %s/%s: judging %s\n", cylray_isa_name(isa), sc.name,
+                eb_variant_name((eb_variant)v));
+        judge_variant(&rows[first_row + v], &geo[v], &ref, sets, nset, &fr[v]);
+        if (img)
+            eb_shade(&sc, &fr[v].prim, &fr[v].shadow, &fr[v].bounce, o->w, o->h,
+                     img + npix * 3 * (size_t)v);
+        /* the last panel ends up with the last cylray variant's difference */
+        if (base >= 0 && v != base && img)
+            rows[first_row + v].diff_pixels =
+                eb_diff(&fr[base].prim, &fr[base].shadow, &fr[v].prim, &fr[v].shadow, o->w,
+                        o->h, img + npix * 3 * EB_NVARIANTS);
+    }
+    if (img) {
+        /* the panels side by side: the variants, then the difference of the last
+         * cylray variant from Embree's curves */
+        int W = o->w * (EB_NVARIANTS + 1);
+        uint8_t *row = malloc((size_t)W * 3 * (size_t)o->h);
+        if (row) {
+            for (int y = 0; y < o->h; y++)
+                for (int p = 0; p <= EB_NVARIANTS; p++)
+                    memcpy(row + ((size_t)y * (size_t)W + (size_t)p * (size_t)o->w) * 3,
+                           img + npix * 3 * (size_t)p + (size_t)y * (size_t)o->w * 3,
+                           (size_t)o->w * 3);
+            char path[512];
+            snprintf(path, sizeof path, "%s/embree_%s_%s.png", o->out, sc.name,
+                     cylray_isa_name(isa));
+            if (png_write_rgb(path, W, o->h, row) == 0)
+                fprintf(stderr, "cylembree: wrote %s\n", path);
+            free(row);
+        }
+        free(img);
+    }
+    for (int v = 0; v < EB_NVARIANTS; v++)
+        if (built[v]) {
+            eb_geom_free(&geo[v]);
+            frame_free(&fr[v]);
+        }
+    for (int s = 0; s < EB_NSETS; s++)
+        free(sets[s]);
+    eb_ref_free(&ref);
+    eb_scene_free(&sc);
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    opts o;
+    if (parse(&o, argc, argv))
+        return 2;
+    mkdir(o.out, 0777);
+    machine_info mi;
+    machine_probe(&mi);
+    char machine[1024];
+    snprintf(machine, sizeof machine, "%s (%s), %d logical CPUs%s, %s; Embree %s; %s",
+             mi.cpu, mi.cpuid, mi.cores, mi.hypervisor ? ", virtual machine" : "", mi.os,
+             RTC_VERSION_STRING, mi.compiler);
+    eb_row *rows = calloc(CYLRAY_ISA_COUNT * EB_NSCENES * EB_NVARIANTS, sizeof *rows);
+    size_t nrows = 0;
+    if (!rows)
+        return 1;
+    for (int i = CYLRAY_ISA_SSE41; i <= CYLRAY_ISA_AVX512; i++) {
+        if (!o.isa_on[i])
+            continue;
+        char cfg[64];
+        snprintf(cfg, sizeof cfg, "isa=%s,threads=%d", embree_isa((cylray_isa)i), o.threads);
+        RTCDevice dev = rtcNewDevice(cfg);
+        if (!dev) {
+            fprintf(stderr, "cylembree: Embree refused \"%s\"\n", cfg);
+            continue;
+        }
+        for (int s = 0; s < EB_NSCENES; s++)
+            if (o.scene_on[s] && run_scene(&o, dev, (cylray_isa)i, s, rows, &nrows))
+                fprintf(stderr, "cylembree: scene %s failed\n", eb_scene_name(s));
+        rtcReleaseDevice(dev);
+    }
+    eb_report(stdout, rows, nrows, machine);
+    char path[512];
+    snprintf(path, sizeof path, "%s/embree.txt", o.out);
+    FILE *f = fopen(path, "w");
+    if (f) {
+        eb_report(f, rows, nrows, machine);
+        fclose(f);
+    }
+    snprintf(path, sizeof path, "%s/embree.csv", o.out);
+    if ((f = fopen(path, "w"))) {
+        eb_report_csv(f, rows, nrows);
+        fclose(f);
+    }
+    for (size_t i = 0; i < nrows; i++)
+        for (int s = 0; s < EB_NSETS; s++)
+            eb_err_free(&rows[i].err[s]);
+    free(rows);
+    return 0;
+}

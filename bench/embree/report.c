@@ -1,0 +1,159 @@
+/* report.c - the Embree comparison's tables: speed, scaling, error. */
+#include "run.h"
+
+#include <math.h>
+
+const int eb_packets[EB_NPACKETS] = {1, 4, 8, 16};
+
+const char *eb_set_name(int set)
+{
+    static const char *const n[EB_NSETS] = {"camera", "rim", "axis"};
+    return set >= 0 && set < EB_NSETS ? n[set] : "?";
+}
+
+static const char *const phase_name[EB_NPHASES] = {"primary", "shadow", "bounce"};
+
+/* A column is shown when some row measured it. */
+static int col_on(const eb_row *r, size_t n, int p, int k)
+{
+    for (size_t i = 0; i < n; i++)
+        if (!r[i].skipped && !isnan(r[i].mrays[p][k]))
+            return 1;
+    return 0;
+}
+
+static void speed(FILE *f, const eb_row *r, size_t n)
+{
+    fprintf(f, "\nM rays/s (%d threads; packet = rays per Embree call; cylray-leaf: up to %d "
+               "cylinders a leaf, grouped by %s)\n",
+            r[0].threads, r[EB_LEAF < n ? EB_LEAF : 0].leaf_m, r[0].group);
+    fprintf(f, "%-7s %-9s %-16s %8s", "isa", "scene", "variant", "build s");
+    for (int p = 0; p < EB_NPHASES; p++)
+        for (int k = 0; k < EB_NPACKETS; k++) {
+            if (!col_on(r, n, p, k))
+                continue;
+            char h[24];
+            snprintf(h, sizeof h, "%s/%d", phase_name[p], eb_packets[k]);
+            fprintf(f, " %10s", h);
+        }
+    fprintf(f, "\n");
+    for (size_t i = 0; i < n; i++) {
+        fprintf(f, "%-7s %-9s %-16s", r[i].isa, r[i].scene, r[i].variant);
+        if (r[i].skipped) {
+            fprintf(f, " skipped: %s\n", r[i].why);
+            continue;
+        }
+        fprintf(f, " %8.2f", r[i].build_s);
+        for (int p = 0; p < EB_NPHASES; p++)
+            for (int k = 0; k < EB_NPACKETS; k++)
+                if (col_on(r, n, p, k)) {
+                    if (isnan(r[i].mrays[p][k]))
+                        fprintf(f, " %10s", "-");
+                    else
+                        fprintf(f, " %10.2f", r[i].mrays[p][k]);
+                }
+        fprintf(f, "\n");
+    }
+}
+
+static void scaling(FILE *f, const eb_row *r, size_t n)
+{
+    int T = r[0].threads;
+    fprintf(f, "\nScaling: primary rays, one ray a call, M rays/s at 1..%d threads (in\n"
+               "brackets the cores the process got: CPU time over wall time)\n", T);
+    fprintf(f, "%-7s %-9s %-16s", "isa", "scene", "variant");
+    for (int t = 1; t <= T; t++)
+        fprintf(f, "   T=%-9d", t);
+    fprintf(f, " speedup\n");
+    for (size_t i = 0; i < n; i++) {
+        if (r[i].skipped)
+            continue;
+        fprintf(f, "%-7s %-9s %-16s", r[i].isa, r[i].scene, r[i].variant);
+        for (int t = 1; t <= T; t++)
+            fprintf(f, " %6.2f (%.1f)", r[i].scaling[t], r[i].cores[t]);
+        fprintf(f, " %7.2fx\n", r[i].scaling[T] / r[i].scaling[1]);
+    }
+}
+
+static void errors(FILE *f, const eb_row *r, size_t n)
+{
+    fprintf(f, "\nError against the exact reference (binary128) on sampled rays:\n"
+               "wrong = unexcused wrong hit/miss or wrong cylinder (leak: went past the true\n"
+               "first surface; phantom: a hit where there is none); excused = inside the\n"
+               "tolerance band; t in float ulps (beyond: outside the band), normal in\n"
+               "radians (up to sign); self =\n"
+               "secondary rays from a front face that hit their own cylinder\n");
+    fprintf(f, "%-7s %-9s %-16s %-6s %6s %5s %5s %5s %5s %8s %8s %8s %8s %8s %11s\n",
+            "isa", "scene", "variant", "set", "rays", "wrong", "leak", "phant", "exc", "t med",
+            "t p99", "t max", "beyond", "n p99", "self/sec");
+    for (size_t i = 0; i < n; i++) {
+        if (r[i].skipped)
+            continue;
+        for (int s = 0; s < EB_NSETS; s++) {
+            eb_err e = r[i].err[s];
+            double med, p99, mx, nm, np, nx, bm, bp, bx;
+            eb_quantiles(e.t_ulps, e.nt, &med, &p99, &mx);
+            eb_quantiles(e.t_beyond, e.nt, &bm, &bp, &bx);
+            eb_quantiles(e.n_rad, e.nn, &nm, &np, &nx);
+            fprintf(f, "%-7s %-9s %-16s %-6s %6zu %5zu %5zu %5zu %5zu %8.3g %8.3g %8.3g %8.3g "
+                       "%8.2g",
+                    r[i].isa, r[i].scene, r[i].variant, eb_set_name(s), e.rays, e.wrong,
+                    e.leak, e.phantom, e.excused, med, p99, mx, bx, np);
+            if (s == EB_SET_CAMERA)
+                fprintf(f, " %5zu/%-5zu", e.self, e.sec);
+            fprintf(f, "\n");
+        }
+    }
+}
+
+void eb_report(FILE *f, const eb_row *rows, size_t n, const char *machine)
+{
+    if (!n)
+        return;
+    fprintf(f, "Machine: %s\n", machine);
+    speed(f, rows, n);
+    scaling(f, rows, n);
+    errors(f, rows, n);
+    for (size_t i = 0; i < n; i++)
+        if (rows[i].stand_in) {
+            fprintf(f, "\nNote: this library build lacks cylray_hit_point/cylray_spawn_origin;"
+                       " the cylray variants' secondary rays started from o + t d moved"
+                       " 2^-16 (relative) along the normal instead.\n");
+            break;
+        }
+}
+
+void eb_report_csv(FILE *f, const eb_row *r, size_t n)
+{
+    fprintf(f, "isa,scene,variant,leaf_m,threads,cylinders,build_s");
+    for (int p = 0; p < EB_NPHASES; p++)
+        for (int k = 0; k < EB_NPACKETS; k++)
+            fprintf(f, ",%s_%d_mrays", phase_name[p], eb_packets[k]);
+    fprintf(f, ",primary_1thread_mrays");
+    for (int s = 0; s < EB_NSETS; s++)
+        fprintf(f, ",%s_rays,%s_wrong,%s_leak,%s_phantom,%s_excused,%s_t_p99_ulps,"
+                   "%s_t_beyond_max_ulps,%s_n_p99_rad",
+                eb_set_name(s), eb_set_name(s), eb_set_name(s), eb_set_name(s),
+                eb_set_name(s), eb_set_name(s), eb_set_name(s), eb_set_name(s));
+    fprintf(f, ",secondary,self_intersections,diff_pixels\n");
+    for (size_t i = 0; i < n; i++) {
+        if (r[i].skipped)
+            continue;
+        fprintf(f, "%s,%s,%s,%d,%d,%zu,%.4f", r[i].isa, r[i].scene, r[i].variant, r[i].leaf_m,
+                r[i].threads, r[i].ns, r[i].build_s);
+        for (int p = 0; p < EB_NPHASES; p++)
+            for (int k = 0; k < EB_NPACKETS; k++)
+                fprintf(f, ",%.4g", r[i].mrays[p][k]);
+        fprintf(f, ",%.4g", r[i].scaling[1]);
+        for (int s = 0; s < EB_NSETS; s++) {
+            eb_err e = r[i].err[s];
+            double med, p99, mx, nm, np, nx, bm, bp, bx;
+            eb_quantiles(e.t_ulps, e.nt, &med, &p99, &mx);
+            eb_quantiles(e.t_beyond, e.nt, &bm, &bp, &bx);
+            eb_quantiles(e.n_rad, e.nn, &nm, &np, &nx);
+            fprintf(f, ",%zu,%zu,%zu,%zu,%zu,%.4g,%.4g,%.4g", e.rays, e.wrong, e.leak,
+                    e.phantom, e.excused, p99, bx, np);
+        }
+        fprintf(f, ",%zu,%zu,%zu\n", r[i].err[0].sec, r[i].err[0].self, r[i].diff_pixels);
+    }
+}

@@ -1,0 +1,251 @@
+/* trace.c - ray storage, the camera, and the threaded tile loop around Embree's
+ * rtcIntersect and rtcOccluded calls. */
+#define _POSIX_C_SOURCE 200809L /* clock_gettime(CLOCK_PROCESS_CPUTIME_ID) */
+#include "trace.h"
+
+#include "clock.h"
+#include "rays.h"
+
+#include <math.h>
+#include <pthread.h>
+#include <stdatomic.h>
+#include <string.h>
+#include <time.h>
+
+int eb_rays_alloc(eb_rays *r, size_t n)
+{
+    memset(r, 0, sizeof *r);
+    r->n = n;
+    float **f[13] = {&r->ox, &r->oy, &r->oz, &r->dx, &r->dy, &r->dz, &r->tnear,
+                     &r->tfar, &r->ngx, &r->ngy, &r->ngz, &r->u, &r->v};
+    int bad = 0;
+    for (int k = 0; k < 13; k++)
+        bad |= !(*f[k] = bench_alloc(n * sizeof(float)));
+    bad |= !(r->prim = bench_alloc(n * sizeof *r->prim));
+    bad |= !(r->valid = bench_alloc(n));
+    if (bad)
+        eb_rays_free(r);
+    return bad ? -1 : 0;
+}
+
+void eb_rays_free(eb_rays *r)
+{
+    void *p[15] = {r->ox, r->oy,  r->oz,  r->dx, r->dy, r->dz,   r->tnear, r->tfar,
+                   r->ngx, r->ngy, r->ngz, r->u, r->v,  r->prim, r->valid};
+    for (int k = 0; k < 15; k++)
+        bench_free(p[k]);
+    memset(r, 0, sizeof *r);
+}
+
+void eb_rays_get(const eb_rays *r, size_t i, float o[3], float d[3])
+{
+    o[0] = r->ox[i], o[1] = r->oy[i], o[2] = r->oz[i];
+    d[0] = r->dx[i], d[1] = r->dy[i], d[2] = r->dz[i];
+}
+
+void eb_pixel_of(size_t idx, int w, int h, int *x, int *y)
+{
+    (void)h;
+    size_t tile = idx / 256, in = idx % 256, block = in / 16, px = in % 16;
+    size_t tiles_x = (size_t)w / 16;
+    *x = (int)((tile % tiles_x) * 16 + (block % 4) * 4 + px % 4);
+    *y = (int)((tile / tiles_x) * 16 + (block / 4) * 4 + px / 4);
+}
+
+void eb_camera_ray(const eb_scene *s, int w, int h, double x, double y, float o[3],
+                   float d[3])
+{
+    double f[3], r[3], u[3], fl = 0, rl = 0;
+    for (int k = 0; k < 3; k++)
+        f[k] = (double)s->look[k] - s->eye[k], fl += f[k] * f[k];
+    for (int k = 0; k < 3; k++)
+        f[k] /= sqrt(fl);
+    r[0] = f[1] * s->up[2] - f[2] * s->up[1];
+    r[1] = f[2] * s->up[0] - f[0] * s->up[2];
+    r[2] = f[0] * s->up[1] - f[1] * s->up[0];
+    for (int k = 0; k < 3; k++)
+        rl += r[k] * r[k];
+    for (int k = 0; k < 3; k++)
+        r[k] /= sqrt(rl);
+    u[0] = r[1] * f[2] - r[2] * f[1];
+    u[1] = r[2] * f[0] - r[0] * f[2];
+    u[2] = r[0] * f[1] - r[1] * f[0];
+    double tn = tan(s->fov_deg * 3.14159265358979 / 360), asp = (double)w / h;
+    double sx = (2 * x / w - 1) * tn * asp, sy = (1 - 2 * y / h) * tn, dd[3], dl = 0;
+    for (int k = 0; k < 3; k++)
+        dd[k] = f[k] + sx * r[k] + sy * u[k], dl += dd[k] * dd[k];
+    for (int k = 0; k < 3; k++) {
+        o[k] = s->eye[k];
+        d[k] = (float)(dd[k] / sqrt(dl));
+    }
+}
+
+void eb_camera_rays(eb_rays *r, const eb_scene *s, int w, int h)
+{
+    for (size_t i = 0; i < r->n; i++) {
+        int x, y;
+        float o[3], d[3];
+        eb_pixel_of(i, w, h, &x, &y);
+        eb_camera_ray(s, w, h, x + 0.5, y + 0.5, o, d);
+        r->ox[i] = o[0], r->oy[i] = o[1], r->oz[i] = o[2];
+        r->dx[i] = d[0], r->dy[i] = d[1], r->dz[i] = d[2];
+        r->tnear[i] = 0;
+        r->tfar[i] = INFINITY;
+        r->valid[i] = 1;
+    }
+}
+
+/* ---- tracing -------------------------------------------------------------------- */
+
+/* Copies rays [i, i + N) into an Embree packet, traces it, copies the answers back. */
+#define EB_PACKET(N)                                                                       \
+    static void packet##N(RTCScene sc, eb_rays *r, size_t i0, int occ)                     \
+    {                                                                                      \
+        struct RTCRayHit##N rh;                                                            \
+        int valid[N], any = 0;                                                             \
+        struct RTCIntersectContext ctx;                                                    \
+        rtcInitIntersectContext(&ctx);                                                     \
+        ctx.flags = r->incoherent ? RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT                  \
+                                  : RTC_INTERSECT_CONTEXT_FLAG_COHERENT;                   \
+        for (int j = 0; j < N; j++) {                                                      \
+            size_t i = i0 + (size_t)j;                                                     \
+            valid[j] = i < r->n && r->valid[i] ? -1 : 0;                                   \
+            any |= valid[j];                                                               \
+            if (i >= r->n)                                                                 \
+                i = r->n - 1;                                                              \
+            rh.ray.org_x[j] = r->ox[i], rh.ray.org_y[j] = r->oy[i];                        \
+            rh.ray.org_z[j] = r->oz[i], rh.ray.tnear[j] = r->tnear[i];                     \
+            rh.ray.dir_x[j] = r->dx[i], rh.ray.dir_y[j] = r->dy[i];                        \
+            rh.ray.dir_z[j] = r->dz[i], rh.ray.time[j] = 0;                                \
+            rh.ray.tfar[j] = r->tfar[i], rh.ray.mask[j] = ~0u;                             \
+            rh.ray.id[j] = (unsigned)j, rh.ray.flags[j] = 0;                               \
+            rh.hit.geomID[j] = RTC_INVALID_GEOMETRY_ID;                                    \
+            rh.hit.primID[j] = RTC_INVALID_GEOMETRY_ID;                                    \
+        }                                                                                  \
+        if (!any)                                                                          \
+            return;                                                                        \
+        if (occ)                                                                           \
+            rtcOccluded##N(valid, sc, &ctx, &rh.ray);                                      \
+        else                                                                               \
+            rtcIntersect##N(valid, sc, &ctx, &rh);                                         \
+        for (int j = 0; j < N; j++) {                                                      \
+            size_t i = i0 + (size_t)j;                                                     \
+            if (!valid[j])                                                                 \
+                continue;                                                                  \
+            r->tfar[i] = rh.ray.tfar[j];                                                   \
+            if (occ)                                                                       \
+                continue;                                                                  \
+            r->prim[i] = rh.hit.geomID[j] == RTC_INVALID_GEOMETRY_ID                       \
+                             ? RTC_INVALID_GEOMETRY_ID                                     \
+                             : rh.hit.primID[j];                                           \
+            r->ngx[i] = rh.hit.Ng_x[j], r->ngy[i] = rh.hit.Ng_y[j];                        \
+            r->ngz[i] = rh.hit.Ng_z[j], r->u[i] = rh.hit.u[j], r->v[i] = rh.hit.v[j];      \
+        }                                                                                  \
+    }
+EB_PACKET(4)
+EB_PACKET(8)
+EB_PACKET(16)
+
+static void single(RTCScene sc, eb_rays *r, size_t i, int occ)
+{
+    if (!r->valid[i])
+        return;
+    struct RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    struct RTCRayHit rh;
+    rh.ray.org_x = r->ox[i], rh.ray.org_y = r->oy[i], rh.ray.org_z = r->oz[i];
+    rh.ray.dir_x = r->dx[i], rh.ray.dir_y = r->dy[i], rh.ray.dir_z = r->dz[i];
+    rh.ray.tnear = r->tnear[i], rh.ray.tfar = r->tfar[i], rh.ray.time = 0;
+    rh.ray.mask = ~0u, rh.ray.id = 0, rh.ray.flags = 0;
+    rh.hit.geomID = rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+    if (occ) {
+        rtcOccluded1(sc, &ctx, &rh.ray);
+        r->tfar[i] = rh.ray.tfar;
+        return;
+    }
+    rtcIntersect1(sc, &ctx, &rh);
+    r->tfar[i] = rh.ray.tfar;
+    r->prim[i] = rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? RTC_INVALID_GEOMETRY_ID
+                                                          : rh.hit.primID;
+    r->ngx[i] = rh.hit.Ng_x, r->ngy[i] = rh.hit.Ng_y, r->ngz[i] = rh.hit.Ng_z;
+    r->u[i] = rh.hit.u, r->v[i] = rh.hit.v;
+}
+
+uint32_t eb_trace1(RTCScene scene, const float o[3], const float d[3], float tnear,
+                   float tfar, float *t, float ng[3])
+{
+    struct RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    struct RTCRayHit rh;
+    rh.ray.org_x = o[0], rh.ray.org_y = o[1], rh.ray.org_z = o[2];
+    rh.ray.dir_x = d[0], rh.ray.dir_y = d[1], rh.ray.dir_z = d[2];
+    rh.ray.tnear = tnear, rh.ray.tfar = tfar, rh.ray.time = 0;
+    rh.ray.mask = ~0u, rh.ray.id = 0, rh.ray.flags = 0;
+    rh.hit.geomID = rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(scene, &ctx, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
+        return RTC_INVALID_GEOMETRY_ID;
+    *t = rh.ray.tfar;
+    ng[0] = rh.hit.Ng_x, ng[1] = rh.hit.Ng_y, ng[2] = rh.hit.Ng_z;
+    return rh.hit.primID;
+}
+
+typedef struct job {
+    RTCScene scene;
+    eb_rays *r;
+    int packet, occ;
+    atomic_size_t next;
+} job;
+
+static void *worker(void *arg)
+{
+    job *jb = arg;
+    for (;;) {
+        size_t a = atomic_fetch_add(&jb->next, 256);
+        if (a >= jb->r->n)
+            return NULL;
+        size_t b = a + 256 < jb->r->n ? a + 256 : jb->r->n;
+        if (!jb->occ)
+            for (size_t i = a; i < b; i++)
+                jb->r->prim[i] = RTC_INVALID_GEOMETRY_ID;
+        for (size_t i = a; i < b; i += (size_t)jb->packet) {
+            switch (jb->packet) {
+            case 4: packet4(jb->scene, jb->r, i, jb->occ); break;
+            case 8: packet8(jb->scene, jb->r, i, jb->occ); break;
+            case 16: packet16(jb->scene, jb->r, i, jb->occ); break;
+            default: single(jb->scene, jb->r, i, jb->occ); break;
+            }
+        }
+    }
+}
+
+static double process_cpu_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+double eb_trace(RTCScene scene, eb_rays *r, int packet, int threads, int occluded,
+                double *cpu_s)
+{
+    enum { MAXT = 256 };
+    job jb = {.scene = scene, .r = r, .packet = packet, .occ = occluded};
+    atomic_init(&jb.next, 0);
+    pthread_t th[MAXT];
+    if (threads < 1)
+        threads = 1;
+    if (threads > MAXT)
+        threads = MAXT;
+    double t0 = clk_ns(), c0 = process_cpu_s();
+    int started = 0;
+    for (int k = 1; k < threads; k++)
+        if (pthread_create(&th[started], NULL, worker, &jb) == 0)
+            started++;
+    worker(&jb);
+    for (int k = 0; k < started; k++)
+        pthread_join(th[k], NULL);
+    if (cpu_s)
+        *cpu_s = process_cpu_s() - c0;
+    return (clk_ns() - t0) * 1e-9;
+}
