@@ -300,7 +300,13 @@ CYLRAY_API cylray_status cylray_cylinder_from_endpoints(cylray_cylinder *out, co
 
 /* ---- secondary rays ----------------------------------------------------------- */
 
-/* For a hit of the ray o + t d at t on `part` of cyl: p, the hit point (moved onto
+/* The guarantee: a ray traced with tmin = 0 from the origin cylray_spawn_origin gives
+ * never hits again, on any ISA, the surface it leaves at that point (nor, at a rim, the
+ * other surface through it), and it starts strictly on its own side of each of them, by
+ * twice the kernels' tested tolerance and no more, whenever that offset is below a
+ * quarter of the radius and of the half height.
+ *
+ * For a hit of the ray o + t d at t on `part` of cyl: p, the hit point (moved onto
  * the surface of that part where that pays), and *err, a bound on the distance from p
  * to the exact surface of that part. */
 CYLRAY_API void cylray_hit_point(const cylray_prepared *cyl, const float o[3], const float d[3],
@@ -310,6 +316,74 @@ CYLRAY_API void cylray_hit_point(const cylray_prepared *cyl, const float o[3], c
  * (at a rim, of both). */
 CYLRAY_API void cylray_spawn_origin(const cylray_prepared *cyl, const float p[3], float err,
                                     int32_t part, const float w[3], float out[3]);
+
+/* Batched forms: plain loops over the lanes, the same answer as the scalar pair lane by
+ * lane; a tracer that does not call them pays nothing. Hit points with their bounds,
+ * in SoA like the packets: */
+#define CYLRAY_POINTS_(n, al)                                                     \
+    typedef struct CYLRAY_ALIGN(al) cylray_points##n {                           \
+        float x[n], y[n], z[n], err[n];                                          \
+    } cylray_points##n;
+CYLRAY_POINTS_(4, 16)
+CYLRAY_POINTS_(8, 32)
+CYLRAY_POINTS_(16, 64)
+#undef CYLRAY_POINTS_
+
+/* Packets: for each lane i set in `mask` (the result of the intersect call), the hit
+ * point of ray i (its o and d; t and part come from hit) into lane i of *pts. Other
+ * lanes are not written. */
+CYLRAY_API void cylray_hit_points4(const cylray_prepared *cyl, const cylray_ray4 *ray,
+                                   const cylray_hit4 *hit, uint32_t mask,
+                                   cylray_points4 *pts);
+CYLRAY_API void cylray_hit_points8(const cylray_prepared *cyl, const cylray_ray8 *ray,
+                                   const cylray_hit8 *hit, uint32_t mask,
+                                   cylray_points8 *pts);
+CYLRAY_API void cylray_hit_points16(const cylray_prepared *cyl, const cylray_ray16 *ray,
+                                    const cylray_hit16 *hit, uint32_t mask,
+                                    cylray_points16 *pts);
+/* For each lane i set in `mask`: out->dx..dz[i] hold the new direction on entry; the
+ * spawned origin goes to out->ox..oz[i] and tmin[i] is set to 0 (tmax is the caller's:
+ * INFINITY, or the distance to a light). *out may be the packet that was traced. */
+CYLRAY_API void cylray_spawn_rays4(const cylray_prepared *cyl, const cylray_points4 *pts,
+                                   const cylray_hit4 *hit, uint32_t mask, cylray_ray4 *out);
+CYLRAY_API void cylray_spawn_rays8(const cylray_prepared *cyl, const cylray_points8 *pts,
+                                   const cylray_hit8 *hit, uint32_t mask, cylray_ray8 *out);
+CYLRAY_API void cylray_spawn_rays16(const cylray_prepared *cyl, const cylray_points16 *pts,
+                                    const cylray_hit16 *hit, uint32_t mask,
+                                    cylray_ray16 *out);
+
+/* Streams: separate arrays (err may be NULL where no bound is read or written). */
+typedef struct cylray_points {
+    float *x, *y, *z, *err;
+} cylray_points;
+/* For each ray i whose hits->part[i] is not CYLRAY_MISS (the caller clears part before
+ * the intersect call), its hit point into pts; returns how many were written. */
+CYLRAY_API size_t cylray_hit_points_stream(const cylray_prepared *cyl,
+                                           const cylray_rays *rays, const cylray_hits *hits,
+                                           const cylray_points *pts, size_t n);
+/* For each i whose part[i] is not CYLRAY_MISS, the origin that leaves point i of pts in
+ * direction (dirs->x, y, z)[i], into (origins->x, y, z)[i]; origins may alias dirs. */
+CYLRAY_API void cylray_spawn_stream(const cylray_prepared *cyl, const cylray_points *pts,
+                                    const int32_t *part, const cylray_points *dirs,
+                                    const cylray_points *origins, size_t n);
+
+/* Leaves: the hit a leaf query returned (hit->lane names the cylinder; ray as it came
+ * back from the query, whose o and d are unchanged). */
+CYLRAY_API void cylray_leaf_hit_point4(const cylray_leaf4 *leaf, const cylray_ray1 *ray,
+                                       const cylray_hit1 *hit, float p[3], float *err);
+CYLRAY_API void cylray_leaf_hit_point8(const cylray_leaf8 *leaf, const cylray_ray1 *ray,
+                                       const cylray_hit1 *hit, float p[3], float *err);
+CYLRAY_API void cylray_leaf_hit_point16(const cylray_leaf16 *leaf, const cylray_ray1 *ray,
+                                        const cylray_hit1 *hit, float p[3], float *err);
+CYLRAY_API void cylray_leaf_spawn_origin4(const cylray_leaf4 *leaf, const cylray_hit1 *hit,
+                                          const float p[3], float err, const float w[3],
+                                          float out[3]);
+CYLRAY_API void cylray_leaf_spawn_origin8(const cylray_leaf8 *leaf, const cylray_hit1 *hit,
+                                          const float p[3], float err, const float w[3],
+                                          float out[3]);
+CYLRAY_API void cylray_leaf_spawn_origin16(const cylray_leaf16 *leaf,
+                                           const cylray_hit1 *hit, const float p[3],
+                                           float err, const float w[3], float out[3]);
 
 /* ---- per-ISA access ------------------------------------------------------- */
 
