@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* accuracy.c - the error side: the configuration run once more on the very rays it was
  * timed on, compared with the exact binary128 reference of tests/ref (cylref).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench.h - what the harness's parts share: options, workloads, and one result row. */
 #ifndef CYLBENCH_BENCH_H
 #define CYLBENCH_BENCH_H

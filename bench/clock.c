@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* clock.c - nanoseconds, TSC ticks and CPU pinning for the timing loops. */
 #if defined(__linux__)
 #define _GNU_SOURCE /* sched_setaffinity, sched_getcpu: Linux extensions */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* clock.h - the harness's clocks: nanoseconds from CLOCK_MONOTONIC, ticks from the TSC,
  * and pinning the thread to the core it runs on. */
 #ifndef CYLBENCH_CLOCK_H

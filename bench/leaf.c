@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* leaf.c - the leaf scenario: single incoherent rays, each against a run of leaves
  * (LEAF_RUN cylinders) of a scene of molecule bonds and pipes, with the cylinders in
  * leaves of 4, 8 and 16 (the lanes run across cylinders) and, for the same work, a scalar

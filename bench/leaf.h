@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* leaf.h - the leaf scenario: one ray against leaves of 4, 8 or 16 cylinders, against
  * the same work done one cylinder at a time. */
 #ifndef CYLBENCH_LEAF_H

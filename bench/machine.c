@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* machine.c - CPU model, core count, compiler and OS, read once for the outputs. */
 #define _POSIX_C_SOURCE 200809L /* sysconf, uname */
 #include "machine.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* machine.h - naming the machine a run was measured on, for every output file. */
 #ifndef CYLBENCH_MACHINE_H
 #define CYLBENCH_MACHINE_H

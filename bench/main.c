@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* main.c - cylbench: every ISA x width x flag set x scenario, run time against error.
  *
  *   cylbench [--isa=LIST] [--width=LIST] [--scenario=LIST] [--quick] [--out=DIR]

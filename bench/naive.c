@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* naive.c - the textbook intersection as a tracer author would write it in an afternoon:
  * one branch-free loop over SoA rays, plain float, left to the compiler's vectorizer.
  *

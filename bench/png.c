@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* png.c - PNG without zlib: the image data goes into "stored" deflate blocks (no
  * compression), which every decoder reads; only CRC-32 and Adler-32 are computed. */
 #include "png.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* png.h - a minimal PNG writer: 8-bit RGB, uncompressed (zlib stored blocks). */
 #ifndef CYLBENCH_PNG_H
 #define CYLBENCH_PNG_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rays.c - drawing the scenarios' rays: camera tiles, incoherent rays, shadow rays,
  * hit/miss mixes, far origins and clusters, all in double and rounded once to float. */
 #include "rays.h"

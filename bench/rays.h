@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rays.h - ray sets for the scenarios: SoA storage, cylinder presets and generators. */
 #ifndef CYLBENCH_RAYS_H
 #define CYLBENCH_RAYS_H

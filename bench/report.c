@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* report.c - what a person reads: the stdout tables (time and error per ISA, the rates,
  * the skips, the big stream, the scene), and the files: results.csv,
  * results.json, table.txt (every configuration, one per line), and the two plots. */

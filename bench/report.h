@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* report.h - the outputs: tables on stdout, CSV, JSON, a long text table, SVG plots. */
 #ifndef CYLBENCH_REPORT_H
 #define CYLBENCH_REPORT_H

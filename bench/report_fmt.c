@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* report_fmt.c - formatting and lookup helpers shared by the text, CSV, JSON and SVG
  * writers. */
 #include "report.h"

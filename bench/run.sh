@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # bench/run.sh - builds cylray and the harness for release in their own build directory,
 # runs every scenario once, and says where the tables, plots and image are.
 #

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* scene.c - a fence, a pipe run and two molecules (a benzene ring and a double helix)
  * on a floor, all capped cylinders, traced as a tracer would use cylray without a BVH:
  * 4x4-pixel packets of 16 rays against every cylinder in turn, the closest hit kept

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* scene.h - a small realistic scene (a fence, pipes, molecules on a floor) traced with
  * the packet API, written as a PNG and timed as a workload. */
 #ifndef CYLBENCH_SCENE_H

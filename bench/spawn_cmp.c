@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* spawn_cmp.c - cylspawn: secondary-ray origins compared on the same hits.
  *
  *   cylspawn [--hits=N] [--quick]

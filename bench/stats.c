@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* stats.c - order statistics for timing samples and error distributions. */
 #include "stats.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* stats.h - order statistics of samples: median, quartiles, extremes. */
 #ifndef CYLBENCH_STATS_H
 #define CYLBENCH_STATS_H

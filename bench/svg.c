@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* svg.c - the two plots, as plain SVG text: ns per ray against p99 t error (log-log, one
  * point per ISA x variant), and the speedup over scalar per ISA and width. */
 #include "report.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* textbook.c - the textbook peer's setup and its builds: which of the per-ISA builds of
  * naive.c exist in this harness and run on this CPU. */
 #include "textbook.h"

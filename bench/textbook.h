@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* textbook.h - the peer a tracer author would write instead of using cylray: the
  * textbook formulas in one plain loop (naive.c), built per ISA and auto-vectorized. */
 #ifndef CYLBENCH_TEXTBOOK_H

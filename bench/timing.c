@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* timing.c - the timed loops: one pass of a batch through one ISA's kernel at one width,
  * warm-up, repeated samples, median and spread.
  *

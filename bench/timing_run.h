@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* timing_run.h - a configuration made ready to run: the rays packed for its width, its
  * outputs, and the pass function that sends one batch through the kernel. */
 #ifndef CYLBENCH_TIMING_RUN_H

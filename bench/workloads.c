@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* workloads.c - the scenario table and how each scenario's rays and cylinders are made.
  *
  * Every ray set is BENCH_BATCH rays times a number of batches (each batch is timed while

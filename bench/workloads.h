@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* workloads.h - the scenarios: which rays, which cylinders, which flag sets and widths. */
 #ifndef CYLBENCH_WORKLOADS_H
 #define CYLBENCH_WORKLOADS_H

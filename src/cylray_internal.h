@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* cylray_internal.h - what the library's translation units share and users never see. */
 #ifndef CYLRAY_INTERNAL_H
 #define CYLRAY_INTERNAL_H

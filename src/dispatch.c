@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* dispatch.c - choosing a path once, and the plain entry points that use it.
  *
  * The choice is made on the first call and kept in an atomic pointer: threads racing

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* isa_avx2.c - the kernel on AVX2+FMA: 8 lanes in ymm, and 4 in xmm for 4-ray packets
  * (compiled with -mavx2 -mfma, never -march=native, which would add AVX-512). */
 #include "cylray_internal.h"

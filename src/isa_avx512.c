@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* isa_avx512.c - the kernel on AVX-512 F+VL+DQ: 16 lanes in zmm, 8 and 4 in ymm and
  * xmm with mask registers (compiled with -mavx512f -mavx512vl -mavx512dq). */
 #include "cylray_internal.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* isa_entry.h - one ISA's public entry points and its cylray_kernels table, from the
  * kernel instantiations its translation unit made.
  *

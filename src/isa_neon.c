@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* isa_neon.c - the kernel on AArch64 NEON, 4 lanes. */
 #include "cylray_internal.h"
 

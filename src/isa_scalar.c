@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* isa_scalar.c - the portable path: the kernel at one lane, plain C. */
 #include "cylray_internal.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* isa_sse41.c - the kernel on SSE4.1, 4 lanes (compiled with -msse4.1). */
 #include "cylray_internal.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* kernel_tmpl.h - the ray/cylinder kernel, written once against the vector vocabulary.
  *
  * Included once per ISA and width, after a vec_*.h header, with:
@@ -8,7 +9,7 @@
  * KFN(occ1_table) for packets of one vector, KFN(isect_table) and KFN(occ_table) for
  * packets of several, KFN(isect_stream_table) and KFN(occ_stream_table); KFN(vw) = VW.
  *
- * The math is DESIGN.md section 2. Coordinates are cylinder-relative: w = o - c is
+ * The math is docs/design.md section 2. Coordinates are cylinder-relative: w = o - c is
  * formed exactly as a two-term sum, then the origin is moved along the ray to its
  * closest approach to the center (with the product s*d exact inside an FMA), so that
  * the error of everything after grows with the distance from there, not from o. The

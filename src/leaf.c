@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* leaf.c - building leaves of cylinders, and cylinders from their end points. */
 #include "cylray_internal.h"
 

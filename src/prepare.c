@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* prepare.c - validating a cylinder and deriving what every kernel call needs. */
 #include "cylray_internal.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* spawn.c - secondary rays: the hit point moved onto the surface with a bound on its
  * distance to it, and the origin from which a new ray leaves that surface.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* vec_neon.h - the kernel's vector vocabulary on AArch64 NEON (4 lanes).
  * Semantics as stated in vec_scalar.h; min/max are built from a compare so that NaN
  * lanes give the second operand, as on x86. */

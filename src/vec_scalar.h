@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* vec_scalar.h - the kernel's vector vocabulary for one lane: plain C.
  *
  * This is also the definition of every operation the SIMD headers implement:

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* vec_x86.h - the kernel's vector vocabulary on x86: SSE4.1, AVX2+FMA and AVX-512.
  *
  * Included once per vector width by an ISA's translation unit, with:

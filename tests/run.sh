@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # tests/run.sh - build and run the whole test suite in every configuration CI needs,
 # installing whatever tools are missing first, and end with the line
 #     N passed, N failed
@@ -40,7 +41,7 @@ CONFIGS=()
 for a in "$@"; do
     case "$a" in
     -h | --help)
-        sed -n '2,28p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'
+        sed -n '3,29p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'
         exit 0
         ;;
     gcc | clang | asan | aarch64 | tsan | fuzz) CONFIGS+=("$a") ;;
@@ -58,7 +59,7 @@ wants() {
 }
 
 # ---- tools: check, then install what is missing ---------------------------------
-# Each check names the Debian package that provides it (TOOLCHAIN.md's list).
+# Each check names the Debian package that provides it.
 missing_pkgs=()
 need() { # need <package> <test command...>
     local pkg=$1

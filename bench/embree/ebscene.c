@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* ebscene.c - the four scenes of the Embree comparison, built from a seeded generator.
  *
  * Every vertex is rounded to a grid fine enough for the scene and coarse enough that

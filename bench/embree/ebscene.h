@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* ebscene.h - the procedural scenes of the Embree comparison: polylines of cylinders of
  * one radius, with a camera and a point light. */
 #ifndef EB_SCENE_H

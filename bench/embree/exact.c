@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* exact.c - the scene-wide exact reference: Embree lists the candidate cylinders (boxes
  * only), the binary128 reference of tests/ref answers each, nearest box first. */
 #include "exact.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* exact.h - the exact answer for a ray against a whole scene (every cylinder, nearest
  * first, through the binary128 reference of tests/ref). */
 #ifndef EB_EXACT_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* geom.c - builds the three Embree scenes of one eb_scene and holds the user-geometry
  * callbacks through which Embree's BVH calls cylray. */
 #include "geom.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* geom.h - one scene as an Embree scene, three ways: Embree's own cone curves, cylray
  * single cylinders as user primitives, and cylray leaves as user primitives. */
 #ifndef EB_GEOM_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* image.c - shading and difference pictures of the traced frames. */
 #include "image.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* image.h - the frames as pictures: each variant shaded, and where two variants differ. */
 #ifndef EB_IMAGE_H
 #define EB_IMAGE_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* judge.c - classifies a variant's answers against the exact reference. */
 #include "judge.h"
 

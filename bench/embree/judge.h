@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* judge.h - a variant's answers against the exact reference: wrong hit/miss, t and
  * normal error, self-intersections of secondary rays. */
 #ifndef EB_JUDGE_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* main.c - cylembree: cylray inside Embree 3 against Embree's own cone curves, on four
  * scenes, time and error side by side.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* pending.h - the secondary-ray helpers, declared in cylray.h but not necessarily built
  * into the library this harness links against. They are weak references: a missing one
  * is NULL at run time, and the harness says what stood in, instead of failing to link. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* report.c - the Embree comparison's tables: speed, scaling, error. */
 #include "run.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* run.h - what one run of the Embree comparison measures, row by row. */
 #ifndef EB_RUN_H
 #define EB_RUN_H

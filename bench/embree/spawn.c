@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* spawn.c - secondary rays: where they start, which way they go. */
 #include "spawn.h"
 

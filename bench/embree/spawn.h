@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* spawn.h - the secondary rays of a frame: a shadow ray to the point light and one
  * diffuse bounce from every primary hit, spawned the way each variant's user would. */
 #ifndef EB_SPAWN_H

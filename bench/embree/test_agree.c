@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_agree.c - the user-geometry path gives the hits that plain cylray calls give:
  * Embree's BVH with cylray callbacks (single cylinders, and leaves where the library has
  * them), at 1, 4, 8 and 16 rays a call, against every cylinder tried in turn. */

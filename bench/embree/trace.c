@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* trace.c - ray storage, the camera, and the threaded tile loop around Embree's
  * rtcIntersect and rtcOccluded calls. */
 #define _POSIX_C_SOURCE 200809L /* clock_gettime(CLOCK_PROCESS_CPUTIME_ID) */

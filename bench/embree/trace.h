@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* trace.h - ray sets and their tracing through an Embree scene: one ray or packets of
  * 4, 8, 16, over image tiles, on plain threads. */
 #ifndef EB_TRACE_H

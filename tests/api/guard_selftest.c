@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* guard_selftest.c - the guarded runner (guarded.c) catches what it claims to: a fake
  * kernel table wraps the scalar path and breaks one rule of the contract at a time;
  * each must be reported, and the faithful wrapper must not be. Without this, a runner

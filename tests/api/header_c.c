@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* header_c.c - include/cylray.h compiles alone as C11 (it is the only include, twice,
  * and this file is built with -Werror at warning level 3), and its packets have the
  * layout the contract promises: SoA, aligned to their width, no padding. */
@@ -28,7 +29,7 @@ _Static_assert(CYLRAY_FLAGS_ALL == (CYLRAY_NORMAL | CYLRAY_FACE_FORWARD | CYLRAY
 _Static_assert(CYLRAY_MISS == 0 && CYLRAY_SIDE == 1 && CYLRAY_CAP_LO == 2 &&
                    CYLRAY_CAP_HI == 3 && CYLRAY_BACKFACE == 0x10 &&
                    (CYLRAY_PART_MASK & CYLRAY_BACKFACE) == 0,
-               "part codes as in DESIGN.md");
+               "part codes as in docs/design.md");
 _Static_assert(CYLRAY_ISA_SCALAR == 0 && CYLRAY_ISA_NEON == 4 && CYLRAY_ISA_COUNT == 5,
                "ISA enum order");
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 // header_cpp.cpp - include/cylray.h compiles alone as C++ (-Werror, warning level 3),
 // agrees with C on the packet layout, and declares C linkage (the calls below would not
 // link against the C library otherwise).

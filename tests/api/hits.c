@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hits.c - hand-checked hits: every case below has an answer worked out on paper,
  * exact in binary (integers, halves, Pythagorean triples), run on every ISA, at every
  * width, in every lane position, under every flag that changes the answer:

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* isa_env.c - CYLRAY_ISA forces the path of the plain entry points: an available
  * choice is used silently; an unavailable or unknown one falls back to the best path
  * with exactly one line on stderr, however many calls follow, which says which of the

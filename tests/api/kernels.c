@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* kernels.c - the per-ISA table: cylray_kernels_for gives a complete table exactly for
  * the ISAs that were built and that this CPU runs (checked against the compiler's own
  * CPU detection, not the library's), names match cylray_isa_name, and the plain entry

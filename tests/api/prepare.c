@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* prepare.c - cylray_prepare refuses every cylinder that describes no solid, leaves
  * *out untouched when it does, and accepts the legitimate edge cases (an infinite
  * half height, a tiny but normal axis). */

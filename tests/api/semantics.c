@@ -1,4 +1,5 @@
-/* semantics.c - the per-lane contract of DESIGN.md section 3 on varied rays, on every
+/* SPDX-License-Identifier: MIT */
+/* semantics.c - the per-lane contract of docs/design.md section 3 on varied rays, on every
  * ISA: a lane's answer depends on nothing but its own ray, so
  *   - packets of 4, 8 and 16 and streams of any length give bit-identical answers for
  *     the same ray (same kernel, same operations: a difference would mean a lane sees

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* cases.c - the cases of one category, generated and evaluated exactly once, before
  * any path runs over them. */
 #include "check.h"

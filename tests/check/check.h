@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* check.h - what the parts of cylcheck share: the cases with their exact bands, one
  * kernel answer per lane, the verdict rules and the statistics. */
 #ifndef CYLCHECK_H
@@ -12,7 +13,7 @@
 
 /* ---- the criteria --------------------------------------------------------------- */
 
-/* t may lie this many float ulps outside the exact band (DESIGN.md section 4). */
+/* t may lie this many float ulps outside the exact band (docs/design.md section 4). */
 #define TOL_T_ULPS 4.0
 /* With CYLRAY_FAST (hardware reciprocal / rsqrt estimates plus one Newton step): twice
  * the plain bound. Measured: no FAST answer outside the band at all, and the same p99

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* cylcheck.c - checkasm for cylray: every ISA the CPU has, every width, every flag
  * combination, every category of stress ray, against the scalar path and the exact
  * reference (tests/ref). Prints its seed; a failure prints the lane's inputs in %a.

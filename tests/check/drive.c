@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* drive.c - calling one path the way a tracer does (packets of 4, 8 and 16 with active
  * masks; streams of odd lengths at odd addresses) and checking what it may and may not
  * write: hit lanes get t, part, the normal (with CYLRAY_NORMAL) and tmax = t; missed

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* leafcheck.c - leaves against the exact reference: every ISA x leaf size (4, 8, 16) x
  * all 32 flag sets, on leaves whose lanes draw their cylinder from every stress
  * category (so kinds, axes, radii and distances mix in one leaf), with padding lanes,

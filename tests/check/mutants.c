@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mutants.c - the checker's own test: a path that is the scalar kernel with one defect
  * put in on purpose must fail cylcheck's criteria, each defect by the rule meant to
  * catch it; the unchanged scalar kernel must pass them. A checker that cannot fail

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* regress.c - fixed cases run on every path in every cylcheck run (category "regress"):
  * inputs that once made a kernel fail, kept so the failure cannot come back unseen, and
  * float-exact hand cases whose answer is known without the reference. */

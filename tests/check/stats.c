@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* stats.c - accuracy per ISA x category x mode: the t error distribution against the
  * exact answer, disagreements (excused by the band or not), normals, agreement with
  * the scalar path; the report table and the headline numbers. */

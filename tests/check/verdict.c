@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* verdict.c - one lane's answer against the exact band and the scalar answer; failures
  * printed with every input as an exact hex float, so that they reproduce anywhere. */
 #include "check.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* agree.c - the disagreement criterion of agree.h.
  *
  * Two answers agree when both miss, or both hit the same part at t within the

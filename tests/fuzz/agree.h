@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* agree.h - may two paths answer the same ray differently? The SIMD paths are judged
  * against the scalar one: they compute the same formulas in a different order (FMA or
  * not, approximate reciprocals under CYLRAY_FAST), so their answers may differ only

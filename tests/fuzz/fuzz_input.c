@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fuzz_input.c - the byte decoder of fuzz_input.h. */
 #include "fuzz_input.h"
 

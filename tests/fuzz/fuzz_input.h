@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fuzz_input.h - turning arbitrary bytes into one kernel call: a cylinder, kernel
  * flags, a width (4, 8, 16 or a stream), an active mask, a stream misalignment and the
  * rays. Every byte string decodes to something; running out of bytes gives zeros.

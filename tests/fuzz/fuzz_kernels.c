@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fuzz_kernels.c - the libFuzzer target: arbitrary bytes become one kernel
  * call (fuzz_input.h), run on every ISA this machine has, through the guarded runner
  * (canaries, poison, the memory contract). A failure prints the case in hex floats and

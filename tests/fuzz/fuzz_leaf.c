@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fuzz_leaf.c - the fuzzer's leaf checks: the decoded cylinder and variants of it
  * (moved by fractions of its radius, with the caps changed) make a leaf of up to 8;
  * each of the first rays of the case is traced through it on every ISA:

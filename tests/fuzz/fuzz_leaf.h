@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fuzz_leaf.h - the fuzzer's checks of the leaf kernels (fuzz_leaf.c). */
 #ifndef FUZZ_LEAF_H
 #define FUZZ_LEAF_H

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """make_corpus.py - writes the seed corpus (corpus/*) of the fuzz target.
 
 The byte layout is documented in fuzz_input.h. Each seed is one typical call, so the

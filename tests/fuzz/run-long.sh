@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # tests/fuzz/run-long.sh - a long libFuzzer run of the kernel fuzz target.
 #
 # Usage: tests/fuzz/run-long.sh [seconds] [jobs]      (defaults: 3600 s, 2 jobs)

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* standalone.c - main() for the fuzz target where libFuzzer is not available (gcc,
  * the aarch64 cross build): replays the files named on the command line (the seed
  * corpus, or a crash file from a long run), and with --random N [SEED] also runs N

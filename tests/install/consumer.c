@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* consumer.c - a program that uses cylray as any user of an installed copy would:
  * <cylray.h> and the linker, nothing from the source tree. consumers.py builds it
  * against the installed tree with pkg-config, with CMake, and with cylray as a meson

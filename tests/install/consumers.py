@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """consumers.py - builds consumer.c the three ways a user adopts cylray, and runs it.
 
 Usage: consumers.py pkgconfig|cmake|subproject  (the rest comes from the environment

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """exports.py - the shared library exports exactly the functions cylray.h declares.
 
 Usage: exports.py <cylray.h> <libcylray.so>

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """readme_example.py - writes the first (or the N-th) ```c block of README.md to a C file.
 
 Usage: readme_example.py README.md out.c [N]

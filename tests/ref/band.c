@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* band.c - the tolerance band: which answers a float kernel may give for these float
  * inputs, and where their t may lie, from exact evaluations of perturbed inputs.
  *
@@ -14,7 +15,7 @@
 
 /* The perturbed inputs: the relative position w = o - c, d, the axis, R, H. The center
  * is not moved on its own: t does not change when o and c move together, and a kernel
- * that forms o - c exactly (DESIGN.md 2.4) owes accuracy relative to |o - c|, not to
+ * that forms o - c exactly (docs/design.md 2.4) owes accuracy relative to |o - c|, not to
  * |c|. Moving c by 2 of its own ulps would excuse any answer for a 1e-4 cylinder at
  * 1e4 (ulp 1e-3); moving w instead excuses only what float can't resolve there. */
 enum { IN_W = 0, IN_D = 3, IN_V = 6, IN_R = 9, IN_H = 10, IN_COUNT = 11 };

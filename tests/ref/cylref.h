@@ -1,13 +1,14 @@
+/* SPDX-License-Identifier: MIT */
 /* cylref.h - the exact ray/cylinder reference (binary128), written apart from the kernels.
  *
  * Everything here is evaluated in IEEE binary128 (__float128 on x86-64, long double on
  * AArch64) from the float inputs taken as exact binary values, with the same cures as
- * DESIGN.md section 2 (cross products, Lagrange's discriminant, the stable quadratic)
+ * docs/design.md section 2 (cross products, Lagrange's discriminant, the stable quadratic)
  * so that the only rounding left is binary128's own: about 2^-100 relative on t, far
  * below a float ulp, except at a genuine tangency, which the tolerance band covers.
  * It never calls a cylray kernel; it only shares the input types of cylray.h.
  *
- * Semantics are DESIGN.md sections 1-3: the smallest t in the closed [tmin, tmax];
+ * Semantics are docs/design.md sections 1-3: the smallest t in the closed [tmin, tmax];
  * a capped cylinder is the infinite solid cut by the slab |z| <= H, an open tube keeps
  * the side roots with |z| <= H, an infinite one (half_height = INFINITY) is not cut. */
 #ifndef CYLREF_H
@@ -55,7 +56,7 @@ typedef struct cylref_alt {
  * (22 evaluations in all). The perturbed inputs are the origin relative to the center
  * w = o - c (2 ulps of |w|), d, the axis, the radius and the half height. The center is
  * not moved on its own: moving o and c together changes no t, and a kernel that forms
- * o - c exactly (DESIGN.md 2.4) owes accuracy relative to |o - c|; 2 ulps of |c| would
+ * o - c exactly (docs/design.md 2.4) owes accuracy relative to |o - c|; 2 ulps of |c| would
  * excuse any answer for a 1e-4 cylinder at 1e4. A decision (does the ray meet the side,
  * which of entry and exit, side or cap, inside [tmin, tmax]?) is unstable when its
  * margin can change sign inside the box, or when the two t values it compares are

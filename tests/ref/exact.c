@@ -1,5 +1,6 @@
+/* SPDX-License-Identifier: MIT */
 /* exact.c - the exact intersection: every candidate t and decision margin in binary128,
- * then the decision (DESIGN.md sections 1-3) from the margins' signs.
+ * then the decision (docs/design.md sections 1-3) from the margins' signs.
  *
  * With V = v.v (the axis is never normalised), w = o - c, e = d x v, f = w x v:
  *   side:  A t^2 + 2 B t + C = 0,  A = e.e,  B = e.f,  C = f.f - R^2 V,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* exact.h - inside the reference: one exact evaluation as a record of the quantities whose
  * signs decide the answer, and the decision logic as a function of those signs alone.
  *

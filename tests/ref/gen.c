@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* gen.c - the stress-ray generators: one function per category of numerical difficulty.
  *
  * Geometry is built in double from the float cylinder (the values the kernel will see),

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* gen.h - deterministic stress-ray generators shared by the checker, the bench and the fuzzer.
  *
  * Each category returns cylinders and rays of one numerical difficulty. Output is a

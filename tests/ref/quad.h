@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* quad.h - the binary128 type of the reference and the few functions it needs on it.
  *
  * __float128 on x86-64 (gcc and clang), long double on AArch64 where it is binary128.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_ref.c - tests of the exact reference itself: hand-computed answers, symmetries,
  * an independent membership check along the ray, and the band's verdicts. */
 #include "cylref.h"

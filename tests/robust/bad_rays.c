@@ -1,4 +1,5 @@
-/* bad_rays.c - one bad lane among good ones (issue 6), on every ISA and width.
+/* SPDX-License-Identifier: MIT */
+/* bad_rays.c - one bad lane among good ones, on every ISA and width.
  *
  * A "victim" ray is damaged in one field (NaN, -NaN, a signalling NaN, +-Inf, 1e30,
  * FLT_MAX, a subnormal...) or as a whole (zero direction, tmin > tmax, ...) and put in

@@ -1,4 +1,5 @@
-/* huge.c - huge but finite cylinders (issue 6): cylray_prepare either refuses them
+/* SPDX-License-Identifier: MIT */
+/* huge.c - huge but finite cylinders: cylray_prepare either refuses them
  * (CYLRAY_EINVAL) or the kernels answer correctly for them; never a false hit.
  *
  * Magnitudes from 1e10 to FLT_MAX go into the center, the radius, the half height

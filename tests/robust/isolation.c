@@ -1,4 +1,5 @@
-/* isolation.c - lanes and memory are isolated (issue 6), on every ISA:
+/* SPDX-License-Identifier: MIT */
+/* isolation.c - lanes and memory are isolated, on every ISA:
  *   - inactive lanes: whatever they hold (rays that would hit, NaN, signalling NaN,
  *     Inf, huge and subnormal garbage), the active lanes' answers are bit-identical
  *     to the all-active run, for every active mask of 4 and 8 lanes and many of 16;

@@ -1,4 +1,5 @@
-/* threads.c - many threads make their first call at once (issue 6). The plain entry
+/* SPDX-License-Identifier: MIT */
+/* threads.c - many threads make their first call at once. The plain entry
  * points choose their path on the first call; eight threads released together by a
  * barrier all make that first call, through every entry point, repeatedly. Every
  * thread must then see the same path and get answers bit-identical to one thread's.

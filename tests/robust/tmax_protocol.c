@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* tmax_protocol.c - the closed interval [tmin, tmax] is one contract for every path,
  * flag set, width and kind of cylinder, so that a tracer can walk cylinders in any
  * order through tmax and keep the closest hit:

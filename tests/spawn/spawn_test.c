@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* spawn_test.c - secondary rays against exact arithmetic.
  *
  *   spawn_test bounds   every ISA's hits of every category: the hit point's bound

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* spawnref.c - exact distances from a cylinder's surfaces (binary128), the two extra
  * hit categories, direction sampling and the self-intersection test. */
 #include "spawnref.h"

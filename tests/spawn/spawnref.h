@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* spawnref.h - what the secondary-ray tests and the bench's comparison share: hits of
  * every category, exact distances of a float point from a cylinder's surfaces, new
  * directions on a chosen side, and the test of a self-intersection. */

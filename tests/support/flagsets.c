@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* flagsets.c - the list of flagsets.h. */
 #include "flagsets.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* flagsets.h - the kernel flag combinations the tests run their cases under.
  *
  * Every flag is exercised alone (with CYLRAY_NORMAL where it acts on the normal), next

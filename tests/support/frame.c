@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* frame.c - the axis frame of frame.h. */
 #include "frame.h"
 

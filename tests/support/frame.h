@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* frame.h - an orthonormal frame around a cylinder's axis, for placing test rays. */
 #ifndef FRAME_H
 #define FRAME_H

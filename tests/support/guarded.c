@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* guarded.c - the guarded kernel runner described in guarded.h. */
 #include "guarded.h"
 

@@ -1,5 +1,6 @@
+/* SPDX-License-Identifier: MIT */
 /* guarded.h - rays through any ISA at any width, inside canaries and poison, with every
- * check of DESIGN.md section 3 that needs no geometry.
+ * check of docs/design.md section 3 that needs no geometry.
  *
  * Each call copies a batch of rays into freshly allocated packets (or stream arrays at
  * a chosen misalignment), surrounds every array with canary bytes (also poisoned for

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hitcheck.c - the geometric verifier of one reported hit (hitcheck.h). */
 #include "hitcheck.h"
 

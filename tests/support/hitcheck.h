@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hitcheck.h - is a reported hit geometrically possible? A verifier, not a reference.
  *
  * Given the float inputs and one kernel answer, it evaluates the hit point o + t d in

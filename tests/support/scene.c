@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* scene.c - the ray batches of scene.h. */
 #include "scene.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* scene.h - deterministic batches of ordinary rays around one cylinder, for tests that
  * need many varied lanes (hits from outside, exits from inside, caps, misses, short
  * [tmin, tmax] windows) rather than particular numerical difficulty. The rays' answers

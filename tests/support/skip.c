@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* skip.c - stands in for a test that cannot be built here (e.g. no C++ compiler):
  * prints why and exits 77, which meson reports as SKIP rather than a silent pass. */
 #include <stdio.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* tcheck.c - the failure counter behind CHECK. */
 #include "tcheck.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* tcheck.h - counting test failures, and printing floats so that a failure replays.
  *
  * The test programs of api/, robust/ and fuzz/ report through these: CHECK counts, prints
