@@ -188,14 +188,17 @@ static void hit_point_geo(const geo *g, const float o[3], const float d[3], floa
     double s = dot3(q, g->v) * g->inv_vv;
     for (int k = 0; k < 3; k++)
         r[k] = q[k] - s * g->v[k];
-    double L = norm3(r), qn = norm3(q);
-    if (!(L > 0)) { /* on the axis: any radial direction is as good */
+    const int on_cap = P == CYLRAY_CAP_LO || P == CYLRAY_CAP_HI;
+    const double qn = norm3(q);
+    double L = norm3(r);
+    if (!(L > 0) && !on_cap) { /* a side point on the axis: any radial direction serves */
         any_perp(g, r);
-        qn = L = norm3(r);
+        L = norm3(r);
     }
-    const double inv_L = 1.0 / L;
+    /* A cap point on the axis stays there (r = 0): it is the disc's center. */
+    const double inv_L = L > 0 ? 1.0 / L : 0.0;
     double env, rad, gain;
-    if (P == CYLRAY_CAP_LO || P == CYLRAY_CAP_HI) {
+    if (on_cap) {
         s = (P == CYLRAY_CAP_HI ? g->H : -g->H) * g->inv_sv;
         gain = L > g->R ? g->R * inv_L : 1.0; /* into the disc */
         rad = L * gain;

@@ -535,6 +535,87 @@ static int run_batched(void)
     return diff == 0 && lanes > 0;
 }
 
+/* Rays down the axis onto a disc's center (a point where the radial direction is
+ * undefined): the hit point stays at the center, within its bound of the cap's plane,
+ * and the reflected ray's origin stays near the axis on the ray's side. */
+static int run_axis(void)
+{
+    static const float axes[][3] = {{0, 0, 1}, {0, -3, 0}, {1, 0, 0}, {0.3f, -0.5f, 0.8f},
+                                    {-1e-3f, 2e-3f, 5e-4f}};
+    static const float centers[][3] = {{0, 0, 0}, {1.5f, -2, 7}, {1e4f, -3e4f, 2e3f}};
+    static const float radii[] = {1e-2f, 1, 250};
+    long bad = 0, n = 0;
+    for (size_t ai = 0; ai < sizeof axes / sizeof axes[0]; ai++)
+        for (size_t ci = 0; ci < sizeof centers / sizeof centers[0]; ci++)
+            for (size_t ri = 0; ri < sizeof radii / sizeof radii[0]; ri++)
+                for (int end = 0; end < 2; end++) {
+                    const float *a = axes[ai], *c0 = centers[ci];
+                    const float R = radii[ri], H = 2 * R;
+                    cylray_cylinder cyl = {{c0[0], c0[1], c0[2]}, {a[0], a[1], a[2]}, R, H,
+                                           CYLRAY_CAPPED};
+                    cylray_prepared P;
+                    if (cylray_prepare(&P, &cyl) != CYLRAY_OK)
+                        continue;
+                    /* floats must resolve the disc there (the guarantee's condition) */
+                    const double cmax = fmax(fabs(c0[0]), fmax(fabs(c0[1]), fabs(c0[2])));
+                    if (256 * cmax * 0x1p-24 > R)
+                        continue;
+                    const double al = sqrt((double)a[0] * a[0] + (double)a[1] * a[1] +
+                                           (double)a[2] * a[2]);
+                    const double sg = end ? 1 : -1; /* the ray comes from beyond that end */
+                    float o[3], d[3];
+                    for (int k = 0; k < 3; k++) {
+                        o[k] = (float)(c0[k] + sg * 3 * H * a[k] / al);
+                        d[k] = (float)(-sg * a[k] / al);
+                    }
+                    const int32_t part = end ? CYLRAY_CAP_HI : CYLRAY_CAP_LO;
+                    cylray_ray4 ray;
+                    cylray_hit4 hit;
+                    for (int l = 0; l < 4; l++) {
+                        ray.ox[l] = o[0], ray.oy[l] = o[1], ray.oz[l] = o[2];
+                        ray.dx[l] = d[0], ray.dy[l] = d[1], ray.dz[l] = d[2];
+                        ray.tmin[l] = 0, ray.tmax[l] = INFINITY;
+                    }
+                    if (!(cylray_intersect4(&P, &ray, &hit, 1u, 0) & 1u) ||
+                        hit.part[0] != part) {
+                        bad++;
+                        fprintf(stderr, "axis: no cap hit (axis %zu center %zu R %g end %d)\n",
+                                ai, ci, (double)R, end);
+                        continue;
+                    }
+                    float p[3], err, org[3];
+                    cylray_hit_point(&P, o, d, hit.t[0], part, p, &err);
+                    const float w[3] = {-d[0], -d[1], -d[2]};
+                    cylray_spawn_origin(&P, p, err, part, w, org);
+                    double zp = 0, zo = 0, rp2 = 0, ro2 = 0;
+                    double pc[3], oc[3];
+                    for (int k = 0; k < 3; k++) {
+                        pc[k] = (double)p[k] - c0[k];
+                        oc[k] = (double)org[k] - c0[k];
+                        zp += pc[k] * a[k] / al;
+                        zo += oc[k] * a[k] / al;
+                    }
+                    for (int k = 0; k < 3; k++) {
+                        rp2 += (pc[k] - zp * a[k] / al) * (pc[k] - zp * a[k] / al);
+                        ro2 += (oc[k] - zo * a[k] / al) * (oc[k] - zo * a[k] / al);
+                    }
+                    const int ok = sqrt(rp2) <= 0.25 * R && fabs(fabs(zp) - H) <= err &&
+                                   sqrt(ro2) <= 0.25 * R && sg * zo > H;
+                    n++;
+                    if (!ok) {
+                        bad++;
+                        fprintf(stderr,
+                                "axis: axis %zu center %zu R %g end %d: point %g from the "
+                                "axis, %g off the plane (err %g); origin %g from the axis, "
+                                "%g beyond the plane\n",
+                                ai, ci, (double)R, end, sqrt(rp2), fabs(fabs(zp) - H),
+                                (double)err, sqrt(ro2), sg * zo - H);
+                    }
+                }
+    printf("axis: %ld disc centers, %ld failures\n", n, bad);
+    return n > 0 && bad == 0;
+}
+
 int main(int argc, char **argv)
 {
     const char *q = getenv("CYLRAY_TEST_QUICK");
@@ -554,8 +635,10 @@ int main(int argc, char **argv)
         ok = run_nested();
     else if (strcmp(mode, "batched") == 0)
         ok = run_batched();
+    else if (strcmp(mode, "axis") == 0)
+        ok = run_axis();
     else {
-        fprintf(stderr, "usage: spawn_test bounds|self|nested|batched\n");
+        fprintf(stderr, "usage: spawn_test bounds|self|nested|batched|axis\n");
         return 2;
     }
     printf("%s: %s\n", mode, ok ? "ok" : "FAILED");
