@@ -23,6 +23,7 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include "morton.h"
 
 #define LEAF_RUN 32   /* cylinders a ray meets: 8 leaves of 4, 4 of 8, 2 of 16 */
 #define LEAF_RAYS 256 /* rays per pass: 8 KB, beside the leaves in L1 */
@@ -123,16 +124,6 @@ static int pipes(cylray_cylinder *out, int n, const double base[3], double size,
     return k;
 }
 
-static uint32_t spread3(uint32_t x) /* 10 bits to every third of 30 */
-{
-    x &= 0x3ff;
-    x = (x | x << 16) & 0x030000ff;
-    x = (x | x << 8) & 0x0300f00f;
-    x = (x | x << 4) & 0x030c30c3;
-    x = (x | x << 2) & 0x09249249;
-    return x;
-}
-
 typedef struct keyed {
     uint32_t key;
     int idx;
@@ -163,7 +154,8 @@ static int morton_sort(cylray_cylinder *c, int n)
         uint32_t q[3];
         for (int k = 0; k < 3; k++)
             q[k] = (uint32_t)(1023.0f * (c[i].center[k] - lo[k]) / fmaxf(hi[k] - lo[k], 1e-6f));
-        kv[i].key = spread3(q[0]) | spread3(q[1]) << 1 | spread3(q[2]) << 2;
+        kv[i].key = morton_spread3(q[0]) | morton_spread3(q[1]) << 1 |
+                    morton_spread3(q[2]) << 2;
         kv[i].idx = i;
     }
     qsort(kv, (size_t)n, sizeof *kv, by_key);

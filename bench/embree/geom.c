@@ -12,6 +12,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "../morton.h"
 
 const char *eb_variant_name(eb_variant v)
 {
@@ -230,17 +231,6 @@ static void leaf_bounds(const struct RTCBoundsFunctionArguments *a)
     *a->bounds_o = g->lbox[a->primID];
 }
 
-/* Spreads the low 10 bits of x to every third bit. */
-static uint32_t spread3(uint32_t x)
-{
-    x &= 0x3ff;
-    x = (x | x << 16) & 0x030000ff;
-    x = (x | x << 8) & 0x0300f00f;
-    x = (x | x << 4) & 0x030c30c3;
-    x = (x | x << 2) & 0x09249249;
-    return x;
-}
-
 typedef struct keyed {
     uint32_t key, id;
 } keyed;
@@ -273,7 +263,7 @@ static uint32_t *morton_order(const eb_scene *s)
         for (int c = 0; c < 3; c++) {
             double ext = (double)hi[c] - lo[c];
             double f = ext > 0 ? ((double)s->cyl[i].center[c] - lo[c]) / ext : 0;
-            code |= spread3((uint32_t)(f * 1023.0)) << c;
+            code |= morton_spread3((uint32_t)(f * 1023.0)) << c;
         }
         k[i].key = code;
         k[i].id = (uint32_t)i;
