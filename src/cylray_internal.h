@@ -32,10 +32,10 @@
 #define CYLRAY_RARE_ 0x80000000u
 
 /* The kernel tables are indexed by the cylinder's variant (its kind, plus 3 when the
- * axis is a coordinate axis) and the flags a kernel is specialised for (normals and
- * CYLRAY_FAST). A cylinder whose radius is far from 1 (j != 0) or that has one disc
- * only has a variant from CYLRAY_VARIANT_GENERIC on, and runs the generic kernel, as
- * does every call with CYLRAY_REFINE. */
+ * axis is a coordinate axis) and the flags a kernel is specialised for (normals,
+ * CYLRAY_FAST, CYLRAY_REFINE). A cylinder whose radius is far from 1 (j != 0) or that
+ * has one disc only has a variant from CYLRAY_VARIANT_GENERIC on, and runs the generic
+ * kernel, which reads its flags at run time. */
 #define CYLRAY_VARIANT_GENERIC (2u * CYLRAY_KIND_COUNT)
 static inline unsigned cylray_variant_of_(unsigned kind, unsigned axis_id, int radius_scaled,
                                           unsigned caps)
@@ -48,21 +48,28 @@ static inline unsigned cylray_variant_(const cylray_prepared *p)
 {
     return p->variant;
 }
-static inline int cylray_generic_(const cylray_prepared *p, unsigned flags)
+static inline int cylray_generic_(const cylray_prepared *p)
 {
-    return p->variant >= CYLRAY_VARIANT_GENERIC || (flags & CYLRAY_REFINE);
+    return p->variant >= CYLRAY_VARIANT_GENERIC;
 }
-static inline unsigned cylray_spec_(unsigned flags) /* normals, fast: 0..3 */
+/* The one encoding of the specialised flags: bit 0 normals, bit 1 FAST, bit 2 REFINE
+ * (the kernel template's KFL_ decodes it; cylray_occ_spec_ drops the normals). */
+static inline unsigned cylray_spec_(unsigned flags)
 {
-    return (flags & CYLRAY_NORMAL) | ((flags & CYLRAY_FAST) ? 2u : 0u);
+    return (flags & CYLRAY_NORMAL) | ((flags & CYLRAY_FAST) ? 2u : 0u) |
+           ((flags & CYLRAY_REFINE) ? 4u : 0u);
+}
+static inline unsigned cylray_occ_spec_(unsigned flags)
+{
+    return cylray_spec_(flags) >> 1;
 }
 static inline unsigned cylray_isect_index_(unsigned variant, unsigned flags)
 {
-    return variant * 4u + cylray_spec_(flags);
+    return variant * 8u + cylray_spec_(flags);
 }
 static inline unsigned cylray_occ_index_(unsigned variant, unsigned flags)
 {
-    return variant * 2u + ((flags & CYLRAY_FAST) ? 1u : 0u);
+    return variant * 4u + cylray_occ_spec_(flags);
 }
 
 static inline int cylray_prepared_ok_(const cylray_prepared *p)

@@ -20,7 +20,7 @@
         active &= (uint32_t)((1ull << n) - 1u);                                        \
         if (!active || !ray || !hit || !cylray_prepared_ok_(P))                        \
             return 0;                                                                  \
-        if (cylray_generic_(P, flags))                                                \
+        if (cylray_generic_(P))                                                \
             return KW_(packet_generic, KW##n)(P, ray->ox, hit->t, n, active, flags);    \
         const KW_(packet_fn, KW##n) *t = n == KW_(vw, KW##n) ? KW_(isect1_table, KW##n)   \
                                                             : KW_(isect_table, KW##n);   \
@@ -34,7 +34,7 @@
         if (!active || !ray || !cylray_prepared_ok_(P))                                \
             return 0;                                                                  \
         /* the occluded kernels read tmax and never write through this pointer */      \
-        if (cylray_generic_(P, flags))                                                \
+        if (cylray_generic_(P))                                                \
             return KW_(packet_generic, KW##n)(P, (float *)(uintptr_t)ray->ox, NULL, n,    \
                                               active, flags);                         \
         const KW_(packet_fn, KW##n) *t = n == KW_(vw, KW##n) ? KW_(occ1_table, KW##n)     \
@@ -51,7 +51,7 @@ static size_t KI_(intersect_stream)(const cylray_prepared *P, const cylray_rays 
 {
     if (!n || !rays || !hits || !cylray_prepared_ok_(P))
         return 0;
-    if (cylray_generic_(P, flags))
+    if (cylray_generic_(P))
         return KW_(stream_generic, KW16)(P, rays, hits, NULL, n, flags);
     return KW_(isect_stream_table, KW16)[cylray_isect_index_(cylray_variant_(P), flags)](
         P, rays, hits, NULL, n, flags & CYLRAY_KF_RUNTIME);
@@ -62,7 +62,7 @@ static size_t KI_(occluded_stream)(const cylray_prepared *P, const cylray_rays *
 {
     if (!n || !rays || !occluded || !cylray_prepared_ok_(P))
         return 0;
-    if (cylray_generic_(P, flags))
+    if (cylray_generic_(P))
         return KW_(stream_generic, KW16)(P, rays, NULL, occluded, n, flags);
     return KW_(occ_stream_table, KW16)[cylray_occ_index_(cylray_variant_(P), flags)](
         P, rays, NULL, occluded, n, flags & CYLRAY_CULL_BACK);
@@ -79,8 +79,6 @@ static size_t KI_(occluded_stream)(const cylray_prepared *P, const cylray_rays *
     {                                                                                    \
         if (!leaf || !ray || !hit)                                                       \
             return 0;                                                                    \
-        if (flags & CYLRAY_REFINE)                                                       \
-            return KW_(leaf_generic, KL##m)(leaf->geom_[0], m, ray, hit, flags);          \
         return KW_(leaf_table, KL##m)[cylray_spec_(flags)](leaf->geom_[0], m, ray, hit,    \
                                                           flags & CYLRAY_KF_RUNTIME);    \
     }                                                                                    \
@@ -91,10 +89,9 @@ static size_t KI_(occluded_stream)(const cylray_prepared *P, const cylray_rays *
             return 0;                                                                    \
         /* the occluded kernels read the ray and never write through this pointer */    \
         cylray_ray1 *r = (cylray_ray1 *)(uintptr_t)ray;                                  \
-        if (flags & CYLRAY_REFINE)                                                       \
-            return KW_(leaf_generic, KL##m)(leaf->geom_[0], m, r, NULL, flags);           \
-        return KW_(leaf_occ_table, KL##m)[(flags & CYLRAY_FAST) ? 1 : 0](                 \
-            leaf->geom_[0], m, r, NULL, flags & CYLRAY_CULL_BACK);                       \
+        return KW_(leaf_occ_table, KL##m)[cylray_occ_spec_(flags)](leaf->geom_[0], m, r,   \
+                                                                  NULL,                  \
+                                                                  flags & CYLRAY_CULL_BACK); \
     }
 KLEAF_ENTRY_(4)
 KLEAF_ENTRY_(8)

@@ -741,9 +741,9 @@ CYLRAY_INLINE int KFN(leaf)(const float *L, size_t lm, cylray_ray1 *ray, cylray_
     return 1;
 }
 
-/* The drivers for everything the specialisations below leave out: a cylinder whose
- * radius is far from 1 or that has one disc only (variant >= CYLRAY_VARIANT_GENERIC),
- * and CYLRAY_REFINE. The flags select the kernel's branches at run time. */
+/* The drivers for what the specialisations below leave out: a cylinder whose radius is
+ * far from 1 or that has one disc only (variant >= CYLRAY_VARIANT_GENERIC). The flags
+ * select the kernel's branches at run time. */
 static unsigned KFN(generic_fl)(const cylray_prepared *P, unsigned flags, int occ)
 {
     return P->kind << CYLRAY_KF_KIND_SHIFT | (occ ? CYLRAY_KF_OCCLUDED : 0u) |
@@ -752,46 +752,62 @@ static unsigned KFN(generic_fl)(const cylray_prepared *P, unsigned flags, int oc
            CYLRAY_KF_SCALED;
 }
 
-CYLRAY_MAYBE_UNUSED CYLRAY_NOINLINE uint32_t
-KFN(packet_generic)(const cylray_prepared *P, float *ray, float *hit, size_t n,
-                    uint32_t active, unsigned flags)
+/* One instance each of the drivers with the flags read at run time. */
+CYLRAY_MAYBE_UNUSED CYLRAY_NOINLINE uint32_t KFN(packet_any)(const cylray_prepared *P, float *ray,
+                                                             float *hit, size_t n,
+                                                             uint32_t active, unsigned rt,
+                                                             unsigned FL)
 {
-    return KFN(packet)(P, ray, hit, n, active, flags & CYLRAY_KF_RUNTIME,
-                       KFN(generic_fl)(P, flags, hit == NULL));
+    return KFN(packet)(P, ray, hit, n, active, rt, FL);
 }
 
-CYLRAY_MAYBE_UNUSED CYLRAY_NOINLINE size_t
-KFN(stream_generic)(const cylray_prepared *P, const cylray_rays *R, const cylray_hits *H,
-                    uint8_t *occluded, size_t n, unsigned flags)
+CYLRAY_MAYBE_UNUSED CYLRAY_NOINLINE size_t KFN(stream_any)(const cylray_prepared *P,
+                                                           const cylray_rays *R,
+                                                           const cylray_hits *H,
+                                                           uint8_t *occluded, size_t n,
+                                                           unsigned rt, unsigned FL)
 {
-    return KFN(stream)(P, R, H, occluded, n, flags & CYLRAY_KF_RUNTIME,
-                       KFN(generic_fl)(P, flags, occluded != NULL));
+    return KFN(stream)(P, R, H, occluded, n, rt, FL);
 }
 
-CYLRAY_MAYBE_UNUSED CYLRAY_NOINLINE int KFN(leaf_generic)(const float *L, size_t lm,
-                                                          cylray_ray1 *ray, cylray_hit1 *hit,
-                                                          unsigned flags)
+CYLRAY_MAYBE_UNUSED CYLRAY_NOINLINE int KFN(leaf_any)(const float *L, size_t lm, cylray_ray1 *ray,
+                                                      cylray_hit1 *hit, unsigned rt, unsigned FL)
 {
-    const int occ = hit == NULL;
-    return KFN(leaf)(L, lm, ray, hit, flags & CYLRAY_KF_RUNTIME,
-                     CYLRAY_KIND_LEAF << CYLRAY_KF_KIND_SHIFT |
-                         (occ ? CYLRAY_KF_OCCLUDED : 0u) |
-                         (flags & ((occ ? 0u : CYLRAY_NORMAL) | CYLRAY_REFINE | CYLRAY_FAST)) |
-                         CYLRAY_KF_SCALED);
+    return KFN(leaf)(L, lm, ray, hit, rt, FL);
+}
+
+CYLRAY_MAYBE_UNUSED static uint32_t KFN(packet_generic)(const cylray_prepared *P, float *ray,
+                                                        float *hit, size_t n, uint32_t active,
+                                                        unsigned flags)
+{
+    return KFN(packet_any)(P, ray, hit, n, active, flags & CYLRAY_KF_RUNTIME,
+                           KFN(generic_fl)(P, flags, hit == NULL));
+}
+
+CYLRAY_MAYBE_UNUSED static size_t KFN(stream_generic)(const cylray_prepared *P,
+                                                      const cylray_rays *R, const cylray_hits *H,
+                                                      uint8_t *occluded, size_t n, unsigned flags)
+{
+    return KFN(stream_any)(P, R, H, occluded, n, flags & CYLRAY_KF_RUNTIME,
+                           KFN(generic_fl)(P, flags, occluded != NULL));
 }
 
 /* The specialisations, where a tracer spends its time: for each kind of cylinder
  * (infinite, open, capped; the same three along a coordinate axis; and a leaf) the
- * intersect kernels with and without normals, and each of those and occluded with
- * and without CYLRAY_FAST. Face-forward and culling are read at run time (a select
- * each); CYLRAY_REFINE and the rare cylinders take the generic drivers above. The
- * index is cylray_isect_index_ / cylray_occ_index_ (cylray_internal.h). */
+ * intersect kernels with and without normals, each plain, with CYLRAY_FAST or with
+ * CYLRAY_REFINE, and the occluded ones likewise. FAST and REFINE together (an odd
+ * pair: one trades accuracy away, the other buys it) take the drivers that read their
+ * flags at run time, as the rare cylinders do; so do face-forward and culling in every
+ * kernel (a select each). b is cylray_spec_'s encoding (cylray_internal.h); the tables
+ * are indexed by cylray_isect_index_ / cylray_occ_index_. Half the specialisations of
+ * every combination, in build time and size, for the same speed where it counts. */
+#define KSPECFL_(b)                                                                    \
+    (((b) & 1 ? CYLRAY_NORMAL : 0u) | ((b) & 2 ? CYLRAY_FAST : 0u) |                       \
+     ((b) & 4 ? CYLRAY_REFINE : 0u))
 #define KFL_(kind, b, extra)                                                           \
     (((kind) % 3u) << CYLRAY_KF_KIND_SHIFT | ((kind) >= 3 ? CYLRAY_KF_ALIGNED : 0u) |     \
-     ((b) & 1 ? CYLRAY_NORMAL : 0u) | ((b) & 2 ? CYLRAY_FAST : 0u) | (extra))
-#define KLFL_(b, extra)                                                                \
-    (CYLRAY_KIND_LEAF << CYLRAY_KF_KIND_SHIFT | ((b) & 1 ? CYLRAY_NORMAL : 0u) |         \
-     ((b) & 2 ? CYLRAY_FAST : 0u) | (extra))
+     KSPECFL_(b) | (extra))
+#define KLFL_(b, extra) (CYLRAY_KIND_LEAF << CYLRAY_KF_KIND_SHIFT | KSPECFL_(b) | (extra))
 #define KSPEC_(kind, b, fl)                                                            \
     static uint32_t KFN(pk1_##kind##_##b)(const cylray_prepared *P, float *R, float *H,  \
                                           size_t n, uint32_t a, unsigned rt)            \
@@ -810,29 +826,49 @@ CYLRAY_MAYBE_UNUSED CYLRAY_NOINLINE int KFN(leaf_generic)(const float *L, size_t
     {                                                                                  \
         return KFN(stream)(P, R, H, o, n, rt, fl);                                     \
     }
+#define KANY_(kind, b, fl)                                                             \
+    static uint32_t KFN(pk1_##kind##_##b)(const cylray_prepared *P, float *R, float *H,  \
+                                          size_t n, uint32_t a, unsigned rt)            \
+    {                                                                                  \
+        return KFN(packet_any)(P, R, H, n, a, rt, fl);                                 \
+    }                                                                                  \
+    static uint32_t KFN(pk_##kind##_##b)(const cylray_prepared *P, float *R, float *H,   \
+                                         size_t n, uint32_t a, unsigned rt)             \
+    {                                                                                  \
+        return KFN(packet_any)(P, R, H, n, a, rt, fl);                                 \
+    }                                                                                  \
+    static size_t KFN(st_##kind##_##b)(const cylray_prepared *P, const cylray_rays *R,  \
+                                       const cylray_hits *H, uint8_t *o, size_t n,       \
+                                       unsigned rt)                                     \
+    {                                                                                  \
+        return KFN(stream_any)(P, R, H, o, n, rt, fl);                                 \
+    }
 #define KISECT_(kind, b) KSPEC_(kind, b, KFL_(kind, b, 0u))
 #define KOCC_(kind, b) KSPEC_(kind, o##b, KFL_(kind, (b) << 1, CYLRAY_KF_OCCLUDED))
-#define KLEAF_(b)                                                                      \
-    static int KFN(lf_##b)(const float *L, size_t lm, cylray_ray1 *r, cylray_hit1 *h,   \
-                           unsigned rt)                                                \
+#define KISECTANY_(kind, b) KANY_(kind, b, KFL_(kind, b, 0u))
+#define KOCCANY_(kind, b) KANY_(kind, o##b, KFL_(kind, (b) << 1, CYLRAY_KF_OCCLUDED))
+#define KLEAFDRV_(name, drv, fl)                                                       \
+    static int KFN(name)(const float *L, size_t lm, cylray_ray1 *r, cylray_hit1 *h,     \
+                         unsigned rt)                                                  \
     {                                                                                  \
-        return KFN(leaf)(L, lm, r, h, rt, KLFL_(b, 0u));                               \
+        return KFN(drv)(L, lm, r, h, rt, fl);                                          \
     }
-#define KLEAFOCC_(b)                                                                   \
-    static int KFN(lo_##b)(const float *L, size_t lm, cylray_ray1 *r, cylray_hit1 *h,   \
-                           unsigned rt)                                                \
-    {                                                                                  \
-        return KFN(leaf)(L, lm, r, h, rt, KLFL_((b) << 1, CYLRAY_KF_OCCLUDED));        \
-    }
+#define KLEAF_(b) KLEAFDRV_(lf_##b, leaf, KLFL_(b, 0u))
+#define KLEAFOCC_(b) KLEAFDRV_(lo_##b, leaf, KLFL_((b) << 1, CYLRAY_KF_OCCLUDED))
+#define KLEAFANY_(b) KLEAFDRV_(lf_##b, leaf_any, KLFL_(b, 0u))
+#define KLEAFOCCANY_(b) KLEAFDRV_(lo_##b, leaf_any, KLFL_((b) << 1, CYLRAY_KF_OCCLUDED))
+#define K8_(X, k) X(k, 0) X(k, 1) X(k, 2) X(k, 3) X(k, 4) X(k, 5) X(k, 6) X(k, 7)
 #define K4_(X, k) X(k, 0) X(k, 1) X(k, 2) X(k, 3)
-#define K2_(X, k) X(k, 0) X(k, 1)
+#define KALL8_(X) K8_(X, 0) K8_(X, 1) K8_(X, 2) K8_(X, 3) K8_(X, 4) K8_(X, 5)
 #define KALL4_(X) K4_(X, 0) K4_(X, 1) K4_(X, 2) K4_(X, 3) K4_(X, 4) K4_(X, 5)
-#define KALL2_(X) K2_(X, 0) K2_(X, 1) K2_(X, 2) K2_(X, 3) K2_(X, 4) K2_(X, 5)
 
-KALL4_(KISECT_)
-KALL2_(KOCC_)
-KLEAF_(0) KLEAF_(1) KLEAF_(2) KLEAF_(3)
-KLEAFOCC_(0) KLEAFOCC_(1)
+/* b = 6, 7 (occluded: 3) are FAST with REFINE. */
+#define KKIND_(k)                                                                      \
+    KISECT_(k, 0) KISECT_(k, 1) KISECT_(k, 2) KISECT_(k, 3) KISECT_(k, 4) KISECT_(k, 5)    \
+    KISECTANY_(k, 6) KISECTANY_(k, 7) KOCC_(k, 0) KOCC_(k, 1) KOCC_(k, 2) KOCCANY_(k, 3)
+KKIND_(0) KKIND_(1) KKIND_(2) KKIND_(3) KKIND_(4) KKIND_(5)
+KLEAF_(0) KLEAF_(1) KLEAF_(2) KLEAF_(3) KLEAF_(4) KLEAF_(5) KLEAFANY_(6) KLEAFANY_(7)
+KLEAFOCC_(0) KLEAFOCC_(1) KLEAFOCC_(2) KLEAFOCCANY_(3)
 
 #define KREF_PK1_(k, b) KFN(pk1_##k##_##b),
 #define KREF_PK_(k, b) KFN(pk_##k##_##b),
@@ -844,15 +880,16 @@ KLEAFOCC_(0) KLEAFOCC_(1)
  * ISA's entry points take the ones their widths need, the compiler drops the rest. */
 enum { KFN(vw) = VW };
 _Static_assert(CYLRAY_VARIANT_GENERIC == 6, "six specialised variants");
-CYLRAY_MAYBE_UNUSED static const KFN(packet_fn) KFN(isect1_table)[24] = {KALL4_(KREF_PK1_)};
-CYLRAY_MAYBE_UNUSED static const KFN(packet_fn) KFN(isect_table)[24] = {KALL4_(KREF_PK_)};
-CYLRAY_MAYBE_UNUSED static const KFN(stream_fn) KFN(isect_stream_table)[24] = {KALL4_(KREF_ST_)};
-CYLRAY_MAYBE_UNUSED static const KFN(packet_fn) KFN(occ1_table)[12] = {KALL2_(KREF_PO1_)};
-CYLRAY_MAYBE_UNUSED static const KFN(packet_fn) KFN(occ_table)[12] = {KALL2_(KREF_PO_)};
-CYLRAY_MAYBE_UNUSED static const KFN(stream_fn) KFN(occ_stream_table)[12] = {KALL2_(KREF_SO_)};
-CYLRAY_MAYBE_UNUSED static const KFN(leaf_fn) KFN(leaf_table)[4] = {
-    KFN(lf_0), KFN(lf_1), KFN(lf_2), KFN(lf_3)};
-CYLRAY_MAYBE_UNUSED static const KFN(leaf_fn) KFN(leaf_occ_table)[2] = {KFN(lo_0), KFN(lo_1)};
+CYLRAY_MAYBE_UNUSED static const KFN(packet_fn) KFN(isect1_table)[48] = {KALL8_(KREF_PK1_)};
+CYLRAY_MAYBE_UNUSED static const KFN(packet_fn) KFN(isect_table)[48] = {KALL8_(KREF_PK_)};
+CYLRAY_MAYBE_UNUSED static const KFN(stream_fn) KFN(isect_stream_table)[48] = {KALL8_(KREF_ST_)};
+CYLRAY_MAYBE_UNUSED static const KFN(packet_fn) KFN(occ1_table)[24] = {KALL4_(KREF_PO1_)};
+CYLRAY_MAYBE_UNUSED static const KFN(packet_fn) KFN(occ_table)[24] = {KALL4_(KREF_PO_)};
+CYLRAY_MAYBE_UNUSED static const KFN(stream_fn) KFN(occ_stream_table)[24] = {KALL4_(KREF_SO_)};
+CYLRAY_MAYBE_UNUSED static const KFN(leaf_fn) KFN(leaf_table)[8] = {
+    KFN(lf_0), KFN(lf_1), KFN(lf_2), KFN(lf_3), KFN(lf_4), KFN(lf_5), KFN(lf_6), KFN(lf_7)};
+CYLRAY_MAYBE_UNUSED static const KFN(leaf_fn) KFN(leaf_occ_table)[4] = {
+    KFN(lo_0), KFN(lo_1), KFN(lo_2), KFN(lo_3)};
 
 #undef KDOT
 #undef KFL_
@@ -862,10 +899,18 @@ CYLRAY_MAYBE_UNUSED static const KFN(leaf_fn) KFN(leaf_occ_table)[2] = {KFN(lo_0
 #undef KOCC_
 #undef KLEAF_
 #undef KLEAFOCC_
+#undef KLEAFANY_
+#undef KLEAFOCCANY_
+#undef KLEAFDRV_
+#undef KANY_
+#undef KISECTANY_
+#undef KOCCANY_
+#undef KKIND_
+#undef K8_
 #undef K4_
-#undef K2_
+#undef KALL8_
 #undef KALL4_
-#undef KALL2_
+#undef KSPECFL_
 #undef KREF_PK1_
 #undef KREF_PK_
 #undef KREF_ST_
