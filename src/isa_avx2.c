@@ -33,6 +33,7 @@
 #define KW4 avx2_4
 #define KW8 avx2_8
 #define KW16 avx2_8
+#define KWSTREAM avx2_8
 #define KL4 avx2_4
 #define KL8 avx2_8
 #define KL16 avx2_8

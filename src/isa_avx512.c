@@ -37,6 +37,7 @@
 #define KW4 avx512_4
 #define KW8 avx512_8
 #define KW16 avx512_16
+#define KWSTREAM avx512_16
 #define KL4 avx512_4
 #define KL8 avx512_8
 #define KL16 avx512_16

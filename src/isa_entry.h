@@ -3,7 +3,8 @@
  * kernel instantiations its translation unit made.
  *
  * Parameters: KISA (suffix, e.g. avx2), KISA_ENUM, KISA_NAME, and KW4, KW8, KW16 (the
- * instantiation suffix that serves each packet width; streams use KW16's), and KL4,
+ * instantiation suffix that serves each packet width), KWSTREAM (the one that serves
+ * streams: the widest vector), and KL4,
  * KL8, KL16 (the one that serves each leaf size). */
 
 #define KI_(name) CYLRAY_CAT(name, CYLRAY_CAT(_, KISA))
@@ -52,8 +53,8 @@ static size_t KI_(intersect_stream)(const cylray_prepared *P, const cylray_rays 
     if (!n || !rays || !hits || !cylray_prepared_ok_(P))
         return 0;
     if (cylray_generic_(P))
-        return KW_(stream_generic, KW16)(P, rays, hits, NULL, n, flags);
-    return KW_(isect_stream_table, KW16)[cylray_isect_index_(cylray_variant_(P), flags)](
+        return KW_(stream_generic, KWSTREAM)(P, rays, hits, NULL, n, flags);
+    return KW_(isect_stream_table, KWSTREAM)[cylray_isect_index_(cylray_variant_(P), flags)](
         P, rays, hits, NULL, n, flags & CYLRAY_KF_RUNTIME);
 }
 
@@ -63,8 +64,8 @@ static size_t KI_(occluded_stream)(const cylray_prepared *P, const cylray_rays *
     if (!n || !rays || !occluded || !cylray_prepared_ok_(P))
         return 0;
     if (cylray_generic_(P))
-        return KW_(stream_generic, KW16)(P, rays, NULL, occluded, n, flags);
-    return KW_(occ_stream_table, KW16)[cylray_occ_index_(cylray_variant_(P), flags)](
+        return KW_(stream_generic, KWSTREAM)(P, rays, NULL, occluded, n, flags);
+    return KW_(occ_stream_table, KWSTREAM)[cylray_occ_index_(cylray_variant_(P), flags)](
         P, rays, NULL, occluded, n, flags & CYLRAY_CULL_BACK);
 }
 

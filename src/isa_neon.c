@@ -18,6 +18,7 @@
 #define KW4 neon_4
 #define KW8 neon_4
 #define KW16 neon_4
+#define KWSTREAM neon_4
 #define KL4 neon_4
 #define KL8 neon_4
 #define KL16 neon_4

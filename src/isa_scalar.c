@@ -14,6 +14,7 @@
 #define KW4 scalar_1
 #define KW8 scalar_1
 #define KW16 scalar_1
+#define KWSTREAM scalar_1
 #define KL4 scalar_1
 #define KL8 scalar_1
 #define KL16 scalar_1

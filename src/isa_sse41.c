@@ -21,6 +21,7 @@
 #define KW4 sse41_4
 #define KW8 sse41_4
 #define KW16 sse41_4
+#define KWSTREAM sse41_4
 #define KL4 sse41_4
 #define KL8 sse41_4
 #define KL16 sse41_4

@@ -808,41 +808,32 @@ CYLRAY_MAYBE_UNUSED static size_t KFN(stream_generic)(const cylray_prepared *P,
     (((kind) % 3u) << CYLRAY_KF_KIND_SHIFT | ((kind) >= 3 ? CYLRAY_KF_ALIGNED : 0u) |     \
      KSPECFL_(b) | (extra))
 #define KLFL_(b, extra) (CYLRAY_KIND_LEAF << CYLRAY_KF_KIND_SHIFT | KSPECFL_(b) | (extra))
-#define KSPEC_(kind, b, fl)                                                            \
+/* The three drivers of one table slot; the calls are given, as they differ between the
+ * specialised drivers and the run-time ones. */
+#define KSLOT_(kind, b, pk1_call, pk_call, st_call)                                    \
     static uint32_t KFN(pk1_##kind##_##b)(const cylray_prepared *P, float *R, float *H,  \
                                           size_t n, uint32_t a, unsigned rt)            \
     {                                                                                  \
         (void)n;                                                                       \
-        return KFN(packet1)(P, R, H, a, rt, fl);                                       \
+        return pk1_call;                                                               \
     }                                                                                  \
     static uint32_t KFN(pk_##kind##_##b)(const cylray_prepared *P, float *R, float *H,   \
                                          size_t n, uint32_t a, unsigned rt)             \
     {                                                                                  \
-        return KFN(packet)(P, R, H, n, a, rt, fl);                                     \
+        return pk_call;                                                                \
     }                                                                                  \
     static size_t KFN(st_##kind##_##b)(const cylray_prepared *P, const cylray_rays *R,  \
                                        const cylray_hits *H, uint8_t *o, size_t n,       \
                                        unsigned rt)                                     \
     {                                                                                  \
-        return KFN(stream)(P, R, H, o, n, rt, fl);                                     \
+        return st_call;                                                                \
     }
+#define KSPEC_(kind, b, fl)                                                            \
+    KSLOT_(kind, b, KFN(packet1)(P, R, H, a, rt, fl), KFN(packet)(P, R, H, n, a, rt, fl), \
+           KFN(stream)(P, R, H, o, n, rt, fl))
 #define KANY_(kind, b, fl)                                                             \
-    static uint32_t KFN(pk1_##kind##_##b)(const cylray_prepared *P, float *R, float *H,  \
-                                          size_t n, uint32_t a, unsigned rt)            \
-    {                                                                                  \
-        return KFN(packet_any)(P, R, H, n, a, rt, fl);                                 \
-    }                                                                                  \
-    static uint32_t KFN(pk_##kind##_##b)(const cylray_prepared *P, float *R, float *H,   \
-                                         size_t n, uint32_t a, unsigned rt)             \
-    {                                                                                  \
-        return KFN(packet_any)(P, R, H, n, a, rt, fl);                                 \
-    }                                                                                  \
-    static size_t KFN(st_##kind##_##b)(const cylray_prepared *P, const cylray_rays *R,  \
-                                       const cylray_hits *H, uint8_t *o, size_t n,       \
-                                       unsigned rt)                                     \
-    {                                                                                  \
-        return KFN(stream_any)(P, R, H, o, n, rt, fl);                                 \
-    }
+    KSLOT_(kind, b, KFN(packet_any)(P, R, H, n, a, rt, fl),                             \
+           KFN(packet_any)(P, R, H, n, a, rt, fl), KFN(stream_any)(P, R, H, o, n, rt, fl))
 #define KISECT_(kind, b) KSPEC_(kind, b, KFL_(kind, b, 0u))
 #define KOCC_(kind, b) KSPEC_(kind, o##b, KFL_(kind, (b) << 1, CYLRAY_KF_OCCLUDED))
 #define KISECTANY_(kind, b) KANY_(kind, b, KFL_(kind, b, 0u))
@@ -895,6 +886,7 @@ CYLRAY_MAYBE_UNUSED static const KFN(leaf_fn) KFN(leaf_occ_table)[4] = {
 #undef KFL_
 #undef KLFL_
 #undef KSPEC_
+#undef KSLOT_
 #undef KISECT_
 #undef KOCC_
 #undef KLEAF_
