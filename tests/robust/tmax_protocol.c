@@ -4,7 +4,8 @@
  * order through tmax and keep the closest hit:
  *   - a reported hit t* comes back bit for bit (t, part, normal) from the same call
  *     with tmax = t*, and with tmin = tmax = t*;
- *   - with tmax one float below t*, no hit at or beyond t* comes back;
+ *   - with tmax one float below t*, no hit of the same part comes back (no root
+ *     "moved" below the bound);
  *   - occluded agrees with intersect on every one of those calls;
  *   - a ray traced through a cluster of cylinders (duplicates, near copies, nested and
  *     tilted ones, capped and open twins), forwards and backwards, ends with the
@@ -113,7 +114,10 @@ static void closed_interval(const cylray_kernels *k, int w, const cylray_cylinde
         int ok_at = g_same_lane(&first, i, &r_at, i, normal);
         int ok_pin = g_same_lane(&first, i, &r_pin, i, normal);
         int hit_below = (int)((r_below.hit >> i) & 1u);
-        int ok_below = !hit_below || r_below.t[i] < first.t[i];
+        /* The same root must not come back below tmax; another part or face,
+         * genuinely earlier, may. */
+        int ok_below = !hit_below || (r_below.part[i] != first.part[i] &&
+                                      r_below.t[i] < first.t[i]);
         CHECK(ok_at && ok_pin && ok_below,
               "%s width %s flags %#x lane %zu: hit t %a part %d; with tmax = t: %s; with "
               "tmin = tmax = t: %s; with tmax one below: %s %a",
