@@ -18,8 +18,8 @@
  *   A = e.e,  B = e.f,  C = f.f - R^2 v.v,  disc = v.v (A R^2 - g^2),  g = e.w'.
  */
 
-#ifndef CYLRAY_KERNEL_MARGINS_
-#define CYLRAY_KERNEL_MARGINS_
+#ifndef CYLRAY_KERNEL_ONCE_
+#define CYLRAY_KERNEL_ONCE_
 /* The margins the kernel decides with, each with why it is safe.
  *
  * KM_DD_LO, KM_DD_HI: an active lane whose |d|^2 lies outside [2^-40, 2^40] goes to the
@@ -48,6 +48,54 @@
 #define KM_TINY 0x1p-100f
 #define KM_NORMAL_OFF 0x1p-10f
 #define KM_TANGENT 0x1p-18f
+
+/* What an instantiation's flags decide. Every field but the run-time ones (cull, ff)
+ * is a compile-time constant where a kernel is specialised, and its branches fold. */
+typedef struct {
+    unsigned kind;
+    int leaf, capped, finite, one_end, aligned, scaled, occ, normal, cull, ff, refine, fast;
+} cylray_kflags_;
+
+CYLRAY_INLINE cylray_kflags_ cylray_kflags_of_(unsigned FL, unsigned rt)
+{
+    cylray_kflags_ F;
+    F.kind = (FL >> CYLRAY_KF_KIND_SHIFT) & 3u;
+    F.leaf = F.kind == CYLRAY_KIND_LEAF;
+    /* A leaf's lanes are cylinders of any kind: each runs the capped solid's logic with
+     * its own discs (an open tube has none, an infinite one an infinite slab). */
+    F.capped = F.kind == CYLRAY_KIND_CAPPED || F.leaf;
+    F.finite = F.kind != CYLRAY_KIND_INFINITE;
+    F.one_end = F.leaf || (FL & CYLRAY_KF_ONE_END) != 0;
+    F.aligned = (FL & CYLRAY_KF_ALIGNED) != 0;
+    F.scaled = (FL & CYLRAY_KF_SCALED) != 0;
+    F.occ = (FL & CYLRAY_KF_OCCLUDED) != 0;
+    F.normal = (FL & CYLRAY_NORMAL) && !F.occ;
+    F.cull = ((FL | rt) & CYLRAY_CULL_BACK) != 0;
+    F.ff = (rt & CYLRAY_FACE_FORWARD) != 0;
+    F.refine = (FL & CYLRAY_REFINE) != 0;
+    F.fast = (FL & CYLRAY_FAST) != 0;
+    return F;
+}
+
+/* Where one vector's lanes come from and go to: the cylinder (P) or the leaf (L, lm
+ * lanes), the rays and hits, the first lane i and the active lanes. An aligned
+ * cylinder comes with its rays' coordinates already renamed by the drivers
+ * (cylray_internal.h), so that its axis is the third one; c3 is its center renamed
+ * the same way. */
+typedef struct {
+    const cylray_prepared *P;
+    const cylray_rays *R;
+    const cylray_hits *H;
+    const float *L;
+    size_t lm, i;
+    uint32_t bits;
+    const float *c3;
+} cylray_kat_;
+
+CYLRAY_INLINE const float *cylray_kcenter_(const cylray_prepared *P, const cylray_kflags_ F)
+{
+    return F.leaf ? NULL : F.aligned ? P->cr : P->c;
+}
 #endif
 
 typedef uint32_t (*KFN(packet_fn))(const cylray_prepared *, float *, float *, size_t,
@@ -115,6 +163,533 @@ CYLRAY_INLINE vf KFN(polish)(vf rr_vv, vf rr, int aligned, vm side, vf r, vf A, 
     return vsel(keep, vadd(r, dt), r);
 }
 
+/* The kernel for one vector of rays, in stages. KFN(block) below runs them in order;
+ * each stage reads what the ones before it left in the lane state (KFN(lanes)) and
+ * adds its own, and the stages that can end the work for the whole vector say so.
+ * They are always inlined: the state lives in registers, and the flags fold. */
+
+/* The state of one vector's lanes, in the order the stages fill it in. */
+typedef struct {
+    /* load_ray: the ray (with an aligned axis, its coordinates already renamed) */
+    vf ox, oy, oz, dx, dy, dz, dd, tscale;
+    vm act; /* the lanes still in play */
+    /* reject: the cylinder, w = o - c rounded (wh), the shift s and 1 / d.d */
+    vf cx, cy, cz, vx, vy, vz, rad, rr, rr_vv;
+    vm fin, infl; /* a leaf's finite and infinite lanes */
+    vf whx, why, whz, rdd, s, ex, ey, ez, A, g;
+    /* shift: w's rounding error wl and the shifted origin p = w + s d */
+    vf wlx, wly, wlz, px, py, pz;
+    /* side: the quadratic A t^2 - 2 nB t + C, f = v x p, and its discriminant */
+    vf fx, fy, fz, nB, C, D, AR2;
+    vm side, inpar; /* the side's roots exist; parallel inside the tube */
+    /* roots, ends: the side's roots, and entry and exit relative to p */
+    vf tn, tf, z0, dv, side_lo, side_hi, t_in, t_out;
+    vm ok_in, ok_out;
+    /* decide: the hit lanes and their t */
+    vf tr, T, t_to_user;
+    vm hit, front, back;
+} KFN(lanes);
+
+/* Packets read the ray per lane and broadcast the cylinder; a leaf broadcasts its one
+ * ray and reads a cylinder per lane (its fields at L[f lm + lane]). */
+#define KR_(f) (F.leaf ? vset1(*k->R->f) : vloadu(k->R->f + k->i))
+#define KL_(f) vloadu(k->L + (size_t)CYLRAY_LF_##f * k->lm + k->i)
+#define KC_(pf, lf) (F.leaf ? (lf) : vset1(k->P->pf))
+#define KCEN_(c, f) (F.leaf ? KL_(f) : vset1(k->c3[c]))
+/* Inactive lanes may hold anything, and subnormals there would cost microcode assists
+ * in every operation (20x on some cores): they take a ray that the packet rejection
+ * drops, a line 2^40 from the origin. */
+#define KSANE_(f, dead) st->f = vsel(mfrom_bits(k->bits), st->f, dead)
+#define KPARTIAL_ (!F.leaf && k->bits != VFULL)
+#define KLOAD_O_()                                                                     \
+    do {                                                                               \
+        st->ox = KR_(ox), st->oy = KR_(oy), st->oz = KR_(oz);                          \
+        if (KPARTIAL_)                                                                 \
+            KSANE_(ox, vset1(0x1p40f)), KSANE_(oy, vzero()), KSANE_(oz, vzero());       \
+        st->cx = KCEN_(0, CX), st->cy = KCEN_(1, CY), st->cz = KCEN_(2, CZ);            \
+    } while (0)
+
+/* Stage 1, the ray: A (aligned), d.d and the lanes in play. An Inf or NaN anywhere but
+ * in d turns C or D into NaN later, which takes the lane out there. Returns
+ * CYLRAY_RARE_ for a vector that the rare instance must take, else 0. */
+CYLRAY_INLINE uint32_t KFN(load_ray)(KFN(lanes) *st, const cylray_kat_ *k,
+                                     const cylray_kflags_ F)
+{
+    const vf zero = vzero(), one = vset1(1.0f), inf = vset1(INFINITY);
+    KLOAD_O_();
+    st->dx = KR_(dx), st->dy = KR_(dy), st->dz = KR_(dz);
+    if (KPARTIAL_)
+        KSANE_(dx, zero), KSANE_(dy, one), KSANE_(dz, zero);
+    vf dx = st->dx, dy = st->dy, dz = st->dz;
+    vf A = F.aligned ? vfma(dx, dx, vmul(dy, dy)) : zero; /* the side's |d_perp|^2 */
+    vf dd = F.aligned ? vfma(dz, dz, A) : KDOT(dx, dy, dz, dx, dy, dz);
+    vm act = mand(vge(dd, vset1(KM_DD_LO)), vle(dd, vset1(KM_DD_HI)));
+    /* A direction far from unit length makes A, D and their products under- or
+     * overflow (|d| = 2^-56 loses a tiny radius, 2^64 overflows d.d). A vector with
+     * such an active lane (or a bad one) goes to the rare instance, where every lane
+     * takes d times an exact power of two m, so that its largest component lies in
+     * [2^-29, 2^20]: the line is the same, and t = m t'. Everything after works in t'
+     * but the range test and T itself. A zero, infinite or NaN direction never hits. */
+    vf tscale = one;
+    if (F.scaled) {
+        vf M = vmax(vabs(dx), vmax(vabs(dy), vabs(dz)));
+        tscale = vsel(vlt(M, vset1(0x1p-20f)), vset1(0x1p40f), tscale);
+        tscale = vsel(vlt(M, vset1(0x1p-60f)), vset1(0x1p80f), tscale);
+        tscale = vsel(vlt(M, vset1(0x1p-100f)), vset1(0x1p120f), tscale);
+        tscale = vsel(vgt(M, vset1(0x1p20f)), vset1(0x1p-40f), tscale);
+        tscale = vsel(vgt(M, vset1(0x1p60f)), vset1(0x1p-80f), tscale);
+        tscale = vsel(vgt(M, vset1(0x1p100f)), vset1(0x1p-120f), tscale);
+        dx = vmul(dx, tscale), dy = vmul(dy, tscale), dz = vmul(dz, tscale);
+        st->dx = dx, st->dy = dy, st->dz = dz;
+        A = F.aligned ? vfma(dx, dx, vmul(dy, dy)) : zero;
+        dd = F.aligned ? vfma(dz, dz, A) : KDOT(dx, dy, dz, dx, dy, dz);
+        act = mand(mand(vgt(dd, zero), vlt(dd, inf)), vlt(M, inf));
+    } else if ((mbits(act) & k->bits) != k->bits) {
+        return CYLRAY_RARE_; /* the driver calls KFN(block_rare) */
+    }
+    st->A = A, st->dd = dd, st->act = act, st->tscale = tscale;
+    return 0;
+}
+
+/* Stage 2, the cheap rejections: the sphere around a finite cylinder and the tube
+ * around the axis, from w = o - c rounded. Returns whether any lane is left. */
+CYLRAY_INLINE int KFN(reject)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
+{
+    const vf zero = vzero(), inf = vset1(INFINITY);
+    const vf dx = st->dx, dy = st->dy, dz = st->dz, dd = st->dd;
+    vf vx = zero, vy = zero;
+    if (!F.aligned)
+        vx = KC_(v[0], KL_(VX)), vy = KC_(v[1], KL_(VY));
+    const vf vz = F.leaf ? KL_(VZ) : vset1(F.aligned ? k->P->vr : k->P->v[2]);
+    st->vx = vx, st->vy = vy, st->vz = vz;
+    /* A leaf derives what it does not store from what it does (64 bytes a lane). */
+    st->rad = F.leaf ? KL_(R) : zero;
+    st->rr = KC_(rr, vmul(st->rad, st->rad)), st->rr_vv = KC_(rr_vv, KL_(RRVV));
+    st->fin = F.leaf ? vlt(KL_(HV), inf) : vle(zero, zero);
+    st->infl = F.leaf ? vge(KL_(HV), inf) : vlt(vset1(1.0f), zero);
+
+    /* w = o - c, rounded here; its rounding error wl is recovered by the shift stage
+     * (two-sum), once the cheap whole-vector rejections are behind. */
+    vf whx = vsub(st->ox, st->cx), why = vsub(st->oy, st->cy), whz = vsub(st->oz, st->cz);
+    st->whx = whx, st->why = why, st->whz = whz;
+    vf ww = KDOT(whx, why, whz, whx, why, whz), wd = KDOT(whx, why, whz, dx, dy, dz);
+    vm act = st->act;
+
+    /* Shift to the closest approach to the center. s need not be accurate: any s is
+     * exact as long as w' is formed from the same s, and t = s + t'. So a refined
+     * reciprocal estimate serves, and the divider is kept for the roots. */
+    const vf rdd = vrcp_fast(dd);
+    vf s = vmul(vneg(wd), rdd);
+    if (F.finite) {
+        /* ww + s wd = ww - wd^2 / dd is the squared distance of the closest approach
+         * to the center; a finite cylinder lies in a sphere, and a ray that passes
+         * outside it misses. The slack (KM_SPHERE) covers the cancellation of a far
+         * origin. */
+        vf wd2 = vmul(vmul(wd, wd), rdd); /* wd^2 / dd; wd^2 is formed beside rdd */
+        act = mand(act, vle(vfnma(ww, vset1(KM_SPHERE), vsub(ww, wd2)), KC_(bound2, KL_(BOUND2))));
+        /* A shift that brings the origin less than a factor sqrt(2) closer gains less
+         * than it costs: a small t would lose its low bits in s + t'. (ww > 2 pp.) */
+        s = F.leaf ? vsel(st->fin, vkeep(vgt(vadd(wd2, wd2), ww), s), s)
+                   : vkeep(vgt(vadd(wd2, wd2), ww), s);
+    }
+    st->rdd = rdd, st->s = s;
+
+    /* e = d x v to a relative accuracy that survives a ray almost along the axis.
+     * With an aligned axis v = (0, 0, +-1) and e = (dy, -dx, 0) up to the sign of v,
+     * which no product below sees. */
+    vf g0, A = st->A;
+    st->ex = st->ey = st->ez = zero;
+    if (F.aligned) {
+        g0 = vfms(whx, dy, vmul(why, dx)); /* plain: within the margin below */
+    } else {
+        st->ex = vdop_x(dy, vz, dz, vy), st->ey = vdop_x(dz, vx, dx, vz);
+        st->ez = vdop_x(dx, vy, dy, vx);
+        A = KDOT(st->ex, st->ey, st->ez, st->ex, st->ey, st->ez);
+        g0 = KDOT(st->ex, st->ey, st->ez, whx, why, whz);
+    }
+    st->A = A;
+    /* The ray's line passes at |g| / sqrt(A) from the axis (g = e.w moves neither with
+     * the shift nor along the axis). g0 is off from the exact g by less than
+     * 2^-21 sqrt(A ww); beyond that margin the line misses the tube. A vector whose
+     * rays all miss the sphere or the tube ends here, before the exact work, at one
+     * branch (two would mispredict on a mix of the two kinds of miss). */
+    act = mandn(act, vgt(vmul(g0, g0),
+                         vmul(vmul(A, vset1(KM_TUBE_A)), vfma(ww, vset1(KM_TUBE_WW), st->rr))));
+    st->act = act;
+    return many(act);
+}
+
+/* Stage 3, the shift: w's rounding error, and the origin moved by s along the ray
+ * with the product s d exact. The inputs are read again rather than kept across the
+ * rejection (the caller's CYLRAY_REREAD): a rejected vector then spills nothing, and
+ * the rest loses nothing (it would reload them from the stack instead). */
+CYLRAY_INLINE void KFN(shift)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
+{
+    KLOAD_O_();
+    vf bx = vsub(st->whx, st->ox), by = vsub(st->why, st->oy), bz = vsub(st->whz, st->oz);
+    st->wlx = vsub(vsub(st->ox, vsub(st->whx, bx)), vadd(st->cx, bx));
+    st->wly = vsub(vsub(st->oy, vsub(st->why, by)), vadd(st->cy, by));
+    st->wlz = vsub(vsub(st->oz, vsub(st->whz, bz)), vadd(st->cz, bz));
+    st->px = vfma_x2(st->s, st->dx, st->whx, st->wlx);
+    st->py = vfma_x2(st->s, st->dy, st->why, st->wly);
+    st->pz = vfma_x2(st->s, st->dz, st->whz, st->wlz);
+}
+
+/* An infinite cylinder has no center: c may slide along the axis (any slide u is
+ * exact when the product u v is, as in the FMA). The error of a root t' grows with
+ * its distance from the shifted point: a far origin aimed near c wants the point near
+ * c, an origin near the surface far along the axis wants c slid to the origin's
+ * level. |C / B| estimates the near root's distance; each lane keeps the shift that
+ * makes it smaller. */
+CYLRAY_INLINE void KFN(slide)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
+{
+    const vf vx = st->vx, vy = st->vy, vz = st->vz, dx = st->dx, dy = st->dy, dz = st->dz;
+    /* u need not be accurate (the slide is exact for any u): a leaf takes an estimate
+     * of 1 / v.v. */
+    vf u = vmul(KDOT(st->whx, st->why, st->whz, vx, vy, vz),
+                KC_(inv_vv, vrcp_fast(KDOT(vx, vy, vz, vx, vy, vz))));
+    vf hx = vfma_x(vneg(u), vx, st->whx), hy = vfma_x(vneg(u), vy, st->why),
+       hz = vfma_x(vneg(u), vz, st->whz);
+    vf s2 = vfnma(KDOT(hx, hy, hz, dx, dy, dz), st->rdd, vzero());
+    vf qx = vfma_x2(s2, dx, hx, st->wlx);
+    vf qy = vfma_x2(s2, dy, hy, st->wly);
+    vf qz = vfma_x2(s2, dz, hz, st->wlz);
+    vf nB2, C2, g2 = st->g, fx2, fy2, fz2;
+    KFN(side_coefs)(st->rr_vv, F.aligned, dx, dy, st->ex, st->ey, st->ez, vx, vy, vz, qx, qy,
+                    qz, &fx2, &fy2, &fz2, &nB2, &C2, &g2);
+    vm slide = vlt(vabs(vmul(C2, st->nB)), vabs(vmul(st->C, nB2)));
+    if (F.leaf)
+        slide = mand(slide, st->infl);
+    st->s = vsel(slide, s2, st->s);
+    st->px = vsel(slide, qx, st->px), st->py = vsel(slide, qy, st->py);
+    st->pz = vsel(slide, qz, st->pz);
+    st->fx = vsel(slide, fx2, st->fx), st->fy = vsel(slide, fy2, st->fy);
+    st->fz = vsel(slide, fz2, st->fz);
+    st->nB = vsel(slide, nB2, st->nB), st->C = vsel(slide, C2, st->C);
+    st->g = vsel(slide, g2, st->g);
+}
+
+/* Stage 4, the side's quadratic and its discriminant, in Lagrange's form. Returns
+ * whether any lane can still hit. */
+CYLRAY_INLINE int KFN(side)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
+{
+    const vf zero = vzero(), dx = st->dx, dy = st->dy;
+    st->g = zero;
+    if (F.aligned) {
+        /* g = w x d, in the plane: it does not change along the ray, and Kahan's
+         * difference of products is accurate relative to g itself (2 eps), so g is
+         * taken from the unshifted w = wh + wl, and the discriminant need not wait
+         * for the shift. */
+        st->g = vadd(vdop_x(st->whx, dy, st->why, dx), vfms(st->wlx, dy, vmul(st->wly, dx)));
+    }
+    KFN(side_coefs)(st->rr_vv, F.aligned, dx, dy, st->ex, st->ey, st->ez, st->vx, st->vy,
+                    st->vz, st->px, st->py, st->pz, &st->fx, &st->fy, &st->fz, &st->nB, &st->C,
+                    &st->g);
+    if (!F.finite || (F.leaf && many(st->infl)))
+        KFN(slide)(st, k, F);
+
+    /* Lagrange's form of B^2 - A C, over v.v, with both products exact. AR2, the
+     * larger term of D, sets its rounding. */
+    const vf A = st->A, g = st->g;
+    if (!F.scaled && !F.leaf) { /* a radius in [2^-20, 2^21): j = 0 */
+        st->D = vdop_x(A, st->rr, g, g);
+        st->AR2 = vmul(A, st->rr);
+    } else { /* scaled by 2^-2j (cylray_prepared.rr_d), and sqrt_vv has 2^j */
+        const vf gs = KC_(g_s, KL_(GS));
+        const vf rs = vmul(st->rad, gs); /* a leaf's R 2^-j, exact */
+        const vf rr_d = KC_(rr_d, vmul(rs, rs));
+        vf gd = vmul(g, gs);
+        st->D = vdop_x(A, rr_d, gd, gd);
+        st->AR2 = vmul(A, rr_d);
+    }
+    vm act = mand(st->act, veq(vfma(st->C, zero, vmul(st->D, zero)), zero));
+
+    /* A ray within about one ulp of the axis direction is parallel: it meets the side
+     * nowhere, and no division by its tiny A may make a hit. */
+    const vf par_eps = KC_(par_eps, vmul(KDOT(st->vx, st->vy, st->vz, st->vx, st->vy, st->vz),
+                                         vset1(CYLRAY_PAR_EPS)));
+    vm par = vle(A, vmul(st->dd, par_eps));
+    st->side = mand(act, mandn(vge(st->D, zero), par));
+    st->inpar = mand(act, mand(par, vle(st->C, zero))); /* parallel and inside the tube */
+    return F.capped ? many(mor(st->side, st->inpar)) : many(st->side);
+}
+
+/* Stage 5, the side's roots tn <= tf (relative to p), polished with CYLRAY_REFINE. */
+CYLRAY_INLINE void KFN(roots)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
+{
+    const vm side = st->side;
+    const vf A = st->A, C = st->C, D = st->D, nB = st->nB;
+    /* The estimates see subnormal inputs as zero: below 2^-100 (rare where the
+     * coordinates are near 1, and D = 0 at a tangency) the exact operation serves. */
+    const vf tiny = vset1(KM_TINY);
+    vf sq;
+    if (F.fast) {
+        sq = vmul(D, vrsqrt_fast(vmax(D, tiny)));
+        vm small = mand(side, vlt(D, tiny));
+        if (many(small))
+            sq = vsel(small, vsqrt(D), sq);
+    } else {
+        sq = vsqrt(D);
+    }
+    if (!F.aligned) /* |v| = 1 there, and j = 0 */
+        sq = vmul(sq, F.leaf ? KL_(SQS)
+                             : vset1(F.scaled ? k->P->sqrt_vv / k->P->g_s : k->P->sqrt_vv));
+    vf q = vadd(nB, vxorsign(sq, nB)); /* -(B + sign(B) sqrt(disc)); sq >= 0 */
+    vf r1 = F.fast ? vmul(q, vrcp_fast(A)) : vdiv(q, A);
+    vf r2;
+    if (F.fast) {
+        r2 = vmul(C, vrcp_fast(q));
+        vm small = mand(side, vlt(vabs(q), tiny));
+        if (many(small))
+            r2 = vsel(small, vdiv(C, q), r2);
+    } else {
+        r2 = vdiv(C, q);
+    }
+    /* By construction q^2 >= A C. Where rounding of C (a point on the surface, or a
+     * tangent ray) breaks that, C / q is no root: the two coincide at q / A. */
+    r2 = vsel(mor(veq(q, vzero()), vlt(vmul(q, q), vmul(C, A))), r1, r2);
+    /* Near a tangency D is known only to a few ulps of A R^2 (the rounding of A, R^2
+     * and g), and C, at a point near the surface, only to a few ulps of R^2: C / q then
+     * divides one rounding error by another and can put the root anywhere, even past
+     * the origin (a ray leaving the surface reported as hitting it from inside). The
+     * direct form (nB - sign sq) / A errs by the error of sq alone. */
+    vm tangent = mand(side, vlt(D, vmul(st->AR2, vset1(KM_TANGENT))));
+    if (many(tangent))
+        r2 = vsel(tangent, vdiv(vsub(nB, vxorsign(sq, nB)), A), r2);
+    st->tn = vmin(r1, r2), st->tf = vmax(r1, r2);
+    if (F.refine && many(side)) {
+        /* Both roots are polished before anything is decided from them, so that the
+         * entry test, the clip and the range test all see the t that is reported: a
+         * call with tmax set to a reported t then reports it again. */
+        st->tn = KFN(polish)(st->rr_vv, st->rr, F.aligned, side, st->tn, A, st->dx, st->dy,
+                             st->dz, st->ex, st->ey, st->ez, st->vx, st->vy, st->vz, st->px,
+                             st->py, st->pz);
+        st->tf = KFN(polish)(st->rr_vv, st->rr, F.aligned, side, st->tf, A, st->dx, st->dy,
+                             st->dz, st->ex, st->ey, st->ez, st->vx, st->vy, st->vz, st->px,
+                             st->py, st->pz);
+    }
+}
+
+/* Where a disc is not part of the surface, the solid is still what decides entry and
+ * exit (so the other rim stays watertight), but a bound made by that disc is no hit:
+ * the ray passes through the open end. Going up the axis (dv > 0) it enters by the low
+ * disc and leaves by the high one. */
+CYLRAY_INLINE void KFN(open_ends)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F,
+                                  vf slab_in, vf slab_out)
+{
+    vm lo_on, hi_on;
+    if (F.leaf) {
+        const uint32_t *meta = (const uint32_t *)(const void *)(k->L + CYLRAY_LF_COUNT * k->lm);
+        lo_on = mfrom_bits(meta[CYLRAY_LM_LO] >> k->i);
+        hi_on = mfrom_bits(meta[CYLRAY_LM_HI] >> k->i);
+    } else {
+        lo_on = mfrom_bits(k->P->caps & CYLRAY_CAPPED_LO ? VFULL : 0u);
+        hi_on = mfrom_bits(k->P->caps & CYLRAY_CAPPED_HI ? VFULL : 0u);
+    }
+    vm up = vgt(st->dv, vzero());
+    vm in_disc = vgt(slab_in, st->side_lo), out_disc = vlt(slab_out, st->side_hi);
+    vm in_open = mandn(in_disc, mor(mand(up, lo_on), mandn(hi_on, up)));
+    vm out_open = mandn(out_disc, mor(mand(up, hi_on), mandn(lo_on, up)));
+    st->ok_in = mandn(st->ok_in, in_open);
+    st->ok_out = mandn(st->ok_out, out_open);
+}
+
+/* Stage 6, the ends: entry and exit relative to p, and whether each is on the
+ * surface (the slab and the caps of a finite cylinder). */
+CYLRAY_INLINE void KFN(ends)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
+{
+    const vf zero = vzero(), inf = vset1(INFINITY), tn = st->tn, tf = st->tf;
+    st->side_lo = tn, st->side_hi = tf;
+    /* The axial coordinate z0 + t dv, over |v|. An aligned axis is measured along the
+     * third coordinate itself, whatever its sign: the slab is symmetric, and the sign
+     * only names the caps. */
+    vf z0 = zero, dv = zero;
+    if (F.finite) {
+        z0 = F.aligned ? st->pz : KDOT(st->px, st->py, st->pz, st->vx, st->vy, st->vz);
+        dv = F.aligned ? st->dz : KDOT(st->dx, st->dy, st->dz, st->vx, st->vy, st->vz);
+    }
+    st->z0 = z0, st->dv = dv;
+    if (F.capped) {
+        /* The solid is the infinite one cut by the slab |z| <= H: inside on [max of the
+         * entries, min of the exits]. The rim is then shared, not tested twice. A ray
+         * parallel to the axis inside the tube is inside the side everywhere. */
+        st->side_lo = vsel(st->inpar, vneg(inf), tn), st->side_hi = vsel(st->inpar, inf, tf);
+        const vf hv = KC_(h_v, KL_(HV));
+        /* Two divisions rather than one reciprocal: a cap hit is then as exact as
+         * the plane's offset, and dv = 0 gives the infinities the slab wants. */
+        vf na = vsub(vneg(hv), z0), nb = vsub(hv, z0);
+        vf ta, tb;
+        if (F.fast) {
+            vf rdv = vdiv(vset1(1.0f), dv);
+            ta = vmul(na, rdv), tb = vmul(nb, rdv);
+        } else {
+            ta = vdiv(na, dv), tb = vdiv(nb, dv);
+        }
+        vf slab_in = vmin(ta, tb), slab_out = vmax(ta, tb);
+        st->t_in = vmax(st->side_lo, slab_in);
+        st->t_out = vmin(st->side_hi, slab_out);
+        st->ok_in = mand(mor(st->side, st->inpar), vle(st->t_in, st->t_out));
+        st->ok_out = st->ok_in;
+        if (F.one_end)
+            KFN(open_ends)(st, k, F, slab_in, slab_out);
+    } else {
+        st->t_in = tn, st->t_out = tf;
+        st->ok_in = st->ok_out = st->side;
+        if (F.kind == CYLRAY_KIND_OPEN) {
+            const vf hv = vset1(k->P->h_v);
+            st->ok_in = mand(st->ok_in, vle(vabs(vfma(tn, dv, z0)), hv));
+            st->ok_out = mand(st->ok_out, vle(vabs(vfma(tf, dv, z0)), hv));
+        }
+    }
+}
+
+/* Stage 7, the decision: the entry if it is not before tmin, else the exit (a hit from
+ * inside); then one range test for whichever it is. Rounding s + t is monotonic, so the
+ * entry test decides correctly which of the two can be the first in [tmin, tmax]. The
+ * bounds are clamped to finite values, so that no infinite t ever hits. Returns the
+ * hit lanes. */
+CYLRAY_INLINE uint32_t KFN(decide)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
+{
+    const vf one = vset1(1.0f);
+    vf tmin = vmax(vset1(-FLT_MAX), KR_(tmin)); /* a NaN bound stays */
+    vf tmax = vmin(vset1(FLT_MAX), KR_(tmax));
+    /* (min, max and comparisons take subnormals without an assist) */
+    vf T_in = vadd(st->s, st->t_in), T_out = vadd(st->s, st->t_out);
+    /* With a scaled direction the range test is made where no scaling rounds: a
+     * shrunk d (m < 1) moves the bounds to t' (exact, or overflowing as it should), a
+     * grown one moves T to t (the same): t_to_test takes t' there, t_to_user takes
+     * that to t. */
+    st->t_to_user = one;
+    if (F.scaled) {
+        vm shrunk = vlt(st->tscale, one);
+        vf rs = vdiv(one, st->tscale);
+        tmin = vsel(shrunk, vmul(tmin, rs), tmin);
+        tmax = vsel(shrunk, vmul(tmax, rs), tmax);
+        vf t_to_test = vsel(shrunk, one, st->tscale);
+        st->t_to_user = vsel(shrunk, st->tscale, one);
+        T_in = vmul(T_in, t_to_test), T_out = vmul(T_out, t_to_test);
+    }
+    vm front = mand(st->ok_in, vge(T_in, tmin));
+    vm cand = F.cull ? front : mor(front, st->ok_out);
+    st->tr = vsel(front, st->t_in, st->t_out); /* relative to the shifted origin */
+    st->T = vsel(front, T_in, T_out);
+    vm hit = mand(cand, mand(vge(st->T, tmin), vle(st->T, tmax)));
+    if (k->bits != VFULL) /* a whole vector is the common case, and needs no mask */
+        hit = mand(hit, mfrom_bits(k->bits));
+    st->back = mandn(hit, front);
+    st->front = mand(hit, front);
+    st->hit = hit;
+    return mbits(hit);
+}
+
+/* A hit point that rounding moved well off the surface (a radius far below the
+ * coordinates' ulp) gets a true normalisation, divided by its largest component
+ * first, so that a length whose square underflows or overflows still normalises. */
+CYLRAY_INLINE void KFN(renormalize)(const KFN(lanes) *st, const cylray_kflags_ F, vm off,
+                                    vf *nx, vf *ny, vf *nz, vf *corr)
+{
+    const vf zero = vzero(), inf = vset1(INFINITY);
+    vf m = vmax(vabs(*nx), vmax(vabs(*ny), vabs(*nz)));
+    vm lost = mandn(off, mand(vgt(m, zero), vlt(m, inf)));
+    if (many(lost)) {
+        /* A hit point that rounds onto the axis (a radius far below the coordinates'
+         * ulp), or one so far from it that the offset is not finite (an origin far
+         * beyond the documented 2^62), has no direction of its own: the side then
+         * faces the ray, along -d_perp (v x e = v.v d_perp) on entry. */
+        vf ux = st->dx, uy = st->dy, uz = zero;
+        if (!F.aligned) {
+            ux = vfms(st->vy, st->ez, vmul(st->vz, st->ey));
+            uy = vfms(st->vz, st->ex, vmul(st->vx, st->ez));
+            uz = vfms(st->vx, st->ey, vmul(st->vy, st->ex));
+        }
+        *nx = vsel(lost, vsel(st->front, vneg(ux), ux), *nx);
+        *ny = vsel(lost, vsel(st->front, vneg(uy), uy), *ny);
+        *nz = vsel(lost, vsel(st->front, vneg(uz), uz), *nz);
+        m = vmax(vabs(*nx), vmax(vabs(*ny), vabs(*nz)));
+    }
+    /* n / m by division: 1 / m overflows where m is subnormal. */
+    vf sx = vdiv(*nx, m), sy = vdiv(*ny, m), sz = vdiv(*nz, m);
+    vf kk = vdiv(vset1(1.0f), vsqrt(KDOT(sx, sy, sz, sx, sy, sz)));
+    vm ok = mand(off, mand(vgt(m, zero), vlt(m, inf)));
+    *nx = vsel(ok, vmul(sx, kk), *nx), *ny = vsel(ok, vmul(sy, kk), *ny);
+    *nz = vsel(ok, vmul(sz, kk), *nz);
+    *corr = vsel(ok, vset1(1.0f), *corr);
+}
+
+/* Stage 8b, the unit normal at the hit lanes, stored. */
+CYLRAY_INLINE void KFN(normals)(const KFN(lanes) *st, const cylray_kat_ *k,
+                                const cylray_kflags_ F, vm on_side, vm cap_hi)
+{
+    const vf zero = vzero(), one = vset1(1.0f), tr = st->tr;
+    const vm hit = st->hit;
+    vf nx, ny, nz;
+    if (F.aligned) {
+        const vf kn = vset1(k->P->nscale);
+        nx = vmul(vfma(tr, st->dx, st->px), kn);
+        ny = vmul(vfma(tr, st->dy, st->py), kn);
+        nz = zero;
+    } else {
+        /* v x (p x v) = v.v p_perp, with p x v = f + t e already perpendicular, so
+         * no axial magnitude leaks in; vk = v / (R v.v) makes it unit length. */
+        const vf ns = F.leaf ? KL_(NSCALE) : zero;
+        const vf kx = KC_(vk[0], vmul(st->vx, ns)), ky = KC_(vk[1], vmul(st->vy, ns)),
+                 kz = KC_(vk[2], vmul(st->vz, ns));
+        vf ux = vfms(tr, st->ex, st->fx), uy = vfms(tr, st->ey, st->fy),
+           uz = vfms(tr, st->ez, st->fz);
+        nx = vfms(ky, uz, vmul(kz, uy));
+        ny = vfms(kz, ux, vmul(kx, uz));
+        nz = vfms(kx, uy, vmul(ky, ux));
+    }
+    if (F.capped) {
+        vm cap = mandn(hit, on_side);
+        vf sgn = vsel(cap_hi, one, vset1(-1.0f));
+        if (F.leaf) /* 1 / |v| = R |v| / (R v.v) */
+            sgn = vmul(sgn, vmul(vmul(KL_(NSCALE), st->rad), vmul(KL_(SQS), KL_(GS))));
+        nx = vsel(cap, F.aligned ? zero : vmul(sgn, KC_(n[0], st->vx)), nx);
+        ny = vsel(cap, F.aligned ? zero : vmul(sgn, KC_(n[1], st->vy)), ny);
+        nz = vsel(cap, F.aligned ? sgn : vmul(sgn, KC_(n[2], st->vz)), nz);
+    }
+    /* One Newton step of 1/sqrt(n.n) around 1 removes what rounding left of the
+     * length error, whatever the hit point's distance from the axis. */
+    vf l2 = KDOT(nx, ny, nz, nx, ny, nz);
+    vf corr = vfnma(vset1(0.5f), l2, vset1(1.5f));
+    vm off = mand(hit, vgt(vabs(vsub(l2, one)), vset1(KM_NORMAL_OFF)));
+    if (many(off)) /* rare enough to branch */
+        KFN(renormalize)(st, F, off, &nx, &ny, &nz, &corr);
+    if (F.ff)
+        corr = vsel(st->back, vneg(corr), corr);
+    vstore_m(k->H->nx + k->i, hit, vmul(nx, corr));
+    vstore_m(k->H->ny + k->i, hit, vmul(ny, corr));
+    vstore_m(k->H->nz + k->i, hit, vmul(nz, corr));
+}
+
+/* Stage 8, the store: t, the part and (with CYLRAY_NORMAL) the normal of the hit
+ * lanes. On a capped cylinder, the chosen t is the side's or a cap's; which cap
+ * follows from the direction: entering upwards (or leaving downwards) is the low one.
+ * An aligned axis pointing down the third coordinate swaps the names (P->cap_up). */
+CYLRAY_INLINE void KFN(store)(const KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
+{
+    const vf one = vset1(1.0f);
+    const vm hit = st->hit;
+    vm on_side = hit, cap_hi = hit;
+    vf part = one;
+    if (F.capped) {
+        on_side = mand(hit, veq(st->tr, vsel(st->front, st->side_lo, st->side_hi)));
+        cap_hi = mxor(vgt(st->dv, vzero()), st->front);
+        part = vsel(on_side, one,
+                    F.aligned ? vsel(cap_hi, vset1(k->P->cap_up), vset1(k->P->cap_down))
+                              : vsel(cap_hi, vset1(CYLRAY_CAP_HI), vset1(CYLRAY_CAP_LO)));
+    }
+    part = vadd(part, vkeep(st->back, vset1(CYLRAY_BACKFACE)));
+    vf T = F.scaled ? vmul(st->T, st->t_to_user) : st->T;
+    vstore_m(k->H->t + k->i, hit, T);
+    if (!F.leaf) /* a leaf's driver sets tmax once, from the closest lane */
+        vstore_m(k->R->tmax + k->i, hit, T);
+    vstore_part_m(k->H->part + k->i, hit, part);
+    if (F.normal)
+        KFN(normals)(st, k, F, on_side, cap_hi);
+}
+
 /* One vector of rays: lanes [i, i + VW) of R, active where `bits` is set. Returns the
  * hit lanes; writes H and R->tmax only there. FL is a compile-time constant.
  *
@@ -125,450 +700,31 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
                                   const cylray_hits *H, size_t i, uint32_t bits,
                                   unsigned rt, const unsigned FL, const float *L, size_t lm)
 {
-    const int scaled = (FL & CYLRAY_KF_SCALED) != 0;
-    const unsigned kind = (FL >> CYLRAY_KF_KIND_SHIFT) & 3u;
-    const int leaf = kind == CYLRAY_KIND_LEAF;
-    /* A leaf's lanes are cylinders of any kind: each runs the capped solid's logic with
-     * its own discs (an open tube has none, an infinite one an infinite slab). */
-    const int capped = kind == CYLRAY_KIND_CAPPED || leaf;
-    const int finite = kind != CYLRAY_KIND_INFINITE;
-    const int one_end = leaf || (FL & CYLRAY_KF_ONE_END) != 0;
-    const int aligned = (FL & CYLRAY_KF_ALIGNED) != 0;
-    const int occ = (FL & CYLRAY_KF_OCCLUDED) != 0;
-    const int normal = (FL & CYLRAY_NORMAL) && !occ;
-    const int cull = ((FL | rt) & CYLRAY_CULL_BACK) != 0;
-    const int ff = (rt & CYLRAY_FACE_FORWARD) != 0;
-    const int refine = (FL & CYLRAY_REFINE) != 0;
-    const int fast = (FL & CYLRAY_FAST) != 0;
-    const vf zero = vzero(), one = vset1(1.0f), inf = vset1(INFINITY);
-    /* Packets read the ray per lane and broadcast the cylinder; a leaf broadcasts its
-     * one ray and reads a cylinder per lane (its fields at L[f lm + lane]). */
-#define KR_(f) (leaf ? vset1(*R->f) : vloadu(R->f + i))
-#define KL_(f) vloadu(L + (size_t)CYLRAY_LF_##f * lm + i)
-#define KC_(pf, lf) (leaf ? (lf) : vset1(P->pf))
-
-    /* An aligned cylinder comes with its coordinates already renamed by the packet and
-     * stream drivers (cylray_internal.h), so that its axis is the third one. */
-    vf ox = KR_(ox), oy = KR_(oy), oz = KR_(oz);
-    vf dx = KR_(dx), dy = KR_(dy), dz = KR_(dz);
-    /* Inactive lanes may hold anything, and subnormals there would cost microcode
-     * assists in every operation (20x on some cores): they take a ray that the packet
-     * rejection drops, a line 2^40 from the origin. */
-#define KSANE_(f, dead) f = vsel(mfrom_bits(bits), f, dead)
-    const int partial = !leaf && bits != VFULL;
-    if (partial) {
-        KSANE_(ox, vset1(0x1p40f)), KSANE_(oy, zero), KSANE_(oz, zero);
-        KSANE_(dx, zero), KSANE_(dy, one), KSANE_(dz, zero);
-    }
-
-    /* An Inf or NaN anywhere but in d turns C or D into NaN below, which takes the
-     * lane out there. Inactive lanes are computed like the others (their garbage
-     * cannot disturb a lane) and taken out where the hits are decided. */
-    vf A = aligned ? vfma(dx, dx, vmul(dy, dy)) : zero; /* the side's |d_perp|^2 */
-    vf dd = aligned ? vfma(dz, dz, A) : KDOT(dx, dy, dz, dx, dy, dz);
-    vm act = mand(vge(dd, vset1(KM_DD_LO)), vle(dd, vset1(KM_DD_HI)));
-    /* A direction far from unit length makes A, D and their products under- or
-     * overflow (|d| = 2^-56 loses a tiny radius, 2^64 overflows d.d). A vector with
-     * such an active lane (or a bad one) goes to the rare instance, where every lane
-     * takes d times an exact power of two m, so that its largest component lies in
-     * [2^-29, 2^20]: the line is the same, and t = m t'. Everything below works in t'
-     * but the range test and T itself. A zero, infinite or NaN direction never hits. */
-    vf tscale = one;
-    if (scaled) {
-        vf M = vmax(vabs(dx), vmax(vabs(dy), vabs(dz)));
-        tscale = vsel(vlt(M, vset1(0x1p-20f)), vset1(0x1p40f), tscale);
-        tscale = vsel(vlt(M, vset1(0x1p-60f)), vset1(0x1p80f), tscale);
-        tscale = vsel(vlt(M, vset1(0x1p-100f)), vset1(0x1p120f), tscale);
-        tscale = vsel(vgt(M, vset1(0x1p20f)), vset1(0x1p-40f), tscale);
-        tscale = vsel(vgt(M, vset1(0x1p60f)), vset1(0x1p-80f), tscale);
-        tscale = vsel(vgt(M, vset1(0x1p100f)), vset1(0x1p-120f), tscale);
-        dx = vmul(dx, tscale), dy = vmul(dy, tscale), dz = vmul(dz, tscale);
-        A = aligned ? vfma(dx, dx, vmul(dy, dy)) : zero;
-        dd = aligned ? vfma(dz, dz, A) : KDOT(dx, dy, dz, dx, dy, dz);
-        act = mand(mand(vgt(dd, zero), vlt(dd, inf)), vlt(M, inf));
-    } else if ((mbits(act) & bits) != bits) {
-        return CYLRAY_RARE_; /* the driver calls KFN(block_rare) */
-    }
-
-    const float *const c3 = leaf ? NULL : aligned ? P->cr : P->c;
-#define KCEN_(k, f) (leaf ? KL_(f) : vset1(c3[k]))
-    vf cx = KCEN_(0, CX), cy = KCEN_(1, CY), cz = KCEN_(2, CZ);
-    const vf vx = aligned ? zero : KC_(v[0], KL_(VX)), vy = aligned ? zero : KC_(v[1], KL_(VY));
-    const vf vz = leaf ? KL_(VZ) : vset1(aligned ? P->vr : P->v[2]);
-    /* A leaf derives what it does not store from what it does (64 bytes a lane). */
-    const vf rad = leaf ? KL_(R) : zero;
-    const vf rr = KC_(rr, vmul(rad, rad)), rr_vv = KC_(rr_vv, KL_(RRVV));
-    /* A leaf's finite and infinite lanes (h_v = INFINITY). */
-    const vm fin = leaf ? vlt(KL_(HV), inf) : vle(zero, zero);
-    const vm infl = leaf ? vge(KL_(HV), inf) : vlt(one, zero);
-
-    /* w = o - c, rounded here; its rounding error wl is recovered below (two-sum),
-     * once the cheap whole-packet rejections are behind. */
-    vf whx = vsub(ox, cx), why = vsub(oy, cy), whz = vsub(oz, cz);
-    vf ww = KDOT(whx, why, whz, whx, why, whz), wd = KDOT(whx, why, whz, dx, dy, dz);
-
-    /* Shift to the closest approach to the center. s need not be accurate: any s is
-     * exact as long as w' is formed from the same s, and t = s + t'. So a refined
-     * reciprocal estimate serves, and the divider is kept for the roots. */
-    const vf rdd = vrcp_fast(dd);
-    vf s = vmul(vneg(wd), rdd);
-    if (finite) {
-        /* ww + s wd = ww - wd^2 / dd is the squared distance of the closest approach
-         * to the center; a finite cylinder lies in a sphere, and a ray that passes
-         * outside it misses. The slack (KM_SPHERE) covers the cancellation of a far
-         * origin. */
-        vf wd2 = vmul(vmul(wd, wd), rdd); /* wd^2 / dd; wd^2 is formed beside rdd */
-        act = mand(act, vle(vfnma(ww, vset1(KM_SPHERE), vsub(ww, wd2)), KC_(bound2, KL_(BOUND2))));
-        /* A shift that brings the origin less than a factor sqrt(2) closer gains less
-         * than it costs: a small t would lose its low bits in s + t'. (ww > 2 pp.) */
-        s = leaf ? vsel(fin, vkeep(vgt(vadd(wd2, wd2), ww), s), s)
-                 : vkeep(vgt(vadd(wd2, wd2), ww), s);
-    }
-
-    /* e = d x v to a relative accuracy that survives a ray almost along the axis.
-     * With an aligned axis v = (0, 0, +-1) and e = (dy, -dx, 0) up to the sign of v,
-     * which no product below sees. */
-    vf ex = zero, ey = zero, ez = zero, g0;
-    if (aligned) {
-        g0 = vfms(whx, dy, vmul(why, dx)); /* plain: within the margin below */
-    } else {
-        ex = vdop_x(dy, vz, dz, vy), ey = vdop_x(dz, vx, dx, vz), ez = vdop_x(dx, vy, dy, vx);
-        A = KDOT(ex, ey, ez, ex, ey, ez);
-        g0 = KDOT(ex, ey, ez, whx, why, whz);
-    }
-    /* The ray's line passes at |g| / sqrt(A) from the axis (g = e.w moves neither with
-     * the shift nor along the axis). g0 is off from the exact g by less than
-     * 2^-21 sqrt(A ww); beyond that margin the line misses the tube. A packet whose
-     * rays all miss the sphere or the tube ends here, before the exact work, at one
-     * branch (two would mispredict on a mix of the two kinds of miss). */
-    act = mandn(act, vgt(vmul(g0, g0),
-                         vmul(vmul(A, vset1(KM_TUBE_A)), vfma(ww, vset1(KM_TUBE_WW), rr))));
-    if (!many(act))
+    const cylray_kflags_ F = cylray_kflags_of_(FL, rt);
+    const cylray_kat_ at = {P, R, H, L, lm, i, bits, cylray_kcenter_(P, F)};
+    KFN(lanes) st;
+    if (KFN(load_ray)(&st, &at, F))
+        return CYLRAY_RARE_;
+    if (!KFN(reject)(&st, &at, F))
         return 0;
-    /* Past the rejection, the inputs are read again rather than kept across it: a
-     * rejected packet then spills nothing, and the rest loses nothing (it would
-     * reload them from the stack instead). */
     CYLRAY_REREAD();
-    ox = KR_(ox), oy = KR_(oy), oz = KR_(oz);
-    if (partial)
-        KSANE_(ox, vset1(0x1p40f)), KSANE_(oy, zero), KSANE_(oz, zero);
-    cx = KCEN_(0, CX), cy = KCEN_(1, CY), cz = KCEN_(2, CZ);
-
-    vf bx = vsub(whx, ox), by = vsub(why, oy), bz = vsub(whz, oz);
-    vf wlx = vsub(vsub(ox, vsub(whx, bx)), vadd(cx, bx));
-    vf wly = vsub(vsub(oy, vsub(why, by)), vadd(cy, by));
-    vf wlz = vsub(vsub(oz, vsub(whz, bz)), vadd(cz, bz));
-    vf px = vfma_x2(s, dx, whx, wlx);
-    vf py = vfma_x2(s, dy, why, wly);
-    vf pz = vfma_x2(s, dz, whz, wlz);
-
-    vf nB, C, g = zero, fx, fy, fz;
-    if (aligned) {
-        /* g = w x d, in the plane: it does not change along the ray, and Kahan's
-         * difference of products is accurate relative to g itself (2 eps), so g is
-         * taken from the unshifted w = wh + wl, and the discriminant need not wait
-         * for the shift. */
-        g = vadd(vdop_x(whx, dy, why, dx), vfms(wlx, dy, vmul(wly, dx)));
-    }
-    KFN(side_coefs)(rr_vv, aligned, dx, dy, ex, ey, ez, vx, vy, vz, px, py, pz, &fx, &fy, &fz,
-                    &nB, &C, &g);
-
-    if (!finite || (leaf && many(infl))) {
-        /* An infinite cylinder has no center: c may slide along the axis (any slide u
-         * is exact when the product u v is, as in the FMA). The error of a root t'
-         * grows with its distance from the shifted point: a far origin aimed near c
-         * wants the point near c, an origin near the surface far along the axis wants
-         * c slid to the origin's level. |C / B| estimates the near root's distance;
-         * each lane keeps the shift that makes it smaller. */
-        /* u need not be accurate (the slide is exact for any u): a leaf takes an
-         * estimate of 1 / v.v. */
-        vf u = vmul(KDOT(whx, why, whz, vx, vy, vz),
-                    KC_(inv_vv, vrcp_fast(KDOT(vx, vy, vz, vx, vy, vz))));
-        vf hx = vfma_x(vneg(u), vx, whx), hy = vfma_x(vneg(u), vy, why),
-           hz = vfma_x(vneg(u), vz, whz);
-        vf s2 = vfnma(KDOT(hx, hy, hz, dx, dy, dz), rdd, zero);
-        vf qx = vfma_x2(s2, dx, hx, wlx);
-        vf qy = vfma_x2(s2, dy, hy, wly);
-        vf qz = vfma_x2(s2, dz, hz, wlz);
-        vf nB2, C2, g2 = g, fx2, fy2, fz2;
-        KFN(side_coefs)(rr_vv, aligned, dx, dy, ex, ey, ez, vx, vy, vz, qx, qy, qz, &fx2, &fy2,
-                        &fz2, &nB2, &C2, &g2);
-        vm slide = vlt(vabs(vmul(C2, nB)), vabs(vmul(C, nB2)));
-        if (leaf)
-            slide = mand(slide, infl);
-        s = vsel(slide, s2, s);
-        px = vsel(slide, qx, px), py = vsel(slide, qy, py), pz = vsel(slide, qz, pz);
-        fx = vsel(slide, fx2, fx), fy = vsel(slide, fy2, fy), fz = vsel(slide, fz2, fz);
-        nB = vsel(slide, nB2, nB), C = vsel(slide, C2, C), g = vsel(slide, g2, g);
-    }
-    /* Lagrange's form of B^2 - A C, over v.v, with both products exact. */
-    vf D, AR2; /* AR2: the larger term of D, which sets its rounding */
-    if (!scaled && !leaf) { /* a radius in [2^-20, 2^21): j = 0 */
-        D = vdop_x(A, rr, g, g);
-        AR2 = vmul(A, rr);
-    } else { /* scaled by 2^-2j (cylray_prepared.rr_d), and sqrt_vv has 2^j */
-        const vf gs = KC_(g_s, KL_(GS));
-        const vf rs = vmul(rad, gs); /* a leaf's R 2^-j, exact */
-        const vf rr_d = KC_(rr_d, vmul(rs, rs));
-        vf gd = vmul(g, gs);
-        D = vdop_x(A, rr_d, gd, gd);
-        AR2 = vmul(A, rr_d);
-    }
-    act = mand(act, veq(vfma(C, zero, vmul(D, zero)), zero));
-
-    /* A ray within about one ulp of the axis direction is parallel: it meets the side
-     * nowhere, and no division by its tiny A may make a hit. */
-    const vf par_eps = KC_(par_eps, vmul(KDOT(vx, vy, vz, vx, vy, vz), vset1(CYLRAY_PAR_EPS)));
-    vm par = vle(A, vmul(dd, par_eps));
-    vm side = mand(act, mandn(vge(D, zero), par));
-    vm inpar = mand(act, mand(par, vle(C, zero))); /* parallel and inside the tube */
-    if (capped ? !many(mor(side, inpar)) : !many(side))
+    KFN(shift)(&st, &at, F);
+    if (!KFN(side)(&st, &at, F))
         return 0;
-
-    /* The estimates see subnormal inputs as zero: below 2^-100 (rare where the
-     * coordinates are near 1, and D = 0 at a tangency) the exact operation serves. */
-    const vf tiny = vset1(KM_TINY);
-    vf sq;
-    if (fast) {
-        sq = vmul(D, vrsqrt_fast(vmax(D, tiny)));
-        vm small = mand(side, vlt(D, tiny));
-        if (many(small))
-            sq = vsel(small, vsqrt(D), sq);
-    } else {
-        sq = vsqrt(D);
-    }
-    if (!aligned) /* |v| = 1 there, and j = 0 */
-        sq = vmul(sq, leaf ? KL_(SQS) : vset1(scaled ? P->sqrt_vv / P->g_s : P->sqrt_vv));
-    vf q = vadd(nB, vxorsign(sq, nB)); /* -(B + sign(B) sqrt(disc)); sq >= 0 */
-    vf r1 = fast ? vmul(q, vrcp_fast(A)) : vdiv(q, A);
-    vf r2;
-    if (fast) {
-        r2 = vmul(C, vrcp_fast(q));
-        vm small = mand(side, vlt(vabs(q), tiny));
-        if (many(small))
-            r2 = vsel(small, vdiv(C, q), r2);
-    } else {
-        r2 = vdiv(C, q);
-    }
-    /* By construction q^2 >= A C. Where rounding of C (a point on the surface, or a
-     * tangent ray) breaks that, C / q is no root: the two coincide at q / A. */
-    r2 = vsel(mor(veq(q, zero), vlt(vmul(q, q), vmul(C, A))), r1, r2);
-    /* Near a tangency D is known only to a few ulps of A R^2 (the rounding of A, R^2
-     * and g), and C, at a point near the surface, only to a few ulps of R^2: C / q then
-     * divides one rounding error by another and can put the root anywhere, even past
-     * the origin (a ray leaving the surface reported as hitting it from inside). The
-     * direct form (nB - sign sq) / A errs by the error of sq alone. */
-    vm tangent = mand(side, vlt(D, vmul(AR2, vset1(KM_TANGENT))));
-    if (many(tangent))
-        r2 = vsel(tangent, vdiv(vsub(nB, vxorsign(sq, nB)), A), r2);
-    vf tn = vmin(r1, r2), tf = vmax(r1, r2);
-    if (refine && many(side)) {
-        /* Both roots are polished before anything is decided from them, so that the
-         * entry test, the clip and the range test all see the t that is reported: a
-         * call with tmax set to a reported t then reports it again. */
-        tn = KFN(polish)(rr_vv, rr, aligned, side, tn, A, dx, dy, dz, ex, ey, ez, vx, vy, vz,
-                         px, py, pz);
-        tf = KFN(polish)(rr_vv, rr, aligned, side, tf, A, dx, dy, dz, ex, ey, ez, vx, vy, vz,
-                         px, py, pz);
-    }
-
-    /* Entry and exit, relative to the shifted origin, and which part each one is. */
-    vf t_in, t_out, side_lo = tn, side_hi = tf;
-    vm ok_in, ok_out;
-    /* The axial coordinate z0 + t dv, over |v|. An aligned axis is measured along the
-     * third coordinate itself, whatever its sign: the slab is symmetric, and the sign
-     * only names the caps. */
-    vf z0 = zero, dv = zero;
-    if (finite) {
-        z0 = aligned ? pz : KDOT(px, py, pz, vx, vy, vz);
-        dv = aligned ? dz : KDOT(dx, dy, dz, vx, vy, vz);
-    }
-    if (capped) {
-        /* The solid is the infinite one cut by the slab |z| <= H: inside on [max of the
-         * entries, min of the exits]. The rim is then shared, not tested twice. A ray
-         * parallel to the axis inside the tube is inside the side everywhere. */
-        side_lo = vsel(inpar, vneg(inf), tn), side_hi = vsel(inpar, inf, tf);
-        const vf hv = KC_(h_v, KL_(HV));
-        /* Two divisions rather than one reciprocal: a cap hit is then as exact as
-         * the plane's offset, and dv = 0 gives the infinities the slab wants. */
-        vf na = vsub(vneg(hv), z0), nb = vsub(hv, z0);
-        vf ta, tb;
-        if (fast) {
-            vf rdv = vdiv(one, dv);
-            ta = vmul(na, rdv), tb = vmul(nb, rdv);
-        } else {
-            ta = vdiv(na, dv), tb = vdiv(nb, dv);
-        }
-        vf slab_in = vmin(ta, tb), slab_out = vmax(ta, tb);
-        t_in = vmax(side_lo, slab_in);
-        t_out = vmin(side_hi, slab_out);
-        ok_in = mand(mor(side, inpar), vle(t_in, t_out));
-        ok_out = ok_in;
-        if (one_end) {
-            /* Where a disc is not part of the surface, the solid is still what decides
-             * entry and exit (so the other rim stays watertight), but a bound made by
-             * that disc is no hit: the ray passes through the open end. Going up the
-             * axis (dv > 0) it enters by the low disc and leaves by the high one. */
-            vm lo_on, hi_on;
-            if (leaf) {
-                const uint32_t *meta = (const uint32_t *)(const void *)(L + CYLRAY_LF_COUNT * lm);
-                lo_on = mfrom_bits(meta[CYLRAY_LM_LO] >> i);
-                hi_on = mfrom_bits(meta[CYLRAY_LM_HI] >> i);
-            } else {
-                lo_on = mfrom_bits(P->caps & CYLRAY_CAPPED_LO ? VFULL : 0u);
-                hi_on = mfrom_bits(P->caps & CYLRAY_CAPPED_HI ? VFULL : 0u);
-            }
-            vm up = vgt(dv, zero);
-            vm in_disc = vgt(slab_in, side_lo), out_disc = vlt(slab_out, side_hi);
-            vm in_open = mandn(in_disc, mor(mand(up, lo_on), mandn(hi_on, up)));
-            vm out_open = mandn(out_disc, mor(mand(up, hi_on), mandn(lo_on, up)));
-            ok_in = mandn(ok_in, in_open);
-            ok_out = mandn(ok_out, out_open);
-        }
-    } else {
-        t_in = tn;
-        t_out = tf;
-        ok_in = side;
-        ok_out = side;
-        if (kind == CYLRAY_KIND_OPEN) {
-            const vf hv = vset1(P->h_v);
-            ok_in = mand(ok_in, vle(vabs(vfma(tn, dv, z0)), hv));
-            ok_out = mand(ok_out, vle(vabs(vfma(tf, dv, z0)), hv));
-        }
-    }
-
-    /* The entry if it is not before tmin, else the exit (a hit from inside); then
-     * one range test for whichever it is. Rounding s + t is monotonic, so the entry
-     * test decides correctly which of the two can be the first in [tmin, tmax]. The
-     * bounds are clamped to finite values, so that no infinite t ever hits. */
-    vf tmin = vmax(vset1(-FLT_MAX), KR_(tmin)); /* a NaN bound stays */
-    vf tmax = vmin(vset1(FLT_MAX), KR_(tmax));
-    /* (min, max and comparisons take subnormals without an assist) */
-    vf T_in = vadd(s, t_in), T_out = vadd(s, t_out);
-    /* With a scaled direction the range test is made where no scaling rounds: a
-     * shrunk d (m < 1) moves the bounds to t' (exact, or overflowing as it should), a
-     * grown one moves T to t (the same): t_to_test takes t' there, t_to_user takes
-     * that to t. */
-    vf t_to_test = one, t_to_user = one;
-    if (scaled) {
-        vm shrunk = vlt(tscale, one);
-        vf rs = vdiv(one, tscale);
-        tmin = vsel(shrunk, vmul(tmin, rs), tmin);
-        tmax = vsel(shrunk, vmul(tmax, rs), tmax);
-        t_to_test = vsel(shrunk, one, tscale);
-        t_to_user = vsel(shrunk, tscale, one);
-        T_in = vmul(T_in, t_to_test), T_out = vmul(T_out, t_to_test);
-    }
-    vm front = mand(ok_in, vge(T_in, tmin));
-    vm cand = cull ? front : mor(front, ok_out);
-    vf tr = vsel(front, t_in, t_out); /* relative to the shifted origin */
-    vf T = vsel(front, T_in, T_out);
-    vm hit = mand(cand, mand(vge(T, tmin), vle(T, tmax)));
-    if (bits != VFULL) /* a whole packet is the common case, and needs no mask */
-        hit = mand(hit, mfrom_bits(bits));
-    vm back = mandn(hit, front);
-    front = mand(hit, front);
-    if (occ || !many(hit))
-        return mbits(hit);
-
-    /* On a capped cylinder, the chosen t is the side's or a cap's; which cap follows
-     * from the direction: entering upwards (or leaving downwards) is the low one. An
-     * aligned axis pointing down the third coordinate swaps the names (P->cap_up). */
-    vm on_side = hit, cap_hi = hit;
-    vf part = one;
-    if (capped) {
-        on_side = mand(hit, veq(tr, vsel(front, side_lo, side_hi)));
-        cap_hi = mxor(vgt(dv, zero), front);
-        part = vsel(on_side, one,
-                    aligned ? vsel(cap_hi, vset1(P->cap_up), vset1(P->cap_down))
-                            : vsel(cap_hi, vset1(CYLRAY_CAP_HI), vset1(CYLRAY_CAP_LO)));
-    }
-    part = vadd(part, vkeep(back, vset1(CYLRAY_BACKFACE)));
-
-    if (scaled)
-        T = vmul(T, t_to_user);
-    vstore_m(H->t + i, hit, T);
-    if (!leaf) /* a leaf's driver sets tmax once, from the closest lane */
-        vstore_m(R->tmax + i, hit, T);
-    vstore_part_m(H->part + i, hit, part);
-
-    if (normal) {
-        vf nx, ny, nz;
-        if (aligned) {
-            const vf k = vset1(P->nscale);
-            nx = vmul(vfma(tr, dx, px), k);
-            ny = vmul(vfma(tr, dy, py), k);
-            nz = zero;
-        } else {
-            /* v x (p x v) = v.v p_perp, with p x v = f + t e already perpendicular, so
-             * no axial magnitude leaks in; vk = v / (R v.v) makes it unit length. */
-            const vf ns = leaf ? KL_(NSCALE) : zero;
-            const vf kx = KC_(vk[0], vmul(vx, ns)), ky = KC_(vk[1], vmul(vy, ns)),
-                     kz = KC_(vk[2], vmul(vz, ns));
-            vf ux = vfms(tr, ex, fx), uy = vfms(tr, ey, fy), uz = vfms(tr, ez, fz);
-            nx = vfms(ky, uz, vmul(kz, uy));
-            ny = vfms(kz, ux, vmul(kx, uz));
-            nz = vfms(kx, uy, vmul(ky, ux));
-        }
-        if (capped) {
-            vm cap = mandn(hit, on_side);
-            vf sgn = vsel(cap_hi, one, vset1(-1.0f));
-            if (leaf) /* 1 / |v| = R |v| / (R v.v) */
-                sgn = vmul(sgn, vmul(vmul(KL_(NSCALE), rad), vmul(KL_(SQS), KL_(GS))));
-            nx = vsel(cap, aligned ? zero : vmul(sgn, KC_(n[0], vx)), nx);
-            ny = vsel(cap, aligned ? zero : vmul(sgn, KC_(n[1], vy)), ny);
-            nz = vsel(cap, aligned ? sgn : vmul(sgn, KC_(n[2], vz)), nz);
-        }
-        /* One Newton step of 1/sqrt(n.n) around 1 removes what rounding left of the
-         * length error, whatever the hit point's distance from the axis. */
-        vf l2 = KDOT(nx, ny, nz, nx, ny, nz);
-        vf corr = vfnma(vset1(0.5f), l2, vset1(1.5f));
-        /* A hit point that rounding moved well off the surface (a radius far below the
-         * coordinates' ulp) gets a true normalisation; it is rare enough to branch. */
-        vm off = mand(hit, vgt(vabs(vsub(l2, one)), vset1(KM_NORMAL_OFF)));
-        if (many(off)) {
-            /* Divided by its largest component first, so that a length whose square
-             * underflows or overflows still normalises. */
-            vf m = vmax(vabs(nx), vmax(vabs(ny), vabs(nz)));
-            vm lost = mandn(off, mand(vgt(m, zero), vlt(m, inf)));
-            if (many(lost)) {
-                /* A hit point that rounds onto the axis (a radius far below the
-                 * coordinates' ulp), or one so far from it that the offset is not
-                 * finite (an origin far beyond the documented 2^62), has no direction
-                 * of its own: the side then faces the ray, along -d_perp
-                 * (v x e = v.v d_perp) on entry. */
-                vf ux = dx, uy = dy, uz = zero;
-                if (!aligned) {
-                    ux = vfms(vy, ez, vmul(vz, ey));
-                    uy = vfms(vz, ex, vmul(vx, ez));
-                    uz = vfms(vx, ey, vmul(vy, ex));
-                }
-                nx = vsel(lost, vsel(front, vneg(ux), ux), nx);
-                ny = vsel(lost, vsel(front, vneg(uy), uy), ny);
-                nz = vsel(lost, vsel(front, vneg(uz), uz), nz);
-                m = vmax(vabs(nx), vmax(vabs(ny), vabs(nz)));
-            }
-            /* n / m by division: 1 / m overflows where m is subnormal. */
-            vf sx = vdiv(nx, m), sy = vdiv(ny, m), sz = vdiv(nz, m);
-            vf k = vdiv(one, vsqrt(KDOT(sx, sy, sz, sx, sy, sz)));
-            vm ok = mand(off, mand(vgt(m, zero), vlt(m, inf)));
-            nx = vsel(ok, vmul(sx, k), nx), ny = vsel(ok, vmul(sy, k), ny);
-            nz = vsel(ok, vmul(sz, k), nz);
-            corr = vsel(ok, one, corr);
-        }
-        if (ff)
-            corr = vsel(back, vneg(corr), corr);
-        vstore_m(H->nx + i, hit, vmul(nx, corr));
-        vstore_m(H->ny + i, hit, vmul(ny, corr));
-        vstore_m(H->nz + i, hit, vmul(nz, corr));
-    }
-    return mbits(hit);
+    KFN(roots)(&st, &at, F);
+    KFN(ends)(&st, &at, F);
+    uint32_t hit = KFN(decide)(&st, &at, F);
+    if (!F.occ && hit)
+        KFN(store)(&st, &at, F);
+    return hit;
+}
 #undef KR_
 #undef KL_
 #undef KC_
 #undef KCEN_
 #undef KSANE_
-}
+#undef KPARTIAL_
+#undef KLOAD_O_
 
 static const cylray_hits KFN(no_hits) = {NULL, NULL, NULL, NULL, NULL}; /* occlusion */
 
