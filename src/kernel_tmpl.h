@@ -98,6 +98,10 @@ CYLRAY_INLINE const float *cylray_kcenter_(const cylray_prepared *P, const cylra
 }
 #endif
 
+#ifndef KPAIRS
+#define KPAIRS 0 /* streams one vector at a time, unless the ISA file says otherwise */
+#endif
+
 typedef uint32_t (*KFN(packet_fn))(const cylray_prepared *, float *, float *, size_t,
                                    uint32_t, unsigned);
 typedef size_t (*KFN(stream_fn))(const cylray_prepared *, const cylray_rays *,
@@ -244,10 +248,10 @@ CYLRAY_INLINE uint32_t KFN(load_ray)(KFN(lanes) *st, const cylray_kat_ *k,
         A = F.aligned ? vfma(dx, dx, vmul(dy, dy)) : zero;
         dd = F.aligned ? vfma(dz, dz, A) : KDOT(dx, dy, dz, dx, dy, dz);
         act = mand(mand(vgt(dd, zero), vlt(dd, inf)), vlt(M, inf));
-    } else if ((mbits(act) & k->bits) != k->bits) {
-        return CYLRAY_RARE_; /* the driver calls KFN(block_rare) */
     }
     st->A = A, st->dd = dd, st->act = act, st->tscale = tscale;
+    if (!F.scaled && (mbits(act) & k->bits) != k->bits)
+        return CYLRAY_RARE_; /* the driver calls KFN(block_rare) */
     return 0;
 }
 
@@ -690,6 +694,20 @@ CYLRAY_INLINE void KFN(store)(const KFN(lanes) *st, const cylray_kat_ *k, const 
         KFN(normals)(st, k, F, on_side, cap_hi);
 }
 
+/* The stages after the rejection, for one vector. Returns the hit lanes. */
+CYLRAY_INLINE uint32_t KFN(finish)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
+{
+    KFN(shift)(st, k, F);
+    if (!KFN(side)(st, k, F))
+        return 0;
+    KFN(roots)(st, k, F);
+    KFN(ends)(st, k, F);
+    uint32_t hit = KFN(decide)(st, k, F);
+    if (!F.occ && hit)
+        KFN(store)(st, k, F);
+    return hit;
+}
+
 /* One vector of rays: lanes [i, i + VW) of R, active where `bits` is set. Returns the
  * hit lanes; writes H and R->tmax only there. FL is a compile-time constant.
  *
@@ -708,15 +726,55 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
     if (!KFN(reject)(&st, &at, F))
         return 0;
     CYLRAY_REREAD();
-    KFN(shift)(&st, &at, F);
-    if (!KFN(side)(&st, &at, F))
+    return KFN(finish)(&st, &at, F);
+}
+
+/* Two vectors in flight: lanes [i, i + VW) active where bits0 is set and
+ * [i + VW, i + 2 VW) where bits1 is. One vector's work is a chain of dependent
+ * operations longer than the out-of-order window; with the stages of two vectors
+ * alternating, the core always has independent work while one waits on a division or
+ * a square root. A vector that the rejection drops leaves the other to finish alone,
+ * so a rejected vector still costs only its rejection. Returns 0 with the hit lanes in
+ * m[0] and m[1], or CYLRAY_RARE_, having written nothing, when either vector needs the
+ * rare instance (the driver then takes them one at a time). */
+CYLRAY_INLINE uint32_t KFN(block2)(const cylray_prepared *P, const cylray_rays *R,
+                                   const cylray_hits *H, size_t i0, size_t i1, uint32_t bits0,
+                                   uint32_t bits1, unsigned rt, const unsigned FL,
+                                   uint32_t m[2])
+{
+    const cylray_kflags_ F = cylray_kflags_of_(FL, rt);
+    cylray_kat_ k0 = {P, R, H, NULL, 0, i0, bits0, cylray_kcenter_(P, F)};
+    cylray_kat_ k1 = {P, R, H, NULL, 0, i1, bits1, cylray_kcenter_(P, F)};
+    KFN(lanes) a, b;
+    m[0] = m[1] = 0;
+    if (KFN(load_ray)(&a, &k0, F) | KFN(load_ray)(&b, &k1, F))
+        return CYLRAY_RARE_;
+    const int la = KFN(reject)(&a, &k0, F), lb = KFN(reject)(&b, &k1, F);
+    if (!(la | lb))
+        return 2;
+    CYLRAY_REREAD();
+    /* A vector that the rejection drops takes the other's place: the pair then runs
+     * one vector twice, at the latency of one, and the kernel stays one copy. */
+    if (!la)
+        a = b, k0 = k1;
+    else if (!lb)
+        b = a, k1 = k0;
+    KFN(shift)(&a, &k0, F), KFN(shift)(&b, &k1, F);
+    /* A vector that the side drops runs on with no lane in play: a branch here would
+     * cost more than the work it saves, on rays that hit. */
+    if (!(KFN(side)(&a, &k0, F) | KFN(side)(&b, &k1, F)))
         return 0;
-    KFN(roots)(&st, &at, F);
-    KFN(ends)(&st, &at, F);
-    uint32_t hit = KFN(decide)(&st, &at, F);
-    if (!F.occ && hit)
-        KFN(store)(&st, &at, F);
-    return hit;
+    KFN(roots)(&a, &k0, F), KFN(roots)(&b, &k1, F);
+    KFN(ends)(&a, &k0, F), KFN(ends)(&b, &k1, F);
+    m[0] = KFN(decide)(&a, &k0, F), m[1] = KFN(decide)(&b, &k1, F);
+    if (!F.occ) {
+        if (m[0])
+            KFN(store)(&a, &k0, F);
+        if (m[1] && la && lb) /* a twin stores nothing new */
+            KFN(store)(&b, &k1, F);
+    }
+    m[0] = la ? m[0] : 0u, m[1] = lb ? m[1] : 0u;
+    return (uint32_t)(!la + !lb);
 }
 #undef KR_
 #undef KL_
@@ -769,6 +827,53 @@ CYLRAY_INLINE uint32_t KFN(packet1)(const cylray_prepared *P, float *ray, float 
     return m == CYLRAY_RARE_ ? KFN(packet_rare)(P, ray, hit, VW, 0, active, rt, FL) : m;
 }
 
+/* The last lanes of a stream, fewer than two vectors, through a local copy: nothing
+ * beyond the caller's arrays is read or written. One instance per ISA and width, with
+ * the flags read at run time: it runs once per stream call. */
+CYLRAY_NOINLINE size_t KFN(stream_tail)(const cylray_prepared *P, const cylray_rays *R,
+                                        const cylray_hits *H, uint8_t *occluded, size_t n,
+                                        size_t i, unsigned rt, unsigned FL)
+{
+    const int occ = (FL & CYLRAY_KF_OCCLUDED) != 0;
+    const int normal = (FL & CYLRAY_NORMAL) && !occ;
+    const size_t rest = n - i;
+    float in[8][2 * VW] = {{0}}, out[4][2 * VW] = {{0}};
+    int32_t part[2 * VW] = {0};
+    const float *src[8] = {R->ox, R->oy, R->oz, R->dx, R->dy, R->dz, R->tmin, R->tmax};
+    for (int f = 0; f < 8; f++)
+        for (size_t j = 0; j < rest; j++)
+            in[f][j] = src[f][i + j];
+    const cylray_rays lr = {in[0], in[1], in[2], in[3], in[4], in[5], in[6], in[7]};
+    const cylray_hits lh = {out[0], out[1], out[2], out[3], part};
+    size_t count = 0;
+    for (size_t b = 0; b < rest; b += VW) {
+        const uint32_t bits = rest - b >= VW ? VFULL : (uint32_t)((1u << (rest - b)) - 1u);
+        uint32_t m = KFN(block)(P, &lr, &lh, b, bits, rt, FL, NULL, 0);
+        if (m == CYLRAY_RARE_)
+            m = KFN(block_rare)(P, &lr, &lh, b, bits, rt, FL, NULL, 0);
+        count += CYLRAY_POPCOUNT(m);
+        for (; m; m &= m - 1) {
+            const size_t j = b + CYLRAY_CTZ(m);
+            if (occ) {
+                occluded[i + j] = 1;
+                continue;
+            }
+            H->t[i + j] = out[0][j];
+            R->tmax[i + j] = in[7][j];
+            H->part[i + j] = part[j];
+            if (normal) {
+                H->nx[i + j] = out[1][j];
+                H->ny[i + j] = out[2][j];
+                H->nz[i + j] = out[3][j];
+            }
+        }
+    }
+    return count;
+}
+
+/* A packet of several vectors, one vector at a time. (Two in flight, as the stream
+ * runs them, did not pay here: a pair's rejection costs more than two single ones,
+ * and a packet has no further vectors to pair a survivor with.) */
 CYLRAY_INLINE uint32_t KFN(packet)(const cylray_prepared *P, float *ray, float *hit, size_t n,
                                    uint32_t active, unsigned rt, const unsigned FL)
 {
@@ -788,21 +893,37 @@ CYLRAY_INLINE uint32_t KFN(packet)(const cylray_prepared *P, float *ray, float *
     return hits;
 }
 
-/* A stream of any length: whole vectors in place, then the tail through a local
- * copy, so that nothing before or after the caller's arrays is read or written. */
+/* Whether a vector survives the cheap rejections (or needs the rare instance). */
+CYLRAY_INLINE int KFN(survives)(const cylray_prepared *P, const cylray_rays *R, size_t i,
+                                unsigned rt, const unsigned FL)
+{
+    const cylray_kflags_ F = cylray_kflags_of_(FL, rt);
+    const cylray_kat_ at = {P, R, NULL, NULL, 0, i, VFULL, cylray_kcenter_(P, F)};
+    KFN(lanes) st;
+    return KFN(load_ray)(&st, &at, F) || KFN(reject)(&st, &at, F);
+}
+
+/* A stream of any length: whole vectors in place, then the last lanes through
+ * KFN(stream_tail). Where the ISA file sets KPAIRS (the vector widths on which it
+ * was measured to pay), two vectors are in flight (KFN(block2)), in groups of KGROUP_:
+ * where rejections are rare they are paired as they come; where a group saw a vector
+ * rejected, the next one is filtered first (a vector that the rejection drops would
+ * otherwise run beside one that hits, as its twin), until a group passes whole. */
+#define KGROUP_ 8
 CYLRAY_INLINE size_t KFN(stream)(const cylray_prepared *P, const cylray_rays *R0,
                                  const cylray_hits *H0, uint8_t *occluded, size_t n,
                                  unsigned rt, const unsigned FL)
 {
     const int occ = (FL & CYLRAY_KF_OCCLUDED) != 0;
-    const int normal = (FL & CYLRAY_NORMAL) && !occ;
     const int aligned = (FL & CYLRAY_KF_ALIGNED) != 0;
     const cylray_rays Rv = aligned ? cylray_rays_renamed_(P, R0) : *R0;
     const cylray_hits Hv = occ ? KFN(no_hits) : aligned ? cylray_hits_renamed_(P, H0) : *H0;
     const cylray_rays *R = &Rv;
     const cylray_hits *H = &Hv;
-    size_t count = 0, i = 0;
-    for (; i + VW <= n; i += VW) {
+    const size_t whole = n - n % VW;
+    size_t count = 0;
+    int filter = 0;
+    for (size_t i = 0; !KPAIRS && i < whole; i += VW) {
         uint32_t m = KFN(block)(P, R, H, i, VFULL, rt, FL, NULL, 0);
         if (m == CYLRAY_RARE_)
             m = KFN(block_rare)(P, R, H, i, VFULL, rt, FL, NULL, 0);
@@ -811,39 +932,40 @@ CYLRAY_INLINE size_t KFN(stream)(const cylray_prepared *P, const cylray_rays *R0
             for (; m; m &= m - 1)
                 occluded[i + CYLRAY_CTZ(m)] = 1;
     }
-    if (i < n) {
-        size_t rest = n - i;
-        float in[8][VW] = {{0}}, out[4][VW] = {{0}};
-        int32_t part[VW] = {0};
-        const float *src[8] = {R->ox, R->oy, R->oz, R->dx, R->dy, R->dz, R->tmin, R->tmax};
-        for (int f = 0; f < 8; f++)
-            for (size_t j = 0; j < rest; j++)
-                in[f][j] = src[f][i + j];
-        cylray_rays lr = {in[0], in[1], in[2], in[3], in[4], in[5], in[6], in[7]};
-        cylray_hits lh = {out[0], out[1], out[2], out[3], part};
-        const uint32_t bits = (uint32_t)((1u << rest) - 1u);
-        uint32_t m = KFN(block)(P, &lr, &lh, 0, bits, rt, FL, NULL, 0);
-        if (m == CYLRAY_RARE_)
-            m = KFN(block_rare)(P, &lr, &lh, 0, bits, rt, FL, NULL, 0);
-        count += CYLRAY_POPCOUNT(m);
-        for (; m; m &= m - 1) {
-            size_t j = CYLRAY_CTZ(m);
-            if (occ) {
-                occluded[i + j] = 1;
-                continue;
+    for (size_t i = 0; KPAIRS && i < whole; i += KGROUP_ * VW) {
+        size_t at[KGROUP_];
+        int alive = 0, total = 0;
+        for (size_t j = i; j < whole && j < i + KGROUP_ * VW; j += VW, total++)
+            if (!filter || KFN(survives)(P, R, j, rt, FL))
+                at[alive++] = j;
+        if (filter)
+            filter = alive < total;
+        for (int p = 0; p < alive; p += 2) {
+            /* an odd one out runs beside an empty twin of itself */
+            const int two = p + 1 < alive;
+            const size_t i0 = at[p], i1 = two ? at[p + 1] : i0;
+            uint32_t m[2];
+            const uint32_t r = KFN(block2)(P, R, H, i0, i1, VFULL, two ? VFULL : 0u, rt, FL, m);
+            if (r == CYLRAY_RARE_) {
+                m[0] = KFN(block_rare)(P, R, H, i0, VFULL, rt, FL, NULL, 0);
+                m[1] = two ? KFN(block_rare)(P, R, H, i1, VFULL, rt, FL, NULL, 0) : 0u;
+            } else if (r > (two ? 0u : 1u)) {
+                filter = 1;
             }
-            H->t[i + j] = out[0][j];
-            R->tmax[i + j] = in[7][j];
-            H->part[i + j] = part[j];
-            if (normal) {
-                H->nx[i + j] = out[1][j];
-                H->ny[i + j] = out[2][j];
-                H->nz[i + j] = out[3][j];
+            count += (size_t)CYLRAY_POPCOUNT(m[0]) + (size_t)CYLRAY_POPCOUNT(m[1]);
+            if (occ) {
+                for (uint32_t k = m[0]; k; k &= k - 1)
+                    occluded[i0 + CYLRAY_CTZ(k)] = 1;
+                for (uint32_t k = m[1]; k; k &= k - 1)
+                    occluded[i1 + CYLRAY_CTZ(k)] = 1;
             }
         }
     }
+    if (whole < n)
+        count += KFN(stream_tail)(P, R, H, occluded, n, whole, rt, FL);
     return count;
 }
+#undef KGROUP_
 
 /* One ray against a leaf of lm cylinders (lm a multiple of VW, at most 16): a vector of
  * lanes at a time, each with tmax lowered to the closest hit so far, so that a farther
@@ -909,14 +1031,6 @@ static unsigned KFN(generic_fl)(const cylray_prepared *P, unsigned flags, int oc
 }
 
 /* One instance each of the drivers with the flags read at run time. */
-CYLRAY_MAYBE_UNUSED CYLRAY_NOINLINE uint32_t KFN(packet_any)(const cylray_prepared *P, float *ray,
-                                                             float *hit, size_t n,
-                                                             uint32_t active, unsigned rt,
-                                                             unsigned FL)
-{
-    return KFN(packet)(P, ray, hit, n, active, rt, FL);
-}
-
 CYLRAY_MAYBE_UNUSED CYLRAY_NOINLINE size_t KFN(stream_any)(const cylray_prepared *P,
                                                            const cylray_rays *R,
                                                            const cylray_hits *H,
@@ -924,6 +1038,15 @@ CYLRAY_MAYBE_UNUSED CYLRAY_NOINLINE size_t KFN(stream_any)(const cylray_prepared
                                                            unsigned rt, unsigned FL)
 {
     return KFN(stream)(P, R, H, occluded, n, rt, FL);
+}
+
+CYLRAY_MAYBE_UNUSED CYLRAY_NOINLINE uint32_t KFN(packet_any)(const cylray_prepared *P, float *ray,
+                                                             float *hit, size_t n,
+                                                             uint32_t active, unsigned rt,
+                                                             unsigned FL)
+{
+    return n == VW ? KFN(packet1)(P, ray, hit, active, rt, FL)
+                   : KFN(packet)(P, ray, hit, n, active, rt, FL);
 }
 
 CYLRAY_MAYBE_UNUSED CYLRAY_NOINLINE int KFN(leaf_any)(const float *L, size_t lm, cylray_ray1 *ray,
@@ -966,7 +1089,13 @@ CYLRAY_MAYBE_UNUSED static size_t KFN(stream_generic)(const cylray_prepared *P,
 #define KLFL_(b, extra) (CYLRAY_KIND_LEAF << CYLRAY_KF_KIND_SHIFT | KSPECFL_(b) | (extra))
 /* The three drivers of one table slot; the calls are given, as they differ between the
  * specialised drivers and the run-time ones. */
-#define KSLOT_(kind, b, pk1_call, pk_call, st_call)                                    \
+#define KSLOT_(kind, b, pk1_call, pk_body, st_call)                                    \
+    CYLRAY_OUTLINE size_t KFN(st_##kind##_##b)(const cylray_prepared *P,                 \
+                                               const cylray_rays *R, const cylray_hits *H, \
+                                               uint8_t *o, size_t n, unsigned rt)        \
+    {                                                                                  \
+        return st_call;                                                                \
+    }                                                                                  \
     static uint32_t KFN(pk1_##kind##_##b)(const cylray_prepared *P, float *R, float *H,  \
                                           size_t n, uint32_t a, unsigned rt)            \
     {                                                                                  \
@@ -976,20 +1105,16 @@ CYLRAY_MAYBE_UNUSED static size_t KFN(stream_generic)(const cylray_prepared *P,
     static uint32_t KFN(pk_##kind##_##b)(const cylray_prepared *P, float *R, float *H,   \
                                          size_t n, uint32_t a, unsigned rt)             \
     {                                                                                  \
-        return pk_call;                                                                \
-    }                                                                                  \
-    static size_t KFN(st_##kind##_##b)(const cylray_prepared *P, const cylray_rays *R,  \
-                                       const cylray_hits *H, uint8_t *o, size_t n,       \
-                                       unsigned rt)                                     \
-    {                                                                                  \
-        return st_call;                                                                \
+        pk_body;                                                                       \
     }
+/* A packet of several vectors runs through its slot's stream driver. */
 #define KSPEC_(kind, b, fl)                                                            \
-    KSLOT_(kind, b, KFN(packet1)(P, R, H, a, rt, fl), KFN(packet)(P, R, H, n, a, rt, fl), \
-           KFN(stream)(P, R, H, o, n, rt, fl))
+    KSLOT_(kind, b, KFN(packet1)(P, R, H, a, rt, fl),                                   \
+           return KFN(packet)(P, R, H, n, a, rt, fl), KFN(stream)(P, R, H, o, n, rt, fl))
 #define KANY_(kind, b, fl)                                                             \
     KSLOT_(kind, b, KFN(packet_any)(P, R, H, n, a, rt, fl),                             \
-           KFN(packet_any)(P, R, H, n, a, rt, fl), KFN(stream_any)(P, R, H, o, n, rt, fl))
+           return KFN(packet_any)(P, R, H, n, a, rt, fl),                              \
+           KFN(stream_any)(P, R, H, o, n, rt, fl))
 #define KISECT_(kind, b) KSPEC_(kind, b, KFL_(kind, b, 0u))
 #define KOCC_(kind, b) KSPEC_(kind, o##b, KFL_(kind, (b) << 1, CYLRAY_KF_OCCLUDED))
 #define KISECTANY_(kind, b) KANY_(kind, b, KFL_(kind, b, 0u))
