@@ -82,7 +82,10 @@ int main(int argc, char **argv)
             return 1;
         }
     }
-    if (isa < 0 || width < 0 || op < 0 || scen < 0 || passes < 1) {
+    const char *bad = isa < 0 ? "--isa" : width < 0 ? "--driver" : op < 0 ? "--flags"
+                      : scen < 0 ? "--scenario" : passes < 1 ? "--passes" : NULL;
+    if (bad) {
+        fprintf(stderr, "cylicount: %s missing or not known\n", bad);
         usage();
         return 1;
     }
