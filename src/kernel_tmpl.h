@@ -871,9 +871,20 @@ CYLRAY_NOINLINE size_t KFN(stream_tail)(const cylray_prepared *P, const cylray_r
     return count;
 }
 
-/* A packet of several vectors, one vector at a time. (Two in flight, as the stream
- * runs them, did not pay here: a pair's rejection costs more than two single ones,
- * and a packet has no further vectors to pair a survivor with.) */
+/* Whether a vector survives the cheap rejections (or needs the rare instance). */
+CYLRAY_INLINE int KFN(survives)(const cylray_prepared *P, const cylray_rays *R, size_t i,
+                                uint32_t bits, unsigned rt, const unsigned FL)
+{
+    const cylray_kflags_ F = cylray_kflags_of_(FL, rt);
+    const cylray_kat_ at = {P, R, NULL, NULL, 0, i, bits, cylray_kcenter_(P, F)};
+    KFN(lanes) st;
+    return KFN(load_ray)(&st, &at, F) || KFN(reject)(&st, &at, F);
+}
+
+/* A packet of several vectors, one vector at a time. Two in flight, as the streams
+ * run them, did not pay here (docs/performance.md): a packet has no further vectors
+ * to pair a survivor with, and a pair that the rejection drops costs more than two
+ * single vectors do. */
 CYLRAY_INLINE uint32_t KFN(packet)(const cylray_prepared *P, float *ray, float *hit, size_t n,
                                    uint32_t active, unsigned rt, const unsigned FL)
 {
@@ -891,16 +902,6 @@ CYLRAY_INLINE uint32_t KFN(packet)(const cylray_prepared *P, float *ray, float *
         }
     }
     return hits;
-}
-
-/* Whether a vector survives the cheap rejections (or needs the rare instance). */
-CYLRAY_INLINE int KFN(survives)(const cylray_prepared *P, const cylray_rays *R, size_t i,
-                                unsigned rt, const unsigned FL)
-{
-    const cylray_kflags_ F = cylray_kflags_of_(FL, rt);
-    const cylray_kat_ at = {P, R, NULL, NULL, 0, i, VFULL, cylray_kcenter_(P, F)};
-    KFN(lanes) st;
-    return KFN(load_ray)(&st, &at, F) || KFN(reject)(&st, &at, F);
 }
 
 /* A stream of any length: whole vectors in place, then the last lanes through
@@ -936,7 +937,7 @@ CYLRAY_INLINE size_t KFN(stream)(const cylray_prepared *P, const cylray_rays *R0
         size_t at[KGROUP_];
         int alive = 0, total = 0;
         for (size_t j = i; j < whole && j < i + KGROUP_ * VW; j += VW, total++)
-            if (!filter || KFN(survives)(P, R, j, rt, FL))
+            if (!filter || KFN(survives)(P, R, j, VFULL, rt, FL))
                 at[alive++] = j;
         if (filter)
             filter = alive < total;

@@ -20,8 +20,8 @@
 #include <time.h>
 
 
-static const size_t stream_full[] = {1, 2, 3, 5, 7, 8, 9, 13, 15, 16, 17, 23, 31, 33, 47, 64, 65, 100};
-static const size_t stream_quick[] = {1, 3, 5, 7, 13, 17, 31};
+static const size_t stream_full[] = {1, 2, 3, 5, 7, 8, 9, 13, 15, 16, 17, 23, 31, 33, 47, 64, 65, 100, 257, 700};
+static const size_t stream_quick[] = {1, 3, 5, 7, 13, 17, 31, 129};
 
 static void usage(FILE *f)
 {
