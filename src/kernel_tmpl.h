@@ -714,19 +714,30 @@ CYLRAY_INLINE uint32_t KFN(finish)(KFN(lanes) *st, const cylray_kat_ *k, const c
  * With CYLRAY_KF_ALIGNED the axis is a coordinate axis (P->axis_id) and exactly a unit
  * vector: the coordinates are renamed so that it is the third one, and the side is a
  * 2D quadratic without cross products. */
-CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R,
-                                  const cylray_hits *H, size_t i, uint32_t bits,
-                                  unsigned rt, const unsigned FL, const float *L, size_t lm)
+CYLRAY_INLINE uint32_t KFN(block_r)(const cylray_prepared *P, const cylray_rays *R,
+                                    const cylray_hits *H, size_t i, uint32_t bits,
+                                    unsigned rt, const unsigned FL, const float *L, size_t lm,
+                                    int *rejected)
 {
     const cylray_kflags_ F = cylray_kflags_of_(FL, rt);
     const cylray_kat_ at = {P, R, H, L, lm, i, bits, cylray_kcenter_(P, F)};
     KFN(lanes) st;
     if (KFN(load_ray)(&st, &at, F))
         return CYLRAY_RARE_;
-    if (!KFN(reject)(&st, &at, F))
+    if (!KFN(reject)(&st, &at, F)) {
+        if (rejected)
+            *rejected = 1;
         return 0;
+    }
     CYLRAY_REREAD();
     return KFN(finish)(&st, &at, F);
+}
+
+CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R,
+                                  const cylray_hits *H, size_t i, uint32_t bits,
+                                  unsigned rt, const unsigned FL, const float *L, size_t lm)
+{
+    return KFN(block_r)(P, R, H, i, bits, rt, FL, L, lm, NULL);
 }
 
 /* Two vectors in flight: lanes [i, i + VW) active where bits0 is set and
@@ -871,16 +882,6 @@ CYLRAY_NOINLINE size_t KFN(stream_tail)(const cylray_prepared *P, const cylray_r
     return count;
 }
 
-/* Whether a vector survives the cheap rejections (or needs the rare instance). */
-CYLRAY_INLINE int KFN(survives)(const cylray_prepared *P, const cylray_rays *R, size_t i,
-                                uint32_t bits, unsigned rt, const unsigned FL)
-{
-    const cylray_kflags_ F = cylray_kflags_of_(FL, rt);
-    const cylray_kat_ at = {P, R, NULL, NULL, 0, i, bits, cylray_kcenter_(P, F)};
-    KFN(lanes) st;
-    return KFN(load_ray)(&st, &at, F) || KFN(reject)(&st, &at, F);
-}
-
 /* A packet of several vectors, one vector at a time. Two in flight, as the streams
  * run them, did not pay here (docs/performance.md): a packet has no further vectors
  * to pair a survivor with, and a pair that the rejection drops costs more than two
@@ -905,11 +906,12 @@ CYLRAY_INLINE uint32_t KFN(packet)(const cylray_prepared *P, float *ray, float *
 }
 
 /* A stream of any length: whole vectors in place, then the last lanes through
- * KFN(stream_tail). Where the ISA file sets KPAIRS (the vector widths on which it
- * was measured to pay), two vectors are in flight (KFN(block2)), in groups of KGROUP_:
- * where rejections are rare they are paired as they come; where a group saw a vector
- * rejected, the next one is filtered first (a vector that the rejection drops would
- * otherwise run beside one that hits, as its twin), until a group passes whole. */
+ * KFN(stream_tail). Where the ISA file sets KPAIRS (the vector widths on which it was
+ * measured to pay), an intersect stream keeps two vectors in flight (KFN(block2))
+ * while rejections are rare;
+ * once a pair sees a vector rejected, the vectors go one at a time until KGROUP_ in a
+ * row pass the rejection (a rejected vector would otherwise run beside one that hits,
+ * as its twin, and cost what it saves). */
 #define KGROUP_ 8
 CYLRAY_INLINE size_t KFN(stream)(const cylray_prepared *P, const cylray_rays *R0,
                                  const cylray_hits *H0, uint8_t *occluded, size_t n,
@@ -923,44 +925,35 @@ CYLRAY_INLINE size_t KFN(stream)(const cylray_prepared *P, const cylray_rays *R0
     const cylray_hits *H = &Hv;
     const size_t whole = n - n % VW;
     size_t count = 0;
-    int filter = 0;
-    for (size_t i = 0; !KPAIRS && i < whole; i += VW) {
-        uint32_t m = KFN(block)(P, R, H, i, VFULL, rt, FL, NULL, 0);
-        if (m == CYLRAY_RARE_)
-            m = KFN(block_rare)(P, R, H, i, VFULL, rt, FL, NULL, 0);
-        count += CYLRAY_POPCOUNT(m);
-        if (occ)
-            for (; m; m &= m - 1)
-                occluded[i + CYLRAY_CTZ(m)] = 1;
-    }
-    for (size_t i = 0; KPAIRS && i < whole; i += KGROUP_ * VW) {
-        size_t at[KGROUP_];
-        int alive = 0, total = 0;
-        for (size_t j = i; j < whole && j < i + KGROUP_ * VW; j += VW, total++)
-            if (!filter || KFN(survives)(P, R, j, VFULL, rt, FL))
-                at[alive++] = j;
-        if (filter)
-            filter = alive < total;
-        for (int p = 0; p < alive; p += 2) {
-            /* an odd one out runs beside an empty twin of itself */
-            const int two = p + 1 < alive;
-            const size_t i0 = at[p], i1 = two ? at[p + 1] : i0;
-            uint32_t m[2];
-            const uint32_t r = KFN(block2)(P, R, H, i0, i1, VFULL, two ? VFULL : 0u, rt, FL, m);
+    /* Occlusion has less to overlap after the rejection than a rejected twin costs:
+     * measured, its streams gain little on hits and lose on misses. */
+    const int pairs = KPAIRS && !occ;
+    int passed = pairs ? KGROUP_ : 0; /* vectors in a row that passed the rejection */
+    for (size_t i = 0; i < whole;) {
+        uint32_t m[2] = {0u, 0u};
+        size_t step = VW;
+        if (pairs && passed >= KGROUP_ && i + 2 * VW <= whole) {
+            const uint32_t r = KFN(block2)(P, R, H, i, i + VW, VFULL, VFULL, rt, FL, m);
             if (r == CYLRAY_RARE_) {
-                m[0] = KFN(block_rare)(P, R, H, i0, VFULL, rt, FL, NULL, 0);
-                m[1] = two ? KFN(block_rare)(P, R, H, i1, VFULL, rt, FL, NULL, 0) : 0u;
-            } else if (r > (two ? 0u : 1u)) {
-                filter = 1;
+                m[0] = KFN(block_rare)(P, R, H, i, VFULL, rt, FL, NULL, 0);
+                m[1] = KFN(block_rare)(P, R, H, i + VW, VFULL, rt, FL, NULL, 0);
+            } else if (r) {
+                passed = 0;
             }
-            count += (size_t)CYLRAY_POPCOUNT(m[0]) + (size_t)CYLRAY_POPCOUNT(m[1]);
-            if (occ) {
-                for (uint32_t k = m[0]; k; k &= k - 1)
-                    occluded[i0 + CYLRAY_CTZ(k)] = 1;
-                for (uint32_t k = m[1]; k; k &= k - 1)
-                    occluded[i1 + CYLRAY_CTZ(k)] = 1;
-            }
+            step = 2 * VW;
+        } else {
+            int rejected = 0;
+            m[0] = KFN(block_r)(P, R, H, i, VFULL, rt, FL, NULL, 0, &rejected);
+            if (m[0] == CYLRAY_RARE_)
+                m[0] = KFN(block_rare)(P, R, H, i, VFULL, rt, FL, NULL, 0);
+            passed = rejected ? 0 : passed + 1;
         }
+        count += (size_t)CYLRAY_POPCOUNT(m[0]) + (size_t)CYLRAY_POPCOUNT(m[1]);
+        if (occ)
+            for (size_t v = 0; v < step; v += VW)
+                for (uint32_t k = m[v / VW]; k; k &= k - 1)
+                    occluded[i + v + CYLRAY_CTZ(k)] = 1;
+        i += step;
     }
     if (whole < n)
         count += KFN(stream_tail)(P, R, H, occluded, n, whole, rt, FL);
