@@ -906,12 +906,12 @@ CYLRAY_INLINE uint32_t KFN(packet)(const cylray_prepared *P, float *ray, float *
 }
 
 /* A stream of any length: whole vectors in place, then the last lanes through
- * KFN(stream_tail). Where the ISA file sets KPAIRS (the vector widths on which it was
- * measured to pay), an intersect stream keeps two vectors in flight (KFN(block2))
- * while rejections are rare;
- * once a pair sees a vector rejected, the vectors go one at a time until KGROUP_ in a
- * row pass the rejection (a rejected vector would otherwise run beside one that hits,
- * as its twin, and cost what it saves). */
+ * KFN(stream_tail). Where the ISA file sets KPAIRS (the widths on which it was measured
+ * to pay), an intersect stream keeps two vectors in flight (KFN(block2)) while the
+ * rejection drops none; once a pair sees a vector rejected, the vectors go one at a
+ * time until KGROUP_ in a row pass it (a rejected vector would otherwise run beside
+ * one that hits, as its twin, and cost what the pair saves). Occlusion has less work
+ * after the rejection to overlap, and stays one vector at a time. */
 #define KGROUP_ 8
 CYLRAY_INLINE size_t KFN(stream)(const cylray_prepared *P, const cylray_rays *R0,
                                  const cylray_hits *H0, uint8_t *occluded, size_t n,
@@ -925,14 +925,23 @@ CYLRAY_INLINE size_t KFN(stream)(const cylray_prepared *P, const cylray_rays *R0
     const cylray_hits *H = &Hv;
     const size_t whole = n - n % VW;
     size_t count = 0;
-    /* Occlusion has less to overlap after the rejection than a rejected twin costs:
-     * measured, its streams gain little on hits and lose on misses. */
     const int pairs = KPAIRS && !occ;
-    int passed = pairs ? KGROUP_ : 0; /* vectors in a row that passed the rejection */
-    for (size_t i = 0; i < whole;) {
+    for (size_t i = 0; !pairs && i < whole; i += VW) {
+        uint32_t m = KFN(block)(P, R, H, i, VFULL, rt, FL, NULL, 0);
+        if (m == CYLRAY_RARE_)
+            m = KFN(block_rare)(P, R, H, i, VFULL, rt, FL, NULL, 0);
+        count += CYLRAY_POPCOUNT(m);
+        /* Without a branch per hit lane: a loop over the set bits mispredicts on a
+         * mix of hits and misses. A lane that missed keeps its byte (x | 0). */
+        if (occ && m)
+            for (size_t j = 0; j < VW; j++)
+                occluded[i + j] |= (uint8_t)((m >> j) & 1u);
+    }
+    int passed = KGROUP_; /* vectors in a row that passed the rejection */
+    for (size_t i = 0; pairs && i < whole;) {
         uint32_t m[2] = {0u, 0u};
         size_t step = VW;
-        if (pairs && passed >= KGROUP_ && i + 2 * VW <= whole) {
+        if (passed >= KGROUP_ && i + 2 * VW <= whole) {
             const uint32_t r = KFN(block2)(P, R, H, i, i + VW, VFULL, VFULL, rt, FL, m);
             if (r == CYLRAY_RARE_) {
                 m[0] = KFN(block_rare)(P, R, H, i, VFULL, rt, FL, NULL, 0);
@@ -949,10 +958,6 @@ CYLRAY_INLINE size_t KFN(stream)(const cylray_prepared *P, const cylray_rays *R0
             passed = rejected ? 0 : passed + 1;
         }
         count += (size_t)CYLRAY_POPCOUNT(m[0]) + (size_t)CYLRAY_POPCOUNT(m[1]);
-        if (occ)
-            for (size_t v = 0; v < step; v += VW)
-                for (uint32_t k = m[v / VW]; k; k &= k - 1)
-                    occluded[i + v + CYLRAY_CTZ(k)] = 1;
         i += step;
     }
     if (whole < n)
