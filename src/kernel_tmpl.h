@@ -932,10 +932,10 @@ CYLRAY_INLINE size_t KFN(stream)(const cylray_prepared *P, const cylray_rays *R0
             m = KFN(block_rare)(P, R, H, i, VFULL, rt, FL, NULL, 0);
         count += CYLRAY_POPCOUNT(m);
         /* Without a branch per hit lane: a loop over the set bits mispredicts on a
-         * mix of hits and misses. A lane that missed keeps its byte (x | 0). */
+         * mix of hits and misses. A lane that missed keeps its byte. */
         if (occ && m)
             for (size_t j = 0; j < VW; j++)
-                occluded[i + j] |= (uint8_t)((m >> j) & 1u);
+                occluded[i + j] = (m >> j) & 1u ? (uint8_t)1 : occluded[i + j];
     }
     int passed = KGROUP_; /* vectors in a row that passed the rejection */
     for (size_t i = 0; pairs && i < whole;) {

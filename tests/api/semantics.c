@@ -84,6 +84,100 @@ static void widths_agree(const cylray_kernels *k, const cylray_prepared *P, cons
     }
 }
 
+/* A long stream whose vectors pass and fail the cheap rejections in runs: the stream
+ * drivers switch between two vectors in flight and one at a time on what they see, and
+ * a vector beside a rejected partner runs as its twin. Whatever the schedule, every ray
+ * gets the answer of a 16-ray packet holding it, bit for bit (t, part, normal, tmax). */
+enum { LS_SEG = 96, LS_N = 24 * LS_SEG + 5 };
+static float ls_in[G_NFIELD][LS_N], ls_t[LS_N], ls_n[3][LS_N];
+static int32_t ls_part[LS_N];
+static uint8_t ls_occ[LS_N];
+
+static void long_stream_agrees(const cylray_kernels *k, const cylray_prepared *P,
+                               const cylray_cylinder *c, unsigned flags, const char *cname,
+                               uint64_t seed)
+{
+    /* Segments in a fixed cycle: the scene's mix of rays; rays parallel to the axis 50
+     * radii from it (every vector rejected); the mix again; rays aimed at the center. */
+    for (size_t s0 = 0, seg = 0; s0 < LS_N; s0 += LS_SEG, seg++) {
+        const size_t n = LS_N - s0 < LS_SEG ? LS_N - s0 : LS_SEG;
+        gbatch b;
+        scene_rays(seed + seg, c, &b, 0, n < G_MAX ? n : G_MAX);
+        for (size_t i = 0; i < n; i++) {
+            const size_t j = i % G_MAX;
+            float o[3], d[3];
+            for (int a = 0; a < 3; a++)
+                o[a] = b.f[G_OX + a][j], d[a] = b.f[G_DX + a][j];
+            const double r = c->radius;
+            /* u: a unit vector across the axis */
+            double ax[3] = {c->axis[0], c->axis[1], c->axis[2]};
+            double u[3] = {ax[1], -ax[0], 0};
+            if (fabs(ax[2]) > fabs(ax[0]) && fabs(ax[2]) > fabs(ax[1]))
+                u[0] = 0, u[1] = ax[2], u[2] = -ax[1];
+            const double lu = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+            if (seg % 4 == 1)
+                for (int a = 0; a < 3; a++)
+                    o[a] = (float)(c->center[a] + 50 * r * u[a] / lu + (double)(i % 7) * ax[a]),
+                    d[a] = (float)ax[a];
+            else if (seg % 4 == 3)
+                for (int a = 0; a < 3; a++)
+                    d[a] = (float)(c->center[a] + 0.25 * r * u[a] / lu - o[a]);
+            for (int a = 0; a < 3; a++)
+                ls_in[G_OX + a][s0 + i] = o[a], ls_in[G_DX + a][s0 + i] = d[a];
+            ls_in[G_TMIN][s0 + i] = b.f[G_TMIN][j];
+            ls_in[G_TMAX][s0 + i] = b.f[G_TMAX][j];
+        }
+    }
+    float tmax[LS_N];
+    memcpy(tmax, ls_in[G_TMAX], sizeof tmax);
+    memset(ls_part, 0x5a, sizeof ls_part);
+    memset(ls_occ, 0, sizeof ls_occ);
+    const cylray_rays rays = {ls_in[G_OX], ls_in[G_OY], ls_in[G_OZ], ls_in[G_DX],
+                              ls_in[G_DY], ls_in[G_DZ], ls_in[G_TMIN], tmax};
+    const cylray_hits hits = {ls_t, ls_n[0], ls_n[1], ls_n[2], ls_part};
+    const size_t count = k->intersect_stream(P, &rays, &hits, LS_N, flags);
+    const cylray_rays orays = {ls_in[G_OX], ls_in[G_OY], ls_in[G_OZ], ls_in[G_DX],
+                               ls_in[G_DY], ls_in[G_DZ], ls_in[G_TMIN], ls_in[G_TMAX]};
+    const size_t ocount = k->occluded_stream(P, &orays, ls_occ, LS_N, flags);
+    size_t hits_seen = 0;
+    for (size_t p0 = 0; p0 < LS_N; p0 += 16) {
+        const size_t w = LS_N - p0 < 16 ? LS_N - p0 : 16;
+        cylray_ray16 ray;
+        cylray_hit16 hit;
+        memset(&ray, 0, sizeof ray);
+        for (size_t i = 0; i < w; i++) {
+            ray.ox[i] = ls_in[G_OX][p0 + i], ray.oy[i] = ls_in[G_OY][p0 + i];
+            ray.oz[i] = ls_in[G_OZ][p0 + i], ray.dx[i] = ls_in[G_DX][p0 + i];
+            ray.dy[i] = ls_in[G_DY][p0 + i], ray.dz[i] = ls_in[G_DZ][p0 + i];
+            ray.tmin[i] = ls_in[G_TMIN][p0 + i], ray.tmax[i] = ls_in[G_TMAX][p0 + i];
+        }
+        const uint32_t m = k->intersect16(P, &ray, &hit, (uint32_t)((1ull << w) - 1u), flags);
+        for (size_t i = 0; i < w; i++) {
+            const size_t g = p0 + i;
+            const int h = (int)((m >> i) & 1u);
+            hits_seen += (size_t)h;
+            int same = h == (tmax[g] != ls_in[G_TMAX][g] || ls_part[g] != 0x5a5a5a5a) &&
+                       h == ls_occ[g];
+            if (h) {
+                same = same && memcmp(&hit.t[i], &ls_t[g], 4) == 0 &&
+                       memcmp(&ray.tmax[i], &tmax[g], 4) == 0 && hit.part[i] == ls_part[g];
+                if (flags & CYLRAY_NORMAL)
+                    same = same && memcmp(&hit.nx[i], &ls_n[0][g], 4) == 0 &&
+                           memcmp(&hit.ny[i], &ls_n[1][g], 4) == 0 &&
+                           memcmp(&hit.nz[i], &ls_n[2][g], 4) == 0;
+            }
+            CHECK(same,
+                  "%s %s flags=%#x: long stream ray %zu (segment %zu) differs from its packet: "
+                  "hit %d/%d t %a/%a part %#x/%#x occluded %d",
+                  k->name, cname, flags, g, g / LS_SEG, h, ls_part[g] != 0x5a5a5a5a,
+                  hit.t[i], ls_t[g], (unsigned)hit.part[i], (unsigned)ls_part[g], ls_occ[g]);
+        }
+    }
+    CHECK(count == hits_seen && ocount == hits_seen,
+          "%s %s flags=%#x: long stream counted %zu hits, occluded %zu, packets %zu", k->name,
+          cname, flags, count, ocount, hits_seen);
+}
+
 /* The tracer's loop: a packet against a near cylinder and a far one, in both orders.
  * Near first: the far one finds tmax already shorter and changes nothing. Far first:
  * the near one overwrites. Either way each lane ends with the nearer hit. */
@@ -150,6 +244,10 @@ int main(void)
                 for (size_t fi = 0; fi < FLAG_SETS_ALL; fi++)
                     widths_agree(isas[ii], &P, &all, flag_sets[fi], cname, &seed);
         }
+        for (int ii = 0; ii < nisa; ii++)
+            for (size_t fi = 0; fi < (tc_quick() ? FLAG_SETS_QUICK : FLAG_SETS_ALL); fi++)
+                long_stream_agrees(isas[ii], &P, &cyl[ci], flag_sets[fi], cname,
+                                   (uint64_t)ci * 1000u);
     }
     for (int ii = 0; ii < nisa; ii++)
         closest_hit(isas[ii]);
