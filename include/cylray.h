@@ -225,8 +225,10 @@ typedef struct cylray_hits {
 } cylray_hits;
 
 /* Rays 0..n-1 of separate arrays, any length and alignment; nothing before or after
- * them is read or written. Same per-ray semantics as the packets; returns the number
- * of hits. */
+ * them is read or written. Same per-ray semantics as the packets, and the same answers
+ * bit for bit; returns the number of hits. The throughput path: with many rays per
+ * call the kernels keep more than one vector of rays in flight where that pays, which
+ * packets, one call per vector, cannot. */
 CYLRAY_API size_t cylray_intersect_stream(const cylray_prepared *cyl, const cylray_rays *rays,
                                const cylray_hits *hits, size_t n, unsigned flags);
 /* Sets occluded[i] = 1 for each ray with a hit, leaves the others; returns the count. */
