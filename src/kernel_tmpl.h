@@ -709,7 +709,8 @@ CYLRAY_INLINE uint32_t KFN(finish)(KFN(lanes) *st, const cylray_kat_ *k, const c
 }
 
 /* One vector of rays: lanes [i, i + VW) of R, active where `bits` is set. Returns the
- * hit lanes; writes H and R->tmax only there. FL is a compile-time constant.
+ * hit lanes; writes H and R->tmax only there. FL is a compile-time constant. Where the
+ * cheap rejections end the work, *rejected (if given) is set.
  *
  * With CYLRAY_KF_ALIGNED the axis is a coordinate axis (P->axis_id) and exactly a unit
  * vector: the coordinates are renamed so that it is the third one, and the side is a
@@ -740,14 +741,14 @@ CYLRAY_INLINE uint32_t KFN(block)(const cylray_prepared *P, const cylray_rays *R
     return KFN(block_r)(P, R, H, i, bits, rt, FL, L, lm, NULL);
 }
 
-/* Two vectors in flight: lanes [i, i + VW) active where bits0 is set and
- * [i + VW, i + 2 VW) where bits1 is. One vector's work is a chain of dependent
- * operations longer than the out-of-order window; with the stages of two vectors
- * alternating, the core always has independent work while one waits on a division or
- * a square root. A vector that the rejection drops leaves the other to finish alone,
- * so a rejected vector still costs only its rejection. Returns 0 with the hit lanes in
- * m[0] and m[1], or CYLRAY_RARE_, having written nothing, when either vector needs the
- * rare instance (the driver then takes them one at a time). */
+/* Two vectors in flight: lanes [i0, i0 + VW) active where bits0 is set and
+ * [i1, i1 + VW) where bits1 is. One vector's work is a chain of dependent operations
+ * longer than the out-of-order window; with the stages of two vectors alternating, the
+ * core has independent work while one waits on a division or a square root. A vector
+ * that the rejection drops takes its partner's place as a twin. Returns how many of
+ * the two the rejection dropped, with the hit lanes in m[0] and m[1]; or CYLRAY_RARE_,
+ * having written nothing, when either vector needs the rare instance (the driver then
+ * takes them one at a time). */
 CYLRAY_INLINE uint32_t KFN(block2)(const cylray_prepared *P, const cylray_rays *R,
                                    const cylray_hits *H, size_t i0, size_t i1, uint32_t bits0,
                                    uint32_t bits1, unsigned rt, const unsigned FL,
@@ -761,8 +762,9 @@ CYLRAY_INLINE uint32_t KFN(block2)(const cylray_prepared *P, const cylray_rays *
     if (KFN(load_ray)(&a, &k0, F) | KFN(load_ray)(&b, &k1, F))
         return CYLRAY_RARE_;
     const int la = KFN(reject)(&a, &k0, F), lb = KFN(reject)(&b, &k1, F);
-    if (!(la | lb))
-        return 2;
+    const uint32_t dropped = (uint32_t)(!la + !lb);
+    if (dropped == 2)
+        return dropped;
     CYLRAY_REREAD();
     /* A vector that the rejection drops takes the other's place: the pair then runs
      * one vector twice, at the latency of one, and the kernel stays one copy. */
@@ -774,7 +776,7 @@ CYLRAY_INLINE uint32_t KFN(block2)(const cylray_prepared *P, const cylray_rays *
     /* A vector that the side drops runs on with no lane in play: a branch here would
      * cost more than the work it saves, on rays that hit. */
     if (!(KFN(side)(&a, &k0, F) | KFN(side)(&b, &k1, F)))
-        return 0;
+        return dropped;
     KFN(roots)(&a, &k0, F), KFN(roots)(&b, &k1, F);
     KFN(ends)(&a, &k0, F), KFN(ends)(&b, &k1, F);
     m[0] = KFN(decide)(&a, &k0, F), m[1] = KFN(decide)(&b, &k1, F);
@@ -785,7 +787,7 @@ CYLRAY_INLINE uint32_t KFN(block2)(const cylray_prepared *P, const cylray_rays *
             KFN(store)(&b, &k1, F);
     }
     m[0] = la ? m[0] : 0u, m[1] = lb ? m[1] : 0u;
-    return (uint32_t)(!la + !lb);
+    return dropped;
 }
 #undef KR_
 #undef KL_
