@@ -82,7 +82,6 @@ static inline int cylray_prepared_ok_(const cylray_prepared *p)
 #if defined(__GNUC__) || defined(__clang__)
 #define CYLRAY_INLINE static inline __attribute__((always_inline))
 #define CYLRAY_NOINLINE static __attribute__((noinline, cold))
-#define CYLRAY_OUTLINE static __attribute__((noinline)) /* shared by several callers */
 /* Makes the compiler read memory again after this point instead of keeping what it
  * read before in registers (or in spill slots). */
 #define CYLRAY_REREAD() __asm__ volatile("" ::: "memory")
@@ -92,7 +91,6 @@ static inline int cylray_prepared_ok_(const cylray_prepared *p)
 #else
 #define CYLRAY_INLINE static inline
 #define CYLRAY_NOINLINE static
-#define CYLRAY_OUTLINE static
 #define CYLRAY_REREAD() ((void)0)
 #define CYLRAY_MAYBE_UNUSED
 static inline unsigned CYLRAY_POPCOUNT(unsigned x)

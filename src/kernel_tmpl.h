@@ -1091,9 +1091,9 @@ CYLRAY_MAYBE_UNUSED static size_t KFN(stream_generic)(const cylray_prepared *P,
 /* The three drivers of one table slot; the calls are given, as they differ between the
  * specialised drivers and the run-time ones. */
 #define KSLOT_(kind, b, pk1_call, pk_body, st_call)                                    \
-    CYLRAY_OUTLINE size_t KFN(st_##kind##_##b)(const cylray_prepared *P,                 \
-                                               const cylray_rays *R, const cylray_hits *H, \
-                                               uint8_t *o, size_t n, unsigned rt)        \
+    static size_t KFN(st_##kind##_##b)(const cylray_prepared *P, const cylray_rays *R,  \
+                                       const cylray_hits *H, uint8_t *o, size_t n,       \
+                                       unsigned rt)                                     \
     {                                                                                  \
         return st_call;                                                                \
     }                                                                                  \
