@@ -147,33 +147,24 @@ EB_SINGLE_OCC(4)
 EB_SINGLE_OCC(8)
 EB_SINGLE_OCC(16)
 
-static void single_intersect(const struct RTCIntersectFunctionNArguments *a)
-{
-    const eb_geom *g = a->geometryUserPtr;
-    unsigned lane[16], n = active_lanes(a->valid, a->N, lane);
-    if (n == 0)
-        return;
-    if (n <= 4)
-        single_isect4(a, g, lane, n);
-    else if (n <= 8)
-        single_isect8(a, g, lane, n);
-    else
-        single_isect16(a, g, lane, n);
-}
-
-static void single_occluded(const struct RTCOccludedFunctionNArguments *a)
-{
-    const eb_geom *g = a->geometryUserPtr;
-    unsigned lane[16], n = active_lanes(a->valid, a->N, lane);
-    if (n == 0)
-        return;
-    if (n <= 4)
-        single_occ4(a, g, lane, n);
-    else if (n <= 8)
-        single_occ8(a, g, lane, n);
-    else
-        single_occ16(a, g, lane, n);
-}
+/* The callback for one of Embree's query kinds: the active lanes, in the narrowest
+ * packet that holds them. */
+#define EB_SINGLE_CALLBACK(name, args, fn)                                                 \
+    static void name(const struct args *a)                                                 \
+    {                                                                                      \
+        const eb_geom *g = a->geometryUserPtr;                                             \
+        unsigned lane[16], n = active_lanes(a->valid, a->N, lane);                         \
+        if (n == 0)                                                                        \
+            return;                                                                        \
+        if (n <= 4)                                                                        \
+            fn##4(a, g, lane, n);                                                          \
+        else if (n <= 8)                                                                   \
+            fn##8(a, g, lane, n);                                                          \
+        else                                                                               \
+            fn##16(a, g, lane, n);                                                         \
+    }
+EB_SINGLE_CALLBACK(single_intersect, RTCIntersectFunctionNArguments, single_isect)
+EB_SINGLE_CALLBACK(single_occluded, RTCOccludedFunctionNArguments, single_occ)
 
 static void single_bounds(const struct RTCBoundsFunctionArguments *a)
 {

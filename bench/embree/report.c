@@ -23,6 +23,21 @@ static int col_on(const eb_row *r, size_t n, int p, int k)
     return 0;
 }
 
+/* What the table and the CSV print of one ray set's errors. */
+typedef struct err_summary {
+    double t_med, t_p99, t_max, beyond_max, n_p99;
+} err_summary;
+
+static err_summary summarize(eb_err *e)
+{
+    err_summary q;
+    double med, max, p99;
+    eb_quantiles(e->t_ulps, e->nt, &q.t_med, &q.t_p99, &q.t_max);
+    eb_quantiles(e->t_beyond, e->nt, &med, &p99, &q.beyond_max);
+    eb_quantiles(e->n_rad, e->nn, &med, &q.n_p99, &max);
+    return q;
+}
+
 static void speed(FILE *f, const eb_row *r, size_t n)
 {
     fprintf(f, "\nM rays/s (%d threads; packet = rays per Embree call; cylray-leaf: up to %d "
@@ -92,14 +107,12 @@ static void errors(FILE *f, const eb_row *r, size_t n)
             continue;
         for (int s = 0; s < EB_NSETS; s++) {
             eb_err e = r[i].err[s];
-            double med, p99, mx, nm, np, nx, bm, bp, bx;
-            eb_quantiles(e.t_ulps, e.nt, &med, &p99, &mx);
-            eb_quantiles(e.t_beyond, e.nt, &bm, &bp, &bx);
-            eb_quantiles(e.n_rad, e.nn, &nm, &np, &nx);
+            const err_summary q = summarize(&e);
             fprintf(f, "%-7s %-9s %-16s %-6s %6zu %5zu %5zu %5zu %5zu %8.3g %8.3g %8.3g %8.3g "
                        "%8.2g",
                     r[i].isa, r[i].scene, r[i].variant, eb_set_name(s), e.rays, e.wrong,
-                    e.leak, e.phantom, e.excused, med, p99, mx, bx, np);
+                    e.leak, e.phantom, e.excused, q.t_med, q.t_p99, q.t_max, q.beyond_max,
+                    q.n_p99);
             if (s == EB_SET_CAMERA)
                 fprintf(f, " %5zu/%-5zu", e.self, e.sec);
             fprintf(f, "\n");
@@ -148,12 +161,9 @@ void eb_report_csv(FILE *f, const eb_row *r, size_t n)
         fprintf(f, ",%.4g", r[i].scaling[1]);
         for (int s = 0; s < EB_NSETS; s++) {
             eb_err e = r[i].err[s];
-            double med, p99, mx, nm, np, nx, bm, bp, bx;
-            eb_quantiles(e.t_ulps, e.nt, &med, &p99, &mx);
-            eb_quantiles(e.t_beyond, e.nt, &bm, &bp, &bx);
-            eb_quantiles(e.n_rad, e.nn, &nm, &np, &nx);
+            const err_summary q = summarize(&e);
             fprintf(f, ",%zu,%zu,%zu,%zu,%zu,%.4g,%.4g,%.4g", e.rays, e.wrong, e.leak,
-                    e.phantom, e.excused, p99, bx, np);
+                    e.phantom, e.excused, q.t_p99, q.beyond_max, q.n_p99);
         }
         fprintf(f, ",%zu,%zu,%zu\n", r[i].err[0].sec, r[i].err[0].self, r[i].diff_pixels);
     }
