@@ -97,12 +97,7 @@ int eb_ref_closest(const eb_ref *r, const float o[3], const float d[3], float tm
     collect_ctx c;
     memset(&c, 0, sizeof c);
     rtcInitIntersectContext(&c.ctx);
-    struct RTCRayHit rh;
-    rh.ray.org_x = o[0], rh.ray.org_y = o[1], rh.ray.org_z = o[2];
-    rh.ray.dir_x = d[0], rh.ray.dir_y = d[1], rh.ray.dir_z = d[2];
-    rh.ray.tnear = tmin, rh.ray.tfar = tmax, rh.ray.time = 0;
-    rh.ray.mask = ~0u, rh.ray.id = 0, rh.ray.flags = 0;
-    rh.hit.geomID = rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+    struct RTCRayHit rh = eb_rayhit1(o, d, tmin, tmax);
     rtcIntersect1(r->collect, &c.ctx, &rh);
     cand *cs = malloc((c.n ? c.n : 1) * sizeof *cs);
     int found = 0;

@@ -44,4 +44,17 @@ float eb_curve_u(const eb_scene *s, uint32_t i, const float p[3]);
  * rounding of the coordinates). */
 void eb_cylinder_bounds(const eb_scene *s, uint32_t i, struct RTCBounds *b);
 
+/* One ray for rtcIntersect1, no hit yet. */
+static inline struct RTCRayHit eb_rayhit1(const float o[3], const float d[3], float tnear,
+                                          float tfar)
+{
+    struct RTCRayHit rh;
+    rh.ray.org_x = o[0], rh.ray.org_y = o[1], rh.ray.org_z = o[2];
+    rh.ray.dir_x = d[0], rh.ray.dir_y = d[1], rh.ray.dir_z = d[2];
+    rh.ray.tnear = tnear, rh.ray.tfar = tfar, rh.ray.time = 0;
+    rh.ray.mask = ~0u, rh.ray.id = 0, rh.ray.flags = 0;
+    rh.hit.geomID = rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+    return rh;
+}
+
 #endif

@@ -5,6 +5,7 @@
 #include "trace.h"
 
 #include "clock.h"
+#include "geom.h"
 #include "rays.h"
 
 #include <math.h>
@@ -177,12 +178,7 @@ uint32_t eb_trace1(RTCScene scene, const float o[3], const float d[3], float tne
 {
     struct RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
-    struct RTCRayHit rh;
-    rh.ray.org_x = o[0], rh.ray.org_y = o[1], rh.ray.org_z = o[2];
-    rh.ray.dir_x = d[0], rh.ray.dir_y = d[1], rh.ray.dir_z = d[2];
-    rh.ray.tnear = tnear, rh.ray.tfar = tfar, rh.ray.time = 0;
-    rh.ray.mask = ~0u, rh.ray.id = 0, rh.ray.flags = 0;
-    rh.hit.geomID = rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+    struct RTCRayHit rh = eb_rayhit1(o, d, tnear, tfar);
     rtcIntersect1(scene, &ctx, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
         return RTC_INVALID_GEOMETRY_ID;
