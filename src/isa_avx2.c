@@ -15,7 +15,7 @@
 
 #define VW 8
 #define KFN(n) CYLRAY_CAT(n, _avx2_8)
-#define KPAIRS 1 /* streams keep two vectors in flight (docs/performance.md) */
+#define KPAIRS(F) 1 /* streams keep two vectors in flight (docs/performance.md) */
 #include "vec_x86.h"
 #include "kernel_tmpl.h"
 #include "vec_undef.h"

@@ -12,10 +12,16 @@
 
 #define VW 16
 #define KFN(n) CYLRAY_CAT(n, _avx512_16)
+/* Streams keep two vectors in flight where that pays on this width (docs/performance.md):
+ * for the open and infinite cylinders (fewer divisions a vector), with CYLRAY_FAST
+ * (likewise) and with CYLRAY_REFINE (a longer chain). The plain capped kernels gain
+ * less on rays that hit than they lose on streams the rejection mostly ends. */
+#define KPAIRS(F) (!(F).capped || (F).fast || (F).refine)
 #include "vec_x86.h"
 #include "kernel_tmpl.h"
 #include "vec_undef.h"
 #undef KFN
+#undef KPAIRS
 
 #define VW 8
 #define KFN(n) CYLRAY_CAT(n, _avx512_8)

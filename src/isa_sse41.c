@@ -10,7 +10,7 @@
 #define X86_FMA 0
 #define X86_KMASK 0
 #define KFN(n) CYLRAY_CAT(n, _sse41_4)
-#define KPAIRS 1 /* streams keep two vectors in flight (docs/performance.md) */
+#define KPAIRS(F) 1 /* streams keep two vectors in flight (docs/performance.md) */
 #include "vec_x86.h"
 #include "kernel_tmpl.h"
 #include "vec_undef.h"

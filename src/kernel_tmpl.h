@@ -99,7 +99,9 @@ CYLRAY_INLINE const float *cylray_kcenter_(const cylray_prepared *P, const cylra
 #endif
 
 #ifndef KPAIRS
-#define KPAIRS 0 /* streams one vector at a time, unless the ISA file says otherwise */
+/* KPAIRS(F): whether the stream kernel of flags F keeps two vectors in flight; one at
+ * a time unless the ISA file says otherwise. */
+#define KPAIRS(F) 0
 #endif
 
 typedef uint32_t (*KFN(packet_fn))(const cylray_prepared *, float *, float *, size_t,
@@ -908,13 +910,15 @@ CYLRAY_INLINE uint32_t KFN(packet)(const cylray_prepared *P, float *ray, float *
 }
 
 /* A stream of any length: whole vectors in place, then the last lanes through
- * KFN(stream_tail). Where the ISA file sets KPAIRS (the widths on which it was measured
- * to pay), an intersect stream keeps two vectors in flight (KFN(block2)) while the
- * rejection drops none; once a pair sees a vector rejected, the vectors go one at a
- * time until KGROUP_ in a row pass it (a rejected vector would otherwise run beside
- * one that hits, as its twin, and cost what the pair saves). Occlusion has less work
- * after the rejection to overlap, and stays one vector at a time. */
-#define KGROUP_ 8
+ * KFN(stream_tail). Where the ISA file sets KPAIRS (the widths and kernels on which it
+ * was measured to pay), an intersect stream keeps two vectors in flight (KFN(block2))
+ * while the rejection drops none; once a pair sees a vector rejected, the vectors go
+ * one at a time until KGROUP_ in a row pass it (a rejected vector would otherwise run
+ * beside one that hits, as its twin, and cost what the pair saves; coherent rays come
+ * in runs, and a run of two is enough to say that the next pair will likely pass).
+ * Occlusion has less work after the rejection to overlap, and stays one vector at a
+ * time. */
+#define KGROUP_ 2
 CYLRAY_INLINE size_t KFN(stream)(const cylray_prepared *P, const cylray_rays *R0,
                                  const cylray_hits *H0, uint8_t *occluded, size_t n,
                                  unsigned rt, const unsigned FL)
@@ -927,7 +931,7 @@ CYLRAY_INLINE size_t KFN(stream)(const cylray_prepared *P, const cylray_rays *R0
     const cylray_hits *H = &Hv;
     const size_t whole = n - n % VW;
     size_t count = 0;
-    const int pairs = KPAIRS && !occ;
+    const int pairs = KPAIRS(cylray_kflags_of_(FL, rt)) && !occ;
     for (size_t i = 0; !pairs && i < whole; i += VW) {
         uint32_t m = KFN(block)(P, R, H, i, VFULL, rt, FL, NULL, 0);
         if (m == CYLRAY_RARE_)
