@@ -87,11 +87,19 @@ static void widths_agree(const cylray_kernels *k, const cylray_prepared *P, cons
 /* A long stream whose vectors pass and fail the cheap rejections in runs: the stream
  * drivers switch between two vectors in flight and one at a time on what they see, and
  * a vector beside a rejected partner runs as its twin. Whatever the schedule, every ray
- * gets the answer of a 16-ray packet holding it, bit for bit (t, part, normal, tmax). */
-enum { LS_SEG = 96, LS_N = 24 * LS_SEG + 5 };
+ * gets the answer of a 16-ray packet holding it, bit for bit (t, part, normal, tmax).
+ * The runs' lengths vary (multiples of 4: the rejected ones 4 to 36 rays, the others 16
+ * to 64), so that on every width a pair meets a rejected vector first, second and
+ * twice, and a run can end inside a pair. */
+enum { LS_N = 1701 };
 static float ls_in[G_NFIELD][LS_N], ls_t[LS_N], ls_n[3][LS_N];
 static int32_t ls_part[LS_N];
-static uint8_t ls_occ[LS_N];
+static uint8_t ls_occ[LS_N], ls_seg[LS_N];
+
+static size_t ls_seg_len(size_t seg)
+{
+    return seg % 4 == 1 ? 4 * (1 + seg * 7 % 9) : 4 * (4 + seg * 5 % 13);
+}
 
 static void long_stream_agrees(const cylray_kernels *k, const cylray_prepared *P,
                                const cylray_cylinder *c, unsigned flags, const char *cname,
@@ -99,8 +107,8 @@ static void long_stream_agrees(const cylray_kernels *k, const cylray_prepared *P
 {
     /* Segments in a fixed cycle: the scene's mix of rays; rays parallel to the axis 50
      * radii from it (every vector rejected); the mix again; rays aimed at the center. */
-    for (size_t s0 = 0, seg = 0; s0 < LS_N; s0 += LS_SEG, seg++) {
-        const size_t n = LS_N - s0 < LS_SEG ? LS_N - s0 : LS_SEG;
+    for (size_t s0 = 0, seg = 0, n = 0; s0 < LS_N; s0 += n, seg++) {
+        n = LS_N - s0 < ls_seg_len(seg) ? LS_N - s0 : ls_seg_len(seg);
         gbatch b;
         scene_rays(seed + seg, c, &b, 0, n < G_MAX ? n : G_MAX);
         for (size_t i = 0; i < n; i++) {
@@ -126,6 +134,7 @@ static void long_stream_agrees(const cylray_kernels *k, const cylray_prepared *P
                 ls_in[G_OX + a][s0 + i] = o[a], ls_in[G_DX + a][s0 + i] = d[a];
             ls_in[G_TMIN][s0 + i] = b.f[G_TMIN][j];
             ls_in[G_TMAX][s0 + i] = b.f[G_TMAX][j];
+            ls_seg[s0 + i] = (uint8_t)seg;
         }
     }
     float tmax[LS_N];
@@ -169,7 +178,7 @@ static void long_stream_agrees(const cylray_kernels *k, const cylray_prepared *P
             CHECK(same,
                   "%s %s flags=%#x: long stream ray %zu (segment %zu) differs from its packet: "
                   "hit %d/%d t %a/%a part %#x/%#x occluded %d",
-                  k->name, cname, flags, g, g / LS_SEG, h, ls_part[g] != 0x5a5a5a5a,
+                  k->name, cname, flags, g, (size_t)ls_seg[g], h, ls_part[g] != 0x5a5a5a5a,
                   hit.t[i], ls_t[g], (unsigned)hit.part[i], (unsigned)ls_part[g], ls_occ[g]);
         }
     }
