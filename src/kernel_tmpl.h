@@ -943,28 +943,32 @@ CYLRAY_INLINE size_t KFN(stream)(const cylray_prepared *P, const cylray_rays *R0
             for (size_t j = 0; j < VW; j++)
                 occluded[i + j] = (m >> j) & 1u ? (uint8_t)1 : occluded[i + j];
     }
-    int passed = KGROUP_; /* vectors in a row that passed the rejection */
     for (size_t i = 0; pairs && i < whole;) {
-        uint32_t m[2] = {0u, 0u};
-        size_t step = VW;
-        if (passed >= KGROUP_ && i + 2 * VW <= whole) {
-            const uint32_t r = KFN(block2)(P, R, H, i, i + VW, VFULL, VFULL, rt, FL, m);
+        /* Each phase is a loop of its own: in one loop body with a branch between
+         * them, the single vectors of streams that the rejection mostly ends ran 5-10 %
+         * slower than in a driver without pairs. Two vectors at a time until a pair
+         * sees one rejected... */
+        for (uint32_t r = 0; !r && i + 2 * VW <= whole; i += 2 * VW) {
+            uint32_t m[2] = {0u, 0u};
+            r = KFN(block2)(P, R, H, i, i + VW, VFULL, VFULL, rt, FL, m);
             if (r == CYLRAY_RARE_) {
                 m[0] = KFN(block_rare)(P, R, H, i, VFULL, rt, FL, NULL, 0);
                 m[1] = KFN(block_rare)(P, R, H, i + VW, VFULL, rt, FL, NULL, 0);
-            } else if (r) {
-                passed = 0;
+                r = 0;
             }
-            step = 2 * VW;
-        } else {
+            count += (size_t)CYLRAY_POPCOUNT(m[0]) + (size_t)CYLRAY_POPCOUNT(m[1]);
+        }
+        /* ...then one at a time until KGROUP_ in a row pass the rejection (or one is
+         * left over). */
+        for (int passed = 0; i < whole && (passed < KGROUP_ || i + 2 * VW > whole);
+             i += VW) {
             int rejected = 0;
-            m[0] = KFN(block_r)(P, R, H, i, VFULL, rt, FL, NULL, 0, &rejected);
-            if (m[0] == CYLRAY_RARE_)
-                m[0] = KFN(block_rare)(P, R, H, i, VFULL, rt, FL, NULL, 0);
+            uint32_t m = KFN(block_r)(P, R, H, i, VFULL, rt, FL, NULL, 0, &rejected);
+            if (m == CYLRAY_RARE_)
+                m = KFN(block_rare)(P, R, H, i, VFULL, rt, FL, NULL, 0);
+            count += CYLRAY_POPCOUNT(m);
             passed = rejected ? 0 : passed + 1;
         }
-        count += (size_t)CYLRAY_POPCOUNT(m[0]) + (size_t)CYLRAY_POPCOUNT(m[1]);
-        i += step;
     }
     if (whole < n)
         count += KFN(stream_tail)(P, R, H, occluded, n, whole, rt, FL);
