@@ -12,11 +12,13 @@
 
 #define VW 16
 #define KFN(n) CYLRAY_CAT(n, _avx512_16)
-/* Streams keep two vectors in flight where that pays on this width (docs/performance.md):
- * for the open and infinite cylinders (fewer divisions a vector), with CYLRAY_FAST
- * (likewise) and with CYLRAY_REFINE (a longer chain). The plain capped kernels gain
- * less on rays that hit than they lose on streams the rejection mostly ends. */
-#define KPAIRS(F) (!(F).capped || (F).fast || (F).refine)
+/* Streams keep two vectors in flight for the cylinders of a general axis, where that
+ * pays on this width (docs/performance.md); a coordinate axis's kernels, shorter, run
+ * one vector at a time. The plain capped kernels resume pairs only after eight vectors
+ * in a row pass the rejection: with two, streams that the rejection mostly ends (a BVH
+ * leaf's) lost what rays that hit gained. */
+#define KPAIRS(F) (!(F).aligned)
+#define KGROUP(F) ((F).capped && !(F).fast && !(F).refine ? 8 : 2)
 #include "vec_x86.h"
 #include "kernel_tmpl.h"
 #include "vec_undef.h"

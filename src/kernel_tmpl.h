@@ -100,7 +100,8 @@ CYLRAY_INLINE const float *cylray_kcenter_(const cylray_prepared *P, const cylra
 
 #ifndef KPAIRS
 /* KPAIRS(F): whether the stream kernel of flags F keeps two vectors in flight; one at
- * a time unless the ISA file says otherwise. */
+ * a time unless the ISA file says otherwise. KGROUP(F), below: after how many vectors
+ * in a row that pass the rejection such a stream resumes its pairs. */
 #define KPAIRS(F) 0
 #endif
 
@@ -914,11 +915,12 @@ CYLRAY_INLINE uint32_t KFN(packet)(const cylray_prepared *P, float *ray, float *
  * was measured to pay), an intersect stream keeps two vectors in flight (KFN(block2))
  * while the rejection drops none; once a pair sees a vector rejected, the vectors go
  * one at a time until KGROUP_ in a row pass it (a rejected vector would otherwise run
- * beside one that hits, as its twin, and cost what the pair saves; coherent rays come
- * in runs, and a run of two is enough to say that the next pair will likely pass).
- * Occlusion has less work after the rejection to overlap, and stays one vector at a
- * time. */
-#define KGROUP_ 2
+ * beside one that hits, as its twin, and cost what the pair saves). Occlusion has
+ * less work after the rejection to overlap, and stays one vector at a time. */
+#ifndef KGROUP
+#define KGROUP(F) 2 /* coherent rays come in runs: two that pass say the next pair will */
+#endif
+#define KGROUP_ KGROUP(cylray_kflags_of_(FL, rt))
 CYLRAY_INLINE size_t KFN(stream)(const cylray_prepared *P, const cylray_rays *R0,
                                  const cylray_hits *H0, uint8_t *occluded, size_t n,
                                  unsigned rt, const unsigned FL)
@@ -975,6 +977,7 @@ CYLRAY_INLINE size_t KFN(stream)(const cylray_prepared *P, const cylray_rays *R0
     return count;
 }
 #undef KGROUP_
+#undef KGROUP
 
 /* One ray against a leaf of lm cylinders (lm a multiple of VW, at most 16): a vector of
  * lanes at a time, each with tmax lowered to the closest hit so far, so that a farther
