@@ -912,11 +912,10 @@ CYLRAY_INLINE uint32_t KFN(packet)(const cylray_prepared *P, float *ray, float *
 
 /* A stream of any length: whole vectors in place, then the last lanes through
  * KFN(stream_tail). Where the ISA file sets KPAIRS (the widths and kernels on which it
- * was measured to pay), an intersect stream keeps two vectors in flight (KFN(block2))
- * while the rejection drops none; once a pair sees a vector rejected, the vectors go
- * one at a time until KGROUP_ in a row pass it (a rejected vector would otherwise run
- * beside one that hits, as its twin, and cost what the pair saves). Occlusion has
- * less work after the rejection to overlap, and stays one vector at a time. */
+ * was measured to pay), a stream keeps two vectors in flight (KFN(block2)) while the
+ * rejection drops none; once a pair sees a vector rejected, the vectors go one at a time
+ * until KGROUP_ in a row pass it (a rejected vector would otherwise run beside one that
+ * hits, as its twin, and cost what the pair saves). Occlusion streams run the same way. */
 #ifndef KGROUP
 #define KGROUP(F) 2 /* coherent rays come in runs: two that pass say the next pair will */
 #endif
@@ -933,17 +932,21 @@ CYLRAY_INLINE size_t KFN(stream)(const cylray_prepared *P, const cylray_rays *R0
     const cylray_hits *H = &Hv;
     const size_t whole = n - n % VW;
     size_t count = 0;
-    const int pairs = KPAIRS(cylray_kflags_of_(FL, rt)) && !occ;
+    const int pairs = KPAIRS(cylray_kflags_of_(FL, rt));
+    /* The occluded bytes without a branch per hit lane: a loop over the set bits
+     * mispredicts on a mix of hits and misses. A lane that missed keeps its byte. */
+#define KOCC_MARK_(i, m)                                                               \
+    do {                                                                               \
+        if (occ && (m))                                                                \
+            for (size_t j_ = 0; j_ < VW; j_++)                                         \
+                occluded[(i) + j_] = ((m) >> j_) & 1u ? (uint8_t)1 : occluded[(i) + j_]; \
+    } while (0)
     for (size_t i = 0; !pairs && i < whole; i += VW) {
         uint32_t m = KFN(block)(P, R, H, i, VFULL, rt, FL, NULL, 0);
         if (m == CYLRAY_RARE_)
             m = KFN(block_rare)(P, R, H, i, VFULL, rt, FL, NULL, 0);
         count += CYLRAY_POPCOUNT(m);
-        /* Without a branch per hit lane: a loop over the set bits mispredicts on a
-         * mix of hits and misses. A lane that missed keeps its byte. */
-        if (occ && m)
-            for (size_t j = 0; j < VW; j++)
-                occluded[i + j] = (m >> j) & 1u ? (uint8_t)1 : occluded[i + j];
+        KOCC_MARK_(i, m);
     }
     for (size_t i = 0; pairs && i < whole;) {
         /* Each phase is a loop of its own: in one loop body with a branch between
@@ -959,6 +962,8 @@ CYLRAY_INLINE size_t KFN(stream)(const cylray_prepared *P, const cylray_rays *R0
                 r = 0;
             }
             count += (size_t)CYLRAY_POPCOUNT(m[0]) + (size_t)CYLRAY_POPCOUNT(m[1]);
+            KOCC_MARK_(i, m[0]);
+            KOCC_MARK_(i + VW, m[1]);
         }
         /* ...then one at a time until KGROUP_ in a row pass the rejection (or one is
          * left over). */
@@ -969,9 +974,11 @@ CYLRAY_INLINE size_t KFN(stream)(const cylray_prepared *P, const cylray_rays *R0
             if (m == CYLRAY_RARE_)
                 m = KFN(block_rare)(P, R, H, i, VFULL, rt, FL, NULL, 0);
             count += CYLRAY_POPCOUNT(m);
+            KOCC_MARK_(i, m);
             passed = rejected ? 0 : passed + 1;
         }
     }
+#undef KOCC_MARK_
     if (whole < n)
         count += KFN(stream_tail)(P, R, H, occluded, n, whole, rt, FL);
     return count;
