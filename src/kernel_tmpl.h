@@ -941,19 +941,12 @@ CYLRAY_INLINE size_t KFN(stream)(const cylray_prepared *P, const cylray_rays *R0
             for (size_t j_ = 0; j_ < VW; j_++)                                         \
                 occluded[(i) + j_] = ((m) >> j_) & 1u ? (uint8_t)1 : occluded[(i) + j_]; \
     } while (0)
-    for (size_t i = 0; !pairs && i < whole; i += VW) {
-        uint32_t m = KFN(block)(P, R, H, i, VFULL, rt, FL, NULL, 0);
-        if (m == CYLRAY_RARE_)
-            m = KFN(block_rare)(P, R, H, i, VFULL, rt, FL, NULL, 0);
-        count += CYLRAY_POPCOUNT(m);
-        KOCC_MARK_(i, m);
-    }
-    for (size_t i = 0; pairs && i < whole;) {
+    for (size_t i = 0; i < whole;) {
         /* Each phase is a loop of its own: in one loop body with a branch between
          * them, the single vectors of streams that the rejection mostly ends ran 5-10 %
          * slower than in a driver without pairs. Two vectors at a time until a pair
          * sees one rejected... */
-        for (uint32_t r = 0; !r && i + 2 * VW <= whole; i += 2 * VW) {
+        for (uint32_t r = 0; pairs && !r && i + 2 * VW <= whole; i += 2 * VW) {
             uint32_t m[2] = {0u, 0u};
             r = KFN(block2)(P, R, H, i, i + VW, VFULL, VFULL, rt, FL, m);
             if (r == CYLRAY_RARE_) {
@@ -966,9 +959,9 @@ CYLRAY_INLINE size_t KFN(stream)(const cylray_prepared *P, const cylray_rays *R0
             KOCC_MARK_(i + VW, m[1]);
         }
         /* ...then one at a time until KGROUP_ in a row pass the rejection (or one is
-         * left over). */
-        for (int passed = 0; i < whole && (passed < KGROUP_ || i + 2 * VW > whole);
-             i += VW) {
+         * left over); without pairs, to the end. */
+        for (int passed = 0;
+             i < whole && (!pairs || passed < KGROUP_ || i + 2 * VW > whole); i += VW) {
             int rejected = 0;
             uint32_t m = KFN(block_r)(P, R, H, i, VFULL, rt, FL, NULL, 0, &rejected);
             if (m == CYLRAY_RARE_)
