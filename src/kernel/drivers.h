@@ -16,7 +16,9 @@ CYLRAY_NOINLINE uint32_t KFN(block_rare)(const cylray_prepared *P, const cylray_
     return KFN(block)(P, R, H, i, bits, rt, FL | CYLRAY_KF_SCALED, L, lm).hit[0];
 }
 
-/* The same for lanes [b, b + VW) of a packet of n, given as the packet structs. */
+/* The same for lanes [b, b + VW) of a packet of n, given as the packet structs: the
+ * views built here, out of the packet drivers, and the rare instance above called (one
+ * copy of it per ISA and width serves both). */
 CYLRAY_NOINLINE uint32_t KFN(packet_rare)(const cylray_prepared *P, float *ray, float *hit,
                                           size_t n, size_t b, uint32_t bits, unsigned rt,
                                           unsigned FL)
@@ -24,7 +26,7 @@ CYLRAY_NOINLINE uint32_t KFN(packet_rare)(const cylray_prepared *P, float *ray, 
     const int aligned = (FL & CYLRAY_KF_ALIGNED) != 0, occ = (FL & CYLRAY_KF_OCCLUDED) != 0;
     const cylray_rays R = cylray_packet_rays_(P, ray, n, aligned);
     const cylray_hits H = occ ? KFN(no_hits) : cylray_packet_hits_(P, hit, n, aligned);
-    return KFN(block)(P, &R, &H, b, bits, rt, FL | CYLRAY_KF_SCALED, NULL, 0).hit[0];
+    return KFN(block_rare)(P, &R, &H, b, bits, rt, FL, NULL, 0);
 }
 
 /* One vector through KFN(block), or through the rare instance where the block asks for
