@@ -20,7 +20,8 @@
  *   position is off by at most 4.6u H + 12.1u|q| + 2u(H + R) + u|P'|, the radius by 4.7u R.
  *   Every term is below env = 2^-47 (R + H + |q| + |P'|)(1 + R/L) + R (2^-49 |q|/L)^2
  *   (2^-47 = 64u; the factor R/L from g alpha; H counts only when finite).
- * Then P = fl(P'), and e = P - P' is exact in double (Sterbenz). Against the surface
+ * Then P = fl(P'), and e = P - P' is exact in double (Sterbenz). fl is
+ * cylray_round_float_, whose rounding no optimiser can drop (cylray_internal.h). Against the surface
  * point next to P', with the normal n there, the distance from P is at most
  *   |e.n| + |e|^2 / R   (side, |e| <= R/2: the tangential part of e moves the radius
  *                        by |e_t|^2 / (2(R - |e|)) at most),
@@ -214,7 +215,7 @@ static void hit_point_geo(const geo *g, const float o[3], const float d[3], floa
     for (int k = 0; k < 3; k++) {
         m[k] = s * g->v[k] + gain * r[k];
         Pd[k] = g->c[k] + m[k];
-        p[k] = (float)Pd[k];
+        p[k] = cylray_round_float_(Pd[k], 0); /* not (float): e below needs the rounding */
     }
     const double Pn = norm3(Pd), side_gain = P == CYLRAY_SIDE ? gain : 0.0;
     env = 0x1p-47 * (g->R + Hf + qn + Pn) * (1 + side_gain) +
@@ -238,7 +239,7 @@ static void hit_point_geo(const geo *g, const float o[3], const float d[3], floa
         dist = el;
     /* (1 + 2^-40) covers the few roundings of dist itself */
     double bound = (dist + 3 * env) * (1 + 0x1p-40);
-    float f = (float)bound;
+    float f = cylray_round_float_(bound, 0);
     if ((double)f < bound)
         f = next_float(f, 1);
     *err = f;
@@ -339,7 +340,7 @@ static void spawn_geo(const geo *g, const float p[3], float err, int32_t part,
             delta[k] += x->sign * a * x->n[k];
     }
     for (int k = 0; k < 3; k++) {
-        float f = (float)((double)p[k] + delta[k]);
+        float f = cylray_round_float_((double)p[k] + delta[k], 0);
         /* never short of the move: the next float beyond, when rounding fell back */
         if (delta[k] > 0 && (double)f - (double)p[k] < delta[k])
             f = next_float(f, 1);

@@ -9,10 +9,13 @@
  *   spawn_test nested   a coaxial cylinder 1e-5 R inside is still hit by the
  *                       transmitted ray, and the spawned origin lies between the two
  *   spawn_test batched  the packet, stream and leaf forms equal the scalar pair
+ *   spawn_test round    the library's rounding to float on the bits equals the
+ *                       hardware's, and a two-term sum is rounded once
  *
  * CYLRAY_TEST_QUICK=1 shrinks the counts about a hundredfold (sanitizers, emulators).
  * Every count is printed; any violation fails the test. */
 #include "cylray.h"
+#include "cylray_internal.h"
 #include "cylref.h"
 #include "spawnref.h"
 
@@ -616,6 +619,63 @@ static int run_axis(void)
     return n > 0 && bad == 0;
 }
 
+/* ---- rounding to float --------------------------------------------------------- */
+
+static uint64_t rng_next(uint64_t *s)
+{
+    *s += 0x9e3779b97f4a7c15ull;
+    uint64_t z = *s;
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    return z ^ (z >> 31);
+}
+
+/* cylray_round_float_(x, 0) against the conversion on random doubles of every
+ * magnitude a float reaches (subnormals, ties, overflow), and (hi, lo) against an exact
+ * tie-break: hi a midpoint between two floats, lo of either sign. */
+static int run_round(void)
+{
+    const long N = quick ? 200000 : 20000000;
+    long bad = 0, ties = 0;
+    uint64_t s = 12345;
+    for (long i = 0; i < N; i++) {
+        uint64_t r = rng_next(&s), b;
+        /* exponents from 2^-160 to 2^130; every third a float or a midpoint */
+        const int ex = (int)(r % 291) - 160;
+        b = ((uint64_t)(ex + 1023) << 52) | (rng_next(&s) & 0xfffffffffffffull);
+        if (i % 3 == 1)
+            b &= ~((1ull << 28) - 1) | (1ull << 28);
+        else if (i % 3 == 2)
+            b = (b & ~((1ull << 29) - 1)) | (1ull << 28); /* a midpoint of normal floats */
+        b |= (r >> 63) << 63;
+        double x;
+        memcpy(&x, &b, sizeof x);
+        volatile float ref = (float)x;
+        float got = cylray_round_float_(x, 0);
+        if (memcmp(&got, (const void *)&ref, sizeof got) != 0) {
+            if (bad++ < 10)
+                fprintf(stderr, "round: %a gives %a, the conversion %a\n", x, (double)got,
+                        (double)ref);
+        }
+        /* a tie broken by lo: the nearest float on lo's side of the midpoint */
+        if (i % 3 == 2 && ex > -126 && ex < 127) {
+            const double lo = ldexp(x, -60) * ((r >> 7 & 1) ? 1 : -1);
+            const float up = cylray_round_float_(x, fabs(lo) * (x > 0 ? 1 : -1));
+            const float dn = cylray_round_float_(x, -fabs(lo) * (x > 0 ? 1 : -1));
+            /* exact: the floats on each side of x, by magnitude */
+            const double a = fabs((double)up), c = fabs((double)dn);
+            ties++;
+            if (!(a > fabs(x) && c < fabs(x) && a - fabs(x) == fabs(x) - c)) {
+                if (bad++ < 10)
+                    fprintf(stderr, "round: tie %a: up %a down %a\n", x, (double)up,
+                            (double)dn);
+            }
+        }
+    }
+    printf("round: %ld doubles, %ld ties broken by a low part, %ld wrong\n", N, ties, bad);
+    return bad == 0;
+}
+
 int main(int argc, char **argv)
 {
     const char *q = getenv("CYLRAY_TEST_QUICK");
@@ -637,8 +697,10 @@ int main(int argc, char **argv)
         ok = run_batched();
     else if (strcmp(mode, "axis") == 0)
         ok = run_axis();
+    else if (strcmp(mode, "round") == 0)
+        ok = run_round();
     else {
-        fprintf(stderr, "usage: spawn_test bounds|self|nested|batched|axis\n");
+        fprintf(stderr, "usage: spawn_test bounds|self|nested|batched|axis|round\n");
         return 2;
     }
     printf("%s: %s\n", mode, ok ? "ok" : "FAILED");
