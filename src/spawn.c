@@ -251,7 +251,10 @@ typedef struct surf {
     int sign, side;
 } surf;
 
-static void spawn_geo(const geo *g, const float p[3], float err, int32_t part,
+/* side: +1 or -1 puts the origin on that side of the part's own surface (+1: where
+ * its outward normal points), 0 on w's side; any other surface it must clear is
+ * cleared to w's side. */
+static void spawn_geo(const geo *g, const float p[3], float err, int32_t part, int side,
                       const float w[3], float out[3])
 {
     const int P = part & CYLRAY_PART_MASK;
@@ -307,7 +310,8 @@ static void spawn_geo(const geo *g, const float p[3], float err, int32_t part,
                                           2 * ulp_f(i == 0 ? g->R : g->H));
         if (!here && !(fabs(x->sigma) <= (double)err + m + e_d))
             continue;
-        x->sign = dot3(x->n, (const double[3]){w[0], w[1], w[2]}) > 0 ? 1 : -1;
+        x->sign = here && side ? side
+                  : dot3(x->n, (const double[3]){w[0], w[1], w[2]}) > 0 ? 1 : -1;
         x->a = dmax(0.0, -x->sign * x->sigma) + e_d + m;
         ns++;
     }
@@ -325,15 +329,15 @@ static void spawn_geo(const geo *g, const float p[3], float err, int32_t part,
     double delta[3] = {0, 0, 0};
     for (int i = 0; i < ns; i++) {
         surf *x = &S[i];
-        const int side = x->side;
+        const int is_side = x->side;
         const double nl1 = fabs(x->n[0]) + fabs(x->n[1]) + fabs(x->n[2]);
         double m = CYLRAY_SPAWN_SAFETY * (2 * ulp_f(dmax(wmax, xmax)) * nl1 +
-                                          (side ? zmax : rmax) * tilt +
-                                          2 * ulp_f(side ? g->R : g->H));
+                                          (is_side ? zmax : rmax) * tilt +
+                                          2 * ulp_f(is_side ? g->R : g->H));
         double a = dmax(0.0, -x->sign * x->sigma) + e_d + m;
         if (ns > 1)
             a += rnd;
-        if (side && x->sign < 0)
+        if (is_side && x->sign < 0)
             a += 2 * rnd * rnd / g->R;
         a *= 1 + 0x1p-20;
         for (int k = 0; k < 3; k++)
@@ -363,7 +367,14 @@ void cylray_spawn_origin(const cylray_prepared *cyl, const float p[3], float err
                          int32_t part, const float w[3], float out[3])
 {
     const geo g = geo_prepared(cyl);
-    spawn_geo(&g, p, err, part, w, out);
+    spawn_geo(&g, p, err, part, 0, w, out);
+}
+
+void cylray_spawn_origin_side(const cylray_prepared *cyl, const float p[3], float err,
+                              int32_t part, int outward, const float w[3], float out[3])
+{
+    const geo g = geo_prepared(cyl);
+    spawn_geo(&g, p, err, part, outward ? 1 : -1, w, out);
 }
 
 /* Packets: one lane at a time through the scalar pair. */
@@ -392,7 +403,23 @@ void cylray_spawn_origin(const cylray_prepared *cyl, const float p[3], float err
             size_t i = CYLRAY_CTZ(mask);                                                 \
             float p[3] = {pts->x[i], pts->y[i], pts->z[i]};                              \
             float w[3] = {out->dx[i], out->dy[i], out->dz[i]}, x[3];                     \
-            spawn_geo(&g, p, pts->err[i], hit->part[i], w, x);                           \
+            spawn_geo(&g, p, pts->err[i], hit->part[i], 0, w, x);                        \
+            out->ox[i] = x[0];                                                           \
+            out->oy[i] = x[1];                                                           \
+            out->oz[i] = x[2];                                                           \
+            out->tmin[i] = 0.0f;                                                         \
+        }                                                                                \
+    }                                                                                    \
+    void cylray_spawn_rays_side##n(const cylray_prepared *cyl, const cylray_points##n *pts, \
+                                   const cylray_hit##n *hit, uint32_t mask,              \
+                                   uint32_t outward, cylray_ray##n *out)                 \
+    {                                                                                    \
+        const geo g = geo_prepared(cyl);                                                 \
+        for (; mask; mask &= mask - 1) {                                                 \
+            size_t i = CYLRAY_CTZ(mask);                                                 \
+            float p[3] = {pts->x[i], pts->y[i], pts->z[i]};                              \
+            float w[3] = {out->dx[i], out->dy[i], out->dz[i]}, x[3];                     \
+            spawn_geo(&g, p, pts->err[i], hit->part[i], outward >> i & 1u ? 1 : -1, w, x); \
             out->ox[i] = x[0];                                                           \
             out->oy[i] = x[1];                                                           \
             out->oz[i] = x[2];                                                           \
@@ -435,7 +462,24 @@ void cylray_spawn_stream(const cylray_prepared *cyl, const cylray_points *pts,
             continue;
         float p[3] = {pts->x[i], pts->y[i], pts->z[i]};
         float w[3] = {dirs->x[i], dirs->y[i], dirs->z[i]}, x[3];
-        spawn_geo(&g, p, pts->err ? pts->err[i] : 0.0f, part[i], w, x);
+        spawn_geo(&g, p, pts->err ? pts->err[i] : 0.0f, part[i], 0, w, x);
+        origins->x[i] = x[0];
+        origins->y[i] = x[1];
+        origins->z[i] = x[2];
+    }
+}
+
+void cylray_spawn_stream_side(const cylray_prepared *cyl, const cylray_points *pts,
+                              const int32_t *part, const uint8_t *outward,
+                              const cylray_points *dirs, const cylray_points *origins, size_t n)
+{
+    const geo g = geo_prepared(cyl);
+    for (size_t i = 0; i < n; i++) {
+        if ((part[i] & CYLRAY_PART_MASK) == CYLRAY_MISS)
+            continue;
+        float p[3] = {pts->x[i], pts->y[i], pts->z[i]};
+        float w[3] = {dirs->x[i], dirs->y[i], dirs->z[i]}, x[3];
+        spawn_geo(&g, p, pts->err ? pts->err[i] : 0.0f, part[i], outward[i] ? 1 : -1, w, x);
         origins->x[i] = x[0];
         origins->y[i] = x[1];
         origins->z[i] = x[2];
@@ -455,7 +499,15 @@ void cylray_spawn_stream(const cylray_prepared *cyl, const cylray_points *pts,
                                      float out[3])                                       \
     {                                                                                    \
         const geo g = geo_leaf(&leaf->geom_[0][0], leaf->meta_, m, hit->lane % m);       \
-        spawn_geo(&g, p, err, hit->part, w, out);                                        \
+        spawn_geo(&g, p, err, hit->part, 0, w, out);                                     \
+    }                                                                                    \
+    void cylray_leaf_spawn_origin_side##m(const cylray_leaf##m *leaf,                    \
+                                          const cylray_hit1 *hit, const float p[3],      \
+                                          float err, int outward, const float w[3],      \
+                                          float out[3])                                  \
+    {                                                                                    \
+        const geo g = geo_leaf(&leaf->geom_[0][0], leaf->meta_, m, hit->lane % m);       \
+        spawn_geo(&g, p, err, hit->part, outward ? 1 : -1, w, out);                      \
     }
 CYLRAY_SPAWN_LEAF_(4)
 CYLRAY_SPAWN_LEAF_(8)
