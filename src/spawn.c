@@ -178,13 +178,45 @@ static void any_perp(const geo *g, double r[3])
     r[2] = v[0] * e[1] - v[1] * e[0];
 }
 
+/* nk: the kernel's normal for a side hit, or NULL. Where float t or the coordinates
+ * cannot place the hit (ulp(t)|d| not small against R), o + t d may lie far around the
+ * tube from the hit the kernel found, whose normal is accurate: the point is then taken
+ * at the kernel's azimuth, q = (q.v / v.v) v + R n. The analysis below holds for any q,
+ * and the normal at the point agrees with the kernel's. The sign of n: the outward one
+ * (the BACKFACE bit against d where d.n is clear of zero, else the side of q), so a
+ * face-forwarded normal serves as well. */
+static void normal_azimuth(const geo *g, const float d[3], int32_t part, const float nk[3],
+                           double q[3])
+{
+    double n[3] = {nk[0], nk[1], nk[2]}, dd[3] = {d[0], d[1], d[2]};
+    const double s = dot3(q, g->v) * g->inv_vv, sn = dot3(n, g->v) * g->inv_vv;
+    double r[3], qr[3];
+    for (int k = 0; k < 3; k++) {
+        r[k] = n[k] - sn * g->v[k];
+        qr[k] = q[k] - s * g->v[k];
+    }
+    const double rl = norm3(r), dn = dot3(dd, n);
+    if (!(rl > 0x1p-10 * norm3(n)) || !isfinite(rl))
+        return; /* not a side normal: keep q */
+    int flip;
+    if (fabs(dn) > 0x1p-7 * norm3(dd) * norm3(n))
+        flip = (dn > 0) != ((part & CYLRAY_BACKFACE) != 0);
+    else
+        flip = dot3(r, qr) < 0;
+    const double gain = (flip ? -g->R : g->R) / rl;
+    for (int k = 0; k < 3; k++)
+        q[k] = s * g->v[k] + gain * r[k];
+}
+
 static void hit_point_geo(const geo *g, const float o[3], const float d[3], float t,
-                          int32_t part, float p[3], float *err)
+                          int32_t part, const float *nk, float p[3], float *err)
 {
     double q[3], r[3], m[3], Pd[3];
     for (int k = 0; k < 3; k++)
         q[k] = ((double)o[k] + (double)t * d[k]) - g->c[k]; /* t d_k is exact */
     const int P = part & CYLRAY_PART_MASK;
+    if (nk && P == CYLRAY_SIDE)
+        normal_azimuth(g, d, part, nk, q);
     const double Hf = isfinite(g->H) ? g->H : 0;
     double s = dot3(q, g->v) * g->inv_vv;
     for (int k = 0; k < 3; k++)
@@ -360,7 +392,14 @@ void cylray_hit_point(const cylray_prepared *cyl, const float o[3], const float 
                       float t, int32_t part, float p[3], float *err)
 {
     const geo g = geo_prepared(cyl);
-    hit_point_geo(&g, o, d, t, part, p, err);
+    hit_point_geo(&g, o, d, t, part, NULL, p, err);
+}
+
+void cylray_hit_point_normal(const cylray_prepared *cyl, const float o[3], const float d[3],
+                             float t, int32_t part, const float n[3], float p[3], float *err)
+{
+    const geo g = geo_prepared(cyl);
+    hit_point_geo(&g, o, d, t, part, n, p, err);
 }
 
 void cylray_spawn_origin(const cylray_prepared *cyl, const float p[3], float err,
@@ -388,7 +427,23 @@ void cylray_spawn_origin_side(const cylray_prepared *cyl, const float p[3], floa
             size_t i = CYLRAY_CTZ(mask);                                                 \
             float o[3] = {ray->ox[i], ray->oy[i], ray->oz[i]};                           \
             float d[3] = {ray->dx[i], ray->dy[i], ray->dz[i]}, p[3];                     \
-            hit_point_geo(&g, o, d, hit->t[i], hit->part[i], p, &pts->err[i]);           \
+            hit_point_geo(&g, o, d, hit->t[i], hit->part[i], NULL, p, &pts->err[i]);     \
+            pts->x[i] = p[0];                                                            \
+            pts->y[i] = p[1];                                                            \
+            pts->z[i] = p[2];                                                            \
+        }                                                                                \
+    }                                                                                    \
+    void cylray_hit_points_normal##n(const cylray_prepared *cyl, const cylray_ray##n *ray, \
+                                     const cylray_hit##n *hit, uint32_t mask,            \
+                                     cylray_points##n *pts)                              \
+    {                                                                                    \
+        const geo g = geo_prepared(cyl);                                                 \
+        for (; mask; mask &= mask - 1) {                                                 \
+            size_t i = CYLRAY_CTZ(mask);                                                 \
+            float o[3] = {ray->ox[i], ray->oy[i], ray->oz[i]};                           \
+            float d[3] = {ray->dx[i], ray->dy[i], ray->dz[i]}, p[3];                     \
+            float nk[3] = {hit->nx[i], hit->ny[i], hit->nz[i]};                          \
+            hit_point_geo(&g, o, d, hit->t[i], hit->part[i], nk, p, &pts->err[i]);       \
             pts->x[i] = p[0];                                                            \
             pts->y[i] = p[1];                                                            \
             pts->z[i] = p[2];                                                            \
@@ -441,7 +496,30 @@ size_t cylray_hit_points_stream(const cylray_prepared *cyl, const cylray_rays *r
             continue;
         float o[3] = {rays->ox[i], rays->oy[i], rays->oz[i]};
         float d[3] = {rays->dx[i], rays->dy[i], rays->dz[i]}, p[3], err;
-        hit_point_geo(&g, o, d, hits->t[i], hits->part[i], p, &err);
+        hit_point_geo(&g, o, d, hits->t[i], hits->part[i], NULL, p, &err);
+        pts->x[i] = p[0];
+        pts->y[i] = p[1];
+        pts->z[i] = p[2];
+        if (pts->err)
+            pts->err[i] = err;
+        count++;
+    }
+    return count;
+}
+
+size_t cylray_hit_points_normal_stream(const cylray_prepared *cyl, const cylray_rays *rays,
+                                       const cylray_hits *hits, const cylray_points *pts,
+                                       size_t n)
+{
+    const geo g = geo_prepared(cyl);
+    size_t count = 0;
+    for (size_t i = 0; i < n; i++) {
+        if ((hits->part[i] & CYLRAY_PART_MASK) == CYLRAY_MISS)
+            continue;
+        float o[3] = {rays->ox[i], rays->oy[i], rays->oz[i]};
+        float d[3] = {rays->dx[i], rays->dy[i], rays->dz[i]}, p[3], err;
+        float nk[3] = {hits->nx[i], hits->ny[i], hits->nz[i]};
+        hit_point_geo(&g, o, d, hits->t[i], hits->part[i], nk, p, &err);
         pts->x[i] = p[0];
         pts->y[i] = p[1];
         pts->z[i] = p[2];
@@ -492,7 +570,14 @@ void cylray_spawn_stream_side(const cylray_prepared *cyl, const cylray_points *p
                                   const cylray_hit1 *hit, float p[3], float *err)        \
     {                                                                                    \
         const geo g = geo_leaf(&leaf->geom_[0][0], leaf->meta_, m, hit->lane % m);       \
-        hit_point_geo(&g, ray->o, ray->d, hit->t, hit->part, p, err);                    \
+        hit_point_geo(&g, ray->o, ray->d, hit->t, hit->part, NULL, p, err);              \
+    }                                                                                    \
+    void cylray_leaf_hit_point_normal##m(const cylray_leaf##m *leaf,                     \
+                                         const cylray_ray1 *ray, const cylray_hit1 *hit, \
+                                         float p[3], float *err)                         \
+    {                                                                                    \
+        const geo g = geo_leaf(&leaf->geom_[0][0], leaf->meta_, m, hit->lane % m);       \
+        hit_point_geo(&g, ray->o, ray->d, hit->t, hit->part, hit->n, p, err);            \
     }                                                                                    \
     void cylray_leaf_spawn_origin##m(const cylray_leaf##m *leaf, const cylray_hit1 *hit, \
                                      const float p[3], float err, const float w[3],      \

@@ -13,6 +13,10 @@
  *                       (random hits, grazing directions, and two far rods whose
  *                       kernel normal and exact normal disagree), the origin strictly
  *                       on that side, no hit of the part before the exact ray's
+ *   spawn_test reintersect  pbrt-v4's Reintersect setup (open tubes of random size,
+ *                       rotation, translation and scale, rays from far away): spawned
+ *                       rays face-forwarded to the kernel's normal, as the README does,
+ *                       never hit their tube again
  *   spawn_test round    the library's rounding to float on the bits equals the
  *                       hardware's, and a two-term sum is rounded once
  *
@@ -577,6 +581,93 @@ static int run_batched(void)
             }
         }
     }
+    /* the normal forms: hits traced with normals, the point at the kernel's azimuth */
+    long nlanes = 0;
+    for (long g = 0; g < G; g++) {
+        cylgen_case c[SREF_GROUP];
+        sref_group((int)(g % SREF_COUNT), 19000 + (uint64_t)g, c);
+        cylray_prepared P;
+        cylray_leaf8 leaf;
+        if (cylray_prepare(&P, &c[0].cyl) != CYLRAY_OK ||
+            cylray_leaf_prepare8(&leaf, &c[0].cyl, NULL, 1) != CYLRAY_OK)
+            continue;
+        cylray_ray16 ray;
+        cylray_hit16 hit;
+        memset(&ray, 0, sizeof ray);
+        memset(&hit, 0, sizeof hit);
+        for (int i = 0; i < SREF_GROUP; i++) {
+            ray.ox[i] = c[i].o[0], ray.oy[i] = c[i].o[1], ray.oz[i] = c[i].o[2];
+            ray.dx[i] = c[i].d[0], ray.dy[i] = c[i].d[1], ray.dz[i] = c[i].d[2];
+            ray.tmin[i] = c[i].tmin, ray.tmax[i] = c[i].tmax;
+        }
+        const cylray_ray16 ray0 = ray;
+        const uint32_t m = isas[g % nisa]->intersect16(&P, &ray, &hit, 0xffffu,
+                                                        CYLRAY_NORMAL | (g & 1 ? CYLRAY_FACE_FORWARD : 0));
+        cylray_points16 p16;
+        cylray_points8 p8;
+        cylray_points4 p4;
+        cylray_ray8 r8;
+        cylray_hit8 h8;
+        cylray_ray4 r4;
+        cylray_hit4 h4;
+        memset(&r8, 0, sizeof r8), memset(&h8, 0, sizeof h8);
+        memset(&r4, 0, sizeof r4), memset(&h4, 0, sizeof h4);
+        for (int i = 0; i < 8; i++) {
+            r8.ox[i] = ray.ox[i], r8.oy[i] = ray.oy[i], r8.oz[i] = ray.oz[i];
+            r8.dx[i] = ray.dx[i], r8.dy[i] = ray.dy[i], r8.dz[i] = ray.dz[i];
+            h8.t[i] = hit.t[i], h8.part[i] = hit.part[i];
+            h8.nx[i] = hit.nx[i], h8.ny[i] = hit.ny[i], h8.nz[i] = hit.nz[i];
+            if (i < 4) {
+                r4.ox[i] = ray.ox[i], r4.oy[i] = ray.oy[i], r4.oz[i] = ray.oz[i];
+                r4.dx[i] = ray.dx[i], r4.dy[i] = ray.dy[i], r4.dz[i] = ray.dz[i];
+                h4.t[i] = hit.t[i], h4.part[i] = hit.part[i];
+                h4.nx[i] = hit.nx[i], h4.ny[i] = hit.ny[i], h4.nz[i] = hit.nz[i];
+            }
+        }
+        cylray_hit_points_normal16(&P, &ray, &hit, m, &p16);
+        cylray_hit_points_normal8(&P, &r8, &h8, m & 0xffu, &p8);
+        cylray_hit_points_normal4(&P, &r4, &h4, m & 0xfu, &p4);
+        float sx[16], sy[16], sz[16], se[16];
+        int32_t spart[16];
+        for (int i = 0; i < 16; i++)
+            spart[i] = m >> i & 1u ? hit.part[i] : CYLRAY_MISS;
+        cylray_rays rs = {ray.ox, ray.oy, ray.oz, ray.dx, ray.dy, ray.dz, ray.tmin, ray.tmax};
+        cylray_hits hs = {hit.t, hit.nx, hit.ny, hit.nz, spart};
+        cylray_points sp = {sx, sy, sz, se};
+        if (cylray_hit_points_normal_stream(&P, &rs, &hs, &sp, 16) != (size_t)popcount(m))
+            diff++;
+        for (int i = 0; i < 16; i++) {
+            if (!(m >> i & 1u))
+                continue;
+            nlanes++;
+            const float o[3] = {ray0.ox[i], ray0.oy[i], ray0.oz[i]};
+            const float d[3] = {ray0.dx[i], ray0.dy[i], ray0.dz[i]};
+            const float n[3] = {hit.nx[i], hit.ny[i], hit.nz[i]};
+            float p[3], err, lp[3], le;
+            cylray_hit_point_normal(&P, o, d, hit.t[i], hit.part[i], n, p, &err);
+            cylray_ray1 r1 = {{o[0], o[1], o[2]}, {d[0], d[1], d[2]}, 0, hit.t[i]};
+            cylray_hit1 h1 = {hit.t[i], {n[0], n[1], n[2]}, hit.part[i], 0, 0};
+            cylray_leaf_hit_point_normal8(&leaf, &r1, &h1, lp, &le);
+            const float a[3] = {p16.x[i], p16.y[i], p16.z[i]}, b[3] = {sx[i], sy[i], sz[i]};
+            int bad = !same3(a, p) || p16.err[i] != err || !same3(b, p) || se[i] != err ||
+                      !same3(lp, p) || le != err;
+            if (i < 8) {
+                const float a8[3] = {p8.x[i], p8.y[i], p8.z[i]};
+                bad |= !same3(a8, p) || p8.err[i] != err;
+            }
+            if (i < 4) {
+                const float a4[3] = {p4.x[i], p4.y[i], p4.z[i]};
+                bad |= !same3(a4, p) || p4.err[i] != err;
+            }
+            /* the bound holds for this point too */
+            bad |= !(sref_dist_part(&c[i].cyl, p, hit.part[i]) <= err);
+            if (bad) {
+                diff++;
+                fail("batched", &c[i], "a normal form differs from the scalar one, or its bound");
+            }
+        }
+    }
+    printf("batched: %ld lanes of the normal forms compared (and their bounds)\n", nlanes);
     printf("batched: %ld lanes compared (packets 4/8/16, stream, leaf; plain and side forms), "
            "%ld differ\n", lanes,
            diff);
@@ -894,6 +985,173 @@ static int run_side(void)
     return bad == 0 && spawned > far_spawned;
 }
 
+/* ---- pbrt-v4's Reintersect ------------------------------------------------------ */
+
+/* 10^u, u uniform in [-e, e] (pbrt's pExp). */
+static double pexp(cylgen_rng *r, double e)
+{
+    return pow(10.0, (2 * cylgen_uniform(r) - 1) * e);
+}
+
+/* Traces 16 rays (x0, w) on ISA k at width 4 << (which % 3) and returns the mask of
+ * those with any hit in [0, inf). */
+static uint32_t occluded16(const cylray_kernels *k, int which, const cylray_prepared *P,
+                           const float x0[16][3], const float w[16][3])
+{
+    const float tmax[16] = {INFINITY, INFINITY, INFINITY, INFINITY, INFINITY, INFINITY,
+                            INFINITY, INFINITY, INFINITY, INFINITY, INFINITY, INFINITY,
+                            INFINITY, INFINITY, INFINITY, INFINITY};
+    float t[16];
+    int32_t part[16];
+    return trace16(k, 4 << (which % 3), P, x0, w, tmax, 0xffffu, t, part);
+}
+
+/* One tube of pbrt's test on one ISA: the primary hit with its normal, then `rays`
+ * spawned rays, face-forwarded to the kernel's normal, in two ways: the README's (the
+ * point at the kernel's azimuth, the side form, outward) and the plain pair (the point
+ * from o + t d, the side from w). Adds the re-hits of each. */
+static void reintersect_one(const cylray_kernels *k, const cylray_cylinder *cyl,
+                            const float o[3], const float d[3], int rays, cylgen_rng *rng,
+                            long *hits, long *spawned, long *rehit_readme, long *rehit_plain,
+                            long *big, long *rehit_big)
+{
+    cylray_prepared P;
+    if (cylray_prepare(&P, cyl) != CYLRAY_OK)
+        return;
+    cylray_ray4 r;
+    cylray_hit4 h;
+    memset(&r, 0, sizeof r);
+    r.ox[0] = o[0], r.oy[0] = o[1], r.oz[0] = o[2];
+    r.dx[0] = d[0], r.dy[0] = d[1], r.dz[0] = d[2];
+    r.tmax[0] = INFINITY;
+    if (!(k->intersect4(&P, &r, &h, 1u, CYLRAY_NORMAL) & 1u))
+        return;
+    ++*hits;
+    const float n[3] = {h.nx[0], h.ny[0], h.nz[0]};
+    float pn[3], en, pp[3], ep;
+    cylray_hit_point_normal(&P, o, d, h.t[0], h.part[0], n, pn, &en);
+    cylray_hit_point(&P, o, d, h.t[0], h.part[0], pp, &ep);
+    const double lim = 0.25 * fmin(cyl->radius, cyl->half_height);
+    for (int j = 0; j < rays; j += 16) {
+        float xa[16][3], xb[16][3], w[16][3];
+        int far_a[16];
+        for (int i = 0; i < 16; i++) {
+            double u[3];
+            sref_unit(rng, u);
+            const double un = u[0] * n[0] + u[1] * n[1] + u[2] * n[2];
+            for (int c = 0; c < 3; c++)
+                w[i][c] = (float)(un < 0 ? -u[c] : u[c]);
+            cylray_spawn_origin_side(&P, pn, en, h.part[0], 1, w[i], xa[i]);
+            cylray_spawn_origin(&P, pp, ep, h.part[0], w[i], xb[i]);
+            double mv = 0;
+            for (int c = 0; c < 3; c++)
+                mv += ((double)xa[i][c] - pn[c]) * ((double)xa[i][c] - pn[c]);
+            far_a[i] = !(sqrt(mv) <= lim);
+            *big += far_a[i];
+        }
+        *spawned += 16;
+        const uint32_t ma = occluded16(k, j / 16, &P, (const float(*)[3])xa, (const float(*)[3])w);
+        const uint32_t mb = occluded16(k, j / 16, &P, (const float(*)[3])xb, (const float(*)[3])w);
+        for (int i = 0; i < 16; i++) {
+            if (ma >> i & 1u) {
+                ++*rehit_readme;
+                *rehit_big += far_a[i];
+                if (*rehit_readme <= 5) {
+                    char s[400];
+                    snprintf(s, sizeof s,
+                             "%s: hit t %a part %d n (%a %a %a), p (%a %a %a) err %a, "
+                             "origin (%a %a %a) w (%a %a %a)%s",
+                             k->name, h.t[0], h.part[0], n[0], n[1], n[2], pn[0], pn[1],
+                             pn[2], en, xa[i][0], xa[i][1], xa[i][2], w[i][0], w[i][1],
+                             w[i][2], far_a[i] ? " (outside the guarantee's condition)" : "");
+                    cylgen_case c;
+                    memset(&c, 0, sizeof c);
+                    c.cyl = *cyl;
+                    memcpy(c.o, o, sizeof c.o);
+                    memcpy(c.d, d, sizeof c.d);
+                    fail("reintersect", &c, s);
+                }
+            }
+            *rehit_plain += mb >> i & 1u;
+        }
+    }
+}
+
+static int run_reintersect(void)
+{
+    const int ncyl = quick ? 100 : 1000, rays = quick ? 160 : 1008;
+    long hits[CYLRAY_ISA_COUNT] = {0}, spawned[CYLRAY_ISA_COUNT] = {0};
+    long readme[CYLRAY_ISA_COUNT] = {0}, plain[CYLRAY_ISA_COUNT] = {0};
+    long big[CYLRAY_ISA_COUNT] = {0}, readme_big[CYLRAY_ISA_COUNT] = {0};
+    long refused = 0;
+    for (int i = 0; i < ncyl; i++) {
+        cylgen_rng rng;
+        cylgen_seed(&rng, 0x5eed0000u + (uint64_t)i);
+        /* pbrt's tube: radius, zmin, zmax (pExp(4), random signs), then a random
+         * rotation, uniform scale and translation (pExp(8)) */
+        const double R = pexp(&rng, 4);
+        double z0 = pexp(&rng, 4) * (cylgen_uniform(&rng) < 0.5 ? -1 : 1);
+        double z1 = pexp(&rng, 4) * (cylgen_uniform(&rng) < 0.5 ? -1 : 1);
+        if (z0 > z1) {
+            const double t = z0;
+            z0 = z1, z1 = t;
+        }
+        double axis[3], tr[3];
+        sref_unit(&rng, axis);
+        const double scale = pexp(&rng, 8);
+        for (int k = 0; k < 3; k++)
+            tr[k] = pexp(&rng, 8) * (cylgen_uniform(&rng) < 0.5 ? -1 : 1);
+        cylray_cylinder cyl;
+        memset(&cyl, 0, sizeof cyl);
+        for (int k = 0; k < 3; k++) {
+            cyl.axis[k] = (float)axis[k];
+            cyl.center[k] = (float)(tr[k] + scale * 0.5 * (z0 + z1) * axis[k]);
+        }
+        cyl.radius = (float)(scale * R);
+        cyl.half_height = (float)(scale * 0.5 * (z1 - z0));
+        cyl.flags = 0; /* pbrt's cylinder is a tube */
+        cylray_prepared P;
+        if (cylray_prepare(&P, &cyl) != CYLRAY_OK || !(cyl.half_height > 0)) {
+            refused++;
+            continue;
+        }
+        /* the ray: from pExp(8) in each coordinate toward a random point of the
+         * tube's bounding box, its direction normalised half the time */
+        float o[3], d[3];
+        double dd[3], dl = 0;
+        const double al = sqrt((double)cyl.axis[0] * cyl.axis[0] +
+                               (double)cyl.axis[1] * cyl.axis[1] +
+                               (double)cyl.axis[2] * cyl.axis[2]);
+        for (int k = 0; k < 3; k++) {
+            o[k] = (float)pexp(&rng, 8);
+            const double ak = cyl.axis[k] / al;
+            const double ext = fabs(ak) * cyl.half_height + cyl.radius * sqrt(fmax(0, 1 - ak * ak));
+            const double tgt = cyl.center[k] + (2 * cylgen_uniform(&rng) - 1) * ext;
+            dd[k] = tgt - o[k];
+            dl += dd[k] * dd[k];
+        }
+        const int normalise = cylgen_uniform(&rng) < 0.5;
+        for (int k = 0; k < 3; k++)
+            d[k] = (float)(normalise ? dd[k] / sqrt(dl) : dd[k]);
+        for (int k = 0; k < nisa; k++) {
+            cylgen_rng r2 = rng; /* the same spawned directions on every ISA */
+            reintersect_one(isas[k], &cyl, o, d, rays, &r2, &hits[k], &spawned[k], &readme[k],
+                            &plain[k], &big[k], &readme_big[k]);
+        }
+    }
+    long bad = 0;
+    for (int k = 0; k < nisa; k++) {
+        printf("reintersect: %-7s %5ld hits of %d tubes (%ld refused), %8ld spawned rays: "
+               "%ld re-hits following the README (%ld of them outside the guarantee's "
+               "condition, which %ld spawns were), %ld with the point from o + t d and the "
+               "side from w\n",
+               isas[k]->name, hits[k], ncyl, refused, spawned[k], readme[k], readme_big[k],
+               big[k], plain[k]);
+        bad += readme[k];
+    }
+    return bad == 0 && hits[0] > ncyl / 10;
+}
+
 /* ---- rounding to float --------------------------------------------------------- */
 
 static uint64_t rng_next(uint64_t *s)
@@ -974,10 +1232,12 @@ int main(int argc, char **argv)
         ok = run_axis();
     else if (strcmp(mode, "side") == 0)
         ok = run_side();
+    else if (strcmp(mode, "reintersect") == 0)
+        ok = run_reintersect();
     else if (strcmp(mode, "round") == 0)
         ok = run_round();
     else {
-        fprintf(stderr, "usage: spawn_test bounds|self|nested|batched|axis|side|round\n");
+        fprintf(stderr, "usage: spawn_test bounds|self|nested|batched|axis|side|reintersect|round\n");
         return 2;
     }
     printf("%s: %s\n", mode, ok ? "ok" : "FAILED");
