@@ -20,9 +20,10 @@
  *   position is off by at most 4.6u H + 12.1u|q| + 2u(H + R) + u|P'|, the radius by 4.7u R.
  *   Every term is below env = 2^-47 (R + H + |q| + |P'|)(1 + R/L) + R (2^-49 |q|/L)^2
  *   (2^-47 = 64u; the factor R/L from g alpha; H counts only when finite).
- * Then P = fl(P'), and e = P - P' is exact in double (Sterbenz). fl is
- * cylray_round_float_, whose rounding no optimiser can drop (cylray_internal.h). Against the surface
- * point next to P', with the normal n there, the distance from P is at most
+ * Then P = fl(P'), and e = P - P' is exact in double (Sterbenz); fl is
+ * cylray_round_float_, whose rounding no optimiser can drop (internal/round.h).
+ * Against the surface point next to P', with the normal n there, the distance from P
+ * is at most
  *   |e.n| + |e|^2 / R   (side, |e| <= R/2: the tangential part of e moves the radius
  *                        by |e_t|^2 / (2(R - |e|)) at most),
  *   |e.n|               (cap, the disc's edge more than |e| away),
