@@ -455,6 +455,27 @@ CYLRAY_API const cylray_kernels *cylray_kernels_best(void);
 /* "scalar", "sse41", "avx2", "avx512", "neon"; "unknown" out of range. */
 CYLRAY_API const char *cylray_isa_name(cylray_isa isa);
 
+/* ---- bounds ---------------------------------------------------------------- */
+
+/* The box of the exact cylinder that cylray_prepare derived (the floats given are the
+ * geometry): the box of its two rims, which holds the side and the discs whatever the
+ * caps. Coordinate k spans center_k -+ (H |n_k| + R sqrt(1 - n_k^2)), n the unit axis,
+ * evaluated to about 2^-100 and rounded outward: no face lies inside the exact box,
+ * and each is the nearest float outside it or the next one (the smallest float box,
+ * exactly, when the axis lies along a coordinate axis). Only where a face's exact
+ * value cancels to below 2^-70 of |center_k| + the extent may it lie further out, by at
+ * most 2^-95 of that. Returns CYLRAY_EINVAL and writes nothing for an infinite
+ * cylinder (it has no box), a NULL pointer, or a cyl cylray_prepare did not fill. */
+CYLRAY_API cylray_status cylray_bounds(const cylray_prepared *cyl, float lo[3], float hi[3]);
+/* The box of a leaf's used lanes (the union of their cylray_bounds boxes); CYLRAY_EINVAL
+ * and nothing written when a lane is infinite or no lane is used. */
+CYLRAY_API cylray_status cylray_leaf_bounds4(const cylray_leaf4 *leaf, float lo[3],
+                                             float hi[3]);
+CYLRAY_API cylray_status cylray_leaf_bounds8(const cylray_leaf8 *leaf, float lo[3],
+                                             float hi[3]);
+CYLRAY_API cylray_status cylray_leaf_bounds16(const cylray_leaf16 *leaf, float lo[3],
+                                              float hi[3]);
+
 #ifdef __cplusplus
 }
 #endif
