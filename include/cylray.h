@@ -476,6 +476,27 @@ CYLRAY_API cylray_status cylray_leaf_bounds8(const cylray_leaf8 *leaf, float lo[
 CYLRAY_API cylray_status cylray_leaf_bounds16(const cylray_leaf16 *leaf, float lo[3],
                                               float hi[3]);
 
+/* Boxes along a long cylinder, for a BVH builder: a rod tilted off the coordinate axes
+ * fills a box far wider than itself, so every ray through that box visits it. Slice i of
+ * k (0 <= i < k) is the part of the cylinder between the discs at axial coordinates
+ * H q_i and H q_(i+1), q_i = (2i - k) / k rounded once to double; its box is that of
+ * the two discs' rims (a disc's box: center + t n -+ R sqrt(1 - n_k^2) per coordinate),
+ * rounded outward as cylray_bounds rounds (one float step beyond the nearest, at most).
+ * Neighbouring slices share their disc exactly, so the k boxes together hold every
+ * point of the cylinder. Every box stands for the whole cylinder: a tracer that meets
+ * two of them intersects the same cylinder twice and keeps one hit through tmax.
+ *
+ * k = 0 chooses k by a rule of the shape: the smallest k at which, in each coordinate
+ * j but the one the axis is closest to, a slice's extent from the tilt (2H |n_j| / k) is
+ * at most its extent from the radius (2R sqrt(1 - n_j^2)), so that each box is at most
+ * twice the rod's width across; at least 1 (a cylinder along a coordinate axis: 1) and
+ * at most CYLRAY_SPLIT_MAX. Writes k boxes to lo[0..k), hi[0..k) and returns k; with
+ * lo or hi NULL, writes nothing and returns the k it would use. Returns 0 and writes
+ * nothing for an infinite cylinder or a cyl cylray_prepare did not fill. */
+#define CYLRAY_SPLIT_MAX 32
+CYLRAY_API size_t cylray_split_boxes(const cylray_prepared *cyl, size_t k, float (*lo)[3],
+                                     float (*hi)[3]);
+
 #ifdef __cplusplus
 }
 #endif

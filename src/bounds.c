@@ -123,3 +123,71 @@ static cylray_status leaf_bounds(const float *geom, const uint32_t *meta, unsign
 LEAF_BOUNDS_(4)
 LEAF_BOUNDS_(8)
 LEAF_BOUNDS_(16)
+
+/* ---- boxes along a long cylinder ------------------------------------------------ */
+
+/* The box of the disc of radius R centred on the axis at t (world units, exact as a
+ * double-double) from the center: coordinate k spans c_k + t n_k -+ R s_k. */
+static void disc_box(const float c[3], const float v[3], double R, cylray_dd t, float lo[3],
+                     float hi[3])
+{
+    for (int k = 0; k < 3; k++) {
+        axis_k a = axis_coord(v, k);
+        cylray_dd m = dd_mul(t, a.n), r = dd_mul_d(a.s, R);
+        /* even along a coordinate axis c_k + t is not always a double-double */
+        lo[k] = face(c[k], m, dd_neg(r), 0, -1);
+        hi[k] = face(c[k], m, r, 0, 1);
+    }
+}
+
+/* The rule for k = 0: the smallest k at which, in each coordinate j but the one the
+ * axis is closest to, a slice's extent from the tilt, 2H |n_j| / k, is at most its
+ * extent from the radius, 2R sqrt(1 - n_j^2); 1 to CYLRAY_SPLIT_MAX. */
+static size_t split_count(const cylray_prepared *cyl)
+{
+    const float *v = cyl->v;
+    int m = 0;
+    for (int j = 1; j < 3; j++)
+        if (fabsf(v[j]) > fabsf(v[m]))
+            m = j;
+    double want = 1;
+    for (int j = 0; j < 3; j++) {
+        if (j == m || v[j] == 0)
+            continue;
+        double vi = v[(j + 1) % 3], vk = v[(j + 2) % 3];
+        double ratio = (double)cyl->half_height * fabs((double)v[j]) /
+                       ((double)cyl->radius * sqrt(vi * vi + vk * vk));
+        want = fmax(want, ceil(ratio));
+    }
+    return want >= CYLRAY_SPLIT_MAX ? CYLRAY_SPLIT_MAX : (size_t)want;
+}
+
+size_t cylray_split_boxes(const cylray_prepared *cyl, size_t k, float (*lo)[3],
+                          float (*hi)[3])
+{
+    if (!cylray_prepared_ok_(cyl) || cyl->kind == CYLRAY_KIND_INFINITE)
+        return 0;
+    if (k == 0)
+        k = split_count(cyl);
+    if (!lo || !hi)
+        return k;
+    /* Slice i runs between the discs at t_i = H q_i, q_i = (2i - k) / k rounded once:
+     * q_0 = -1 and q_k = 1 exactly and the q_i increase, so neighbouring slices share
+     * their disc exactly and together cover the cylinder; H q_i is exact as a
+     * double-double. */
+    const double H = cyl->half_height, R = cyl->radius;
+    float plo[3], phi[3];
+    disc_box(cyl->c, cyl->v, R, dd_two_prod(H, -1.0), plo, phi);
+    for (size_t i = 0; i < k; i++) {
+        double q = ((double)(i + 1) * 2.0 - (double)k) / (double)k;
+        float nlo[3], nhi[3];
+        disc_box(cyl->c, cyl->v, R, dd_two_prod(H, q), nlo, nhi);
+        for (int j = 0; j < 3; j++) {
+            lo[i][j] = fminf(plo[j], nlo[j]);
+            hi[i][j] = fmaxf(phi[j], nhi[j]);
+            plo[j] = nlo[j];
+            phi[j] = nhi[j];
+        }
+    }
+    return k;
+}

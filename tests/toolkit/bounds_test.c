@@ -9,6 +9,10 @@
  *   bounds_test leaf     leaf boxes are the union of their lanes' boxes; infinite lanes,
  *                        empty leaves, infinite and unprepared cylinders: EINVAL, nothing
  *                        written
+ *   bounds_test split    cylray_split_boxes: each box on the outer side of its slice's
+ *                        exact box and at most one float beyond; points of the exact
+ *                        surface (every slice disc's extreme rim points among them) in a
+ *                        box; the count of k = 0 is the header's rule
  *   bounds_test mutant   the checks of "box" applied to a box computed in float from the
  *                        rounded unit axis must fail (the test can fail)
  *
@@ -246,6 +250,159 @@ static int run_leaf(long n)
     return failures != 0;
 }
 
+/* ---- split boxes ------------------------------------------------------------------- */
+
+/* The rule of the header, from the floats: the count k = 0 must give. */
+static size_t rule_count(const cylray_cylinder *c)
+{
+    const float *v = c->axis;
+    int m = 0;
+    for (int j = 1; j < 3; j++)
+        if (fabsf(v[j]) > fabsf(v[m]))
+            m = j;
+    size_t k = 1;
+    for (int j = 0; j < 3; j++) {
+        if (j == m || v[j] == 0)
+            continue;
+        cylq S = (cylq)v[(j + 1) % 3] * v[(j + 1) % 3] + (cylq)v[(j + 2) % 3] * v[(j + 2) % 3];
+        /* the smallest k with 2H|n_j|/k <= 2R sqrt(1 - n_j^2) */
+        cylq ratio = (cylq)c->half_height * q_abs((cylq)v[j]) / ((cylq)c->radius * q_sqrt(S));
+        while ((cylq)k < ratio && k < CYLRAY_SPLIT_MAX)
+            k++;
+    }
+    return k;
+}
+
+static long check_split(const cylray_cylinder *c, const cylray_prepared *P, size_t k,
+                        const float (*lo)[3], const float (*hi)[3], cylgen_rng *g)
+{
+    long bad = 0;
+    tkq q;
+    tk_exact(c, &q);
+    cylq s[3], mag[3];
+    for (int j = 0; j < 3; j++) {
+        cylq vi = c->axis[(j + 1) % 3], vk = c->axis[(j + 2) % 3], vv = 0;
+        for (int a = 0; a < 3; a++)
+            vv += (cylq)c->axis[a] * c->axis[a];
+        s[j] = q_sqrt((vi * vi + vk * vk) / vv);
+        mag[j] = q_abs(q.c[j]) + q.H + q.R;
+    }
+    cylq *t = malloc((k + 1) * sizeof *t);
+    for (size_t i = 0; i <= k; i++)
+        t[i] = q.H * (cylq)(((double)i * 2.0 - (double)k) / (double)k);
+    /* tightness: box i against the exact box of its two discs */
+    for (size_t i = 0; i < k; i++) {
+        for (int j = 0; j < 3; j++) {
+            cylq m0 = q.c[j] + t[i] * q.n[j], m1 = q.c[j] + t[i + 1] * q.n[j];
+            cylq F[2] = {q_min(m0, m1) - q.R * s[j], q_max(m0, m1) + q.R * s[j]};
+            cylq eps = mag[j] * (cylq)0x1p-104, cancel = mag[j] * (cylq)0x1p-70;
+            const float f[2] = {lo[i][j], hi[i][j]};
+            for (int e = 0; e < 2; e++) {
+                checks++;
+                int outer = e == 0 ? (cylq)f[e] <= F[e] + eps : (cylq)f[e] >= F[e] - eps;
+                if (!outer) {
+                    fail(c, "split face inside its slice's exact box", j), bad++;
+                    continue;
+                }
+                if (q_abs(F[e]) >= cancel) {
+                    if (tk_steps(f[e], e ? F[e] + eps : F[e] - eps) > 1)
+                        fail(c, "split face more than one float beyond the nearest", j), bad++;
+                } else if (q_abs((cylq)f[e] - F[e]) > mag[j] * (cylq)0x1p-95) {
+                    fail(c, "split face beyond 2^-95 of its magnitude (cancellation)", j), bad++;
+                }
+            }
+        }
+    }
+    /* coverage: points of the exact surface, each inside the box of its slice; the rims
+     * of every slice disc and their extreme points among them */
+    for (int pass = 0; pass < 64 + 6 * (int)(k + 1); pass++) {
+        cylq z, r = q.R, pt[3];
+        double co, si;
+        if (pass < 64) {
+            z = q.H * (cylq)(2 * tk_u(g) - 1);
+            if (pass % 8 == 0)
+                z = q.H * (pass % 16 ? 1 : -1);
+            if (pass % 8 == 1)
+                r = q.R * (cylq)tk_u(g), z = (pass % 16 > 8) ? q.H : -q.H;
+            double th = 6.283185307179586 * tk_u(g);
+            co = cos(th), si = sin(th);
+        } else {
+            int e = (pass - 64) % 6, j = e / 2, sg = e % 2 ? 1 : -1;
+            z = t[(pass - 64) / 6];
+            co = sg * (double)q.b1[j], si = sg * (double)q.b2[j];
+            if (co == 0 && si == 0)
+                co = 1;
+        }
+        tk_point(&q, z, co, si, r, pt);
+        size_t i = 0;
+        while (i + 1 < k && t[i + 1] < z)
+            i++;
+        int in = 0;
+        for (size_t b = 0; b < k && !in; b++) {
+            size_t bi = (i + b) % k; /* its own slice first */
+            int ok = 1;
+            for (int j = 0; j < 3; j++) {
+                cylq eps = mag[j] * (cylq)0x1p-100;
+                ok &= (cylq)lo[bi][j] <= pt[j] + eps && (cylq)hi[bi][j] >= pt[j] - eps;
+            }
+            in = ok;
+        }
+        checks++;
+        if (!in)
+            fail(c, "surface point in no split box", (int)k), bad++;
+    }
+    free(t);
+    (void)P;
+    return bad;
+}
+
+static int run_split(long n)
+{
+    cylgen_rng g;
+    cylgen_seed(&g, 2424);
+    long cyls = 0, boxes = 0, at_max = 0;
+    float(*lo)[3] = malloc(1000 * sizeof *lo), (*hi)[3] = malloc(1000 * sizeof *hi);
+    for (long it = 0; it < n; it++) {
+        cylray_cylinder c;
+        tk_cylinder(&g, (int)(it % 10), &c);
+        if (it % 3 == 0) /* long rods */
+            c.half_height = (float)(c.radius * tk_log(&g, 1, 1e5));
+        cylray_prepared P;
+        if (cylray_prepare(&P, &c) != CYLRAY_OK)
+            continue;
+        cyls++;
+        size_t want = rule_count(&c), ks[4] = {0, 1, 2 + (size_t)(cylgen_next(&g) % 9), 997};
+        checks++;
+        if (cylray_split_boxes(&P, 0, NULL, NULL) != want || cylray_split_boxes(&P, 0, lo, NULL) != want)
+            fail(&c, "the rule's count", (int)want);
+        at_max += want == CYLRAY_SPLIT_MAX;
+        for (int a = 0; a < (it % 50 == 0 ? 4 : 3); a++) {
+            size_t k = ks[a] ? ks[a] : want;
+            lo[k][0] = 7;
+            checks++;
+            if (cylray_split_boxes(&P, ks[a], lo, hi) != k || lo[k][0] != 7) {
+                fail(&c, "count returned or written", (int)k);
+                continue;
+            }
+            boxes += (long)k;
+            check_split(&c, &P, k, (const float(*)[3])lo, (const float(*)[3])hi, &g);
+        }
+    }
+    cylray_cylinder c = {{1, 2, 3}, {0, 1, 1}, 1, INFINITY, 0};
+    cylray_prepared P;
+    cylray_prepare(&P, &c);
+    lo[0][0] = 7;
+    checks++;
+    if (cylray_split_boxes(&P, 4, lo, hi) != 0 || cylray_split_boxes(&P, 0, NULL, NULL) != 0 ||
+        lo[0][0] != 7)
+        fail(&c, "infinite cylinder: 0, nothing written", 0);
+    free(lo);
+    free(hi);
+    printf("split: %ld cylinders (%ld at CYLRAY_SPLIT_MAX by the rule), %ld boxes, %ld checks, "
+           "%ld failures\n", cyls, at_max, boxes, checks, failures);
+    return failures != 0;
+}
+
 int main(int argc, char **argv)
 {
     const char *quick = getenv("CYLRAY_TEST_QUICK");
@@ -255,8 +412,10 @@ int main(int argc, char **argv)
         return run_box(40000 / scale, 0);
     if (!strcmp(what, "mutant"))
         return run_box(20000 / scale, 1);
+    if (!strcmp(what, "split"))
+        return run_split(6000 / scale);
     if (!strcmp(what, "leaf"))
         return run_leaf(3000 / scale);
-    fprintf(stderr, "usage: bounds_test box|leaf|mutant\n");
+    fprintf(stderr, "usage: bounds_test box|leaf|split|mutant\n");
     return 2;
 }
