@@ -497,6 +497,48 @@ CYLRAY_API cylray_status cylray_leaf_bounds16(const cylray_leaf16 *leaf, float l
 CYLRAY_API size_t cylray_split_boxes(const cylray_prepared *cyl, size_t k, float (*lo)[3],
                                      float (*hi)[3]);
 
+/* ---- surface coordinates --------------------------------------------------------- */
+
+/* Surface coordinates at a point p of `part` (CYLRAY_BACKFACE is ignored), for a hit
+ * point from cylray_hit_point or o + t d, measured in the frame every user and binding
+ * can build alike: n the unit axis (the axis given, from the low end to the high end,
+ * p0 to p1 of cylray_cylinder_from_endpoints), and (b1, b2) the orthonormal basis of
+ * Duff et al., "Building an Orthonormal Basis, Revisited" (JCGT 2017), from n with the
+ * sign s = +1 where n_z >= 0 (a zero of either sign) and -1 otherwise:
+ *     a = -1 / (s + n_z), b = n_x n_y a,
+ *     b1 = (1 + s n_x^2 a, s b, -s n_x), b2 = (b, s + n_y^2 a, -n_y).
+ * With r = p - center, z = r.n and the azimuth phi = atan2(r.b2, r.b1):
+ *   side:  u = (z + H) / 2H, 0 at the low end and 1 at the high end (an infinite
+ *          cylinder: u = z, the signed axial distance from the center); v = phi / 2pi
+ *          wrapped to [0, 1); dpdu = 2H n (infinite: n); dpdv = 2pi R (-sin(phi) b1 +
+ *          cos(phi) b2).
+ *   discs: u = 0 (CYLRAY_CAP_LO) or 1 (CYLRAY_CAP_HI); v = phi / 2pi as on the side;
+ *          the disc's radial coordinate w = rho / R in [0, 1] (rho the distance from the
+ *          axis) takes the place of u in the derivatives: dpdu = dp/dw = R (cos(phi) b1 +
+ *          sin(phi) b2), outward, and dpdv = 2pi rho (-sin(phi) b1 + cos(phi) b2), so w
+ *          = |dpdv| / (2pi R).
+ * On the axis (rho = 0) phi is 0: v = 0, and a disc's dpdv is 0 and its dpdu R b1.
+ * A v whose value rounds to 1 is given as the float below 1.
+ * Accuracy: u and v are the exact values at p (the float point as given) to within one
+ * float ulp plus 2^-90 |r| / 2H (u; infinite: 2^-90 |r|) and 2^-90 |r| / rho (v); dpdu
+ * and dpdv to within 2^-20 of their length (those that turn with phi: where rho >
+ * 2^-60 |r|, short of which phi says little). Any of uv, dpdu, dpdv may be NULL: it is not
+ * written, and what only it needs is not computed. Nothing is written for a part other
+ * than SIDE, CAP_LO and CAP_HI, or a cyl cylray_prepare did not fill. */
+CYLRAY_API void cylray_surface(const cylray_prepared *cyl, const float p[3], int32_t part,
+                               float uv[2], float dpdu[3], float dpdv[3]);
+/* The same for the hit a leaf query returned (hit->lane and hit->part name the cylinder
+ * and the part); nothing is written for a lane the leaf does not use. */
+CYLRAY_API void cylray_leaf_surface4(const cylray_leaf4 *leaf, const cylray_hit1 *hit,
+                                     const float p[3], float uv[2], float dpdu[3],
+                                     float dpdv[3]);
+CYLRAY_API void cylray_leaf_surface8(const cylray_leaf8 *leaf, const cylray_hit1 *hit,
+                                     const float p[3], float uv[2], float dpdu[3],
+                                     float dpdv[3]);
+CYLRAY_API void cylray_leaf_surface16(const cylray_leaf16 *leaf, const cylray_hit1 *hit,
+                                      const float p[3], float uv[2], float dpdu[3],
+                                      float dpdv[3]);
+
 #ifdef __cplusplus
 }
 #endif

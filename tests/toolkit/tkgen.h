@@ -12,17 +12,17 @@
 #include <stdio.h>
 #include <string.h>
 
-static double tk_u(cylgen_rng *g)
+static inline double tk_u(cylgen_rng *g)
 {
     return cylgen_uniform(g);
 }
 
-static double tk_log(cylgen_rng *g, double lo, double hi) /* log-uniform in [lo, hi] */
+static inline double tk_log(cylgen_rng *g, double lo, double hi) /* log-uniform in [lo, hi] */
 {
     return exp(log(lo) + (log(hi) - log(lo)) * tk_u(g));
 }
 
-static float tk_sym(cylgen_rng *g, double m) /* uniform in [-m, m] */
+static inline float tk_sym(cylgen_rng *g, double m) /* uniform in [-m, m] */
 {
     return (float)((2 * tk_u(g) - 1) * m);
 }
@@ -35,7 +35,7 @@ static const char *const tk_kind_names[TK_KINDS] = {
     "huge-radius", "endpoints", "generators", "extreme", "touching-zero"};
 
 /* Cylinder i of kind `kind` (finite; the generators' infinite ones become finite). */
-static void tk_cylinder(cylgen_rng *g, int kind, cylray_cylinder *c)
+static inline void tk_cylinder(cylgen_rng *g, int kind, cylray_cylinder *c)
 {
     memset(c, 0, sizeof *c);
     c->flags = tk_flags[cylgen_next(g) & 3];
@@ -124,7 +124,7 @@ typedef struct tkq {
 /* The exact unit axis and the frame of Duff et al. (JCGT 2017) with s = +1 where
  * n_z >= 0 (either zero), in binary128, of the prepared geometry (center, axis, radius
  * and half height as given). */
-static void tk_exact(const cylray_cylinder *cy, tkq *q)
+static inline void tk_exact(const cylray_cylinder *cy, tkq *q)
 {
     cylq vv = 0;
     for (int k = 0; k < 3; k++)
@@ -147,7 +147,7 @@ static void tk_exact(const cylray_cylinder *cy, tkq *q)
 }
 
 /* The exact half extent of the box along k: H |n_k| + R sqrt(1 - n_k^2). */
-static cylq tk_extent(const cylray_cylinder *cy, int k)
+static inline cylq tk_extent(const cylray_cylinder *cy, int k)
 {
     cylq vk = cy->axis[k], vi = cy->axis[(k + 1) % 3], vj = cy->axis[(k + 2) % 3];
     cylq S = vi * vi + vj * vj, V = S + vk * vk, sv = q_sqrt(V);
@@ -156,7 +156,7 @@ static cylq tk_extent(const cylray_cylinder *cy, int k)
 
 /* The point at axial z (world units) and angle (cs, sn) (any length: normalised
  * here) at distance r from the axis, exactly. */
-static void tk_point(const tkq *q, cylq z, double cs, double sn, cylq r, cylq p[3])
+static inline void tk_point(const tkq *q, cylq z, double cs, double sn, cylq r, cylq p[3])
 {
     cylq l = q_sqrt((cylq)cs * cs + (cylq)sn * sn);
     cylq a = (cylq)cs / l, b = (cylq)sn / l;
@@ -165,7 +165,7 @@ static void tk_point(const tkq *q, cylq z, double cs, double sn, cylq r, cylq p[
 }
 
 /* Floats strictly between f and the exact x (0 when f is the nearest on its side). */
-static double tk_steps(float f, cylq x)
+static inline double tk_steps(float f, cylq x)
 {
     double n = 0;
     if ((cylq)f <= x) {
