@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
-/* vec_neon.h - the kernel's vector vocabulary on AArch64 NEON (4 lanes).
- * Semantics as stated in vec_scalar.h; min/max are built from a compare so that NaN
+/* simd/neon.h - the kernel's vector vocabulary on AArch64 NEON (4 lanes).
+ * Semantics as stated in simd/scalar.h; min/max are built from a compare so that NaN
  * lanes give the second operand, as on x86. */
 #include <arm_neon.h>
 #include <stdint.h>

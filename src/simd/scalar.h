@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* vec_scalar.h - the kernel's vector vocabulary for one lane: plain C.
+/* simd/scalar.h - the kernel's vector vocabulary for one lane: plain C.
  *
  * This is also the definition of every operation the SIMD headers implement:
  *   vfma(a,b,c) = a*b + c, vfms = a*b - c, vfnma = c - a*b; fused where the ISA can,

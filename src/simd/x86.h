@@ -1,13 +1,13 @@
 /* SPDX-License-Identifier: MIT */
-/* vec_x86.h - the kernel's vector vocabulary on x86: SSE4.1, AVX2+FMA and AVX-512.
+/* simd/x86.h - the kernel's vector vocabulary on x86: SSE4.1, AVX2+FMA and AVX-512.
  *
  * Included once per vector width by an ISA's translation unit, with:
  *   VW         lanes per vector: 4 (xmm), 8 (ymm) or 16 (zmm)
  *   X86_FMA    1 when the FMA3 instructions may be used
  *   X86_KMASK  1 for AVX-512: lane masks live in mask registers (needs VL below 16)
- * vec_undef.h takes every name back, so the next width can define them again.
+ * simd/undef.h takes every name back, so the next width can define them again.
  *
- * Every operation has one meaning on every ISA (see vec_scalar.h for the plain
+ * Every operation has one meaning on every ISA (see simd/scalar.h for the plain
  * statement of each); in particular vmin/vmax return the second operand when either
  * is NaN, as minps/maxps do, so that NaN lanes behave the same everywhere. */
 #include <immintrin.h>
@@ -35,7 +35,7 @@
 #define VCASTI(x) _mm512_castps_si512(x)
 #define VCASTF(x) _mm512_castsi512_ps(x)
 #else
-#error "vec_x86.h: VW must be 4, 8 or 16"
+#error "simd/x86.h: VW must be 4, 8 or 16"
 #endif
 
 #define VFULL ((uint32_t)((1u << VW) - 1u))

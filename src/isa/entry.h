@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* isa_entry.h - one ISA's public entry points and its cylray_kernels table, from the
+/* isa/entry.h - one ISA's public entry points and its cylray_kernels table, from the
  * kernel instantiations its translation unit made.
  *
  * Parameters: KISA (suffix, e.g. avx2), KISA_ENUM, KISA_NAME, and KW4, KW8, KW16 (the

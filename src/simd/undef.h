@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* vec_undef.h - takes back every name a vec_*.h header defined, so that another
+/* simd/undef.h - takes back every name a simd/ header defined, so that another
  * width or ISA can be included next in the same translation unit. */
 #undef vf
 #undef vi_
