@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* bounds.c - the float box of a prepared cylinder and of a leaf, rounded outward. */
 #include "cylray_internal.h"
-#include "dd.h"
+#include "internal/dd.h"
 
 #include <string.h>
 

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* surface.c - surface coordinates (u, v) and their derivatives at a point of a cylinder. */
 #include "cylray_internal.h"
-#include "dd.h"
+#include "internal/dd.h"
 
 #define TWO_PI 6.283185307179586476925
 

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* dd.h - double-double arithmetic (about 104 bits) for the toolkit's exact-enough sums.
+/* internal/dd.h - double-double arithmetic (about 104 bits) for the toolkit's exact-enough sums.
  *
  * A value is hi + lo with |lo| <= ulp(hi) / 2. The products use fma(), which C99
  * rounds once wherever the hardware lacks it, so each operation is good to a few units
