@@ -7,7 +7,8 @@
  *                        double atan2), dpdu and dpdv within 2^-20 of theirs, v in [0, 1)
  *   surface_test frame   the frame is that of Duff et al. with s = +1 at a zero n_z of
  *                        either sign: the direction b1 is v = 0, b2 is v = 1/4; points
- *                        on the axis get v = 0 (and a zero dpdv on a disc)
+ *                        on the axis get v = 0 (and a zero dpdv on a disc); in the
+ *                        endpoint form u = 0 at p0 and 1 at p1, dpdu = p1 - p0
  *   surface_test null    every subset of NULL outputs gives the same values in the rest;
  *                        the leaf forms equal the prepared form; bad parts write nothing
  *   surface_test mutant  the checks of "exact" applied to a float implementation with
@@ -244,6 +245,22 @@ static int run_frame(void)
                 fabs(du[1] - 2 * (double)q.b1[1]) > 1e-6)
                 fail(&c, p, part, "disc center: u 0/1, v 0, dpdv 0, dpdu R b1", uv[1], 0);
         }
+    }
+    /* the endpoint form: u = 0 at p0 and 1 at p1, the caps there CAP_LO and CAP_HI */
+    const float p0[3] = {10, -3, 7}, p1[3] = {4, 5, 7.5f};
+    cylray_cylinder e;
+    cylray_prepared P;
+    cylray_cylinder_from_endpoints(&e, p0, p1, 0.5f, CYLRAY_CAPPED);
+    cylray_prepare(&P, &e);
+    for (int end = 0; end < 2; end++) {
+        const float *q = end ? p1 : p0;
+        float uv[2], side_uv[2], du[3];
+        cylray_surface(&P, q, end ? CYLRAY_CAP_HI : CYLRAY_CAP_LO, uv, NULL, NULL);
+        cylray_surface(&P, q, CYLRAY_SIDE, side_uv, du, NULL);
+        checks++;
+        if (uv[0] != end || fabs(side_uv[0] - end) > 1e-6 ||
+            fabs(du[0] - (p1[0] - p0[0])) > 1e-5 || fabs(du[1] - (p1[1] - p0[1])) > 1e-5)
+            fail(&e, q, end, "endpoint form: u 0 at p0, 1 at p1, dpdu = p1 - p0", side_uv[0], end);
     }
     printf("frame: %ld checks, %ld failures\n", checks, failures);
     return failures != 0;
