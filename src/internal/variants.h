@@ -26,8 +26,6 @@
 #define CYLRAY_KF_ONE_END 0x2000u /* a capped cylinder with one disc only */
 /* The public flags every kernel reads at run time rather than being specialised for. */
 #define CYLRAY_KF_RUNTIME (CYLRAY_FACE_FORWARD | CYLRAY_CULL_BACK)
-/* What KFN(block) returns for a vector the rare instance must do (no lane is 31) */
-#define CYLRAY_RARE_ 0x80000000u
 
 /* The kernel tables are indexed by the cylinder's variant (its kind, plus 3 when the
  * axis is a coordinate axis) and the flags a kernel is specialised for (normals,
@@ -42,16 +40,15 @@ static inline unsigned cylray_variant_of_(unsigned kind, unsigned axis_id, int r
         return CYLRAY_VARIANT_GENERIC + kind;
     return kind + (axis_id ? CYLRAY_KIND_COUNT : 0u);
 }
-static inline unsigned cylray_variant_(const cylray_prepared *p)
-{
-    return p->variant;
-}
 static inline int cylray_generic_(const cylray_prepared *p)
 {
     return p->variant >= CYLRAY_VARIANT_GENERIC;
 }
 /* The one encoding of the specialised flags: bit 0 normals, bit 1 FAST, bit 2 REFINE
- * (the kernel template's KFL_ decodes it; cylray_occ_spec_ drops the normals). */
+ * (the kernel template's KFL_ decodes it; cylray_occ_spec_ drops the normals): the
+ * tables have CYLRAY_SPECS entries per variant, CYLRAY_OCC_SPECS for occlusion. */
+#define CYLRAY_SPECS 8u
+#define CYLRAY_OCC_SPECS 4u
 static inline unsigned cylray_spec_(unsigned flags)
 {
     return (flags & CYLRAY_NORMAL) | ((flags & CYLRAY_FAST) ? 2u : 0u) |
@@ -63,11 +60,11 @@ static inline unsigned cylray_occ_spec_(unsigned flags)
 }
 static inline unsigned cylray_isect_index_(unsigned variant, unsigned flags)
 {
-    return variant * 8u + cylray_spec_(flags);
+    return variant * CYLRAY_SPECS + cylray_spec_(flags);
 }
 static inline unsigned cylray_occ_index_(unsigned variant, unsigned flags)
 {
-    return variant * 4u + cylray_occ_spec_(flags);
+    return variant * CYLRAY_OCC_SPECS + cylray_occ_spec_(flags);
 }
 
 static inline int cylray_prepared_ok_(const cylray_prepared *p)

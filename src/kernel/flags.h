@@ -48,6 +48,15 @@ typedef struct {
     const float *c3;
 } cylray_kat_;
 
+/* What the block functions report: the hit lanes of each vector (one, or two in
+ * flight), how many of them the cheap rejections ended, and whether the rare instance
+ * must take them. */
+typedef struct {
+    uint32_t hit[2];
+    uint32_t rejected;
+    int rare;
+} cylray_kres_;
+
 CYLRAY_INLINE const float *cylray_kcenter_(const cylray_prepared *P, const cylray_kflags_ F)
 {
     return F.leaf ? NULL : F.aligned ? P->cr : P->c;

@@ -4,9 +4,8 @@
 
 /* Stage 1, the ray: A (aligned), d.d and the lanes in play. An Inf or NaN anywhere but
  * in d turns C or D into NaN later, which takes the lane out there. Returns
- * CYLRAY_RARE_ for a vector that the rare instance must take, else 0. */
-CYLRAY_INLINE uint32_t KFN(load_ray)(KFN(lanes) *st, const cylray_kat_ *k,
-                                     const cylray_kflags_ F)
+ * nonzero for a vector that the rare instance must take, else 0. */
+CYLRAY_INLINE int KFN(load_ray)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
 {
     const vf zero = vzero(), one = vset1(1.0f), inf = vset1(INFINITY);
     KLOAD_O_();
@@ -40,7 +39,7 @@ CYLRAY_INLINE uint32_t KFN(load_ray)(KFN(lanes) *st, const cylray_kat_ *k,
     }
     st->A = A, st->dd = dd, st->act = act, st->tscale = tscale;
     if (!F.scaled && (mbits(act) & k->bits) != k->bits)
-        return CYLRAY_RARE_; /* the driver calls KFN(block_rare) */
+        return 1; /* KFN(vector) calls the rare instance */
     return 0;
 }
 

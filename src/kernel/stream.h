@@ -35,28 +35,21 @@ CYLRAY_INLINE size_t KFN(stream)(const cylray_prepared *P, const cylray_rays *R0
          * slower than in a driver without pairs. Two vectors at a time until a pair
          * sees one rejected... */
         for (uint32_t r = 0; pairs && !r && i + 2 * VW <= whole; i += 2 * VW) {
-            uint32_t m[2] = {0u, 0u};
-            r = KFN(block2)(P, R, H, i, i + VW, VFULL, VFULL, rt, FL, m);
-            if (r == CYLRAY_RARE_) {
-                m[0] = KFN(block_rare)(P, R, H, i, VFULL, rt, FL, NULL, 0);
-                m[1] = KFN(block_rare)(P, R, H, i + VW, VFULL, rt, FL, NULL, 0);
-                r = 0;
-            }
-            count += (size_t)CYLRAY_POPCOUNT(m[0]) + (size_t)CYLRAY_POPCOUNT(m[1]);
-            KOCC_MARK_(i, m[0]);
-            KOCC_MARK_(i + VW, m[1]);
+            const cylray_kres_ v = KFN(vector2)(P, R, H, i, rt, FL);
+            r = v.rejected;
+            count += (size_t)CYLRAY_POPCOUNT(v.hit[0]) + (size_t)CYLRAY_POPCOUNT(v.hit[1]);
+            KOCC_MARK_(i, v.hit[0]);
+            KOCC_MARK_(i + VW, v.hit[1]);
         }
         /* ...then one at a time until KGROUP_ in a row pass the rejection (or one is
          * left over); without pairs, to the end. */
         for (int passed = 0;
              i < whole && (!pairs || passed < KGROUP_ || i + 2 * VW > whole); i += VW) {
-            int rejected = 0;
-            uint32_t m = KFN(block_r)(P, R, H, i, VFULL, rt, FL, NULL, 0, &rejected);
-            if (m == CYLRAY_RARE_)
-                m = KFN(block_rare)(P, R, H, i, VFULL, rt, FL, NULL, 0);
-            count += CYLRAY_POPCOUNT(m);
-            KOCC_MARK_(i, m);
-            passed = rejected ? 0 : passed + 1;
+            const cylray_kres_ v =
+                KFN(vector)(P, R, H, i, VFULL, rt, FL, NULL, 0, 0, NULL, NULL, 0);
+            count += CYLRAY_POPCOUNT(v.hit[0]);
+            KOCC_MARK_(i, v.hit[0]);
+            passed = v.rejected ? 0 : passed + 1;
         }
     }
 #undef KOCC_MARK_
@@ -87,9 +80,7 @@ CYLRAY_INLINE int KFN(leaf)(const float *L, size_t lm, cylray_ray1 *ray, cylray_
         uint32_t a = (used >> b) & VFULL;
         if (!a)
             continue;
-        uint32_t m = KFN(block)(NULL, &R, &H, b, a, rt, FL, L, lm);
-        if (m == CYLRAY_RARE_)
-            m = KFN(block_rare)(NULL, &R, &H, b, a, rt, FL, L, lm);
+        uint32_t m = KFN(vector)(NULL, &R, &H, b, a, rt, FL, L, lm, 0, NULL, NULL, 0).hit[0];
         if (occ) {
             if (m)
                 return 1;

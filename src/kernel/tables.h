@@ -134,17 +134,28 @@ KLEAFOCC_(0) KLEAFOCC_(1) KLEAFOCC_(2) KLEAFOCCANY_(3)
 /* The packet tables for one vector (isect1, occ1) and for several (isect, occ); an
  * ISA's entry points take the ones their widths need, the compiler drops the rest. */
 enum { KFN(vw) = VW };
-_Static_assert(CYLRAY_VARIANT_GENERIC == 6, "six specialised variants");
-CYLRAY_MAYBE_UNUSED static const KFN(packet_fn) KFN(isect1_table)[48] = {KALL8_(KREF_PK1_)};
-CYLRAY_MAYBE_UNUSED static const KFN(packet_fn) KFN(isect_table)[48] = {KALL8_(KREF_PK_)};
-CYLRAY_MAYBE_UNUSED static const KFN(stream_fn) KFN(isect_stream_table)[48] = {KALL8_(KREF_ST_)};
-CYLRAY_MAYBE_UNUSED static const KFN(packet_fn) KFN(occ1_table)[24] = {KALL4_(KREF_PO1_)};
-CYLRAY_MAYBE_UNUSED static const KFN(packet_fn) KFN(occ_table)[24] = {KALL4_(KREF_PO_)};
-CYLRAY_MAYBE_UNUSED static const KFN(stream_fn) KFN(occ_stream_table)[24] = {KALL4_(KREF_SO_)};
-CYLRAY_MAYBE_UNUSED static const KFN(leaf_fn) KFN(leaf_table)[8] = {
+CYLRAY_MAYBE_UNUSED static const KFN(packet_fn) KFN(isect1_table)[] = {KALL8_(KREF_PK1_)};
+CYLRAY_MAYBE_UNUSED static const KFN(packet_fn) KFN(isect_table)[] = {KALL8_(KREF_PK_)};
+CYLRAY_MAYBE_UNUSED static const KFN(stream_fn) KFN(isect_stream_table)[] = {KALL8_(KREF_ST_)};
+CYLRAY_MAYBE_UNUSED static const KFN(packet_fn) KFN(occ1_table)[] = {KALL4_(KREF_PO1_)};
+CYLRAY_MAYBE_UNUSED static const KFN(packet_fn) KFN(occ_table)[] = {KALL4_(KREF_PO_)};
+CYLRAY_MAYBE_UNUSED static const KFN(stream_fn) KFN(occ_stream_table)[] = {KALL4_(KREF_SO_)};
+CYLRAY_MAYBE_UNUSED static const KFN(leaf_fn) KFN(leaf_table)[] = {
     KFN(lf_0), KFN(lf_1), KFN(lf_2), KFN(lf_3), KFN(lf_4), KFN(lf_5), KFN(lf_6), KFN(lf_7)};
-CYLRAY_MAYBE_UNUSED static const KFN(leaf_fn) KFN(leaf_occ_table)[4] = {
+CYLRAY_MAYBE_UNUSED static const KFN(leaf_fn) KFN(leaf_occ_table)[] = {
     KFN(lo_0), KFN(lo_1), KFN(lo_2), KFN(lo_3)};
+/* Every table holds exactly what its index reaches (cylray_isect_index_,
+ * cylray_occ_index_, cylray_spec_, cylray_occ_spec_): one entry per specialised variant
+ * and flag encoding. */
+#define KTABLE_SIZE_(t, n) _Static_assert(sizeof KFN(t) / sizeof KFN(t)[0] == (n), #t " size")
+KTABLE_SIZE_(isect1_table, CYLRAY_VARIANT_GENERIC * CYLRAY_SPECS);
+KTABLE_SIZE_(isect_table, CYLRAY_VARIANT_GENERIC * CYLRAY_SPECS);
+KTABLE_SIZE_(isect_stream_table, CYLRAY_VARIANT_GENERIC * CYLRAY_SPECS);
+KTABLE_SIZE_(occ1_table, CYLRAY_VARIANT_GENERIC * CYLRAY_OCC_SPECS);
+KTABLE_SIZE_(occ_table, CYLRAY_VARIANT_GENERIC * CYLRAY_OCC_SPECS);
+KTABLE_SIZE_(occ_stream_table, CYLRAY_VARIANT_GENERIC * CYLRAY_OCC_SPECS);
+KTABLE_SIZE_(leaf_table, CYLRAY_SPECS);
+KTABLE_SIZE_(leaf_occ_table, CYLRAY_OCC_SPECS);
 
 #undef KDOT
 #undef KFL_
@@ -173,3 +184,4 @@ CYLRAY_MAYBE_UNUSED static const KFN(leaf_fn) KFN(leaf_occ_table)[4] = {
 #undef KREF_PO1_
 #undef KREF_PO_
 #undef KREF_SO_
+#undef KTABLE_SIZE_

@@ -64,7 +64,6 @@ static inline vf KFN(rsqrt_fast)(vf x)
 #define mand(a, b) vandq_u32(a, b)
 #define mor(a, b) vorrq_u32(a, b)
 #define mandn(a, b) vbicq_u32(a, b)
-#define mnot(a) vmvnq_u32(a)
 #define many(m) (vmaxvq_u32(m) != 0)
 static inline uint32_t KFN(mbits)(vm m)
 {

@@ -15,21 +15,18 @@
 
 #if VW == 4
 #define vf __m128
-#define vi_ __m128i
 #define VX(n) _mm_##n
 #define VXI(n) _mm_##n##_si128
 #define VCASTI(x) _mm_castps_si128(x)
 #define VCASTF(x) _mm_castsi128_ps(x)
 #elif VW == 8
 #define vf __m256
-#define vi_ __m256i
 #define VX(n) _mm256_##n
 #define VXI(n) _mm256_##n##_si256
 #define VCASTI(x) _mm256_castps_si256(x)
 #define VCASTF(x) _mm256_castsi256_ps(x)
 #elif VW == 16
 #define vf __m512
-#define vi_ __m512i
 #define VX(n) _mm512_##n
 #define VXI(n) _mm512_##n##_si512
 #define VCASTI(x) _mm512_castps_si512(x)
@@ -162,7 +159,6 @@ static inline vf KFN(rsqrt_fast)(vf x)
 #define mand(a, b) ((vm)((a) & (b)))
 #define mor(a, b) ((vm)((a) | (b)))
 #define mandn(a, b) ((vm)((a) & ~(b)))
-#define mnot(a) ((vm)(~(a) & VFULL))
 #define many(m) ((m) != 0)
 #define mbits(m) ((uint32_t)(m))
 #define mfrom_bits(b) ((vm)((b) & VFULL))
@@ -189,7 +185,6 @@ static inline vf KFN(rsqrt_fast)(vf x)
 #define mand(a, b) VX(and_ps)(a, b)
 #define mor(a, b) VX(or_ps)(a, b)
 #define mandn(a, b) VX(andnot_ps)(b, a)
-#define mnot(a) VX(xor_ps)(a, VCASTF(VX(set1_epi32)(-1)))
 #define mbits(m) ((uint32_t)VX(movemask_ps)(m))
 #define many(m) (mbits(m) != 0)
 #define vsel(m, a, b) VX(blendv_ps)(b, a, m)
