@@ -12,6 +12,7 @@
 #include "internal/variants.h"
 #include "internal/views.h"
 #include "internal/leaf.h"
+#include "internal/round.h"
 
 extern const cylray_kernels cylray_kernels_scalar_;
 extern const cylray_kernels cylray_kernels_sse41_;
