@@ -318,6 +318,24 @@ CYLRAY_API void cylray_hit_point(const cylray_prepared *cyl, const float o[3], c
  * (at a rim, of both). */
 CYLRAY_API void cylray_spawn_origin(const cylray_prepared *cyl, const float p[3], float err,
                                     int32_t part, const float w[3], float out[3]);
+/* The spawn side the tracer chooses. A tracer picks reflection or transmission (or
+ * whether a light is above the horizon) with the normal the kernel returned; near a
+ * tangency that normal and the exact normal at p may put w on different sides, and
+ * cylray_spawn_origin, which follows w, then starts the ray on the other side from the
+ * one the tracer shaded. This form starts it where the tracer says: outward != 0 on
+ * the side the part's outward normal points to, 0 on the other. With the kernel's
+ * outward normal n (CYLRAY_NORMAL without CYLRAY_FACE_FORWARD), outward = dot(w, n) > 0.
+ * Any other surface within err of p (at a rim) is cleared to w's side, as above.
+ * The guarantee, on any ISA and under the condition above: the origin lies strictly on
+ * the requested side of the part (and on w's side of any other surface within err of
+ * p), and a ray traced from it with tmin = 0 meets the part it leaves no sooner than
+ * the exact ray from that origin can (half that distance at the least): a ray sent
+ * back into the surface meets it where the geometry says, never at its own origin.
+ * Where the side requested is w's side of the exact normal at p, the origin is
+ * cylray_spawn_origin's, bit for bit. */
+CYLRAY_API void cylray_spawn_origin_side(const cylray_prepared *cyl, const float p[3],
+                                         float err, int32_t part, int outward,
+                                         const float w[3], float out[3]);
 
 /* Batched forms: plain loops over the lanes, the same answer as the scalar pair lane by
  * lane; a tracer that does not call them pays nothing. Hit points with their bounds,
@@ -353,6 +371,17 @@ CYLRAY_API void cylray_spawn_rays8(const cylray_prepared *cyl, const cylray_poin
 CYLRAY_API void cylray_spawn_rays16(const cylray_prepared *cyl, const cylray_points16 *pts,
                                     const cylray_hit16 *hit, uint32_t mask,
                                     cylray_ray16 *out);
+/* The same with the side of each lane's part chosen by the tracer: bit i of outward
+ * set, the side its outward normal points to (as cylray_spawn_origin_side). */
+CYLRAY_API void cylray_spawn_rays_side4(const cylray_prepared *cyl, const cylray_points4 *pts,
+                                        const cylray_hit4 *hit, uint32_t mask,
+                                        uint32_t outward, cylray_ray4 *out);
+CYLRAY_API void cylray_spawn_rays_side8(const cylray_prepared *cyl, const cylray_points8 *pts,
+                                        const cylray_hit8 *hit, uint32_t mask,
+                                        uint32_t outward, cylray_ray8 *out);
+CYLRAY_API void cylray_spawn_rays_side16(const cylray_prepared *cyl,
+                                         const cylray_points16 *pts, const cylray_hit16 *hit,
+                                         uint32_t mask, uint32_t outward, cylray_ray16 *out);
 
 /* Streams: separate arrays (err may be NULL where no bound is read or written). */
 typedef struct cylray_points {
@@ -368,6 +397,12 @@ CYLRAY_API size_t cylray_hit_points_stream(const cylray_prepared *cyl,
 CYLRAY_API void cylray_spawn_stream(const cylray_prepared *cyl, const cylray_points *pts,
                                     const int32_t *part, const cylray_points *dirs,
                                     const cylray_points *origins, size_t n);
+/* The same with the side chosen by the tracer: outward[i] nonzero, the side ray i's
+ * part's outward normal points to (as cylray_spawn_origin_side). */
+CYLRAY_API void cylray_spawn_stream_side(const cylray_prepared *cyl, const cylray_points *pts,
+                                         const int32_t *part, const uint8_t *outward,
+                                         const cylray_points *dirs,
+                                         const cylray_points *origins, size_t n);
 
 /* Leaves: the hit a leaf query returned (hit->lane names the cylinder; ray as it came
  * back from the query, whose o and d are unchanged). */
@@ -386,6 +421,19 @@ CYLRAY_API void cylray_leaf_spawn_origin8(const cylray_leaf8 *leaf, const cylray
 CYLRAY_API void cylray_leaf_spawn_origin16(const cylray_leaf16 *leaf,
                                            const cylray_hit1 *hit, const float p[3],
                                            float err, const float w[3], float out[3]);
+/* With the side chosen by the tracer (as cylray_spawn_origin_side). */
+CYLRAY_API void cylray_leaf_spawn_origin_side4(const cylray_leaf4 *leaf,
+                                               const cylray_hit1 *hit, const float p[3],
+                                               float err, int outward, const float w[3],
+                                               float out[3]);
+CYLRAY_API void cylray_leaf_spawn_origin_side8(const cylray_leaf8 *leaf,
+                                               const cylray_hit1 *hit, const float p[3],
+                                               float err, int outward, const float w[3],
+                                               float out[3]);
+CYLRAY_API void cylray_leaf_spawn_origin_side16(const cylray_leaf16 *leaf,
+                                                const cylray_hit1 *hit, const float p[3],
+                                                float err, int outward, const float w[3],
+                                                float out[3]);
 
 /* ---- per-ISA access ------------------------------------------------------- */
 

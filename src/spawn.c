@@ -20,7 +20,8 @@
  *   position is off by at most 4.6u H + 12.1u|q| + 2u(H + R) + u|P'|, the radius by 4.7u R.
  *   Every term is below env = 2^-47 (R + H + |q| + |P'|)(1 + R/L) + R (2^-49 |q|/L)^2
  *   (2^-47 = 64u; the factor R/L from g alpha; H counts only when finite).
- * Then P = fl(P'), and e = P - P' is exact in double (Sterbenz). Against the surface
+ * Then P = fl(P'), and e = P - P' is exact in double (Sterbenz). fl is
+ * cylray_round_float_, whose rounding no optimiser can drop (cylray_internal.h). Against the surface
  * point next to P', with the normal n there, the distance from P is at most
  *   |e.n| + |e|^2 / R   (side, |e| <= R/2: the tangential part of e moves the radius
  *                        by |e_t|^2 / (2(R - |e|)) at most),
@@ -214,7 +215,7 @@ static void hit_point_geo(const geo *g, const float o[3], const float d[3], floa
     for (int k = 0; k < 3; k++) {
         m[k] = s * g->v[k] + gain * r[k];
         Pd[k] = g->c[k] + m[k];
-        p[k] = (float)Pd[k];
+        p[k] = cylray_round_float_(Pd[k], 0); /* not (float): e below needs the rounding */
     }
     const double Pn = norm3(Pd), side_gain = P == CYLRAY_SIDE ? gain : 0.0;
     env = 0x1p-47 * (g->R + Hf + qn + Pn) * (1 + side_gain) +
@@ -238,7 +239,7 @@ static void hit_point_geo(const geo *g, const float o[3], const float d[3], floa
         dist = el;
     /* (1 + 2^-40) covers the few roundings of dist itself */
     double bound = (dist + 3 * env) * (1 + 0x1p-40);
-    float f = (float)bound;
+    float f = cylray_round_float_(bound, 0);
     if ((double)f < bound)
         f = next_float(f, 1);
     *err = f;
@@ -250,7 +251,10 @@ typedef struct surf {
     int sign, side;
 } surf;
 
-static void spawn_geo(const geo *g, const float p[3], float err, int32_t part,
+/* side: +1 or -1 puts the origin on that side of the part's own surface (+1: where
+ * its outward normal points), 0 on w's side; any other surface it must clear is
+ * cleared to w's side. */
+static void spawn_geo(const geo *g, const float p[3], float err, int32_t part, int side,
                       const float w[3], float out[3])
 {
     const int P = part & CYLRAY_PART_MASK;
@@ -306,7 +310,8 @@ static void spawn_geo(const geo *g, const float p[3], float err, int32_t part,
                                           2 * ulp_f(i == 0 ? g->R : g->H));
         if (!here && !(fabs(x->sigma) <= (double)err + m + e_d))
             continue;
-        x->sign = dot3(x->n, (const double[3]){w[0], w[1], w[2]}) > 0 ? 1 : -1;
+        x->sign = here && side ? side
+                  : dot3(x->n, (const double[3]){w[0], w[1], w[2]}) > 0 ? 1 : -1;
         x->a = dmax(0.0, -x->sign * x->sigma) + e_d + m;
         ns++;
     }
@@ -324,22 +329,22 @@ static void spawn_geo(const geo *g, const float p[3], float err, int32_t part,
     double delta[3] = {0, 0, 0};
     for (int i = 0; i < ns; i++) {
         surf *x = &S[i];
-        const int side = x->side;
+        const int is_side = x->side;
         const double nl1 = fabs(x->n[0]) + fabs(x->n[1]) + fabs(x->n[2]);
         double m = CYLRAY_SPAWN_SAFETY * (2 * ulp_f(dmax(wmax, xmax)) * nl1 +
-                                          (side ? zmax : rmax) * tilt +
-                                          2 * ulp_f(side ? g->R : g->H));
+                                          (is_side ? zmax : rmax) * tilt +
+                                          2 * ulp_f(is_side ? g->R : g->H));
         double a = dmax(0.0, -x->sign * x->sigma) + e_d + m;
         if (ns > 1)
             a += rnd;
-        if (side && x->sign < 0)
+        if (is_side && x->sign < 0)
             a += 2 * rnd * rnd / g->R;
         a *= 1 + 0x1p-20;
         for (int k = 0; k < 3; k++)
             delta[k] += x->sign * a * x->n[k];
     }
     for (int k = 0; k < 3; k++) {
-        float f = (float)((double)p[k] + delta[k]);
+        float f = cylray_round_float_((double)p[k] + delta[k], 0);
         /* never short of the move: the next float beyond, when rounding fell back */
         if (delta[k] > 0 && (double)f - (double)p[k] < delta[k])
             f = next_float(f, 1);
@@ -362,7 +367,14 @@ void cylray_spawn_origin(const cylray_prepared *cyl, const float p[3], float err
                          int32_t part, const float w[3], float out[3])
 {
     const geo g = geo_prepared(cyl);
-    spawn_geo(&g, p, err, part, w, out);
+    spawn_geo(&g, p, err, part, 0, w, out);
+}
+
+void cylray_spawn_origin_side(const cylray_prepared *cyl, const float p[3], float err,
+                              int32_t part, int outward, const float w[3], float out[3])
+{
+    const geo g = geo_prepared(cyl);
+    spawn_geo(&g, p, err, part, outward ? 1 : -1, w, out);
 }
 
 /* Packets: one lane at a time through the scalar pair. */
@@ -391,7 +403,23 @@ void cylray_spawn_origin(const cylray_prepared *cyl, const float p[3], float err
             size_t i = CYLRAY_CTZ(mask);                                                 \
             float p[3] = {pts->x[i], pts->y[i], pts->z[i]};                              \
             float w[3] = {out->dx[i], out->dy[i], out->dz[i]}, x[3];                     \
-            spawn_geo(&g, p, pts->err[i], hit->part[i], w, x);                           \
+            spawn_geo(&g, p, pts->err[i], hit->part[i], 0, w, x);                        \
+            out->ox[i] = x[0];                                                           \
+            out->oy[i] = x[1];                                                           \
+            out->oz[i] = x[2];                                                           \
+            out->tmin[i] = 0.0f;                                                         \
+        }                                                                                \
+    }                                                                                    \
+    void cylray_spawn_rays_side##n(const cylray_prepared *cyl, const cylray_points##n *pts, \
+                                   const cylray_hit##n *hit, uint32_t mask,              \
+                                   uint32_t outward, cylray_ray##n *out)                 \
+    {                                                                                    \
+        const geo g = geo_prepared(cyl);                                                 \
+        for (; mask; mask &= mask - 1) {                                                 \
+            size_t i = CYLRAY_CTZ(mask);                                                 \
+            float p[3] = {pts->x[i], pts->y[i], pts->z[i]};                              \
+            float w[3] = {out->dx[i], out->dy[i], out->dz[i]}, x[3];                     \
+            spawn_geo(&g, p, pts->err[i], hit->part[i], outward >> i & 1u ? 1 : -1, w, x); \
             out->ox[i] = x[0];                                                           \
             out->oy[i] = x[1];                                                           \
             out->oz[i] = x[2];                                                           \
@@ -434,7 +462,24 @@ void cylray_spawn_stream(const cylray_prepared *cyl, const cylray_points *pts,
             continue;
         float p[3] = {pts->x[i], pts->y[i], pts->z[i]};
         float w[3] = {dirs->x[i], dirs->y[i], dirs->z[i]}, x[3];
-        spawn_geo(&g, p, pts->err ? pts->err[i] : 0.0f, part[i], w, x);
+        spawn_geo(&g, p, pts->err ? pts->err[i] : 0.0f, part[i], 0, w, x);
+        origins->x[i] = x[0];
+        origins->y[i] = x[1];
+        origins->z[i] = x[2];
+    }
+}
+
+void cylray_spawn_stream_side(const cylray_prepared *cyl, const cylray_points *pts,
+                              const int32_t *part, const uint8_t *outward,
+                              const cylray_points *dirs, const cylray_points *origins, size_t n)
+{
+    const geo g = geo_prepared(cyl);
+    for (size_t i = 0; i < n; i++) {
+        if ((part[i] & CYLRAY_PART_MASK) == CYLRAY_MISS)
+            continue;
+        float p[3] = {pts->x[i], pts->y[i], pts->z[i]};
+        float w[3] = {dirs->x[i], dirs->y[i], dirs->z[i]}, x[3];
+        spawn_geo(&g, p, pts->err ? pts->err[i] : 0.0f, part[i], outward[i] ? 1 : -1, w, x);
         origins->x[i] = x[0];
         origins->y[i] = x[1];
         origins->z[i] = x[2];
@@ -454,7 +499,15 @@ void cylray_spawn_stream(const cylray_prepared *cyl, const cylray_points *pts,
                                      float out[3])                                       \
     {                                                                                    \
         const geo g = geo_leaf(&leaf->geom_[0][0], leaf->meta_, m, hit->lane % m);       \
-        spawn_geo(&g, p, err, hit->part, w, out);                                        \
+        spawn_geo(&g, p, err, hit->part, 0, w, out);                                     \
+    }                                                                                    \
+    void cylray_leaf_spawn_origin_side##m(const cylray_leaf##m *leaf,                    \
+                                          const cylray_hit1 *hit, const float p[3],      \
+                                          float err, int outward, const float w[3],      \
+                                          float out[3])                                  \
+    {                                                                                    \
+        const geo g = geo_leaf(&leaf->geom_[0][0], leaf->meta_, m, hit->lane % m);       \
+        spawn_geo(&g, p, err, hit->part, outward ? 1 : -1, w, out);                      \
     }
 CYLRAY_SPAWN_LEAF_(4)
 CYLRAY_SPAWN_LEAF_(8)

@@ -9,10 +9,17 @@
  *   spawn_test nested   a coaxial cylinder 1e-5 R inside is still hit by the
  *                       transmitted ray, and the spawned origin lies between the two
  *   spawn_test batched  the packet, stream and leaf forms equal the scalar pair
+ *   spawn_test side     the side form: the tracer's side from the kernel's normal
+ *                       (random hits, grazing directions, and two far rods whose
+ *                       kernel normal and exact normal disagree), the origin strictly
+ *                       on that side, no hit of the part before the exact ray's
+ *   spawn_test round    the library's rounding to float on the bits equals the
+ *                       hardware's, and a two-term sum is rounded once
  *
  * CYLRAY_TEST_QUICK=1 shrinks the counts about a hundredfold (sanitizers, emulators).
  * Every count is printed; any violation fails the test. */
 #include "cylray.h"
+#include "cylray_internal.h"
 #include "cylref.h"
 #include "spawnref.h"
 
@@ -424,7 +431,8 @@ static int run_batched(void)
         cylray_hit16 hit;
         uint32_t m = trace_group(isas[0], &P, c, &ray, &hit);
         /* the scalar pair */
-        float p[16][3], err[16], w[16][3], x[16][3];
+        float p[16][3], err[16], w[16][3], x[16][3], xs[16][3];
+        const uint32_t outward = (uint32_t)(cylgen_uniform(&rng) * 65536.0);
         for (int i = 0; i < 16; i++) {
             double u[3];
             sref_unit(&rng, u);
@@ -433,6 +441,8 @@ static int run_batched(void)
             if (m >> i & 1u) {
                 cylray_hit_point(&P, c[i].o, c[i].d, hit.t[i], hit.part[i], p[i], &err[i]);
                 cylray_spawn_origin(&P, p[i], err[i], hit.part[i], w[i], x[i]);
+                cylray_spawn_origin_side(&P, p[i], err[i], hit.part[i], outward >> i & 1u,
+                                         w[i], xs[i]);
             }
         }
         /* packets of 16, and of 8 and 4 (their lanes are the first ones) */
@@ -467,6 +477,13 @@ static int run_batched(void)
         }
         cylray_spawn_rays8(&P, &p8, &h8, m & 0xffu, &r8);
         cylray_spawn_rays4(&P, &p4, &h4, m & 0xfu, &r4);
+        /* the side forms, on copies of the packets */
+        cylray_ray16 out_s = out;
+        cylray_ray8 r8s = r8;
+        cylray_ray4 r4s = r4;
+        cylray_spawn_rays_side16(&P, &pts, &hit, m, outward, &out_s);
+        cylray_spawn_rays_side8(&P, &p8, &h8, m & 0xffu, outward, &r8s);
+        cylray_spawn_rays_side4(&P, &p4, &h4, m & 0xfu, outward, &r4s);
         /* a stream, and a leaf of 16 holding the cylinder in lane 5 */
         float sx[16], sy[16], sz[16], se[16], ox[16], oy[16], oz[16];
         float wx[16], wy[16], wz[16];
@@ -480,6 +497,12 @@ static int run_batched(void)
         cylray_points sp = {sx, sy, sz, se}, dirs = {wx, wy, wz, NULL}, org = {ox, oy, oz, NULL};
         size_t ns = cylray_hit_points_stream(&P, &rs, &hs, &sp, 16);
         cylray_spawn_stream(&P, &sp, spart, &dirs, &org, 16);
+        float qx[16], qy[16], qz[16];
+        uint8_t outw[16];
+        for (int i = 0; i < 16; i++)
+            outw[i] = (uint8_t)(outward >> i & 1u);
+        cylray_points org_s = {qx, qy, qz, NULL};
+        cylray_spawn_stream_side(&P, &sp, spart, outw, &dirs, &org_s, 16);
         /* a leaf of 6 with the cylinder in lane 5 behind five others */
         cylray_leaf16 leaf;
         cylray_cylinder six[6];
@@ -524,13 +547,38 @@ static int run_batched(void)
             cylray_leaf_hit_point16(&leaf, &r1, &h1, lp, &le);
             cylray_leaf_spawn_origin16(&leaf, &h1, lp, le, w[i], lx);
             bad |= !same3(lp, p[i]) || le != err[i] || !same3(lx, x[i]);
+            /* the side forms */
+            float ls[3];
+            cylray_leaf_spawn_origin_side16(&leaf, &h1, lp, le, outward >> i & 1u, w[i], ls);
+            const float s16[3] = {out_s.ox[i], out_s.oy[i], out_s.oz[i]};
+            const float ss[3] = {qx[i], qy[i], qz[i]};
+            bad |= !same3(ls, xs[i]) || !same3(s16, xs[i]) || !same3(ss, xs[i]) ||
+                   out_s.tmin[i] != 0.0f;
+            if (i < 8) {
+                const float s8[3] = {r8s.ox[i], r8s.oy[i], r8s.oz[i]};
+                bad |= !same3(s8, xs[i]);
+            }
+            if (i < 4) {
+                const float s4[3] = {r4s.ox[i], r4s.oy[i], r4s.oz[i]};
+                bad |= !same3(s4, xs[i]);
+            }
+            /* the side w lies on, by a clear margin: the side form is the plain one */
+            double ne[3];
+            sref_normal(&c[i].cyl, p[i], hit.part[i] & CYLRAY_PART_MASK, ne);
+            const double wn = ne[0] * w[i][0] + ne[1] * w[i][1] + ne[2] * w[i][2];
+            if (fabs(wn) > 1e-6) {
+                float xw[3];
+                cylray_spawn_origin_side(&P, p[i], err[i], hit.part[i], wn > 0, w[i], xw);
+                bad |= !same3(xw, x[i]);
+            }
             if (bad) {
                 diff++;
                 fail("batched", &c[i], "a batched form differs from the scalar pair");
             }
         }
     }
-    printf("batched: %ld lanes compared (packets 4/8/16, stream, leaf), %ld differ\n", lanes,
+    printf("batched: %ld lanes compared (packets 4/8/16, stream, leaf; plain and side forms), "
+           "%ld differ\n", lanes,
            diff);
     return diff == 0 && lanes > 0;
 }
@@ -616,6 +664,293 @@ static int run_axis(void)
     return n > 0 && bad == 0;
 }
 
+/* ---- the side form ------------------------------------------------------------- */
+
+/* A hit of the part left at t is premature when the exact ray from x0 meets nothing in
+ * [0, tmax], or meets something first at t_e with t < t_e / 2. */
+static int premature(const cylray_cylinder *cyl, const float x0[3], const float w[3],
+                     float tmax, int left, int hit_part, float t)
+{
+    if ((hit_part & CYLRAY_PART_MASK) != (left & CYLRAY_PART_MASK))
+        return 0;
+    cylref_hit eh;
+    if (cylref_intersect(cyl, x0, w, 0.0f, tmax, 0, &eh) != 1)
+        return 1;
+    return (double)t < 0.5 * eh.t;
+}
+
+/* One case of the side form, from a primary hit (t, part, the kernel's outward normal
+ * n) on every ISA's path: the side from n, the origin strictly there and on w's side of
+ * other near surfaces, and the spawned ray traced on every ISA at widths 4, 8 and 16
+ * and through a leaf. Returns the number of failures; *spawned counts the spawns. */
+static long side_case(const cylgen_case *c, const cylray_prepared *P, float t, int32_t part,
+                      const float n[3], const float w[3], float tmax, long *spawned,
+                      long *too_big)
+{
+    const cylray_cylinder *cyl = &c->cyl;
+    float p[3], err, x0[3];
+    cylray_hit_point(P, c->o, c->d, t, part, p, &err);
+    const double wn = (double)w[0] * n[0] + (double)w[1] * n[1] + (double)w[2] * n[2];
+    const int outward = wn > 0, Pm = part & CYLRAY_PART_MASK;
+    cylray_spawn_origin_side(P, p, err, part, outward, w, x0);
+    double mv = 0;
+    for (int k = 0; k < 3; k++)
+        mv += ((double)x0[k] - p[k]) * ((double)x0[k] - p[k]);
+    if (!(sqrt(mv) <= 0.25 * fmin(cyl->radius, cyl->half_height))) {
+        ++*too_big;
+        return 0;
+    }
+    ++*spawned;
+    long bad = 0;
+    char s[400];
+    const double sig = sref_sigma(cyl, x0, Pm);
+    const unsigned others = near_surfaces(cyl, p, err, Pm) & ~(1u << Pm);
+    if (!(outward ? sig > 0 : sig < 0) || !strictly_on_side(cyl, p, others, w, x0)) {
+        bad++;
+        snprintf(s, sizeof s, "part %d outward %d: origin (%a %a %a) at %g from it", part,
+                 outward, x0[0], x0[1], x0[2], sig);
+        fail("side: wrong side", c, s);
+    }
+    /* the same ray 16 times over, so that every width and lane sees it */
+    float xs[16][3], ws[16][3], tm[16], th[16];
+    int32_t hp[16];
+    for (int i = 0; i < 16; i++)
+        for (int k = 0; k < 3; k++)
+            xs[i][k] = x0[k], ws[i][k] = w[k], tm[i] = tmax;
+    cylray_leaf4 leaf;
+    const int leaf_ok = cylray_leaf_prepare4(&leaf, cyl, NULL, 1) == CYLRAY_OK;
+    for (int k = 0; k < nisa; k++) {
+        for (int width = 4; width <= 16; width *= 2) {
+            const uint32_t lanes = width == 16 ? 0xffffu : (1u << width) - 1u;
+            uint32_t got = trace16(isas[k], width, P, (const float(*)[3])xs,
+                                   (const float(*)[3])ws, tm, lanes, th, hp);
+            for (int i = 0; i < width; i++)
+                if ((got >> i & 1u) && premature(cyl, x0, w, tmax, part, hp[i], th[i])) {
+                    bad++;
+                    snprintf(s, sizeof s,
+                             "%s width %d lane %d: part %d outward %d left at (%a %a %a), "
+                             "spawned (%a %a %a) w (%a %a %a), hit part %d at t %a",
+                             isas[k]->name, width, i, part, outward, p[0], p[1], p[2], x0[0],
+                             x0[1], x0[2], w[0], w[1], w[2], hp[i], th[i]);
+                    fail("side: self-hit", c, s);
+                    break;
+                }
+        }
+        if (leaf_ok) {
+            cylray_ray1 r1 = {{x0[0], x0[1], x0[2]}, {w[0], w[1], w[2]}, 0.0f, tmax};
+            cylray_hit1 h1;
+            if (isas[k]->leaf_intersect4(&leaf, &r1, &h1, 0) &&
+                premature(cyl, x0, w, tmax, part, h1.part, h1.t)) {
+                bad++;
+                snprintf(s, sizeof s, "%s leaf: hit part %d at t %a", isas[k]->name,
+                         (int)h1.part, h1.t);
+                fail("side: self-hit", c, s);
+            }
+        }
+    }
+    return bad;
+}
+
+/* The two far rods: shadow rays whose kernel normal gives cos +0.0012 and whose exact
+ * normal at the rounded point -0.0007; the primary hit on every ISA, by packet, leaf and
+ * stream. */
+static long side_far_rods(long *spawned, long *too_big)
+{
+    static const struct {
+        float c[3], a[3], R, H, o[3], d[3], w[3];
+    } rods[2] = {
+        {{0x1.3875fp+13f, 0x1.3889cp+13f, 0x1.387cfap+13f},
+         {0x1.84198p+7f, 0x1.d021cp+9f, -0x1.3d4ap+8f}, 0x1.99999ap-5f, 0x1.f40012p+8f,
+         {0x1.3892eap+13f, 0x1.38a57cp+13f, 0x1.38a7d6p+13f},
+         {-0x1.00ae34p-1f, -0x1.1a93f2p-1f, -0x1.552ffap-1f},
+         {0x1.165p+3f, -0x1.9cp-1f, 0x1.5d28p+3f}},
+        {{0x1.38834p+13f, 0x1.3883c4p+13f, 0x1.38798cp+13f},
+         {0x1.e58b2p+9f, 0x1.6767p+6f, -0x1.ba588p+7f}, 0x1.99999ap-5f, 0x1.f40006p+8f,
+         {0x1.3892eap+13f, 0x1.38a57cp+13f, 0x1.38a7d6p+13f},
+         {-0x1.0ffb68p-1f, -0x1.15e316p-1f, -0x1.4d16e4p-1f},
+         {0x1.257p+3f, -0x1.3f8p-1f, 0x1.62e8p+3f}},
+    };
+    long bad = 0;
+    for (int r = 0; r < 2; r++) {
+        cylgen_case c;
+        memset(&c, 0, sizeof c);
+        for (int k = 0; k < 3; k++) {
+            c.cyl.center[k] = rods[r].c[k], c.cyl.axis[k] = rods[r].a[k];
+            c.o[k] = rods[r].o[k], c.d[k] = rods[r].d[k];
+        }
+        c.cyl.radius = rods[r].R, c.cyl.half_height = rods[r].H, c.cyl.flags = CYLRAY_CAPPED;
+        c.tmin = 0, c.tmax = INFINITY;
+        cylray_prepared P;
+        cylray_leaf8 leaf;
+        if (cylray_prepare(&P, &c.cyl) != CYLRAY_OK ||
+            cylray_leaf_prepare8(&leaf, &c.cyl, NULL, 1) != CYLRAY_OK) {
+            fail("side: far rods", &c, "refused");
+            bad++;
+            continue;
+        }
+        for (int k = 0; k < nisa; k++)
+            for (int form = 0; form < 3; form++) {
+                float t = 0, n[3] = {0, 0, 0};
+                int32_t part = 0;
+                int got = 0;
+                if (form == 0) {
+                    cylray_ray8 ray;
+                    cylray_hit8 hit;
+                    memset(&ray, 0, sizeof ray);
+                    for (int i = 0; i < 8; i++) {
+                        ray.ox[i] = c.o[0], ray.oy[i] = c.o[1], ray.oz[i] = c.o[2];
+                        ray.dx[i] = c.d[0], ray.dy[i] = c.d[1], ray.dz[i] = c.d[2];
+                        ray.tmax[i] = INFINITY;
+                    }
+                    got = isas[k]->intersect8(&P, &ray, &hit, 1u << (k % 8), CYLRAY_NORMAL) != 0;
+                    const int i = k % 8;
+                    t = hit.t[i], part = hit.part[i];
+                    n[0] = hit.nx[i], n[1] = hit.ny[i], n[2] = hit.nz[i];
+                } else if (form == 1) {
+                    cylray_ray1 r1 = {{c.o[0], c.o[1], c.o[2]}, {c.d[0], c.d[1], c.d[2]}, 0,
+                                      INFINITY};
+                    cylray_hit1 h1;
+                    got = isas[k]->leaf_intersect8(&leaf, &r1, &h1, CYLRAY_NORMAL);
+                    t = h1.t, part = h1.part;
+                    memcpy(n, h1.n, sizeof n);
+                } else {
+                    float tmax = INFINITY, tmin = 0, ht = 0, nx = 0, ny = 0, nz = 0;
+                    int32_t hpart = 0;
+                    cylray_rays rs = {&c.o[0], &c.o[1], &c.o[2], &c.d[0], &c.d[1], &c.d[2],
+                                      &tmin, &tmax};
+                    cylray_hits hs = {&ht, &nx, &ny, &nz, &hpart};
+                    got = isas[k]->intersect_stream(&P, &rs, &hs, 1, CYLRAY_NORMAL) == 1;
+                    t = ht, part = hpart, n[0] = nx, n[1] = ny, n[2] = nz;
+                }
+                if (!got || part != CYLRAY_SIDE) {
+                    bad++;
+                    fail("side: far rods", &c, "the primary ray does not hit the side");
+                    continue;
+                }
+                long sp = *spawned, tb = *too_big;
+                bad += side_case(&c, &P, t, part, n, rods[r].w, 1.0f, spawned, too_big);
+                bad += side_case(&c, &P, t, part, n, rods[r].w, INFINITY, spawned, too_big);
+                if (*too_big != tb || *spawned != sp + 2) {
+                    bad++;
+                    fail("side: far rods", &c, "outside the guarantee's condition");
+                }
+            }
+    }
+    return bad;
+}
+
+static int run_side(void)
+{
+    long spawned = 0, too_big = 0, bad = side_far_rods(&spawned, &too_big);
+    const long far_spawned = spawned, far_bad = bad;
+    printf("side: far rods: %ld spawns (2 rods x %d ISAs x packet, leaf, stream x tmax 1, "
+           "inf), %ld failures\n", far_spawned, nisa, far_bad);
+    const long G = groups_for(20000);
+    cylgen_rng rng;
+    cylgen_seed(&rng, 31337);
+    long grazing = 0, disagree = 0;
+    for (long g = 0; g < G; g++) {
+        const int cat = (int)(g % SREF_COUNT);
+        cylgen_case c[SREF_GROUP];
+        sref_group(cat, 70000 + (uint64_t)g, c);
+        cylray_prepared P;
+        if (cylray_prepare(&P, &c[0].cyl) != CYLRAY_OK)
+            continue;
+        cylray_ray16 ray;
+        cylray_hit16 hit;
+        memset(&ray, 0, sizeof ray);
+        memset(&hit, 0, sizeof hit);
+        for (int i = 0; i < SREF_GROUP; i++) {
+            ray.ox[i] = c[i].o[0], ray.oy[i] = c[i].o[1], ray.oz[i] = c[i].o[2];
+            ray.dx[i] = c[i].d[0], ray.dy[i] = c[i].d[1], ray.dz[i] = c[i].d[2];
+            ray.tmin[i] = c[i].tmin, ray.tmax[i] = c[i].tmax;
+        }
+        uint32_t m = isas[g % nisa]->intersect16(&P, &ray, &hit, 0xffffu, CYLRAY_NORMAL);
+        for (int i = 0; i < SREF_GROUP; i++) {
+            if (!(m >> i & 1u))
+                continue;
+            const float n[3] = {hit.nx[i], hit.ny[i], hit.nz[i]};
+            const double nd[3] = {n[0], n[1], n[2]};
+            /* grazing the kernel's tangent plane on either side, 1e-7-1e-2 rad (or along
+             * it), one in five; otherwise anywhere on that side */
+            float w[3];
+            sref_direction(&rng, nd, (g + i) & 1 ? 1 : -1, w);
+            const double wn = (double)w[0] * n[0] + (double)w[1] * n[1] + (double)w[2] * n[2];
+            const double wl = sqrt((double)w[0] * w[0] + (double)w[1] * w[1] + (double)w[2] * w[2]);
+            grazing += fabs(wn) < 1e-2 * wl;
+            double ne[3];
+            float p[3], err;
+            cylray_hit_point(&P, c[i].o, c[i].d, hit.t[i], hit.part[i], p, &err);
+            sref_normal(&c[i].cyl, p, hit.part[i] & CYLRAY_PART_MASK, ne);
+            disagree += (wn > 0) != (ne[0] * w[0] + ne[1] * w[1] + ne[2] * w[2] > 0);
+            bad += side_case(&c[i], &P, hit.t[i], hit.part[i], n, w,
+                             (g + i) % 3 ? INFINITY : 1.0f, &spawned, &too_big);
+        }
+    }
+    printf("side: %ld spawns traced on %d ISAs (widths 4, 8, 16 and a leaf), %ld grazing, %ld "
+           "whose kernel normal and exact normal at p disagree on w's side; %ld outside the "
+           "guarantee (offset > min(R, H)/4); %ld failures\n",
+           spawned, nisa, grazing, disagree, too_big, bad);
+    return bad == 0 && spawned > far_spawned;
+}
+
+/* ---- rounding to float --------------------------------------------------------- */
+
+static uint64_t rng_next(uint64_t *s)
+{
+    *s += 0x9e3779b97f4a7c15ull;
+    uint64_t z = *s;
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    return z ^ (z >> 31);
+}
+
+/* cylray_round_float_(x, 0) against the conversion on random doubles of every
+ * magnitude a float reaches (subnormals, ties, overflow), and (hi, lo) against an exact
+ * tie-break: hi a midpoint between two floats, lo of either sign. */
+static int run_round(void)
+{
+    const long N = quick ? 200000 : 20000000;
+    long bad = 0, ties = 0;
+    uint64_t s = 12345;
+    for (long i = 0; i < N; i++) {
+        uint64_t r = rng_next(&s), b;
+        /* exponents from 2^-160 to 2^130; every third a float or a midpoint */
+        const int ex = (int)(r % 291) - 160;
+        b = ((uint64_t)(ex + 1023) << 52) | (rng_next(&s) & 0xfffffffffffffull);
+        if (i % 3 == 1)
+            b &= ~((1ull << 28) - 1) | (1ull << 28);
+        else if (i % 3 == 2)
+            b = (b & ~((1ull << 29) - 1)) | (1ull << 28); /* a midpoint of normal floats */
+        b |= (r >> 63) << 63;
+        double x;
+        memcpy(&x, &b, sizeof x);
+        volatile float ref = (float)x;
+        float got = cylray_round_float_(x, 0);
+        if (memcmp(&got, (const void *)&ref, sizeof got) != 0) {
+            if (bad++ < 10)
+                fprintf(stderr, "round: %a gives %a, the conversion %a\n", x, (double)got,
+                        (double)ref);
+        }
+        /* a tie broken by lo: the nearest float on lo's side of the midpoint */
+        if (i % 3 == 2 && ex > -126 && ex < 127) {
+            const double lo = ldexp(x, -60) * ((r >> 7 & 1) ? 1 : -1);
+            const float up = cylray_round_float_(x, fabs(lo) * (x > 0 ? 1 : -1));
+            const float dn = cylray_round_float_(x, -fabs(lo) * (x > 0 ? 1 : -1));
+            /* exact: the floats on each side of x, by magnitude */
+            const double a = fabs((double)up), c = fabs((double)dn);
+            ties++;
+            if (!(a > fabs(x) && c < fabs(x) && a - fabs(x) == fabs(x) - c)) {
+                if (bad++ < 10)
+                    fprintf(stderr, "round: tie %a: up %a down %a\n", x, (double)up,
+                            (double)dn);
+            }
+        }
+    }
+    printf("round: %ld doubles, %ld ties broken by a low part, %ld wrong\n", N, ties, bad);
+    return bad == 0;
+}
+
 int main(int argc, char **argv)
 {
     const char *q = getenv("CYLRAY_TEST_QUICK");
@@ -637,8 +972,12 @@ int main(int argc, char **argv)
         ok = run_batched();
     else if (strcmp(mode, "axis") == 0)
         ok = run_axis();
+    else if (strcmp(mode, "side") == 0)
+        ok = run_side();
+    else if (strcmp(mode, "round") == 0)
+        ok = run_round();
     else {
-        fprintf(stderr, "usage: spawn_test bounds|self|nested|batched|axis\n");
+        fprintf(stderr, "usage: spawn_test bounds|self|nested|batched|axis|side|round\n");
         return 2;
     }
     printf("%s: %s\n", mode, ok ? "ok" : "FAILED");
