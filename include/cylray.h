@@ -503,6 +503,90 @@ CYLRAY_API const cylray_kernels *cylray_kernels_best(void);
 /* "scalar", "sse41", "avx2", "avx512", "neon"; "unknown" out of range. */
 CYLRAY_API const char *cylray_isa_name(cylray_isa isa);
 
+/* ---- bounds ---------------------------------------------------------------- */
+
+/* The box of the exact cylinder that cylray_prepare derived (the floats given are the
+ * geometry): the box of its two rims, which holds the side and the discs whatever the
+ * caps. Coordinate k spans center_k -+ (H |n_k| + R sqrt(1 - n_k^2)), n the unit axis,
+ * evaluated to about 2^-100 and rounded outward: no face lies inside the exact box,
+ * and each is the nearest float outside it or the next one (the smallest float box,
+ * exactly, when the axis lies along a coordinate axis). Only where a face's exact
+ * value cancels to below 2^-70 of |center_k| + the extent may it lie further out, by at
+ * most 2^-95 of that. Returns CYLRAY_EINVAL and writes nothing for an infinite
+ * cylinder (it has no box), a NULL pointer, or a cyl cylray_prepare did not fill. */
+CYLRAY_API cylray_status cylray_bounds(const cylray_prepared *cyl, float lo[3], float hi[3]);
+/* The box of a leaf's used lanes (the union of their cylray_bounds boxes); CYLRAY_EINVAL
+ * and nothing written when a lane is infinite or no lane is used. */
+CYLRAY_API cylray_status cylray_leaf_bounds4(const cylray_leaf4 *leaf, float lo[3],
+                                             float hi[3]);
+CYLRAY_API cylray_status cylray_leaf_bounds8(const cylray_leaf8 *leaf, float lo[3],
+                                             float hi[3]);
+CYLRAY_API cylray_status cylray_leaf_bounds16(const cylray_leaf16 *leaf, float lo[3],
+                                              float hi[3]);
+
+/* Boxes along a long cylinder, for a BVH builder: a rod tilted off the coordinate axes
+ * fills a box far wider than itself, so every ray through that box visits it. Slice i of
+ * k (0 <= i < k) is the part of the cylinder between the discs at axial coordinates
+ * H q_i and H q_(i+1), q_i = (2i - k) / k rounded once to double; its box is that of
+ * the two discs' rims (a disc's box: center + t n -+ R sqrt(1 - n_k^2) per coordinate),
+ * rounded outward as cylray_bounds rounds (one float step beyond the nearest, at most).
+ * Neighbouring slices share their disc exactly, so the k boxes together hold every
+ * point of the cylinder. Every box stands for the whole cylinder: a tracer that meets
+ * two of them intersects the same cylinder twice and keeps one hit through tmax.
+ *
+ * k = 0 chooses k by a rule of the shape: the smallest k at which, in each coordinate
+ * j but the one the axis is closest to, a slice's extent from the tilt (2H |n_j| / k) is
+ * at most its extent from the radius (2R sqrt(1 - n_j^2)), so that each box is at most
+ * twice the rod's width across; at least 1 (a cylinder along a coordinate axis: 1) and
+ * at most CYLRAY_SPLIT_MAX. Writes k boxes to lo[0..k), hi[0..k) and returns k; with
+ * lo or hi NULL, writes nothing and returns the k it would use. Returns 0 and writes
+ * nothing for an infinite cylinder or a cyl cylray_prepare did not fill. */
+#define CYLRAY_SPLIT_MAX 32
+CYLRAY_API size_t cylray_split_boxes(const cylray_prepared *cyl, size_t k, float (*lo)[3],
+                                     float (*hi)[3]);
+
+/* ---- surface coordinates --------------------------------------------------------- */
+
+/* Surface coordinates at a point p of `part` (CYLRAY_BACKFACE is ignored), for a hit
+ * point from cylray_hit_point or o + t d, measured in the frame every user and binding
+ * can build alike: n the unit axis (the axis given, from the low end to the high end,
+ * p0 to p1 of cylray_cylinder_from_endpoints), and (b1, b2) the orthonormal basis of
+ * Duff et al., "Building an Orthonormal Basis, Revisited" (JCGT 2017), from n with the
+ * sign s = +1 where n_z >= 0 (a zero of either sign) and -1 otherwise:
+ *     a = -1 / (s + n_z), b = n_x n_y a,
+ *     b1 = (1 + s n_x^2 a, s b, -s n_x), b2 = (b, s + n_y^2 a, -n_y).
+ * With r = p - center, z = r.n and the azimuth phi = atan2(r.b2, r.b1):
+ *   side:  u = (z + H) / 2H, 0 at the low end and 1 at the high end (an infinite
+ *          cylinder: u = z, the signed axial distance from the center); v = phi / 2pi
+ *          wrapped to [0, 1); dpdu = 2H n (infinite: n); dpdv = 2pi R (-sin(phi) b1 +
+ *          cos(phi) b2).
+ *   discs: u = 0 (CYLRAY_CAP_LO) or 1 (CYLRAY_CAP_HI); v = phi / 2pi as on the side;
+ *          the disc's radial coordinate w = rho / R in [0, 1] (rho the distance from the
+ *          axis) takes the place of u in the derivatives: dpdu = dp/dw = R (cos(phi) b1 +
+ *          sin(phi) b2), outward, and dpdv = 2pi rho (-sin(phi) b1 + cos(phi) b2), so w
+ *          = |dpdv| / (2pi R).
+ * On the axis (rho = 0) phi is 0: v = 0, and a disc's dpdv is 0 and its dpdu R b1.
+ * A v whose value rounds to 1 is given as the float below 1.
+ * Accuracy: u and v are the exact values at p (the float point as given) to within one
+ * float ulp plus 2^-90 |r| / 2H (u; infinite: 2^-90 |r|) and 2^-90 |r| / rho (v); dpdu
+ * and dpdv to within 2^-20 of their length (those that turn with phi: where rho >
+ * 2^-60 |r|, short of which phi says little). Any of uv, dpdu, dpdv may be NULL: it is not
+ * written, and what only it needs is not computed. Nothing is written for a part other
+ * than SIDE, CAP_LO and CAP_HI, or a cyl cylray_prepare did not fill. */
+CYLRAY_API void cylray_surface(const cylray_prepared *cyl, const float p[3], int32_t part,
+                               float uv[2], float dpdu[3], float dpdv[3]);
+/* The same for the hit a leaf query returned (hit->lane and hit->part name the cylinder
+ * and the part); nothing is written for a lane the leaf does not use. */
+CYLRAY_API void cylray_leaf_surface4(const cylray_leaf4 *leaf, const cylray_hit1 *hit,
+                                     const float p[3], float uv[2], float dpdu[3],
+                                     float dpdv[3]);
+CYLRAY_API void cylray_leaf_surface8(const cylray_leaf8 *leaf, const cylray_hit1 *hit,
+                                     const float p[3], float uv[2], float dpdu[3],
+                                     float dpdv[3]);
+CYLRAY_API void cylray_leaf_surface16(const cylray_leaf16 *leaf, const cylray_hit1 *hit,
+                                      const float p[3], float uv[2], float dpdu[3],
+                                      float dpdv[3]);
+
 #ifdef __cplusplus
 }
 #endif

@@ -1,0 +1,139 @@
+/* SPDX-License-Identifier: MIT */
+/* surface.c - surface coordinates (u, v) and their derivatives at a point of a cylinder. */
+#include "cylray_internal.h"
+#include "dd.h"
+
+#define TWO_PI 6.283185307179586476925
+
+/* The geometry surface_at needs, from a prepared cylinder or a leaf lane. */
+typedef struct surf_cyl {
+    float c[3], v[3];
+    double R, H; /* H: INFINITY when infinite */
+} surf_cyl;
+
+/* The largest float below 1: where v rounds up to 1, it stays in [0, 1). */
+#define BELOW_ONE 0x1.fffffep-1f
+
+static void surface_at(const surf_cyl *s, const float p[3], int32_t part, float uv[2],
+                       float dpdu[3], float dpdv[3])
+{
+    part &= CYLRAY_PART_MASK;
+    if (part != CYLRAY_SIDE && part != CYLRAY_CAP_LO && part != CYLRAY_CAP_HI)
+        return;
+    /* The unit axis as a double-double; exact along a coordinate axis. */
+    cylray_dd n[3];
+    int zeros = (s->v[0] == 0) + (s->v[1] == 0) + (s->v[2] == 0);
+    if (zeros == 2) {
+        for (int k = 0; k < 3; k++)
+            n[k] = dd_make(s->v[k] == 0 ? 0.0 : s->v[k] > 0 ? 1.0 : -1.0, 0.0);
+    } else {
+        cylray_dd vv = dd_make(0.0, 0.0);
+        for (int k = 0; k < 3; k++)
+            vv = dd_add(vv, dd_two_prod(s->v[k], s->v[k]));
+        cylray_dd sv = dd_sqrt(vv);
+        for (int k = 0; k < 3; k++)
+            n[k] = dd_div(dd_make(s->v[k], 0.0), sv);
+    }
+    const int side = part == CYLRAY_SIDE, finite = isfinite(s->H);
+    if (dpdu && side)
+        for (int k = 0; k < 3; k++)
+            dpdu[k] = (float)((finite ? 2.0 * s->H : 1.0) * n[k].hi);
+    if (uv && !side)
+        uv[0] = part == CYLRAY_CAP_HI ? 1.0f : 0.0f;
+    if (!uv && !dpdv && !(dpdu && !side))
+        return;
+    /* p - c is exact as a double-double. */
+    cylray_dd r[3];
+    for (int k = 0; k < 3; k++)
+        r[k] = dd_two_sum(p[k], -(double)s->c[k]);
+    if (uv && side) {
+        cylray_dd z = dd_make(0.0, 0.0);
+        for (int k = 0; k < 3; k++)
+            z = dd_add(z, dd_mul(r[k], n[k]));
+        if (finite)
+            z = dd_div(dd_add(z, dd_make(s->H, 0.0)), dd_make(2.0 * s->H, 0.0));
+        uv[0] = (float)(z.hi + z.lo);
+    }
+    /* The frame of Duff et al. (JCGT 2017) with s = +1 where n_z >= 0, a zero of either
+     * sign included: s + n_z never cancels, and every user builds the same frame. */
+    double sg = n[2].hi >= 0 ? 1.0 : -1.0;
+    cylray_dd a = dd_div(dd_make(-1.0, 0.0), dd_add(dd_make(sg, 0.0), n[2]));
+    cylray_dd b = dd_mul(dd_mul(n[0], n[1]), a);
+    cylray_dd b1[3] = {dd_add(dd_make(1.0, 0.0), dd_mul_d(dd_mul(dd_mul(n[0], n[0]), a), sg)),
+                       dd_mul_d(b, sg), dd_mul_d(n[0], -sg)};
+    cylray_dd b2[3] = {b, dd_add(dd_make(sg, 0.0), dd_mul(dd_mul(n[1], n[1]), a)),
+                       dd_neg(n[1])};
+    /* The coordinates of p - c in the frame, good to 2^-100 |p - c|. */
+    cylray_dd X = dd_make(0.0, 0.0), Y = X;
+    for (int k = 0; k < 3; k++) {
+        X = dd_add(X, dd_mul(r[k], b1[k]));
+        Y = dd_add(Y, dd_mul(r[k], b2[k]));
+    }
+    const double x = X.hi + X.lo, y = Y.hi + Y.lo, rho = hypot(x, y);
+    /* cos and sin of the azimuth; on the axis the azimuth is 0 */
+    double co = rho > 0 ? x / rho : 1.0, si = rho > 0 ? y / rho : 0.0;
+    if (uv) {
+        double t = rho > 0 ? atan2(y, x) / TWO_PI : 0.0;
+        if (t < 0)
+            t += 1.0;
+        float f = (float)t + 0.0f; /* + 0: no -0 */
+        uv[1] = f < 1.0f ? f : BELOW_ONE;
+    }
+    if (side) {
+        if (dpdv)
+            for (int k = 0; k < 3; k++)
+                dpdv[k] = (float)(TWO_PI * s->R * (co * b2[k].hi - si * b1[k].hi));
+        return;
+    }
+    /* A disc: the radial coordinate w = rho / R in [0, 1] with v the azimuth. */
+    if (dpdu)
+        for (int k = 0; k < 3; k++)
+            dpdu[k] = (float)(s->R * (co * b1[k].hi + si * b2[k].hi));
+    if (dpdv)
+        for (int k = 0; k < 3; k++)
+            dpdv[k] = (float)(TWO_PI * rho * (co * b2[k].hi - si * b1[k].hi));
+}
+
+void cylray_surface(const cylray_prepared *cyl, const float p[3], int32_t part, float uv[2],
+                    float dpdu[3], float dpdv[3])
+{
+    if (!cylray_prepared_ok_(cyl) || !p)
+        return;
+    surf_cyl s;
+    for (int k = 0; k < 3; k++) {
+        s.c[k] = cyl->c[k];
+        s.v[k] = cyl->v[k];
+    }
+    s.R = cyl->radius;
+    s.H = cyl->kind == CYLRAY_KIND_INFINITE ? INFINITY : cyl->half_height;
+    surface_at(&s, p, part, uv, dpdu, dpdv);
+}
+
+static void leaf_surface(const float *geom, const uint32_t *meta, unsigned m,
+                         const cylray_hit1 *hit, const float p[3], float uv[2], float dpdu[3],
+                         float dpdv[3])
+{
+    if (!hit || !p || hit->lane >= m || !((meta[CYLRAY_LM_USED] >> hit->lane) & 1u))
+        return;
+    const unsigned i = hit->lane;
+    surf_cyl s;
+    for (int k = 0; k < 3; k++) {
+        s.c[k] = geom[(CYLRAY_LF_CX + k) * m + i];
+        s.v[k] = geom[(CYLRAY_LF_VX + k) * m + i];
+    }
+    s.R = geom[CYLRAY_LF_R * m + i];
+    s.H = geom[CYLRAY_LF_H * m + i];
+    surface_at(&s, p, hit->part, uv, dpdu, dpdv);
+}
+
+#define LEAF_SURFACE_(m)                                                                \
+    void cylray_leaf_surface##m(const cylray_leaf##m *leaf, const cylray_hit1 *hit,     \
+                                const float p[3], float uv[2], float dpdu[3],           \
+                                float dpdv[3])                                          \
+    {                                                                                   \
+        if (leaf)                                                                       \
+            leaf_surface(&leaf->geom_[0][0], leaf->meta_, m, hit, p, uv, dpdu, dpdv);   \
+    }
+LEAF_SURFACE_(4)
+LEAF_SURFACE_(8)
+LEAF_SURFACE_(16)
