@@ -79,40 +79,32 @@ static uint32_t brute(const float o[3], const float d[3], float tmin, float tmax
     return best;
 }
 
-/* u and v of a hit against their definitions, in double. */
+/* u and v of a hit: those cylray_surface gives at the hit point o + t d (the part from
+ * the normal: a disc's is the axis), within the rounding of that point and of the
+ * adapter's azimuth; any v at the centre of a disc. */
 static int uv_ok(uint32_t prim, const float o[3], const float d[3], float t, const float ng[3],
                  float u, float v)
 {
     const float *p0 = S->p0[prim], *p1 = S->p1[prim];
-    double a[3], aa = 0, q[3], s = 0;
-    for (int k = 0; k < 3; k++) {
+    double a[3], aa = 0;
+    for (int k = 0; k < 3; k++)
         a[k] = (double)p1[k] - p0[k], aa += a[k] * a[k];
-        q[k] = (double)o[k] + (double)t * d[k] - p0[k];
-        s += q[k] * a[k];
-    }
-    double l = sqrt(aa), n[3] = {a[0] / l, a[1] / l, a[2] / l};
-    double cap = ng[0] * n[0] + ng[1] * n[1] + ng[2] * n[2];
-    double uu = fmin(1, fmax(0, s / aa));
-    if (fabs(cap) > 0.5) {
-        if (u != (cap > 0 ? 1.0f : 0.0f))
-            return 0;
-    } else if (fabs(u - uu) > 1e-5) {
+    double cap = (ng[0] * a[0] + ng[1] * a[1] + ng[2] * a[2]) / sqrt(aa);
+    int32_t part = cap > 0.5 ? CYLRAY_CAP_HI : cap < -0.5 ? CYLRAY_CAP_LO : CYLRAY_SIDE;
+    float p[3] = {o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2]}, uv[2] = {-1, -1};
+    float dpdu[3], dpdv[3];
+    cylray_surface(&PREP[prim], p, part, uv, dpdu, dpdv);
+    if (part != CYLRAY_SIDE ? u != uv[0] : fabsf(u - uv[0]) > 1e-5f)
         return 0;
-    }
-    double sg = n[2] >= 0 ? 1 : -1, c = -1 / (sg + n[2]), b = n[0] * n[1] * c;
-    double b1[3] = {1 + sg * n[0] * n[0] * c, sg * b, -sg * n[0]};
-    double b2[3] = {b, sg + n[1] * n[1] * c, -n[1]};
-    double r[3], ax = s / l, x = 0, y = 0, rr = 0;
-    for (int k = 0; k < 3; k++) {
-        r[k] = q[k] - ax * n[k];
-        x += r[k] * b1[k], y += r[k] * b2[k], rr += r[k] * r[k];
-    }
-    if (sqrt(rr) < 1e-3 * S->radius) /* the centre of a disc: any azimuth */
-        return v >= 0 && v < 1;
-    double vv = atan2(y, x) / (2 * 3.14159265358979323846);
-    vv -= floor(vv);
-    double dv = fabs(vv - v);
-    return v >= 0 && v < 1 && fmin(dv, 1 - dv) <= 1e-4;
+    if (!(v >= 0 && v < 1))
+        return 0;
+    /* the radial distance: |dpdv| / 2pi on a disc, R on the side */
+    double rho = sqrt((double)dpdv[0] * dpdv[0] + (double)dpdv[1] * dpdv[1] +
+                      (double)dpdv[2] * dpdv[2]) / (2 * 3.14159265358979323846);
+    if (rho < 1e-3 * S->radius)
+        return 1;
+    double dv = fabs((double)v - uv[1]);
+    return fmin(dv, 1 - dv) <= 1e-4;
 }
 
 static int check(const char *what, const eb_rays *r, const float *tfar0, const uint8_t *valid0,

@@ -90,25 +90,19 @@ static void frame_init(frame *f, const float p0[3], const float p1[3])
     f->pieces = 1;
 }
 
-/* A box around the stretch [ua, ub] of the axis (0 at p0, 1 at p1) with radius R: the
- * hull of the two discs there, padded by more than the rounding of its floats. */
-static void stretch_box(const frame *f, float R, double ua, double ub, struct RTCBounds *b)
+static void set_box(struct RTCBounds *b, const float lo[3], const float hi[3], float pad)
 {
-    double aa = 0, a[3];
-    for (int k = 0; k < 3; k++)
-        a[k] = f->a[k], aa += a[k] * a[k];
+    b->lower_x = lo[0] - pad, b->lower_y = lo[1] - pad, b->lower_z = lo[2] - pad;
+    b->upper_x = hi[0] + pad, b->upper_y = hi[1] + pad, b->upper_z = hi[2] + pad;
+    b->align0 = b->align1 = 0;
+}
+
+/* The box of the whole cylinder: cylray_bounds, the exact box rounded outward. */
+static void whole_box(const cylray_prepared *p, struct RTCBounds *b)
+{
     float lo[3], hi[3];
-    for (int k = 0; k < 3; k++) {
-        /* a disc of radius R perpendicular to a reaches R sqrt(1 - a_k^2/|a|^2) along k */
-        double e = R * sqrt(fmax(0.0, 1 - a[k] * a[k] / aa)) * (1 + 0x1p-18);
-        double x0 = f->p0[k] + ua * a[k], x1 = f->p0[k] + ub * a[k];
-        double mn = fmin(x0, x1) - e, mx = fmax(x0, x1) + e;
-        double pad = 0x1p-20 * fmax(fabs(mn), fabs(mx)) + 0x1p-20 * R;
-        lo[k] = nextafterf((float)(mn - pad), -INFINITY);
-        hi[k] = nextafterf((float)(mx + pad), INFINITY);
-    }
-    b->lower_x = lo[0], b->lower_y = lo[1], b->lower_z = lo[2], b->align0 = 0;
-    b->upper_x = hi[0], b->upper_y = hi[1], b->upper_z = hi[2], b->align1 = 0;
+    cylray_bounds(p, lo, hi);
+    set_box(b, lo, hi, 0);
 }
 
 /* How many boxes a cylinder gets with CYLRAY_EMBREE_SPLIT: its single box is wider
@@ -702,7 +696,7 @@ static int group_leaves(ceb *g, RTCDevice dev, const cylray_cylinder *cyl)
     if (prims && c.order && c.first && c.count) {
         for (size_t i = 0; i < n; i++) {
             struct RTCBounds b;
-            stretch_box(&g->fr[i], cyl[i].radius, 0, 1, &b);
+            whole_box(&g->prep[i], &b);
             prims[i] = (struct RTCBuildPrimitive){b.lower_x, b.lower_y, b.lower_z, 0,
                                                   b.upper_x, b.upper_y, b.upper_z, (unsigned)i};
         }
@@ -733,7 +727,7 @@ static int group_leaves(ceb *g, RTCDevice dev, const cylray_cylinder *cyl)
             /* the builder reorders prims in place: the boxes are made again */
             for (size_t j = 0; j < c.count[l]; j++) {
                 struct RTCBounds b;
-                stretch_box(&g->fr[ids[j]], cyl[ids[j]].radius, 0, 1, &b);
+                whole_box(&g->prep[ids[j]], &b);
                 if (j == 0)
                     g->box[l] = b;
                 box_union(&g->box[l], &b);
@@ -766,33 +760,47 @@ static int make_boxes(ceb *g, const cylray_cylinder *cyl)
         return -1;
     if (total == g->n) {
         for (size_t i = 0; i < g->n; i++)
-            stretch_box(&g->fr[i], cyl[i].radius, 0, 1, &g->box[i]);
+            whole_box(&g->prep[i], &g->box[i]);
         return 0;
     }
     g->prim_cyl = malloc(total * sizeof *g->prim_cyl);
     g->prim_piece = malloc(total * sizeof *g->prim_piece);
-    if (!g->prim_cyl || !g->prim_piece)
-        return -1;
+    float(*lo)[3] = malloc(CEB_MAX_PIECES * sizeof *lo);
+    float(*hi)[3] = malloc(CEB_MAX_PIECES * sizeof *hi);
+    int bad = !g->prim_cyl || !g->prim_piece || !lo || !hi;
     size_t p = 0;
-    for (size_t i = 0; i < g->n; i++) {
+    for (size_t i = 0; !bad && i < g->n; i++) {
         const frame *f = &g->fr[i];
         uint32_t K = f->pieces;
-        /* u of a hit is rounded, and so is the hit point it comes from: each box reaches
-         * beyond its stretch by more than both (world units over the length) */
-        double aa = 0, big = 0;
-        for (int k = 0; k < 3; k++) {
-            aa += (double)f->a[k] * f->a[k];
-            big = fmax(big, fabs(f->p0[k]) + fabs(f->a[k]));
+        if (K == 1) {
+            whole_box(&g->prep[i], &g->box[p]);
+            g->prim_cyl[p] = (uint32_t)i;
+            g->prim_piece[p++] = 0;
+            continue;
         }
-        double L = sqrt(aa), pad = (0x1p-16 * (big + L) + 0x1p-10 * cyl[i].radius) / L;
+        /* cylray_split_boxes' slice k holds the stretch u in [k/K, (k+1)/K] exactly; a
+         * hit is owned by the slice its rounded u falls in, so each box reaches beyond
+         * its stretch by more than that rounding and the hit point's: 2^-16 of the
+         * coordinates and the length, in every direction */
+        double big = 0, L = 0;
+        for (int k = 0; k < 3; k++) {
+            big = fmax(big, fabs(f->p0[k]) + fabs(f->a[k]));
+            L += (double)f->a[k] * f->a[k];
+        }
+        float pad = (float)(0x1p-16 * (big + sqrt(L)) + 0x1p-10 * cyl[i].radius);
+        if (cylray_split_boxes(&g->prep[i], K, lo, hi) != K) {
+            bad = 1;
+            break;
+        }
         for (uint32_t k = 0; k < K; k++, p++) {
-            double ua = (double)k / K - pad, ub = (double)(k + 1) / K + pad;
-            stretch_box(f, cyl[i].radius, k == 0 ? 0 : ua, k + 1 == K ? 1 : ub, &g->box[p]);
+            set_box(&g->box[p], lo[k], hi[k], pad);
             g->prim_cyl[p] = (uint32_t)i;
             g->prim_piece[p] = k;
         }
     }
-    return 0;
+    free(lo);
+    free(hi);
+    return bad ? -1 : 0;
 }
 
 /* ---- the public calls ----------------------------------------------------------- */
