@@ -134,6 +134,14 @@ CYLRAY_EMBREE_API int cylray_embree_spawn_origin(RTCGeometry geometry, unsigned 
                                                  const float Ng[3], const float w[3],
                                                  float out[3]);
 
+/* The same with the side chosen by the renderer (cylray_spawn_origin_side): outward != 0
+ * starts on the side Ng points to, 0 on the other, whatever w says; a renderer whose
+ * shading decided reflection or transmission says which. */
+CYLRAY_EMBREE_API int cylray_embree_spawn_origin_side(RTCGeometry geometry, unsigned primID,
+                                                      const float o[3], const float d[3],
+                                                      float t, const float Ng[3], int outward,
+                                                      const float w[3], float out[3]);
+
 #ifdef __cplusplus
 }
 #endif

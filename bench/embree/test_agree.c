@@ -2,7 +2,7 @@
 /* test_agree.c - cylray_embree gives the hits that plain cylray calls give, and the
  * exact reference's: Embree's BVH with the adapter (one cylinder a primitive, split
  * boxes, leaves) at 1, 4, 8 and 16 rays a call, against every cylinder tried in turn;
- * the hit record's u and v against their definitions; filter functions (the
+ * the hit record's u and v against cylray_surface; filter functions (the
  * geometry's and the context's) offered every hit once, in order along each cylinder,
  * with the next hit of a cylinder taken when one is rejected; the spawn helper's
  * origins never hitting their own cylinder again. */
@@ -266,6 +266,15 @@ static int exact(const char *what, const eb_geom *g, const eb_ref *ref, const eb
             float st, sn[3];
             uint32_t hit = eb_trace1(g->scene, org, w[s], 0, INFINITY, &st, sn);
             eb_judge_secondary(&e, &x, w[s], hit);
+            /* the side form, the side being w's: the same origin, bit for bit, where w
+             * is clearly on one side */
+            float c = (w[s][0] * ng[0] + w[s][1] * ng[1] + w[s][2] * ng[2]), org2[3];
+            if (cylray_embree_spawn_origin_side(g->cyl, prim, x.o, x.d, t, ng, c > 0, w[s],
+                                                org2) ||
+                (fabsf(c) > 1e-3f && memcmp(org, org2, sizeof org) != 0)) {
+                if (bad++ < 3)
+                    printf("  %s: the side form's origin differs\n", what);
+            }
         }
     }
     if (e.wrong || e.self || bad)
@@ -413,7 +422,8 @@ int main(void)
                cylray_embree_cylinder(geo, (unsigned)s.ns) != NULL ||
                cylray_embree_cylinder(geo, 0) == NULL ||
                cylray_embree_spawn_origin(geo, (unsigned)s.ns, z, one, 1, one, one, out) != -1 ||
-               cylray_embree_spawn_origin(geo, 0, z, one, 1, z, one, out) != -1;
+               cylray_embree_spawn_origin(geo, 0, z, one, 1, z, one, out) != -1 ||
+               cylray_embree_spawn_origin_side(geo, 0, z, one, 1, z, 1, one, out) != -1;
         cylray_embree_release_geometry(geo);
         cylray_embree_release_geometry(NULL);
         REPORT(bad, "refused input, and the accessors");
