@@ -245,8 +245,13 @@ static void lattice(builder *b)
 static int finish(builder *b)
 {
     eb_scene *s = b->s;
-    if (b->failed || !(s->cyl = malloc(s->ns * sizeof *s->cyl)))
+    if (b->failed || !(s->cyl = malloc(s->ns * sizeof *s->cyl)) ||
+        !(s->p0 = malloc(s->ns * sizeof *s->p0)) || !(s->p1 = malloc(s->ns * sizeof *s->p1)))
         return -1;
+    for (size_t i = 0; i < s->ns; i++) {
+        memcpy(s->p0[i], s->vert[s->first[i]], sizeof s->p0[i]);
+        memcpy(s->p1[i], s->vert[s->first[i] + 1], sizeof s->p1[i]);
+    }
     for (size_t i = 0; i < s->ns; i++)
         if (cylray_cylinder_from_endpoints(&s->cyl[i], s->vert[s->first[i]],
                                            s->vert[s->first[i] + 1], s->radius,
@@ -287,10 +292,11 @@ int eb_scene_small(eb_scene *s, size_t n, uint64_t seed)
     s->radius = 0.35f;
     static const unsigned kinds[4] = {0, CYLRAY_CAPPED_LO, CYLRAY_CAPPED_HI, CYLRAY_CAPPED};
     for (size_t i = 0; i < n; i++) {
-        double p[3], q[3];
+        /* every fifth a long one, which gets split boxes */
+        double p[3], q[3], reach = i % 5 == 4 ? 12 : 3;
         for (int k = 0; k < 3; k++) {
             p[k] = rng_range(&g, -8, 8);
-            q[k] = p[k] + rng_range(&g, -3, 3);
+            q[k] = p[k] + rng_range(&g, -reach, reach);
         }
         uint32_t v = add_vertex(&b, p);
         add_vertex(&b, q);
@@ -314,5 +320,7 @@ void eb_scene_free(eb_scene *s)
     free(s->first);
     free(s->caps);
     free(s->cyl);
+    free(s->p0);
+    free(s->p1);
     memset(s, 0, sizeof *s);
 }

@@ -22,6 +22,7 @@ typedef struct eb_scene {
     uint32_t *first;
     unsigned *caps;
     cylray_cylinder *cyl;
+    float (*p0)[3], (*p1)[3]; /* segment s from p0[s] to p1[s], for cylray_embree */
     float radius;
     float eye[3], look[3], up[3], fov_deg;
     float light[3];

@@ -1,18 +1,16 @@
 /* SPDX-License-Identifier: MIT */
-/* geom.h - one scene as an Embree scene, three ways: Embree's own cone curves, cylray
- * single cylinders as user primitives, and cylray leaves as user primitives. */
+/* geom.h - one scene as an Embree scene, four ways: Embree's own cone curves, and
+ * cylray's adapter (cylray_embree.h) with one cylinder a primitive, with split boxes
+ * along long tilted cylinders, and with leaves. */
 #ifndef EB_GEOM_H
 #define EB_GEOM_H
 
 #include "ebscene.h"
 
+#include <cylray_embree.h>
 #include <embree3/rtcore.h>
 
-typedef enum eb_variant { EB_NATIVE, EB_SINGLE, EB_LEAF, EB_NVARIANTS } eb_variant;
-
-/* How the leaf variant groups cylinders: Embree's SAH builder (rtcBuildBVH) cuts them
- * into leaves of at most M, or runs of M along a Morton curve through the centres. */
-typedef enum eb_grouping { EB_GROUP_SAH, EB_GROUP_MORTON } eb_grouping;
+typedef enum eb_variant { EB_NATIVE, EB_SINGLE, EB_SPLIT, EB_LEAF, EB_NVARIANTS } eb_variant;
 
 const char *eb_variant_name(eb_variant v);
 
@@ -20,25 +18,21 @@ typedef struct eb_geom {
     eb_variant variant;
     RTCScene scene;
     const eb_scene *src;
-    const cylray_kernels *k;  /* the cylray path the callbacks call */
-    cylray_prepared *prep;    /* one per cylinder (the cylray variants) */
-    void *leaves;             /* cylray_leafM[nleaves] (the leaf variant) */
-    size_t nleaves;
-    struct RTCBounds *lbox;   /* a box per leaf: the union of its cylinders' */
-    int leaf_m;               /* 4, 8 or 16 */
-    double build_s;           /* seconds to prepare and to build Embree's BVH */
-    RTCIntersectFunctionN isect; /* the user variants' callbacks, for direct tests */
-    RTCOccludedFunctionN occ;
+    RTCGeometry cyl;   /* the cylray variants' geometry (cylray_embree_new_geometry) */
+    size_t nprim;      /* Embree's primitives: segments, boxes or leaves */
+    double build_s;    /* seconds to prepare and to build Embree's BVH */
 } eb_geom;
 
-/* Builds the variant; leaf_m (4, 8, 16) and how only for EB_LEAF. 0 on success. */
-int eb_geom_build(eb_geom *g, RTCDevice dev, const eb_scene *s, eb_variant v, int leaf_m,
-                  eb_grouping how, const cylray_kernels *k);
-void eb_geom_free(eb_geom *g);
+/* The options cylray_embree_new_geometry gets for a cylray variant. */
+unsigned eb_variant_options(eb_variant v);
 
-/* The axial parameter of point p on cylinder i, 0 at its first vertex and 1 at its
- * second: what the callbacks report as u, as Embree's curves do. */
-float eb_curve_u(const eb_scene *s, uint32_t i, const float p[3]);
+/* The adapter's description of scene s (endpoints, one radius, caps). */
+cylray_embree_desc eb_scene_desc(const eb_scene *s, unsigned options, const cylray_kernels *k);
+
+/* Builds the variant with cylray's path k. 0 on success. */
+int eb_geom_build(eb_geom *g, RTCDevice dev, const eb_scene *s, eb_variant v,
+                  const cylray_kernels *k);
+void eb_geom_free(eb_geom *g);
 
 /* A conservative box around cylinder i (a radius around both end discs, padded by the
  * rounding of the coordinates). */

@@ -3,7 +3,7 @@
 #include "image.h"
 
 #include "cylref.h"
-#include "spawn.h"
+#include "trace.h"
 
 #include <math.h>
 

@@ -3,6 +3,7 @@
 #include "run.h"
 
 #include <math.h>
+#include <string.h>
 
 const int eb_packets[EB_NPACKETS] = {1, 4, 8, 16};
 
@@ -41,8 +42,8 @@ static err_summary summarize(eb_err *e)
 static void speed(FILE *f, const eb_row *r, size_t n)
 {
     fprintf(f, "\nM rays/s (%d threads; packet = rays per Embree call; cylray-leaf: up to %d "
-               "cylinders a leaf, grouped by %s)\n",
-            r[0].threads, r[EB_LEAF < n ? EB_LEAF : 0].leaf_m, r[0].group);
+               "cylinders a leaf, grouped by Embree's SAH builder)\n",
+            r[0].threads, r[EB_LEAF < n ? EB_LEAF : 0].leaf_m);
     fprintf(f, "%-7s %-9s %-16s %8s", "isa", "scene", "variant", "build s");
     for (int p = 0; p < EB_NPHASES; p++)
         for (int k = 0; k < EB_NPACKETS; k++) {
@@ -67,6 +68,42 @@ static void speed(FILE *f, const eb_row *r, size_t n)
                         fprintf(f, " %10s", "-");
                     else
                         fprintf(f, " %10.2f", r[i].mrays[p][k]);
+                }
+        fprintf(f, "\n");
+    }
+}
+
+/* Each cylray row's time over the time of Embree's curves on the same scene and ISA
+ * in the same run (the curves' M rays/s over the row's): below 1 is faster. */
+static void ratios(FILE *f, const eb_row *r, size_t n)
+{
+    fprintf(f, "\nTime relative to embree-curve (same scene, ISA and run; < 1: faster)\n");
+    fprintf(f, "%-7s %-9s %-16s", "isa", "scene", "variant");
+    for (int p = 0; p < EB_NPHASES; p++)
+        for (int k = 0; k < EB_NPACKETS; k++)
+            if (col_on(r, n, p, k)) {
+                char h[24];
+                snprintf(h, sizeof h, "%s/%d", phase_name[p], eb_packets[k]);
+                fprintf(f, " %10s", h);
+            }
+    fprintf(f, "\n");
+    for (size_t i = 0; i < n; i++) {
+        const eb_row *base = NULL;
+        for (size_t j = 0; j < n; j++)
+            if (!strcmp(r[j].variant, "embree-curve") && !strcmp(r[j].scene, r[i].scene) &&
+                !strcmp(r[j].isa, r[i].isa) && !r[j].skipped)
+                base = &r[j];
+        if (!base || base == &r[i] || r[i].skipped)
+            continue;
+        fprintf(f, "%-7s %-9s %-16s", r[i].isa, r[i].scene, r[i].variant);
+        for (int p = 0; p < EB_NPHASES; p++)
+            for (int k = 0; k < EB_NPACKETS; k++)
+                if (col_on(r, n, p, k)) {
+                    double a = base->mrays[p][k], b = r[i].mrays[p][k];
+                    if (isnan(a) || isnan(b) || b <= 0)
+                        fprintf(f, " %10s", "-");
+                    else
+                        fprintf(f, " %10.2f", a / b);
                 }
         fprintf(f, "\n");
     }
@@ -128,13 +165,7 @@ void eb_report(FILE *f, const eb_row *rows, size_t n, const char *machine)
     speed(f, rows, n);
     scaling(f, rows, n);
     errors(f, rows, n);
-    for (size_t i = 0; i < n; i++)
-        if (rows[i].stand_in) {
-            fprintf(f, "\nNote: this library build lacks cylray_hit_point/cylray_spawn_origin;"
-                       " the cylray variants' secondary rays started from o + t d moved"
-                       " 2^-16 (relative) along the normal instead.\n");
-            break;
-        }
+    ratios(f, rows, n);
 }
 
 void eb_report_csv(FILE *f, const eb_row *r, size_t n)

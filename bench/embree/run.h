@@ -17,7 +17,6 @@ extern const int eb_packets[EB_NPACKETS]; /* 1, 4, 8, 16 */
 typedef struct eb_row {
     char isa[16], scene[32], variant[16];
     int leaf_m, threads, skipped;
-    char group[8];                         /* how leaves were grouped: sah, morton */
     char why[80];
     size_t ns, nprim;
     double build_s;
@@ -26,7 +25,6 @@ typedef struct eb_row {
     double cores[EB_MAXT + 1];             /* CPU time / wall time in those runs */
     eb_err err[EB_NSETS];
     size_t diff_pixels;                    /* red + yellow against embree-curve */
-    int stand_in;                          /* the spawn helper was missing */
 } eb_row;
 
 const char *eb_set_name(int set);

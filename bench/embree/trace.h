@@ -50,4 +50,18 @@ double eb_trace(RTCScene scene, eb_rays *r, int packet, int threads, int occlude
 uint32_t eb_trace1(RTCScene scene, const float o[3], const float d[3], float tnear,
                    float tfar, float *t, float ng[3]);
 
+/* ---- secondary rays ------------------------------------------------------------ */
+
+struct eb_geom;
+
+/* From the primary hits in `prim` (traced through g), fills shadow and bounce (both
+ * allocated with prim->n rays), each started as that variant's user would start it:
+ * Embree's curves at the hit point with Embree's path-tracer epsilon as tnear;
+ * cylray's at cylray_embree_spawn_origin with tnear 0. The bounce directions depend
+ * only on the pixel, so every variant draws the same. */
+void eb_spawn(const struct eb_geom *g, const eb_rays *prim, eb_rays *shadow, eb_rays *bounce);
+
+/* The unit normal facing the incoming direction d, from a hit's Ng. */
+void eb_facing_normal(const float ng[3], const float d[3], float n[3]);
+
 #endif

@@ -1,8 +1,10 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
-"""consumers.py - builds consumer.c the three ways a user adopts cylray, and runs it.
+"""consumers.py - builds consumer.c the three ways a user adopts cylray, and runs it;
+and consumer_embree.c against the Embree adapter, where it was built.
 
-Usage: consumers.py pkgconfig|cmake|subproject  (the rest comes from the environment
+Usage: consumers.py pkgconfig|cmake|subproject|embree-pkgconfig|embree-cmake
+(the rest comes from the environment
 that tests/install/meson.build sets: CYLRAY_SOURCE_ROOT, CYLRAY_BUILD_ROOT, CYLRAY_WORK,
 CYLRAY_PREFIX, CYLRAY_LIBDIR, CYLRAY_DEFAULT_LIBRARY, CYLRAY_MESON, CC)
 
@@ -13,6 +15,9 @@ CYLRAY_PREFIX, CYLRAY_LIBDIR, CYLRAY_DEFAULT_LIBRARY, CYLRAY_MESON, CC)
               cylray_USE_STATIC=ON where the static one is (the program must then not
               need libcylray at run time)
   subproject  a meson project with this source tree as subprojects/cylray
+  embree-pkgconfig, embree-cmake
+              consumer_embree.c the same two ways, through `pkg-config cylray_embree`
+              and the CMake target cylray::cylray_embree
 
 Exits 77 (skipped) when the tool a way needs (pkg-config, cmake, meson) is missing.
 """
@@ -80,7 +85,7 @@ def libdir_of(root):
     return libdir if os.path.isabs(libdir) else os.path.join(root, libdir)
 
 
-def way_pkgconfig(work):
+def way_pkgconfig(work, package='cylray', source='consumer.c'):
     pkg_config = shutil.which('pkg-config') or shutil.which('pkgconf')
     if not pkg_config:
         print('pkg-config not found; skipped')
@@ -93,9 +98,9 @@ def way_pkgconfig(work):
     env.pop('PKG_CONFIG_PATH', None)
     # With only the static library installed, -lcylray needs its private libraries too.
     static = ['--static'] if os.environ['CYLRAY_DEFAULT_LIBRARY'] == 'static' else []
-    flags = shlex.split(run([pkg_config, '--cflags', '--libs', *static, 'cylray'], env=env))
-    exe = os.path.join(work, 'consumer-pkgconfig')
-    run([*cc(), '-std=c11', os.path.join(HERE, 'consumer.c'), '-o', exe, *flags])
+    flags = shlex.split(run([pkg_config, '--cflags', '--libs', *static, package], env=env))
+    exe = os.path.join(work, source[:-2] + '-pkgconfig')
+    run([*cc(), '-std=c11', os.path.join(HERE, source), '-o', exe, *flags, '-lm'])
     run_consumer(exe, library_path=libdir_of(root))
     return 0
 
@@ -108,7 +113,7 @@ def needs_libcylray(exe):
     return 'libcylray' in run([readelf, '-d', exe])
 
 
-def way_cmake(work):
+def way_cmake(work, project='cmake', exe_name='consumer'):
     cmake = shutil.which('cmake')
     if not cmake:
         print('cmake not found; skipped')
@@ -123,11 +128,11 @@ def way_cmake(work):
         legs.append(('static', ['-Dcylray_USE_STATIC=ON'], False))
     for leg, extra, want_dynamic in legs:
         build = fresh(os.path.join(work, 'cmake-' + leg))
-        run([cmake, *generator, '-S', os.path.join(HERE, 'cmake'), '-B', build,
+        run([cmake, *generator, '-S', os.path.join(HERE, project), '-B', build,
              '-DCMAKE_PREFIX_PATH=' + root, '-DCMAKE_BUILD_TYPE=Release',
              '-DCYLRAY_WANT=' + '.'.join(os.environ['CYLRAY_VERSION'].split('.')[:2]), *extra])
         run([cmake, '--build', build])
-        exe = os.path.join(build, 'consumer')
+        exe = os.path.join(build, exe_name)
         dynamic = needs_libcylray(exe)
         if dynamic is not None and dynamic != want_dynamic:
             raise Failed(f'the {leg} consumer {"needs" if dynamic else "does not need"} '
@@ -155,7 +160,9 @@ def way_subproject(work):
 
 
 def main():
-    ways = {'pkgconfig': way_pkgconfig, 'cmake': way_cmake, 'subproject': way_subproject}
+    ways = {'pkgconfig': way_pkgconfig, 'cmake': way_cmake, 'subproject': way_subproject,
+            'embree-pkgconfig': lambda w: way_pkgconfig(w, 'cylray_embree', 'consumer_embree.c'),
+            'embree-cmake': lambda w: way_cmake(w, 'cmake_embree', 'consumer_embree')}
     if len(sys.argv) != 2 or sys.argv[1] not in ways:
         print(__doc__)
         return 2

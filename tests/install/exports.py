@@ -2,9 +2,10 @@
 # SPDX-License-Identifier: MIT
 """exports.py - the shared library exports exactly the functions cylray.h declares.
 
-Usage: exports.py <cylray.h> <libcylray.so>
+Usage: exports.py <cylray.h> <libcylray.so> [MACRO]
 
-The declared names are read from the header (every declaration that carries CYLRAY_API),
+The declared names are read from the header (every declaration that carries CYLRAY_API,
+or MACRO: CYLRAY_EMBREE_API for cylray_embree.h and libcylray_embree.so),
 so the check follows the API as it grows. Fails on a dynamic symbol the header does not
 declare (an internal kernel table or helper leaking out) and on a declared function the
 library does not export. Exits 77 (skipped) where nm is missing.
@@ -18,12 +19,12 @@ import sys
 LINKER_SYMBOLS = {'_init', '_fini', '_edata', '_end', '__bss_start'}
 
 
-def declared(header):
+def declared(header, macro='CYLRAY_API'):
     text = open(header, encoding='utf-8').read()
     text = re.sub(r'/\*.*?\*/', ' ', text, flags=re.S)
     text = re.sub(r'//[^\n]*', ' ', text)
     text = re.sub(r'^\s*#[^\n]*(\\\n[^\n]*)*', ' ', text, flags=re.M)
-    return set(re.findall(r'\bCYLRAY_API\b[^;{}()]*?\b(cylray_\w+)\s*\(', text))
+    return set(re.findall(r'\b' + macro + r'\b[^;{}()]*?\b(cylray_\w+)\s*\(', text))
 
 
 def exported(lib):
@@ -39,10 +40,11 @@ def exported(lib):
 
 def main():
     header, lib = sys.argv[1:3]
+    macro = sys.argv[3] if len(sys.argv) > 3 else 'CYLRAY_API'
     if shutil.which('nm') is None:
         print('exports: nm not found (binutils); skipped')
         return 77
-    want = declared(header)
+    want = declared(header, macro)
     if not want:
         print(f'exports: no CYLRAY_API declaration found in {header}')
         return 1
@@ -50,9 +52,9 @@ def main():
     extra = sorted(have - want)
     missing = sorted(want - have)
     for name in extra:
-        print(f'exported but not declared in cylray.h: {name}')
+        print(f'exported but not declared in {header}: {name}')
     for name in missing:
-        print(f'declared in cylray.h but not exported: {name}')
+        print(f'declared in {header} but not exported: {name}')
     print(f'exports: {len(want)} declared, {len(have)} exported, '
           f'{len(extra)} extra, {len(missing)} missing')
     return 1 if extra or missing else 0

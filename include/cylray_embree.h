@@ -1,0 +1,149 @@
+/* cylray_embree.h - cylray's cylinders as an Embree 3 geometry.
+ * SPDX-License-Identifier: MIT
+ *
+ * An optional part of cylray, in its own library (cylray_embree; pkg-config
+ * cylray_embree, CMake cylray::cylray_embree), built where Embree 3 is found. It turns
+ * the caller's cylinders into one RTCGeometry of Embree's user type that a renderer
+ * attaches to its own scene next to its triangles and curves. Embree's BVH finds the
+ * candidates; cylray's kernels answer them, and the hits land in Embree's record as a
+ * curve's would:
+ *
+ *   tfar     the hit distance
+ *   Ng       the unit outward normal of the surface hit (never flipped toward the ray)
+ *   u        the axial coordinate: 0 at p0, 1 at p1 (0 or 1 on the end discs)
+ *   v        the azimuth in [0, 1): atan2(r.b2, r.b1) / 2pi for the radial vector r of
+ *            the hit point, (b1, b2) the orthonormal frame of Duff et al. (JCGT 2017)
+ *            built from the unit axis p1 - p0
+ *   primID   the cylinder's index in the caller's arrays
+ *   geomID, instID   as Embree hands them to the geometry
+ *
+ * A miss writes nothing; an occluded ray gets tfar = -INFINITY. Rays are x(t) = o + t d
+ * for t in [tnear, tfar]. Filter functions (the geometry's, set with
+ * rtcSetGeometryIntersectFilterFunction / rtcSetGeometryOccludedFilterFunction, and the
+ * context's) see each hit before it is accepted; when one is rejected, the next hit of
+ * the same cylinder along the ray is offered, as Embree's curves do.
+ *
+ * Embree 3 only: the Embree-facing code lives in one source file that checks
+ * RTC_VERSION_MAJOR == 3 when it is compiled; a port to Embree 4 (rtcore.h under
+ * embree4/, RTCRayQueryContext, the arguments' new fields) changes that file and the
+ * include below. */
+#ifndef CYLRAY_EMBREE_H
+#define CYLRAY_EMBREE_H
+
+#include <embree3/rtcore.h>
+
+#include "cylray.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#if defined(_WIN32) || defined(__CYGWIN__)
+#if defined(CYLRAY_STATIC)
+#define CYLRAY_EMBREE_API
+#elif defined(CYLRAY_EMBREE_BUILDING)
+#define CYLRAY_EMBREE_API __declspec(dllexport)
+#else
+#define CYLRAY_EMBREE_API __declspec(dllimport)
+#endif
+#elif defined(CYLRAY_EMBREE_BUILDING) && (defined(__GNUC__) || defined(__clang__))
+#define CYLRAY_EMBREE_API __attribute__((visibility("default")))
+#else
+#define CYLRAY_EMBREE_API
+#endif
+
+/* cylray_embree_desc.options, OR'ed. */
+/* Leaves: the cylinders are grouped by Embree's SAH builder into leaves of 4, 8 or 16
+ * (the widest the chosen kernels serve well), one user primitive a leaf, each answered
+ * by one leaf query per ray. Without it, one cylinder is one primitive, answered for
+ * every valid ray of Embree's packet at once by cylray's packet kernels. */
+#define CYLRAY_EMBREE_LEAVES 0x1u
+/* Split boxes: a long cylinder tilted off the coordinate axes gets several boxes along
+ * its axis instead of one (its single box would be mostly empty and make Embree call
+ * the geometry for rays that pass far from it). Each hit is reported by the one box
+ * whose stretch of the axis holds it. Ignored with CYLRAY_EMBREE_LEAVES. */
+#define CYLRAY_EMBREE_SPLIT 0x2u
+/* Filters: pass every hit through rtcFilterIntersection / rtcFilterOcclusion. Embree 3
+ * does not tell a user geometry whether filter functions were set on it, so say so
+ * here; without it only the context's filter (RTCIntersectContext.filter), when set,
+ * is called, and occlusion stops at the first hit without one. */
+#define CYLRAY_EMBREE_FILTER 0x4u
+
+/* The caller's cylinders in endpoint form: cylinder i runs from p0 to p1 with radius r
+ * and the end discs caps says (CYLRAY_CAPPED_LO is the disc at p0), read from
+ *   (const char *)p0 + i * p0_stride            three floats
+ *   (const char *)p1 + i * p1_stride            three floats
+ *   (const char *)radius + i * radius_stride    one float
+ *   (const char *)caps + i * caps_stride        one unsigned (caps NULL: CYLRAY_CAPPED)
+ * Strides are in bytes, so the fields of a renderer's own struct serve; a stride of 0
+ * gives every cylinder the same value (one radius for all, say). The arrays are read
+ * during cylray_embree_new_geometry only. */
+typedef struct cylray_embree_desc {
+    size_t count;
+    const float *p0;
+    size_t p0_stride;
+    const float *p1;
+    size_t p1_stride;
+    const float *radius;
+    size_t radius_stride;
+    const unsigned *caps;
+    size_t caps_stride;
+    unsigned options;               /* CYLRAY_EMBREE_* */
+    unsigned flags;                 /* kernel flags: CYLRAY_CULL_BACK, CYLRAY_FAST,
+                                     * CYLRAY_REFINE (normals are always computed) */
+    const cylray_kernels *kernels;  /* the path to call; NULL: cylray_kernels_best() */
+} cylray_embree_desc;
+
+/* A new RTCGeometry on device holding desc's cylinders, not yet committed: set what
+ * else the renderer sets (mask, filter functions), then rtcCommitGeometry and
+ * rtcAttachGeometry. NULL when a cylinder is refused by the rules of
+ * cylray_cylinder_from_endpoints, when count is 0 or beyond 2^32 - 1 (or the split
+ * boxes would be), when an option or flag is unknown (CYLRAY_FACE_FORWARD is: Ng is
+ * outward), when memory runs out or Embree refuses; *status (when not NULL) says
+ * CYLRAY_EINVAL for the first three. */
+CYLRAY_EMBREE_API RTCGeometry cylray_embree_new_geometry(RTCDevice device,
+                                                         const cylray_embree_desc *desc,
+                                                         cylray_status *status);
+
+/* Instead of rtcReleaseGeometry for such a geometry: drops the caller's reference and
+ * frees cylray's data, which Embree 3 gives no way to tie to the geometry's own end.
+ * Call it once no scene can trace the geometry any more (the scenes holding it
+ * released, or it detached and those scenes committed again). NULL is ignored. */
+CYLRAY_EMBREE_API void cylray_embree_release_geometry(RTCGeometry geometry);
+
+/* 1 when geometry was made by cylray_embree_new_geometry, 0 otherwise. */
+CYLRAY_EMBREE_API int cylray_embree_is_cylinders(RTCGeometry geometry);
+
+/* How many primitives Embree got from such a geometry: one per cylinder, per split
+ * box, or per leaf; 0 for another geometry. */
+CYLRAY_EMBREE_API size_t cylray_embree_primitives(RTCGeometry geometry);
+
+/* The prepared form of cylinder primID of such a geometry, for cylray's own calls
+ * (cylray_hit_point, cylray_spawn_origin, the kernels); NULL when out of range. */
+CYLRAY_EMBREE_API const cylray_prepared *cylray_embree_cylinder(RTCGeometry geometry,
+                                                                unsigned primID);
+
+/* Secondary rays. For a hit on this geometry of the ray o + t d (t the tfar it came back
+ * with, primID and Ng from its hit record): the origin of a new ray leaving that hit in
+ * direction w, to be traced with tnear = 0. It never hits again the surface it leaves
+ * there (at a rim, either surface), with the guarantee of cylray_spawn_origin. The ray
+ * is needed because (u, v) do not place a hit on an end disc. Returns 0,
+ * or -1 (out untouched) when primID is out of range or Ng is zero or not finite. */
+CYLRAY_EMBREE_API int cylray_embree_spawn_origin(RTCGeometry geometry, unsigned primID,
+                                                 const float o[3], const float d[3], float t,
+                                                 const float Ng[3], const float w[3],
+                                                 float out[3]);
+
+/* The same with the side chosen by the renderer (cylray_spawn_origin_side): outward != 0
+ * starts on the side Ng points to, 0 on the other, whatever w says; a renderer whose
+ * shading decided reflection or transmission says which. */
+CYLRAY_EMBREE_API int cylray_embree_spawn_origin_side(RTCGeometry geometry, unsigned primID,
+                                                      const float o[3], const float d[3],
+                                                      float t, const float Ng[3], int outward,
+                                                      const float w[3], float out[3]);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* CYLRAY_EMBREE_H */
