@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* tracer.c - a small ray tracer over cylray leaves: a molecule of bonds, a binned-SAH
- * BVH whose leaves are cylray leaves, camera, shadow and bounce rays one at a time,
+ * BVH whose leaves are cylray leaves, camera, shadow and bounce rays one at a time
+ * (started with cylray_leaf_spawn_origin_side8 on the side the tracer shaded),
  * bonds coloured by their surface coordinate u, a PNG out.
  *
  *   tracer [-o out.png] [-s WxH] [-n atoms] [-t repeats] [-c | -p]
@@ -361,9 +362,10 @@ static void radiance(scene *s, const float o[3], const float d[3], float c[3])
         sky(d, c);
         return;
     }
-    /* where the ray met the surface, and how far that point may be from it */
+    /* where the ray met the surface (at the azimuth of the kernel's normal, so that
+     * shading and spawning agree with it), and how far that point may be from it */
     float p[3], err;
-    LW(cylray_leaf_hit_point)(leaf, &ray, &hit, p, &err);
+    LW(cylray_leaf_hit_point_normal)(leaf, &ray, &hit, p, &err);
     /* u runs from the bond's first atom (p0, u = 0) to its second: each half takes the
      * colour of its own atom */
     float uv[2];
@@ -371,7 +373,10 @@ static void radiance(scene *s, const float o[3], const float d[3], float c[3])
     const bond *b = &s->bonds[hit.id];
     const float *alb = atom_colour[s->atoms[uv[0] < 0.5f ? b->a : b->b].type];
     float n[3] = {hit.n[0], hit.n[1], hit.n[2]};
-    if (dot3(n, d) > 0) /* seen from inside (an open end): shade the side we see */
+    /* the side we see, and shade, and start the new rays on: the outward normal's side
+     * unless the ray came from inside (through an open end) */
+    const int outward = dot3(n, d) <= 0;
+    if (!outward)
         for (int k = 0; k < 3; k++)
             n[k] = -n[k];
     /* a thin dark seam at the bond's middle, to show u */
@@ -385,7 +390,7 @@ static void radiance(scene *s, const float o[3], const float d[3], float c[3])
     float cosl = dot3(n, l);
     if (cosl > 0) {
         cylray_ray1 sh;
-        LW(cylray_leaf_spawn_origin)(leaf, &hit, p, err, l, sh.o);
+        LW(cylray_leaf_spawn_origin_side)(leaf, &hit, p, err, outward, l, sh.o);
         memcpy(sh.d, l, sizeof l);
         sh.tmin = 0.0f;
         sh.tmax = dist;
@@ -397,7 +402,7 @@ static void radiance(scene *s, const float o[3], const float d[3], float c[3])
     float w[3], bounce[3] = {0, 0, 0};
     cosine_dir(n, w);
     cylray_ray1 br;
-    LW(cylray_leaf_spawn_origin)(leaf, &hit, p, err, w, br.o);
+    LW(cylray_leaf_spawn_origin_side)(leaf, &hit, p, err, outward, w, br.o);
     memcpy(br.d, w, sizeof w);
     br.tmin = 0.0f;
     br.tmax = INFINITY;
@@ -463,7 +468,7 @@ static void camera_only1(scene *s, const float o[3], const float d[3], float c[3
         return;
     }
     float p[3], err, uv[2];
-    LW(cylray_leaf_hit_point)(leaf, &ray, &hit, p, &err);
+    LW(cylray_leaf_hit_point_normal)(leaf, &ray, &hit, p, &err);
     LW(cylray_leaf_surface)(leaf, &hit, p, uv, NULL, NULL);
     const bond *b = &s->bonds[hit.id];
     const float *alb = atom_colour[s->atoms[uv[0] < 0.5f ? b->a : b->b].type];
@@ -493,7 +498,8 @@ static void camera_only8(scene *s, const float o[3], float d[8][3], float c[8][3
         const cylray_prepared *P = &s->prep[id[i]];
         float p[3], err, uv[2];
         const float oi[3] = {r.ox[i], r.oy[i], r.oz[i]};
-        cylray_hit_point(P, oi, d[i], h.t[i], h.part[i], p, &err);
+        const float ni[3] = {h.nx[i], h.ny[i], h.nz[i]};
+        cylray_hit_point_normal(P, oi, d[i], h.t[i], h.part[i], ni, p, &err);
         cylray_surface(P, p, h.part[i], uv, NULL, NULL);
         const bond *b = &s->bonds[id[i]];
         const float *alb = atom_colour[s->atoms[uv[0] < 0.5f ? b->a : b->b].type];
