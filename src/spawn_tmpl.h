@@ -182,15 +182,17 @@ CYLRAY_INLINE void DFN(hit_point)(const DFN(geo) *g, const vd o[3], const vd d[3
     /* (1 + 2^-40) covers the few roundings of dist itself */
     const vd bound = dmul(dadd(dist, dmul(dset1(3.0), env)), dset1(1 + 0x1p-40));
     const vd f = dround_f(bound);
-    *err = dsel(dlt(f, bound), DFN(next_f)(f, dgt(one, zero)), f);
+    const vdm push = dlt(f, bound);
+    *err = dmbits(push) ? dsel(push, DFN(next_f)(f, dgt(one, zero)), f) : f;
 }
 
 /* One surface to clear: its outward normal n, p's signed distance sigma, l1 = |n|_1,
- * the margin's part that does not grow with the coordinates (mc: the tilt's lever times
- * the tilt, plus 2 ulp of R or H), and whether it is cleared. */
+ * the sign of the move along n, how far p lies on its wrong side (base), and the lanes
+ * that clear it. A surface no lane clears is skipped: it would add zeros only. */
 typedef struct DFN(surf) {
     vd n[3], sigma, l1, sgn, base;
     vdm in, pos;
+    int any; /* some lane clears it */
 } DFN(surf);
 
 /* THE SPAWNED ORIGIN leaving p (doubles of floats, bound err) on `part` in direction
@@ -240,6 +242,12 @@ CYLRAY_INLINE void DFN(spawn)(const DFN(geo) *g, const vd p[3], vd err, vd part,
                                i == 0 ? g->uR2 : g->uH2));
         x->in = dmand(exists[i],
                       dmor(here[i], dle(dabs(x->sigma), dadd(dadd(err, m), e_d))));
+        x->any = dmbits(x->in) != 0;
+        x->pos = x->in;
+        x->sgn = one;
+        x->base = zero;
+        if (!x->any) /* no lane clears it: it adds nothing below */
+            continue;
         x->pos = dgt(DFN(dot3)(x->n, w), zero);
         x->sgn = dsel(x->pos, one, dset1(-1.0));
         /* max(0, -sign sigma): how far p lies on the wrong side */
@@ -259,6 +267,8 @@ CYLRAY_INLINE void DFN(spawn)(const DFN(geo) *g, const vd p[3], vd err, vd part,
     vd delta[3] = {zero, zero, zero};
     for (int i = 0; i < 3; i++) {
         const DFN(surf) *x = &S[i];
+        if (!x->any)
+            continue;
         const vd m = dmul(dset1(CYLRAY_SPAWN_SAFETY),
                           dadd(dadd(dmul(v2, x->l1), dmul(i == 0 ? zmax : rmax, g->tilt)),
                                i == 0 ? g->uR2 : g->uH2));
@@ -274,7 +284,8 @@ CYLRAY_INLINE void DFN(spawn)(const DFN(geo) *g, const vd p[3], vd err, vd part,
         /* never short of the move: the next float beyond, when rounding fell back */
         const vdm up = dmand(dgt(delta[k], zero), dlt(moved, delta[k]));
         const vdm down = dmand(dlt(delta[k], zero), dgt(moved, delta[k]));
-        out[k] = dsel(dmor(up, down), DFN(next_f)(f, up), f);
+        const vdm push = dmor(up, down);
+        out[k] = dmbits(push) ? dsel(push, DFN(next_f)(f, up), f) : f;
     }
 }
 
