@@ -15,6 +15,13 @@
  * exactly the current tmax replaces the earlier hit: of hits at the same t the last
  * call wins (within one leaf, the lowest lane).
  *
+ * Rays in an end's plane. The solid is closed: a ray lying in the plane of an end
+ * (d.a = 0, the origin's axial coordinate -H or +H) lies in its boundary and meets the
+ * cylinder where it crosses the side's circle (the rim), whether that end is capped or
+ * open, on every path, in packets, streams and leaves alike. That holds exactly where
+ * the axial coordinate is computed exactly (an axis along a coordinate axis, floats
+ * that place the plane); otherwise a ray within 2 ulps of the plane may hit or miss.
+ *
  * Working range. cylray_prepare refuses cylinders beyond its limits (see there). Any
  * finite nonzero direction is answered as accurately as a unit one. The origin must
  * lie within 2^62 of the center in each coordinate and the exact t within FLT_MAX;
@@ -313,11 +320,40 @@ CYLRAY_API cylray_status cylray_cylinder_from_endpoints(cylray_cylinder *out, co
  * to the exact surface of that part. */
 CYLRAY_API void cylray_hit_point(const cylray_prepared *cyl, const float o[3], const float d[3],
                                  float t, int32_t part, float p[3], float *err);
+/* The same, given also the normal n the kernel returned for that hit (CYLRAY_NORMAL;
+ * outward or face-forwarded alike). Where float t or the float coordinates cannot
+ * place the hit (ulp(t)|d| or the coordinates' ulp not small against R, as with a ray
+ * from far away), the point o + t d rebuilds can lie up to a quarter turn around the
+ * tube from the hit the kernel found; on the side this form puts p at the kernel's
+ * azimuth, so that the exact normal at p is n's to within float rounding, and a tracer
+ * that shades, face-forwards and picks the spawn side with n stays consistent with p.
+ * err is a bound as above. A tracer that asks for normals should use this form. */
+CYLRAY_API void cylray_hit_point_normal(const cylray_prepared *cyl, const float o[3],
+                                        const float d[3], float t, int32_t part,
+                                        const float n[3], float p[3], float *err);
 /* The origin for a new ray that leaves that hit in direction w, to be traced with
  * tmin = 0: strictly on w's side of every surface of cyl that passes within err of p
  * (at a rim, of both). */
 CYLRAY_API void cylray_spawn_origin(const cylray_prepared *cyl, const float p[3], float err,
                                     int32_t part, const float w[3], float out[3]);
+/* The spawn side the tracer chooses. A tracer picks reflection or transmission (or
+ * whether a light is above the horizon) with the normal the kernel returned; near a
+ * tangency that normal and the exact normal at p may put w on different sides, and
+ * cylray_spawn_origin, which follows w, then starts the ray on the other side from the
+ * one the tracer shaded. This form starts it where the tracer says: outward != 0 on
+ * the side the part's outward normal points to, 0 on the other. With the kernel's
+ * outward normal n (CYLRAY_NORMAL without CYLRAY_FACE_FORWARD), outward = dot(w, n) > 0.
+ * Any other surface within err of p (at a rim) is cleared to w's side, as above.
+ * The guarantee, on any ISA and under the condition above: the origin lies strictly on
+ * the requested side of the part (and on w's side of any other surface within err of
+ * p), and a ray traced from it with tmin = 0 meets the part it leaves no sooner than
+ * the exact ray from that origin can (half that distance at the least): a ray sent
+ * back into the surface meets it where the geometry says, never at its own origin.
+ * Where the side requested is w's side of the exact normal at p, the origin is
+ * cylray_spawn_origin's, bit for bit. */
+CYLRAY_API void cylray_spawn_origin_side(const cylray_prepared *cyl, const float p[3],
+                                         float err, int32_t part, int outward,
+                                         const float w[3], float out[3]);
 
 /* Batched forms: vectorised on every path (in double, several lanes at a time), with
  * the same answer as the scalar pair lane by lane, bit for bit, on every path; a tracer
@@ -344,6 +380,17 @@ CYLRAY_API void cylray_hit_points8(const cylray_prepared *cyl, const cylray_ray8
 CYLRAY_API void cylray_hit_points16(const cylray_prepared *cyl, const cylray_ray16 *ray,
                                     const cylray_hit16 *hit, uint32_t mask,
                                     cylray_points16 *pts);
+/* The same from the normals in hit (traced with CYLRAY_NORMAL), as
+ * cylray_hit_point_normal. */
+CYLRAY_API void cylray_hit_points_normal4(const cylray_prepared *cyl, const cylray_ray4 *ray,
+                                          const cylray_hit4 *hit, uint32_t mask,
+                                          cylray_points4 *pts);
+CYLRAY_API void cylray_hit_points_normal8(const cylray_prepared *cyl, const cylray_ray8 *ray,
+                                          const cylray_hit8 *hit, uint32_t mask,
+                                          cylray_points8 *pts);
+CYLRAY_API void cylray_hit_points_normal16(const cylray_prepared *cyl,
+                                           const cylray_ray16 *ray, const cylray_hit16 *hit,
+                                           uint32_t mask, cylray_points16 *pts);
 /* For each lane i set in `mask`: out->dx..dz[i] hold the new direction on entry; the
  * spawned origin goes to out->ox..oz[i] and tmin[i] is set to 0 (tmax is the caller's:
  * INFINITY, or the distance to a light). *out may be the packet that was traced. */
@@ -354,6 +401,17 @@ CYLRAY_API void cylray_spawn_rays8(const cylray_prepared *cyl, const cylray_poin
 CYLRAY_API void cylray_spawn_rays16(const cylray_prepared *cyl, const cylray_points16 *pts,
                                     const cylray_hit16 *hit, uint32_t mask,
                                     cylray_ray16 *out);
+/* The same with the side of each lane's part chosen by the tracer: bit i of outward
+ * set, the side its outward normal points to (as cylray_spawn_origin_side). */
+CYLRAY_API void cylray_spawn_rays_side4(const cylray_prepared *cyl, const cylray_points4 *pts,
+                                        const cylray_hit4 *hit, uint32_t mask,
+                                        uint32_t outward, cylray_ray4 *out);
+CYLRAY_API void cylray_spawn_rays_side8(const cylray_prepared *cyl, const cylray_points8 *pts,
+                                        const cylray_hit8 *hit, uint32_t mask,
+                                        uint32_t outward, cylray_ray8 *out);
+CYLRAY_API void cylray_spawn_rays_side16(const cylray_prepared *cyl,
+                                         const cylray_points16 *pts, const cylray_hit16 *hit,
+                                         uint32_t mask, uint32_t outward, cylray_ray16 *out);
 
 /* Streams: separate arrays (err may be NULL where no bound is read or written). */
 typedef struct cylray_points {
@@ -364,11 +422,22 @@ typedef struct cylray_points {
 CYLRAY_API size_t cylray_hit_points_stream(const cylray_prepared *cyl,
                                            const cylray_rays *rays, const cylray_hits *hits,
                                            const cylray_points *pts, size_t n);
+/* The same from the normals in hits (nx, ny, nz required), as cylray_hit_point_normal. */
+CYLRAY_API size_t cylray_hit_points_normal_stream(const cylray_prepared *cyl,
+                                                  const cylray_rays *rays,
+                                                  const cylray_hits *hits,
+                                                  const cylray_points *pts, size_t n);
 /* For each i whose part[i] is not CYLRAY_MISS, the origin that leaves point i of pts in
  * direction (dirs->x, y, z)[i], into (origins->x, y, z)[i]; origins may alias dirs. */
 CYLRAY_API void cylray_spawn_stream(const cylray_prepared *cyl, const cylray_points *pts,
                                     const int32_t *part, const cylray_points *dirs,
                                     const cylray_points *origins, size_t n);
+/* The same with the side chosen by the tracer: outward[i] nonzero, the side ray i's
+ * part's outward normal points to (as cylray_spawn_origin_side). */
+CYLRAY_API void cylray_spawn_stream_side(const cylray_prepared *cyl, const cylray_points *pts,
+                                         const int32_t *part, const uint8_t *outward,
+                                         const cylray_points *dirs,
+                                         const cylray_points *origins, size_t n);
 
 /* Leaves: the hit a leaf query returned (hit->lane names the cylinder; ray as it came
  * back from the query, whose o and d are unchanged). */
@@ -378,6 +447,14 @@ CYLRAY_API void cylray_leaf_hit_point8(const cylray_leaf8 *leaf, const cylray_ra
                                        const cylray_hit1 *hit, float p[3], float *err);
 CYLRAY_API void cylray_leaf_hit_point16(const cylray_leaf16 *leaf, const cylray_ray1 *ray,
                                         const cylray_hit1 *hit, float p[3], float *err);
+/* From the hit's normal (the query made with CYLRAY_NORMAL), as cylray_hit_point_normal. */
+CYLRAY_API void cylray_leaf_hit_point_normal4(const cylray_leaf4 *leaf, const cylray_ray1 *ray,
+                                              const cylray_hit1 *hit, float p[3], float *err);
+CYLRAY_API void cylray_leaf_hit_point_normal8(const cylray_leaf8 *leaf, const cylray_ray1 *ray,
+                                              const cylray_hit1 *hit, float p[3], float *err);
+CYLRAY_API void cylray_leaf_hit_point_normal16(const cylray_leaf16 *leaf,
+                                               const cylray_ray1 *ray, const cylray_hit1 *hit,
+                                               float p[3], float *err);
 CYLRAY_API void cylray_leaf_spawn_origin4(const cylray_leaf4 *leaf, const cylray_hit1 *hit,
                                           const float p[3], float err, const float w[3],
                                           float out[3]);
@@ -387,6 +464,19 @@ CYLRAY_API void cylray_leaf_spawn_origin8(const cylray_leaf8 *leaf, const cylray
 CYLRAY_API void cylray_leaf_spawn_origin16(const cylray_leaf16 *leaf,
                                            const cylray_hit1 *hit, const float p[3],
                                            float err, const float w[3], float out[3]);
+/* With the side chosen by the tracer (as cylray_spawn_origin_side). */
+CYLRAY_API void cylray_leaf_spawn_origin_side4(const cylray_leaf4 *leaf,
+                                               const cylray_hit1 *hit, const float p[3],
+                                               float err, int outward, const float w[3],
+                                               float out[3]);
+CYLRAY_API void cylray_leaf_spawn_origin_side8(const cylray_leaf8 *leaf,
+                                               const cylray_hit1 *hit, const float p[3],
+                                               float err, int outward, const float w[3],
+                                               float out[3]);
+CYLRAY_API void cylray_leaf_spawn_origin_side16(const cylray_leaf16 *leaf,
+                                                const cylray_hit1 *hit, const float p[3],
+                                                float err, int outward, const float w[3],
+                                                float out[3]);
 /* Leaves' hits in bulk: hit i, returned by a query of leaf[i] with ray[i] (a leaf may
  * appear many times), into point i of pts (err may be NULL). */
 CYLRAY_API void cylray_leaf_hit_points4(const cylray_leaf4 *const *leaf,
@@ -413,6 +503,38 @@ CYLRAY_API void cylray_leaf_spawn_origins16(const cylray_leaf16 *const *leaf,
                                             const cylray_points *pts,
                                             const cylray_points *dirs,
                                             const cylray_points *origins, size_t n);
+/* The same from the hits' normals (the queries made with CYLRAY_NORMAL), as
+ * cylray_hit_point_normal. */
+CYLRAY_API void cylray_leaf_hit_points_normal4(const cylray_leaf4 *const *leaf,
+                                               const cylray_ray1 *ray, const cylray_hit1 *hit,
+                                               const cylray_points *pts, size_t n);
+CYLRAY_API void cylray_leaf_hit_points_normal8(const cylray_leaf8 *const *leaf,
+                                               const cylray_ray1 *ray, const cylray_hit1 *hit,
+                                               const cylray_points *pts, size_t n);
+CYLRAY_API void cylray_leaf_hit_points_normal16(const cylray_leaf16 *const *leaf,
+                                                const cylray_ray1 *ray,
+                                                const cylray_hit1 *hit,
+                                                const cylray_points *pts, size_t n);
+/* With the side chosen by the tracer: outward[i] nonzero, the side hit i's part's
+ * outward normal points to (as cylray_spawn_origin_side). */
+CYLRAY_API void cylray_leaf_spawn_origins_side4(const cylray_leaf4 *const *leaf,
+                                                const cylray_hit1 *hit,
+                                                const cylray_points *pts,
+                                                const uint8_t *outward,
+                                                const cylray_points *dirs,
+                                                const cylray_points *origins, size_t n);
+CYLRAY_API void cylray_leaf_spawn_origins_side8(const cylray_leaf8 *const *leaf,
+                                                const cylray_hit1 *hit,
+                                                const cylray_points *pts,
+                                                const uint8_t *outward,
+                                                const cylray_points *dirs,
+                                                const cylray_points *origins, size_t n);
+CYLRAY_API void cylray_leaf_spawn_origins_side16(const cylray_leaf16 *const *leaf,
+                                                 const cylray_hit1 *hit,
+                                                 const cylray_points *pts,
+                                                 const uint8_t *outward,
+                                                 const cylray_points *dirs,
+                                                 const cylray_points *origins, size_t n);
 
 /* ---- per-ISA access ------------------------------------------------------- */
 
@@ -502,6 +624,39 @@ typedef struct cylray_kernels {
     void (*leaf_spawn_origins16)(const cylray_leaf16 *const *, const cylray_hit1 *,
                                  const cylray_points *, const cylray_points *,
                                  const cylray_points *, size_t);
+    /* the normal and side forms */
+    void (*hit_points_normal4)(const cylray_prepared *, const cylray_ray4 *,
+                               const cylray_hit4 *, uint32_t, cylray_points4 *);
+    void (*hit_points_normal8)(const cylray_prepared *, const cylray_ray8 *,
+                               const cylray_hit8 *, uint32_t, cylray_points8 *);
+    void (*hit_points_normal16)(const cylray_prepared *, const cylray_ray16 *,
+                                const cylray_hit16 *, uint32_t, cylray_points16 *);
+    void (*spawn_rays_side4)(const cylray_prepared *, const cylray_points4 *,
+                             const cylray_hit4 *, uint32_t, uint32_t, cylray_ray4 *);
+    void (*spawn_rays_side8)(const cylray_prepared *, const cylray_points8 *,
+                             const cylray_hit8 *, uint32_t, uint32_t, cylray_ray8 *);
+    void (*spawn_rays_side16)(const cylray_prepared *, const cylray_points16 *,
+                              const cylray_hit16 *, uint32_t, uint32_t, cylray_ray16 *);
+    size_t (*hit_points_normal_stream)(const cylray_prepared *, const cylray_rays *,
+                                       const cylray_hits *, const cylray_points *, size_t);
+    void (*spawn_stream_side)(const cylray_prepared *, const cylray_points *,
+                              const int32_t *, const uint8_t *, const cylray_points *,
+                              const cylray_points *, size_t);
+    void (*leaf_hit_points_normal4)(const cylray_leaf4 *const *, const cylray_ray1 *,
+                                    const cylray_hit1 *, const cylray_points *, size_t);
+    void (*leaf_hit_points_normal8)(const cylray_leaf8 *const *, const cylray_ray1 *,
+                                    const cylray_hit1 *, const cylray_points *, size_t);
+    void (*leaf_hit_points_normal16)(const cylray_leaf16 *const *, const cylray_ray1 *,
+                                     const cylray_hit1 *, const cylray_points *, size_t);
+    void (*leaf_spawn_origins_side4)(const cylray_leaf4 *const *, const cylray_hit1 *,
+                                     const cylray_points *, const uint8_t *,
+                                     const cylray_points *, const cylray_points *, size_t);
+    void (*leaf_spawn_origins_side8)(const cylray_leaf8 *const *, const cylray_hit1 *,
+                                     const cylray_points *, const uint8_t *,
+                                     const cylray_points *, const cylray_points *, size_t);
+    void (*leaf_spawn_origins_side16)(const cylray_leaf16 *const *, const cylray_hit1 *,
+                                      const cylray_points *, const uint8_t *,
+                                      const cylray_points *, const cylray_points *, size_t);
 } cylray_kernels;
 
 /* One path's table, for validation and microbenchmarks: the same signatures and

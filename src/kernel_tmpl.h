@@ -532,6 +532,12 @@ CYLRAY_INLINE void KFN(ends)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_
         } else {
             ta = vdiv(na, dv), tb = vdiv(nb, dv);
         }
+        /* A ray in an end's plane (dv = 0, z0 = -+H exactly) gives 0/0 for that end: it
+         * lies in the closed solid's boundary, which the slab then leaves unbounded, as
+         * for any dv = 0 within it (the other end's infinity, negated), so that the ray
+         * meets the rim as the solid's entry and no ray slips through a rim. */
+        ta = vsel(veq(ta, ta), ta, vneg(tb));
+        tb = vsel(veq(tb, tb), tb, vneg(ta));
         vf slab_in = vmin(ta, tb), slab_out = vmax(ta, tb);
         st->t_in = vmax(st->side_lo, slab_in);
         st->t_out = vmin(st->side_hi, slab_out);

@@ -60,25 +60,109 @@ LEAF_PREPARE_(4)
 LEAF_PREPARE_(8)
 LEAF_PREPARE_(16)
 
+/* s + e = a + b exactly (Knuth's two-sum: any order of magnitudes). */
+static void two_sum(double a, double b, double *s, double *e)
+{
+    const double x = a + b, bb = x - a;
+    *e = (a - (x - bb)) + (b - bb);
+    *s = x;
+}
+
+/* The sign of the exact sum of x[0..n) (n <= 24), by growing a nonoverlapping
+ * expansion (Shewchuk): the sign of a nonoverlapping expansion is its largest term's. */
+static int sum_sign(const double *x, int n)
+{
+    double h[24];
+    int m = 0;
+    for (int i = 0; i < n; i++) {
+        double q = x[i];
+        int k = 0;
+        for (int j = 0; j < m; j++) {
+            double s, e;
+            two_sum(q, h[j], &s, &e);
+            if (e != 0)
+                h[k++] = e;
+            q = s;
+        }
+        if (q != 0)
+            h[k++] = q;
+        m = k;
+    }
+    return m == 0 ? 0 : h[m - 1] > 0 ? 1 : -1;
+}
+
+/* The sign of S - (2 mid)^2, S = sum of a[k]^2 with a[k] = ah[k] + al[k] exact: every
+ * square and product split exactly by an FMA (no double product of floats' differences
+ * underflows or overflows). */
+static int cmp_sq(const double ah[3], const double al[3], double mid)
+{
+    double x[20];
+    int n = 0;
+    for (int k = 0; k < 3; k++) {
+        const double t[3][2] = {{ah[k], ah[k]}, {2 * ah[k], al[k]}, {al[k], al[k]}};
+        for (int j = 0; j < 3; j++) {
+            const double pr = t[j][0] * t[j][1];
+            x[n++] = pr;
+            x[n++] = fma(t[j][0], t[j][1], -pr);
+        }
+    }
+    const double m2 = 2 * mid, pr = m2 * m2;
+    x[n++] = -pr;
+    x[n++] = -fma(m2, m2, -pr);
+    return sum_sign(x, n);
+}
+
+/* The float next to a positive finite f, above (s > 0) or below. */
+static float next_up_down(float f, int s)
+{
+    uint32_t b;
+    memcpy(&b, &f, sizeof b);
+    b = s > 0 ? b + 1 : b - 1;
+    memcpy(&f, &b, sizeof f);
+    return f;
+}
+
 cylray_status cylray_cylinder_from_endpoints(cylray_cylinder *out, const float p0[3],
                                              const float p1[3], float radius, unsigned flags)
 {
     if (!out || !p0 || !p1)
         return CYLRAY_EINVAL;
     cylray_cylinder c;
-    double len2 = 0;
+    double ah[3], al[3], len2 = 0;
     for (int k = 0; k < 3; k++) {
         if (!isfinite(p0[k]) || !isfinite(p1[k]))
             return CYLRAY_EINVAL;
-        /* The difference and the mean of two floats are exact in double (unless their
-         * exponents lie over 29 apart), so each is rounded once, to float. */
-        double a = (double)p1[k] - (double)p0[k];
-        c.axis[k] = (float)a;
-        c.center[k] = (float)(0.5 * ((double)p0[k] + (double)p1[k]));
-        len2 += a * a;
+        /* The difference and the sum of two floats are exact as two-term sums in
+         * double; each is rounded once, to float (halving is exact). */
+        double sh, sl;
+        two_sum((double)p1[k], -(double)p0[k], &ah[k], &al[k]);
+        two_sum((double)p0[k], (double)p1[k], &sh, &sl);
+        c.axis[k] = cylray_round_float_(ah[k], al[k]);
+        c.center[k] = cylray_round_float_(0.5 * sh, 0.5 * sl);
+        len2 += ah[k] * ah[k];
+    }
+    /* The half height |a| / 2 rounded once: a first guess from double, then moved to
+     * the float whose rounding interval holds it, each midpoint m judged exactly by the
+     * sign of |a|^2 - (2m)^2 (a tie goes to the even float). */
+    float h = cylray_round_float_(0.5 * sqrt(len2), 0);
+    if (len2 > 0 && h > 0 && isfinite(h)) {
+        for (int iter = 0; iter < 4; iter++) {
+            const float up = next_up_down(h, 1), dn = next_up_down(h, -1);
+            uint32_t hb;
+            memcpy(&hb, &h, sizeof hb);
+            const int even = (hb & 1u) == 0;
+            const int su = isfinite(up) ? cmp_sq(ah, al, 0.5 * ((double)h + up)) : -1;
+            const int sd = dn > 0 ? cmp_sq(ah, al, 0.5 * ((double)h + dn)) : 1;
+            if (su > 0 || (su == 0 && !even))
+                h = up;
+            else if (sd < 0 || (sd == 0 && !even))
+                h = dn;
+            else
+                break;
+        }
     }
     c.radius = radius;
-    c.half_height = (float)(0.5 * sqrt(len2));
+    c.half_height = h;
     c.flags = flags;
     cylray_prepared p;
     if (!(len2 > 0) || cylray_prepare(&p, &c) != CYLRAY_OK)

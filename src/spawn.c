@@ -24,7 +24,11 @@
  *   position is off by at most 4.6u H + 12.1u|q| + 2u(H + R) + u|P'|, the radius by 4.7u R.
  *   Every term is below env = 2^-47 (R + H + |q|_1 + |P'|_1)(1 + R/L) + R (2^-49 |q|_1/L)^2
  *   (2^-47 = 64u; the factor R/L from g alpha; H counts only when finite).
- * Then P = fl(P'), and e = P - P' is exact in double (Sterbenz). Against the surface
+ * Then P = fl(P'), and e = P - P' is exact in double (Sterbenz). fl is a conversion
+ * the vocabulary makes certain (dround_f): a vector conversion instruction, or in one
+ * lane a conversion through an empty asm statement, so that no optimiser can drop it
+ * (gcc 12 at -O3 folded (double)(float)x back into x in vectorised scalar code, giving
+ * e = 0). Against the surface
  * point next to P', with the normal n there, the distance from P is at most
  *   |e.n| + |e|^2 / R   (side, |e| <= R/2: the tangential part of e moves the radius
  *                        by |e_t|^2 / (2(R - |e|)) at most),
@@ -78,7 +82,15 @@ void cylray_hit_point(const cylray_prepared *cyl, const float o[3], const float 
 {
     DFN(geo) g;
     DFN(geo_prepared)(&g, cyl);
-    DFN(hit_point1)(&g, o, d, t, part, p, err);
+    DFN(hit_point1)(&g, o, d, t, part, NULL, p, err);
+}
+
+void cylray_hit_point_normal(const cylray_prepared *cyl, const float o[3], const float d[3],
+                             float t, int32_t part, const float n[3], float p[3], float *err)
+{
+    DFN(geo) g;
+    DFN(geo_prepared)(&g, cyl);
+    DFN(hit_point1)(&g, o, d, t, part, n, p, err);
 }
 
 void cylray_spawn_origin(const cylray_prepared *cyl, const float p[3], float err,
@@ -86,10 +98,18 @@ void cylray_spawn_origin(const cylray_prepared *cyl, const float p[3], float err
 {
     DFN(geo) g;
     DFN(geo_prepared)(&g, cyl);
-    DFN(spawn1)(&g, p, err, part, w, out);
+    DFN(spawn1)(&g, p, err, part, 0, w, out);
 }
 
-/* Leaves: the lane the hit names. */
+void cylray_spawn_origin_side(const cylray_prepared *cyl, const float p[3], float err,
+                              int32_t part, int outward, const float w[3], float out[3])
+{
+    DFN(geo) g;
+    DFN(geo_prepared)(&g, cyl);
+    DFN(spawn1)(&g, p, err, part, outward ? 1 : -1, w, out);
+}
+
+/* Leaves: the lane the hit names; in bulk, the path in use. */
 #define CYLRAY_SPAWN_LEAF_(m)                                                            \
     void cylray_leaf_hit_point##m(const cylray_leaf##m *leaf, const cylray_ray1 *ray,    \
                                   const cylray_hit1 *hit, float p[3], float *err)        \
@@ -97,7 +117,16 @@ void cylray_spawn_origin(const cylray_prepared *cyl, const float p[3], float err
         const float *geom = leaf->geom_[0];                                              \
         DFN(geo) g;                                                                      \
         DFN(leaf_geo)(&g, &geom, hit, m, 1);                                             \
-        DFN(hit_point1)(&g, ray->o, ray->d, hit->t, hit->part, p, err);                  \
+        DFN(hit_point1)(&g, ray->o, ray->d, hit->t, hit->part, NULL, p, err);            \
+    }                                                                                    \
+    void cylray_leaf_hit_point_normal##m(const cylray_leaf##m *leaf,                     \
+                                         const cylray_ray1 *ray, const cylray_hit1 *hit, \
+                                         float p[3], float *err)                         \
+    {                                                                                    \
+        const float *geom = leaf->geom_[0];                                              \
+        DFN(geo) g;                                                                      \
+        DFN(leaf_geo)(&g, &geom, hit, m, 1);                                             \
+        DFN(hit_point1)(&g, ray->o, ray->d, hit->t, hit->part, hit->n, p, err);          \
     }                                                                                    \
     void cylray_leaf_spawn_origin##m(const cylray_leaf##m *leaf, const cylray_hit1 *hit, \
                                      const float p[3], float err, const float w[3],      \
@@ -106,7 +135,17 @@ void cylray_spawn_origin(const cylray_prepared *cyl, const float p[3], float err
         const float *geom = leaf->geom_[0];                                              \
         DFN(geo) g;                                                                      \
         DFN(leaf_geo)(&g, &geom, hit, m, 1);                                             \
-        DFN(spawn1)(&g, p, err, hit->part, w, out);                                      \
+        DFN(spawn1)(&g, p, err, hit->part, 0, w, out);                                   \
+    }                                                                                    \
+    void cylray_leaf_spawn_origin_side##m(const cylray_leaf##m *leaf,                    \
+                                          const cylray_hit1 *hit, const float p[3],      \
+                                          float err, int outward, const float w[3],      \
+                                          float out[3])                                  \
+    {                                                                                    \
+        const float *geom = leaf->geom_[0];                                              \
+        DFN(geo) g;                                                                      \
+        DFN(leaf_geo)(&g, &geom, hit, m, 1);                                             \
+        DFN(spawn1)(&g, p, err, hit->part, outward ? 1 : -1, w, out);                    \
     }                                                                                    \
     void cylray_leaf_hit_points##m(const cylray_leaf##m *const *leaf,                    \
                                    const cylray_ray1 *ray, const cylray_hit1 *hit,       \
@@ -114,12 +153,28 @@ void cylray_spawn_origin(const cylray_prepared *cyl, const float p[3], float err
     {                                                                                    \
         cylray_kernels_best()->leaf_hit_points##m(leaf, ray, hit, pts, n);               \
     }                                                                                    \
+    void cylray_leaf_hit_points_normal##m(const cylray_leaf##m *const *leaf,             \
+                                          const cylray_ray1 *ray, const cylray_hit1 *hit, \
+                                          const cylray_points *pts, size_t n)            \
+    {                                                                                    \
+        cylray_kernels_best()->leaf_hit_points_normal##m(leaf, ray, hit, pts, n);        \
+    }                                                                                    \
     void cylray_leaf_spawn_origins##m(const cylray_leaf##m *const *leaf,                 \
                                       const cylray_hit1 *hit, const cylray_points *pts,  \
                                       const cylray_points *dirs,                         \
                                       const cylray_points *origins, size_t n)            \
     {                                                                                    \
         cylray_kernels_best()->leaf_spawn_origins##m(leaf, hit, pts, dirs, origins, n);  \
+    }                                                                                    \
+    void cylray_leaf_spawn_origins_side##m(const cylray_leaf##m *const *leaf,            \
+                                           const cylray_hit1 *hit,                       \
+                                           const cylray_points *pts,                     \
+                                           const uint8_t *outward,                       \
+                                           const cylray_points *dirs,                    \
+                                           const cylray_points *origins, size_t n)       \
+    {                                                                                    \
+        cylray_kernels_best()->leaf_spawn_origins_side##m(leaf, hit, pts, outward, dirs, \
+                                                          origins, n);                   \
     }
 CYLRAY_SPAWN_LEAF_(4)
 CYLRAY_SPAWN_LEAF_(8)
@@ -135,11 +190,23 @@ CYLRAY_SPAWN_LEAF_(16)
     {                                                                                    \
         cylray_kernels_best()->hit_points##n(cyl, ray, hit, mask, pts);                  \
     }                                                                                    \
+    void cylray_hit_points_normal##n(const cylray_prepared *cyl, const cylray_ray##n *ray, \
+                                     const cylray_hit##n *hit, uint32_t mask,            \
+                                     cylray_points##n *pts)                              \
+    {                                                                                    \
+        cylray_kernels_best()->hit_points_normal##n(cyl, ray, hit, mask, pts);           \
+    }                                                                                    \
     void cylray_spawn_rays##n(const cylray_prepared *cyl, const cylray_points##n *pts,   \
                               const cylray_hit##n *hit, uint32_t mask,                   \
                               cylray_ray##n *out)                                        \
     {                                                                                    \
         cylray_kernels_best()->spawn_rays##n(cyl, pts, hit, mask, out);                  \
+    }                                                                                    \
+    void cylray_spawn_rays_side##n(const cylray_prepared *cyl, const cylray_points##n *pts, \
+                                   const cylray_hit##n *hit, uint32_t mask,              \
+                                   uint32_t outward, cylray_ray##n *out)                 \
+    {                                                                                    \
+        cylray_kernels_best()->spawn_rays_side##n(cyl, pts, hit, mask, outward, out);    \
     }
 CYLRAY_SPAWN_PACKET_(4)
 CYLRAY_SPAWN_PACKET_(8)
@@ -152,9 +219,24 @@ size_t cylray_hit_points_stream(const cylray_prepared *cyl, const cylray_rays *r
     return cylray_kernels_best()->hit_points_stream(cyl, rays, hits, pts, n);
 }
 
+size_t cylray_hit_points_normal_stream(const cylray_prepared *cyl, const cylray_rays *rays,
+                                       const cylray_hits *hits, const cylray_points *pts,
+                                       size_t n)
+{
+    return cylray_kernels_best()->hit_points_normal_stream(cyl, rays, hits, pts, n);
+}
+
 void cylray_spawn_stream(const cylray_prepared *cyl, const cylray_points *pts,
                          const int32_t *part, const cylray_points *dirs,
                          const cylray_points *origins, size_t n)
 {
     cylray_kernels_best()->spawn_stream(cyl, pts, part, dirs, origins, n);
+}
+
+void cylray_spawn_stream_side(const cylray_prepared *cyl, const cylray_points *pts,
+                              const int32_t *part, const uint8_t *outward,
+                              const cylray_points *dirs, const cylray_points *origins,
+                              size_t n)
+{
+    cylray_kernels_best()->spawn_stream_side(cyl, pts, part, outward, dirs, origins, n);
 }

@@ -126,7 +126,7 @@ static inline void DFN(geo_prepared)(DFN(geo) *g, const cylray_prepared *P)
 /* THE HIT POINT of the rays o + t d at t on `part` (as doubles of its low bits): the
  * point p (doubles of floats) and the bound err (likewise). */
 CYLRAY_INLINE void DFN(hit_point)(const DFN(geo) *g, const vd o[3], const vd d[3], vd t,
-                                  vd part, vd p[3], vd *err)
+                                  vd part, const vd *nk, vd back, vd p[3], vd *err)
 {
     const vd zero = dset1(0.0), one = dset1(1.0);
     const vdm side = deq(part, dset1(CYLRAY_SIDE)), chi = deq(part, dset1(CYLRAY_CAP_HI));
@@ -134,6 +134,34 @@ CYLRAY_INLINE void DFN(hit_point)(const DFN(geo) *g, const vd o[3], const vd d[3
     vd q[3], r[3];
     for (int k = 0; k < 3; k++) /* t d_k is exact */
         q[k] = dsub(dadd(o[k], dmul(t, d[k])), g->c[k]);
+    if (nk) {
+        /* The kernel's normal nk of a side hit (or NULL). Where float t or the
+         * coordinates cannot place the hit (ulp(t)|d| not small against R), o + t d may
+         * lie far around the tube from the hit the kernel found, whose normal is
+         * accurate: the point is then taken at the kernel's azimuth, q = (q.v / v.v) v +
+         * R n. The analysis holds for any q, and the normal at the point agrees with the
+         * kernel's. The sign of n: the outward one (the BACKFACE bit against d where d.n
+         * is clear of zero, else the side of q), so a face-forwarded normal serves too. */
+        const vd s0 = dmul(DFN(dot3)(q, g->v), g->inv_vv);
+        const vd sn = dmul(DFN(dot3)(nk, g->v), g->inv_vv);
+        vd rn[3], qr[3];
+        for (int k = 0; k < 3; k++) {
+            rn[k] = dsub(nk[k], dmul(sn, g->v[k]));
+            qr[k] = dsub(q[k], dmul(s0, g->v[k]));
+        }
+        const vd rl = dsqrt(DFN(dot3)(rn, rn)), nl = dsqrt(DFN(dot3)(nk, nk));
+        const vd dn = DFN(dot3)(d, nk);
+        /* not a side normal (or not finite): q stays */
+        const vdm valid = dmand(dmand(side, dgt(rl, dmul(dset1(0x1p-10), nl))),
+                                dlt(rl, dset1(INFINITY)));
+        const vdm clear = dgt(dabs(dn), dmul(dmul(dset1(0x1p-7), dsqrt(DFN(dot3)(d, d))), nl));
+        const vdm dpos = dgt(dn, zero), bk = dgt(back, zero);
+        const vdm flip = dmor(dmand(clear, dmor(dmandn(dpos, bk), dmandn(bk, dpos))),
+                              dmandn(dlt(DFN(dot3)(rn, qr), zero), clear));
+        const vd gn = ddiv(dsel(flip, dsub(zero, g->R), g->R), rl);
+        for (int k = 0; k < 3; k++)
+            q[k] = dsel(valid, dadd(dmul(s0, g->v[k]), dmul(gn, rn[k])), q[k]);
+    }
     vd s = dmul(DFN(dot3)(q, g->v), g->inv_vv);
     for (int k = 0; k < 3; k++)
         r[k] = dsub(q[k], dmul(s, g->v[k]));
@@ -196,9 +224,11 @@ typedef struct DFN(surf) {
 } DFN(surf);
 
 /* THE SPAWNED ORIGIN leaving p (doubles of floats, bound err) on `part` in direction
- * w: out, doubles of floats. */
+ * w: out, doubles of floats. side: +1 or -1 puts the origin on that side of the part's
+ * own surface (+1: where its outward normal points), 0 on w's side; any other surface
+ * it must clear is cleared to w's side. */
 CYLRAY_INLINE void DFN(spawn)(const DFN(geo) *g, const vd p[3], vd err, vd part,
-                              const vd w[3], vd out[3])
+                              vd side, const vd w[3], vd out[3])
 {
     const vd zero = dset1(0.0), one = dset1(1.0);
     vd q[3], r[3];
@@ -248,7 +278,10 @@ CYLRAY_INLINE void DFN(spawn)(const DFN(geo) *g, const vd p[3], vd err, vd part,
         x->base = zero;
         if (!x->any) /* no lane clears it: it adds nothing below */
             continue;
-        x->pos = dgt(DFN(dot3)(x->n, w), zero);
+        /* to w's side; the part's own surface to the side asked for, where one is */
+        const vdm chosen = dmand(here[i], dmnot(deq(side, zero)));
+        x->pos = dmor(dmand(chosen, dgt(side, zero)),
+                      dmandn(dgt(DFN(dot3)(x->n, w), zero), chosen));
         x->sgn = dsel(x->pos, one, dset1(-1.0));
         /* max(0, -sign sigma): how far p lies on the wrong side */
         x->base = dmax(zero, dsel(x->pos, dsub(zero, x->sigma), x->sigma));
@@ -305,25 +338,28 @@ static inline void DFN(store)(float *p, vd x, uint32_t bits)
             p[i] = tmp[i];
 }
 
-/* Hit points of DW rays whose fields start at the given pointers (o, d: 3 each, then t
- * and part); out: x, y, z, err (err may be NULL). */
-CYLRAY_INLINE void DFN(hp_lanes)(const DFN(geo) *g, const float *const in[7],
+/* Hit points of DW rays whose fields start at the given pointers (o, d: 3 each, t, then
+ * the kernel's normal or NULLs); out: x, y, z, err (err may be NULL). */
+CYLRAY_INLINE void DFN(hp_lanes)(const DFN(geo) *g, const float *const in[10],
                                  const int32_t *part, float *const out[4], uint32_t bits)
 {
-    vd o[3], d[3], p[3], err;
+    vd o[3], d[3], p[3], err, n[3];
     for (int k = 0; k < 3; k++) {
         o[k] = dloadu_f(in[k]);
         d[k] = dloadu_f(in[3 + k]);
+        n[k] = in[7] ? dloadu_f(in[7 + k]) : dset1(0.0);
     }
-    DFN(hit_point)(g, o, d, dloadu_f(in[6]), dload_part(part), p, &err);
+    DFN(hit_point)(g, o, d, dloadu_f(in[6]), dload_bits(part, CYLRAY_PART_MASK),
+                   in[7] ? n : NULL, dload_bits(part, CYLRAY_BACKFACE), p, &err);
     for (int k = 0; k < 3; k++)
         DFN(store)(out[k], p[k], bits);
     if (out[3])
         DFN(store)(out[3], err, bits);
 }
 
-/* Origins of DW points (x, y, z, err: err may be NULL for 0) with directions w. */
-CYLRAY_INLINE void DFN(sp_lanes)(const DFN(geo) *g, const float *const in[7],
+/* Origins of DW points (x, y, z, err: err may be NULL for 0) with directions w, and the
+ * side asked for (+1, -1; NULL: w's side). */
+CYLRAY_INLINE void DFN(sp_lanes)(const DFN(geo) *g, const float *const in[10],
                                  const int32_t *part, float *const out[3], uint32_t bits)
 {
     vd p[3], w[3], x[3];
@@ -332,22 +368,23 @@ CYLRAY_INLINE void DFN(sp_lanes)(const DFN(geo) *g, const float *const in[7],
         w[k] = dloadu_f(in[4 + k]);
     }
     const vd err = in[3] ? dloadu_f(in[3]) : dset1(0.0);
-    DFN(spawn)(g, p, err, dload_part(part), w, x);
+    DFN(spawn)(g, p, err, dload_bits(part, CYLRAY_PART_MASK),
+               in[7] ? dloadu_f(in[7]) : dset1(0.0), w, x);
     for (int k = 0; k < 3; k++)
         DFN(store)(out[k], x[k], bits);
 }
 
 /* Fewer than DW lanes (a stream's tail): through buffers padded with the first lane. */
-CYLRAY_MAYBE_UNUSED static void DFN(tail)(void (*fn)(const DFN(geo) *, const float *const[7], const int32_t *,
+CYLRAY_MAYBE_UNUSED static void DFN(tail)(void (*fn)(const DFN(geo) *, const float *const[10], const int32_t *,
                                  float *const[], uint32_t),
-                      const DFN(geo) *g, const float *const in[7], const int32_t *part,
+                      const DFN(geo) *g, const float *const in[10], const int32_t *part,
                       float *const *out, size_t nout, size_t cnt, uint32_t bits)
 {
-    float ib[7][DW], ob[4][DW];
+    float ib[10][DW], ob[4][DW];
     int32_t pb[DW];
-    const float *ip[7];
+    const float *ip[10];
     float *op[4];
-    for (int f = 0; f < 7; f++) {
+    for (int f = 0; f < 10; f++) {
         ip[f] = in[f] ? ib[f] : NULL;
         for (size_t i = 0; i < DW && in[f]; i++)
             ib[f][i] = in[f][i < cnt ? i : 0];
@@ -363,13 +400,13 @@ CYLRAY_MAYBE_UNUSED static void DFN(tail)(void (*fn)(const DFN(geo) *, const flo
                 out[f][i] = ob[f][i];
 }
 
-CYLRAY_MAYBE_UNUSED static void DFN(hp_fn)(const DFN(geo) *g, const float *const in[7], const int32_t *part,
+CYLRAY_MAYBE_UNUSED static void DFN(hp_fn)(const DFN(geo) *g, const float *const in[10], const int32_t *part,
                        float *const out[], uint32_t bits)
 {
     DFN(hp_lanes)(g, in, part, out, bits);
 }
 
-CYLRAY_MAYBE_UNUSED static void DFN(sp_fn)(const DFN(geo) *g, const float *const in[7], const int32_t *part,
+CYLRAY_MAYBE_UNUSED static void DFN(sp_fn)(const DFN(geo) *g, const float *const in[10], const int32_t *part,
                        float *const out[], uint32_t bits)
 {
     DFN(sp_lanes)(g, in, part, out, bits);
@@ -377,9 +414,12 @@ CYLRAY_MAYBE_UNUSED static void DFN(sp_fn)(const DFN(geo) *g, const float *const
 
 /* ---- the batched forms ---------------------------------------------------------- */
 
-/* Packets of n lanes (a multiple of DW): ray and hit as n-lane field arrays. */
-CYLRAY_MAYBE_UNUSED static void DFN(hit_points_packet)(const cylray_prepared *P, const float *ray, const float *hit,
-                            size_t n, uint32_t mask, float *pts)
+/* Packets of n lanes (a multiple of DW): ray and hit as n-lane field arrays; normals:
+ * the hit's nx, ny, nz are the kernel's normals (the normal forms). */
+CYLRAY_MAYBE_UNUSED static void DFN(hit_points_packet)(const cylray_prepared *P,
+                                                       const float *ray, const float *hit,
+                                                       size_t n, uint32_t mask, int normals,
+                                                       float *pts)
 {
     DFN(geo) g;
     DFN(geo_prepared)(&g, P);
@@ -388,27 +428,41 @@ CYLRAY_MAYBE_UNUSED static void DFN(hit_points_packet)(const cylray_prepared *P,
         const uint32_t bits = (mask >> b) & DFULL;
         if (!bits)
             continue;
-        const float *const in[7] = {ray + b,         ray + n + b,     ray + 2 * n + b,
-                                    ray + 3 * n + b, ray + 4 * n + b, ray + 5 * n + b,
-                                    hit + b};
+        const float *const in[10] = {
+            ray + b,         ray + n + b,     ray + 2 * n + b,
+            ray + 3 * n + b, ray + 4 * n + b, ray + 5 * n + b,
+            hit + b,         normals ? hit + n + b : NULL,
+            hit + 2 * n + b, hit + 3 * n + b};
         float *const out[4] = {pts + b, pts + n + b, pts + 2 * n + b, pts + 3 * n + b};
         DFN(hp_lanes)(&g, in, part + b, out, bits);
     }
 }
 
-CYLRAY_MAYBE_UNUSED static void DFN(spawn_rays_packet)(const cylray_prepared *P, const float *pts, const float *hit,
-                            size_t n, uint32_t mask, float *ray)
+/* The sides asked for, as +1 or -1 a lane (bits of a mask, or bytes), for sp_lanes. */
+static inline void DFN(sides_bits)(float side[DW], uint32_t outward)
+{
+    for (int i = 0; i < DW; i++)
+        side[i] = outward >> i & 1u ? 1.0f : -1.0f;
+}
+
+CYLRAY_MAYBE_UNUSED static void DFN(spawn_rays_packet)(const cylray_prepared *P,
+                                                       const float *pts, const float *hit,
+                                                       size_t n, uint32_t mask,
+                                                       const uint32_t *outward, float *ray)
 {
     DFN(geo) g;
     DFN(geo_prepared)(&g, P);
     const int32_t *part = (const int32_t *)(const void *)(hit + 4 * n);
+    float side[DW];
     for (size_t b = 0; b < n; b += DW) {
         const uint32_t bits = (mask >> b) & DFULL;
         if (!bits)
             continue;
-        const float *const in[7] = {pts + b,         pts + n + b,     pts + 2 * n + b,
-                                    pts + 3 * n + b, ray + 3 * n + b, ray + 4 * n + b,
-                                    ray + 5 * n + b};
+        if (outward)
+            DFN(sides_bits)(side, *outward >> b);
+        const float *const in[10] = {pts + b,         pts + n + b,     pts + 2 * n + b,
+                                     pts + 3 * n + b, ray + 3 * n + b, ray + 4 * n + b,
+                                     ray + 5 * n + b, outward ? side : NULL};
         float *const out[3] = {ray + b, ray + n + b, ray + 2 * n + b};
         DFN(sp_lanes)(&g, in, part + b, out, bits);
         DFN(store)(ray + 6 * n + b, dset1(0.0), bits);
@@ -418,61 +472,72 @@ CYLRAY_MAYBE_UNUSED static void DFN(spawn_rays_packet)(const cylray_prepared *P,
 /* The lanes of DW parts that are not CYLRAY_MISS. */
 static inline uint32_t DFN(hit_bits)(const int32_t *part)
 {
-    return dmbits(dgt(dload_part(part), dset1(0.0)));
+    return dmbits(dgt(dload_bits(part, CYLRAY_PART_MASK), dset1(0.0)));
 }
 
-CYLRAY_MAYBE_UNUSED static size_t DFN(hit_points_stream)(const cylray_prepared *P, const cylray_rays *rays,
-                              const cylray_hits *hits, const cylray_points *pts, size_t n)
+CYLRAY_MAYBE_UNUSED static size_t DFN(hit_points_stream)(const cylray_prepared *P,
+                                                         const cylray_rays *rays,
+                                                         const cylray_hits *hits,
+                                                         const cylray_points *pts, size_t n,
+                                                         int normals)
 {
     DFN(geo) g;
     DFN(geo_prepared)(&g, P);
-    size_t count = 0, b = 0;
-    for (; b + DW <= n; b += DW) {
+    size_t count = 0;
+    for (size_t b = 0; b < n; b += DW) {
+        const float *const in[10] = {rays->ox + b, rays->oy + b, rays->oz + b,
+                                     rays->dx + b, rays->dy + b, rays->dz + b,
+                                     hits->t + b,  normals ? hits->nx + b : NULL,
+                                     normals ? hits->ny + b : NULL,
+                                     normals ? hits->nz + b : NULL};
+        float *const out[4] = {pts->x + b, pts->y + b, pts->z + b,
+                               pts->err ? pts->err + b : NULL};
+        if (b + DW > n) {
+            uint32_t bits = 0;
+            for (size_t i = 0; b + i < n; i++)
+                bits |= (uint32_t)((hits->part[b + i] & CYLRAY_PART_MASK) != CYLRAY_MISS) << i;
+            if (bits) {
+                count += CYLRAY_POPCOUNT(bits);
+                DFN(tail)(DFN(hp_fn), &g, in, hits->part + b, out, 4, n - b, bits);
+            }
+            break;
+        }
         const uint32_t bits = DFN(hit_bits)(hits->part + b);
         if (!bits)
             continue;
         count += CYLRAY_POPCOUNT(bits);
-        const float *const in[7] = {rays->ox + b, rays->oy + b, rays->oz + b, rays->dx + b,
-                                    rays->dy + b, rays->dz + b, hits->t + b};
-        float *const out[4] = {pts->x + b, pts->y + b, pts->z + b,
-                               pts->err ? pts->err + b : NULL};
         DFN(hp_lanes)(&g, in, hits->part + b, out, bits);
-    }
-    if (b < n) {
-        uint32_t bits = 0;
-        for (size_t i = 0; b + i < n; i++)
-            bits |= (uint32_t)((hits->part[b + i] & CYLRAY_PART_MASK) != CYLRAY_MISS) << i;
-        if (bits) {
-            count += CYLRAY_POPCOUNT(bits);
-            const float *const in[7] = {rays->ox + b, rays->oy + b, rays->oz + b,
-                                        rays->dx + b, rays->dy + b, rays->dz + b,
-                                        hits->t + b};
-            float *const out[4] = {pts->x + b, pts->y + b, pts->z + b,
-                                   pts->err ? pts->err + b : NULL};
-            DFN(tail)(DFN(hp_fn), &g, in, hits->part + b, out, 4, n - b, bits);
-        }
     }
     return count;
 }
 
-CYLRAY_MAYBE_UNUSED static void DFN(spawn_stream)(const cylray_prepared *P, const cylray_points *pts,
-                       const int32_t *part, const cylray_points *dirs,
-                       const cylray_points *origins, size_t n)
+/* outward: NULL (w's side), or a byte a ray (nonzero: the part's outward side). */
+CYLRAY_MAYBE_UNUSED static void DFN(spawn_stream)(const cylray_prepared *P,
+                                                  const cylray_points *pts,
+                                                  const int32_t *part,
+                                                  const uint8_t *outward,
+                                                  const cylray_points *dirs,
+                                                  const cylray_points *origins, size_t n)
 {
     DFN(geo) g;
     DFN(geo_prepared)(&g, P);
-    size_t b = 0;
-    for (; b < n; b += DW) {
-        const float *const in[7] = {pts->x + b,  pts->y + b,  pts->z + b,
-                                    pts->err ? pts->err + b : NULL,
-                                    dirs->x + b, dirs->y + b, dirs->z + b};
+    float side[DW];
+    for (size_t b = 0; b < n; b += DW) {
+        const size_t cnt = n - b < DW ? n - b : DW;
+        if (outward)
+            for (size_t i = 0; i < DW; i++)
+                side[i] = outward[b + (i < cnt ? i : 0)] ? 1.0f : -1.0f;
+        const float *const in[10] = {pts->x + b,  pts->y + b,  pts->z + b,
+                                     pts->err ? pts->err + b : NULL,
+                                     dirs->x + b, dirs->y + b, dirs->z + b,
+                                     outward ? side : NULL};
         float *const out[3] = {origins->x + b, origins->y + b, origins->z + b};
-        if (b + DW > n) {
+        if (cnt < DW) {
             uint32_t bits = 0;
-            for (size_t i = 0; b + i < n; i++)
+            for (size_t i = 0; i < cnt; i++)
                 bits |= (uint32_t)((part[b + i] & CYLRAY_PART_MASK) != CYLRAY_MISS) << i;
             if (bits)
-                DFN(tail)(DFN(sp_fn), &g, in, part + b, out, 3, n - b, bits);
+                DFN(tail)(DFN(sp_fn), &g, in, part + b, out, 3, cnt, bits);
             break;
         }
         const uint32_t bits = DFN(hit_bits)(part + b);
@@ -511,25 +576,30 @@ CYLRAY_MAYBE_UNUSED static void DFN(leaf_geo)(DFN(geo) *g, const float *const *l
                   dgt(dloadu_f(hi), zero));
 }
 
-CYLRAY_MAYBE_UNUSED static void DFN(leaf_hit_points)(const float *const *leaf, size_t m, const cylray_ray1 *ray,
-                          const cylray_hit1 *hit, const cylray_points *pts, size_t n)
+CYLRAY_MAYBE_UNUSED static void DFN(leaf_hit_points)(const float *const *leaf, size_t m,
+                                                     const cylray_ray1 *ray,
+                                                     const cylray_hit1 *hit,
+                                                     const cylray_points *pts, size_t n,
+                                                     int normals)
 {
     for (size_t b = 0; b < n; b += DW) {
         const size_t cnt = n - b < DW ? n - b : DW;
         DFN(geo) g;
         DFN(leaf_geo)(&g, leaf + b, hit + b, m, cnt);
-        float ib[7][DW], ob[4][DW];
+        float ib[10][DW], ob[4][DW];
         int32_t pb[DW];
         for (size_t i = 0; i < DW; i++) {
             const size_t j = b + (i < cnt ? i : 0);
             for (int k = 0; k < 3; k++) {
                 ib[k][i] = ray[j].o[k];
                 ib[3 + k][i] = ray[j].d[k];
+                ib[7 + k][i] = hit[j].n[k];
             }
             ib[6][i] = hit[j].t;
             pb[i] = hit[j].part;
         }
-        const float *const in[7] = {ib[0], ib[1], ib[2], ib[3], ib[4], ib[5], ib[6]};
+        const float *const in[10] = {ib[0], ib[1], ib[2], ib[3], ib[4], ib[5], ib[6],
+                                     normals ? ib[7] : NULL, ib[8], ib[9]};
         float *const out[4] = {ob[0], ob[1], ob[2], ob[3]};
         DFN(hp_lanes)(&g, in, pb, out, DFULL);
         for (size_t i = 0; i < cnt; i++) {
@@ -542,17 +612,26 @@ CYLRAY_MAYBE_UNUSED static void DFN(leaf_hit_points)(const float *const *leaf, s
     }
 }
 
-CYLRAY_MAYBE_UNUSED static void DFN(leaf_spawn_origins)(const float *const *leaf, size_t m, const cylray_hit1 *hit,
-                             const cylray_points *pts, const cylray_points *dirs,
-                             const cylray_points *origins, size_t n)
+CYLRAY_MAYBE_UNUSED static void DFN(leaf_spawn_origins)(const float *const *leaf, size_t m,
+                                                        const cylray_hit1 *hit,
+                                                        const cylray_points *pts,
+                                                        const uint8_t *outward,
+                                                        const cylray_points *dirs,
+                                                        const cylray_points *origins,
+                                                        size_t n)
 {
+    float side[DW];
     for (size_t b = 0; b < n; b += DW) {
         const size_t cnt = n - b < DW ? n - b : DW;
         DFN(geo) g;
         DFN(leaf_geo)(&g, leaf + b, hit + b, m, cnt);
-        const float *const in[7] = {pts->x + b,  pts->y + b,  pts->z + b,
-                                    pts->err ? pts->err + b : NULL,
-                                    dirs->x + b, dirs->y + b, dirs->z + b};
+        if (outward)
+            for (size_t i = 0; i < DW; i++)
+                side[i] = outward[b + (i < cnt ? i : 0)] ? 1.0f : -1.0f;
+        const float *const in[10] = {pts->x + b,  pts->y + b,  pts->z + b,
+                                     pts->err ? pts->err + b : NULL,
+                                     dirs->x + b, dirs->y + b, dirs->z + b,
+                                     outward ? side : NULL};
         float *const out[3] = {origins->x + b, origins->y + b, origins->z + b};
         int32_t pb[DW];
         for (size_t i = 0; i < DW; i++)
@@ -565,19 +644,24 @@ CYLRAY_MAYBE_UNUSED static void DFN(leaf_spawn_origins)(const float *const *leaf
 }
 
 #if DW == 1
-/* The scalar entry points: one lane. */
-CYLRAY_MAYBE_UNUSED static void DFN(hit_point1)(const DFN(geo) *g, const float o[3], const float d[3], float t,
-                     int32_t part, float p[3], float *err)
+/* The scalar entry points: one lane; n, the kernel's normal or NULL; side as in spawn. */
+CYLRAY_MAYBE_UNUSED static void DFN(hit_point1)(const DFN(geo) *g, const float o[3],
+                                                const float d[3], float t, int32_t part,
+                                                const float *n, float p[3], float *err)
 {
-    const float *const in[7] = {&o[0], &o[1], &o[2], &d[0], &d[1], &d[2], &t};
+    const float *const in[10] = {&o[0], &o[1], &o[2], &d[0], &d[1], &d[2], &t,
+                                 n ? &n[0] : NULL, n ? &n[1] : NULL, n ? &n[2] : NULL};
     float *const out[4] = {&p[0], &p[1], &p[2], err};
     DFN(hp_lanes)(g, in, &part, out, 1u);
 }
 
-CYLRAY_MAYBE_UNUSED static void DFN(spawn1)(const DFN(geo) *g, const float p[3], float err, int32_t part,
-                 const float w[3], float out[3])
+CYLRAY_MAYBE_UNUSED static void DFN(spawn1)(const DFN(geo) *g, const float p[3], float err,
+                                            int32_t part, int side, const float w[3],
+                                            float out[3])
 {
-    const float *const in[7] = {&p[0], &p[1], &p[2], &err, &w[0], &w[1], &w[2]};
+    const float sd = (float)side;
+    const float *const in[10] = {&p[0], &p[1], &p[2], &err, &w[0], &w[1], &w[2],
+                                 side ? &sd : NULL};
     float *const o[3] = {&out[0], &out[1], &out[2]};
     DFN(sp_lanes)(g, in, &part, o, 1u);
 }

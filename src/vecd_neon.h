@@ -35,5 +35,5 @@
                                     vdupq_n_u64(0x7ff0000000000000ull)))
 #define dloadu_f(p) vcvt_f64_f32(vld1_f32(p))
 #define dstoreu_f(p, x) vst1_f32(p, vcvt_f32_f64(x))
-#define dload_part(p)                                                                   \
-    vcvtq_f64_s64(vmovl_s32(vand_s32(vld1_s32(p), vdup_n_s32(CYLRAY_PART_MASK))))
+#define dload_bits(p, m)                                                                   \
+    vcvtq_f64_s64(vmovl_s32(vand_s32(vld1_s32(p), vdup_n_s32(m))))

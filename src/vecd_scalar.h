@@ -7,7 +7,7 @@
  *   dround_f(x) = (double)(float)x, the rounding to float done for certain;
  *   dexpo(x) = x with its significand cleared (2^e for a normal x, inf for inf and NaN);
  *   dloadu_f / dstoreu_f: DW floats to and from doubles (the store rounds to nearest);
- *   dload_part(p) = (double)(p[i] & CYLRAY_PART_MASK);
+ *   dload_bits(p, m) = (double)(p[i] & m), for an int32_t array p;
  *   dmbits(m): bit i set where lane i of m is. */
 #include <stdint.h>
 #include <string.h>
@@ -67,4 +67,4 @@ static inline double DFN(expo)(double x)
 #define dexpo(x) DFN(expo)(x)
 #define dloadu_f(p) ((double)*(p))
 #define dstoreu_f(p, x) (*(p) = (float)(x))
-#define dload_part(p) ((double)(*(p) & CYLRAY_PART_MASK))
+#define dload_bits(p, m) ((double)(*(p) & (m)))

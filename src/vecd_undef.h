@@ -29,6 +29,6 @@
 #undef dexpo
 #undef dloadu_f
 #undef dstoreu_f
-#undef dload_part
+#undef dload_bits
 #undef dcmp_
 #undef dones_

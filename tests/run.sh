@@ -11,6 +11,9 @@
 #   gcc      gcc, debugoptimized, warnings are errors
 #   clang    clang, debugoptimized, warnings are errors (also runs the fuzz corpus
 #            and a short deterministic libFuzzer session as tests)
+#   gcc-release    gcc, release (-O3, what the README's install line builds),
+#                  warnings are errors, no bench
+#   clang-release  clang, release, warnings are errors, no bench
 #   asan     clang with AddressSanitizer + UndefinedBehaviorSanitizer; the library is
 #            also built with libFuzzer coverage, so the fuzz step reuses this build
 #   aarch64  cross-compiled for AArch64 (NEON), gcc's ASan + UBSan, under qemu-user
@@ -30,7 +33,7 @@
 set -euo pipefail
 
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
-ALL_CONFIGS=(gcc clang asan aarch64 tsan fuzz)
+ALL_CONFIGS=(gcc clang gcc-release clang-release asan aarch64 tsan fuzz)
 FUZZ_SECONDS=${FUZZ_SECONDS:-120}
 FUZZ_RUNS=${FUZZ_RUNS:-20000}
 FUZZ_SEED=${FUZZ_SEED:-1}
@@ -41,10 +44,10 @@ CONFIGS=()
 for a in "$@"; do
     case "$a" in
     -h | --help)
-        sed -n '3,29p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'
+        sed -n '3,32p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'
         exit 0
         ;;
-    gcc | clang | asan | aarch64 | tsan | fuzz) CONFIGS+=("$a") ;;
+    gcc | clang | gcc-release | clang-release | asan | aarch64 | tsan | fuzz) CONFIGS+=("$a") ;;
     *)
         echo "run.sh: unknown configuration '$a' (known: ${ALL_CONFIGS[*]})" >&2
         exit 2
@@ -79,8 +82,10 @@ have_cxx() { command -v c++ || command -v g++ || command -v clang++; }
 need meson command -v meson
 need ninja-build command -v ninja
 need python3 command -v python3
-if wants gcc; then need gcc command -v gcc; fi
-if wants clang || wants asan || wants tsan || wants fuzz; then need clang command -v clang; fi
+if wants gcc || wants gcc-release; then need gcc command -v gcc; fi
+if wants clang || wants clang-release || wants asan || wants tsan || wants fuzz; then
+    need clang command -v clang
+fi
 if wants clang || wants asan || wants tsan || wants fuzz; then
     need libclang-rt-14-dev have_fuzzer_rt
 fi
@@ -91,7 +96,7 @@ if wants aarch64; then
 fi
 # The header's C++ test needs some C++ compiler, and the tests of an installed tree
 # cmake and pkg-config; each is skipped (not failed) without.
-if wants gcc || wants clang; then
+if wants gcc || wants clang || wants gcc-release || wants clang-release; then
     need g++ have_cxx
     need cmake command -v cmake
     need pkgconf command -v pkg-config
@@ -141,7 +146,7 @@ PY
 note() { # note <config> <passed> <failed> <seconds> <remark>
     PASSED=$((PASSED + $2))
     FAILED=$((FAILED + $3))
-    SUMMARY+=("$(printf '%-8s %4d passed %4d failed %6ss  %s' "$1" "$2" "$3" "$4" "$5")")
+    SUMMARY+=("$(printf '%-13s %4d passed %4d failed %6ss  %s' "$1" "$2" "$3" "$4" "$5")")
     printf -- '-- %s: %d passed, %d failed (%ss) %s\n' "$1" "$2" "$3" "$4" "$5"
 }
 
@@ -150,7 +155,7 @@ unavailable() { # unavailable <config> <what is missing>
     if [ "$CI" = true ]; then
         note "$1" 0 1 0 "FAILED: $2 missing"
     else
-        SUMMARY+=("$(printf '%-8s skipped: %s missing' "$1" "$2")")
+        SUMMARY+=("$(printf '%-13s skipped: %s missing' "$1" "$2")")
         echo "-- $1: skipped ($2 missing)"
     fi
 }
@@ -245,6 +250,22 @@ config_clang() {
         build_failed clang "$dir" "$t0"
     fi
 }
+
+# The release builds: what users install (-O3), whose optimiser transforms what
+# debugoptimized's -O2 leaves alone; every test runs there as well.
+config_release() { # config_release <name> <cc> <cxx>
+    local t0 dir=build/test-$1
+    t0=$(date +%s)
+    command -v "$2" >/dev/null || { unavailable "$1" "$2"; return; }
+    san_env "" # clang's fuzz target, if built, carries ASan and UBSan
+    if CC=$2 CXX=$3 setup_build "$dir" --buildtype=release --werror -Dbench=false; then
+        run_tests "$1" "$dir" "$t0"
+    else
+        build_failed "$1" "$dir" "$t0"
+    fi
+}
+config_gcc-release() { config_release gcc-release gcc g++; }
+config_clang-release() { config_release clang-release clang clang++; }
 
 # The clang ASan + UBSan build, with libFuzzer coverage in every object. Targets to
 # build: all, or those in BUILD_TARGETS.
@@ -345,6 +366,8 @@ for cfg in "${CONFIGS[@]}"; do
     case $cfg in
     gcc) what="gcc, debugoptimized, -Werror" ;;
     clang) what="clang, debugoptimized, -Werror" ;;
+    gcc-release) what="gcc, release (-O3), -Werror" ;;
+    clang-release) what="clang, release (-O3), -Werror" ;;
     asan) what="clang, ASan + UBSan (+ fuzzer coverage), CYLRAY_TEST_QUICK=1" ;;
     aarch64) what="aarch64 cross, NEON, ASan + UBSan under qemu-user, CYLRAY_TEST_QUICK=1" ;;
     tsan) what="clang, ThreadSanitizer, the thread test" ;;

@@ -1,0 +1,109 @@
+/* SPDX-License-Identifier: MIT */
+/* endpoints.c - cylray_cylinder_from_endpoints rounds once: the axis p1 - p0, the
+ * center (p0 + p1) / 2 and the half height |p1 - p0| / 2, each the float nearest the
+ * exact value of the float inputs (ties to even), judged in binary128 on random pairs
+ * whose exact values binary128 holds (every coordinate within 2^30 of the largest, so
+ * that a sum of squares spans at most 112 bits; half of them within a factor 8 of it),
+ * one pair in eight with exponents 30
+ * apart, where a difference or a sum in double would round.
+ *
+ * CYLRAY_TEST_QUICK=1 takes 10^4 pairs instead of 10^6. */
+#include "cylray.h"
+#include "quad.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static uint64_t rng_state = 0x243f6a8885a308d3ull;
+static uint64_t next_u64(void)
+{
+    uint64_t z = (rng_state += 0x9e3779b97f4a7c15ull);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    return z ^ (z >> 31);
+}
+
+/* A float in [-2^e, 2^e] with its exponent at least e - span (or zero). */
+static float rand_float(int e, int span)
+{
+    uint64_t r = next_u64();
+    if (r % 64 == 0)
+        return 0.0f;
+    const int ex = e - 1 - (int)((r >> 8) % (uint64_t)(span + 1));
+    const float m = 1.0f + (float)((r >> 16) & 0x7fffff) * 0x1p-23f;
+    return ldexpf(r >> 63 ? -m : m, ex);
+}
+
+/* f is x rounded to nearest float, ties to even (x exact in binary128, f finite). */
+static int is_nearest(float f, cylq x)
+{
+    const float up = nextafterf(f, INFINITY), dn = nextafterf(f, -INFINITY);
+    const cylq hi = ((cylq)f + (cylq)up) / 2, lo = ((cylq)f + (cylq)dn) / 2;
+    uint32_t b;
+    memcpy(&b, &f, sizeof b);
+    const int even = (b & 1u) == 0;
+    return (x < hi || (x == hi && even)) && (x > lo || (x == lo && even));
+}
+
+/* |a|/2 rounded to nearest: f against the squared midpoints, S = |a|^2 exact. */
+static int half_norm_nearest(float f, cylq S)
+{
+    if (!(f > 0))
+        return 0;
+    const float up = nextafterf(f, INFINITY), dn = nextafterf(f, 0.0f);
+    const cylq hi = (cylq)f + (cylq)up, lo = (cylq)f + (cylq)dn; /* 2 x the midpoints */
+    uint32_t b;
+    memcpy(&b, &f, sizeof b);
+    const int even = (b & 1u) == 0;
+    return (S < hi * hi || (S == hi * hi && even)) && (S > lo * lo || (S == lo * lo && even));
+}
+
+int main(void)
+{
+    const char *q = getenv("CYLRAY_TEST_QUICK");
+    const int quick = q && *q && strcmp(q, "0") != 0;
+    const long N = quick ? 10000 : 1000000;
+    long tried = 0, bad_h = 0, bad_a = 0, bad_c = 0, refused = 0, far = 0;
+    for (long n = 0; n < N; n++) {
+        float p0[3], p1[3];
+        /* one pair in eight: exponents 30 apart (a point near the origin and one far
+         * away) */
+        const int far_apart = n % 8 == 7;
+        const int e = (int)(next_u64() % 40) - 20;
+        for (int k = 0; k < 3; k++) {
+            /* half of them in a box, as scene data is; the rest spread over 2^29 */
+            const int span = n % 2 ? 29 : 2;
+            p0[k] = rand_float(e, far_apart ? 20 : span);
+            p1[k] = far_apart ? rand_float(e - 30, 0) : rand_float(e, span);
+        }
+        far += far_apart;
+        cylray_cylinder c;
+        if (cylray_cylinder_from_endpoints(&c, p0, p1, 1.0f, CYLRAY_CAPPED) != CYLRAY_OK) {
+            refused++;
+            continue;
+        }
+        tried++;
+        cylq S = 0;
+        for (int k = 0; k < 3; k++) {
+            const cylq a = (cylq)p1[k] - (cylq)p0[k];
+            S += a * a;
+            if (!is_nearest(c.axis[k], a))
+                bad_a++;
+            if (!is_nearest(c.center[k], ((cylq)p0[k] + (cylq)p1[k]) / 2))
+                bad_c++;
+        }
+        if (!half_norm_nearest(c.half_height, S)) {
+            if (bad_h++ < 10)
+                fprintf(stderr,
+                        "FAIL half height: p0 (%a %a %a) p1 (%a %a %a): %a, exact %.17g\n",
+                        p0[0], p0[1], p0[2], p1[0], p1[1], p1[2], c.half_height,
+                        (double)S);
+        }
+    }
+    printf("endpoints: %ld pairs (%ld with exponents far apart), %ld refused; not rounded "
+           "once: half height %ld, axis %ld, center %ld\n",
+           tried, far, refused, bad_h, bad_a, bad_c);
+    return bad_h == 0 && bad_a == 0 && bad_c == 0 && tried > N / 2 ? 0 : 1;
+}
