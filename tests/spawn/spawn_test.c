@@ -881,11 +881,13 @@ static int run_batched(void)
                 const float s4[3] = {r4s.ox[i], r4s.oy[i], r4s.oz[i]};
                 bad |= !same3(s4, xs[i]);
             }
-            /* the side w lies on, by a clear margin: the side form is the plain one */
+            /* the side w lies on, by a clear margin: the side form is the plain one
+             * (where floats resolve the cylinder at p: a point far off a tiny radius
+             * may lie next to the axis, where the radial direction is noise) */
             double ne[3];
             sref_normal(&c[i].cyl, p[i], hit.part[i] & CYLRAY_PART_MASK, ne);
             const double wn = ne[0] * w[i][0] + ne[1] * w[i][1] + ne[2] * w[i][2];
-            if (fabs(wn) > 1e-6) {
+            if (fabs(wn) > 1e-6 && err[i] < 0x1p-10 * fmin(c[i].cyl.radius, c[i].cyl.half_height)) {
                 float xw[3];
                 cylray_spawn_origin_side(&P, p[i], err[i], hit.part[i], wn > 0, w[i], xw);
                 bad |= !same3(xw, x[i]);

@@ -1,0 +1,49 @@
+/* SPDX-License-Identifier: MIT */
+/* internal/round.h - rounding to float on the bits, where the rounding error is used. */
+#ifndef CYLRAY_INTERNAL_ROUND_H
+#define CYLRAY_INTERNAL_ROUND_H
+
+#include <stdint.h>
+#include <string.h>
+
+/* hi + lo rounded to the nearest float, ties to even, for |lo| at most half an ulp of
+ * hi in double (lo then only breaks a tie; 0 for a plain double), computed on the bits.
+ * Wherever the library takes e = fl(x) - x as exact, fl(x) comes from here and not
+ * from a conversion: gcc 12 at -O3 vectorises (float)x, (double)(float)x - x over two
+ * lanes and folds the narrowing and widening away, giving e = 0. An integer rounding
+ * leaves the optimiser nothing to fold, with any compiler and flags. */
+static inline float cylray_round_float_(double hi, double lo)
+{
+    uint64_t b;
+    memcpy(&b, &hi, sizeof b);
+    const uint32_t sign = (uint32_t)(b >> 32) & 0x80000000u;
+    const int e = (int)(b >> 52 & 0x7ff), fe = e - 1023 + 127; /* fe: float's exponent */
+    const uint64_t frac = b & 0xfffffffffffffull;
+    uint32_t bits;
+    if (e == 0x7ff) {
+        bits = 0x7f800000u | (frac ? 0x400000u : 0u);
+    } else if (e == 0 || fe >= 255) {
+        bits = e == 0 ? 0u : 0x7f800000u; /* below 2^-1022: zero; beyond float: inf */
+    } else {
+        const uint64_t m = frac | 1ull << 52;
+        const int shift = fe >= 1 ? 29 : 30 - fe; /* below 2^-126, float's subnormals */
+        if (shift >= 64) {
+            bits = 0;
+        } else {
+            uint64_t q = m >> shift;
+            const uint64_t rem = m & ((1ull << shift) - 1), half = 1ull << (shift - 1);
+            if (rem > half ||
+                (rem == half && (lo != 0 ? (lo > 0) == !sign : (q & 1u) != 0)))
+                q++;
+            /* the carry of q into the exponent field is the rounding into the next
+             * binade, and into inf above FLT_MAX */
+            bits = (fe >= 1 ? (uint32_t)(fe - 1) << 23 : 0u) + (uint32_t)q;
+        }
+    }
+    bits |= sign;
+    float f;
+    memcpy(&f, &bits, sizeof f);
+    return f;
+}
+
+#endif
