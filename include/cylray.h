@@ -355,9 +355,10 @@ CYLRAY_API void cylray_spawn_origin_side(const cylray_prepared *cyl, const float
                                          float err, int32_t part, int outward,
                                          const float w[3], float out[3]);
 
-/* Batched forms: plain loops over the lanes, the same answer as the scalar pair lane by
- * lane; a tracer that does not call them pays nothing. Hit points with their bounds,
- * in SoA like the packets: */
+/* Batched forms: vectorised on every path (in double, several lanes at a time), with
+ * the same answer as the scalar pair lane by lane, bit for bit, on every path; a tracer
+ * that does not call them pays nothing. Hit points with their bounds, in SoA like the
+ * packets: */
 #define CYLRAY_POINTS_(n, al)                                                     \
     typedef struct CYLRAY_ALIGN(al) cylray_points##n {                           \
         float x[n], y[n], z[n], err[n];                                          \
@@ -476,6 +477,64 @@ CYLRAY_API void cylray_leaf_spawn_origin_side16(const cylray_leaf16 *leaf,
                                                 const cylray_hit1 *hit, const float p[3],
                                                 float err, int outward, const float w[3],
                                                 float out[3]);
+/* Leaves' hits in bulk: hit i, returned by a query of leaf[i] with ray[i] (a leaf may
+ * appear many times), into point i of pts (err may be NULL). */
+CYLRAY_API void cylray_leaf_hit_points4(const cylray_leaf4 *const *leaf,
+                                        const cylray_ray1 *ray, const cylray_hit1 *hit,
+                                        const cylray_points *pts, size_t n);
+CYLRAY_API void cylray_leaf_hit_points8(const cylray_leaf8 *const *leaf,
+                                        const cylray_ray1 *ray, const cylray_hit1 *hit,
+                                        const cylray_points *pts, size_t n);
+CYLRAY_API void cylray_leaf_hit_points16(const cylray_leaf16 *const *leaf,
+                                         const cylray_ray1 *ray, const cylray_hit1 *hit,
+                                         const cylray_points *pts, size_t n);
+/* The origin leaving point i of pts (err NULL: 0) of hit[i] on leaf[i] in direction
+ * (dirs->x, y, z)[i], into (origins->x, y, z)[i]; origins may alias dirs. */
+CYLRAY_API void cylray_leaf_spawn_origins4(const cylray_leaf4 *const *leaf,
+                                           const cylray_hit1 *hit, const cylray_points *pts,
+                                           const cylray_points *dirs,
+                                           const cylray_points *origins, size_t n);
+CYLRAY_API void cylray_leaf_spawn_origins8(const cylray_leaf8 *const *leaf,
+                                           const cylray_hit1 *hit, const cylray_points *pts,
+                                           const cylray_points *dirs,
+                                           const cylray_points *origins, size_t n);
+CYLRAY_API void cylray_leaf_spawn_origins16(const cylray_leaf16 *const *leaf,
+                                            const cylray_hit1 *hit,
+                                            const cylray_points *pts,
+                                            const cylray_points *dirs,
+                                            const cylray_points *origins, size_t n);
+/* The same from the hits' normals (the queries made with CYLRAY_NORMAL), as
+ * cylray_hit_point_normal. */
+CYLRAY_API void cylray_leaf_hit_points_normal4(const cylray_leaf4 *const *leaf,
+                                               const cylray_ray1 *ray, const cylray_hit1 *hit,
+                                               const cylray_points *pts, size_t n);
+CYLRAY_API void cylray_leaf_hit_points_normal8(const cylray_leaf8 *const *leaf,
+                                               const cylray_ray1 *ray, const cylray_hit1 *hit,
+                                               const cylray_points *pts, size_t n);
+CYLRAY_API void cylray_leaf_hit_points_normal16(const cylray_leaf16 *const *leaf,
+                                                const cylray_ray1 *ray,
+                                                const cylray_hit1 *hit,
+                                                const cylray_points *pts, size_t n);
+/* With the side chosen by the tracer: outward[i] nonzero, the side hit i's part's
+ * outward normal points to (as cylray_spawn_origin_side). */
+CYLRAY_API void cylray_leaf_spawn_origins_side4(const cylray_leaf4 *const *leaf,
+                                                const cylray_hit1 *hit,
+                                                const cylray_points *pts,
+                                                const uint8_t *outward,
+                                                const cylray_points *dirs,
+                                                const cylray_points *origins, size_t n);
+CYLRAY_API void cylray_leaf_spawn_origins_side8(const cylray_leaf8 *const *leaf,
+                                                const cylray_hit1 *hit,
+                                                const cylray_points *pts,
+                                                const uint8_t *outward,
+                                                const cylray_points *dirs,
+                                                const cylray_points *origins, size_t n);
+CYLRAY_API void cylray_leaf_spawn_origins_side16(const cylray_leaf16 *const *leaf,
+                                                 const cylray_hit1 *hit,
+                                                 const cylray_points *pts,
+                                                 const uint8_t *outward,
+                                                 const cylray_points *dirs,
+                                                 const cylray_points *origins, size_t n);
 
 /* ---- per-ISA access ------------------------------------------------------- */
 
@@ -532,6 +591,72 @@ typedef struct cylray_kernels {
     cylray_leaf_occluded4_fn leaf_occluded4;
     cylray_leaf_occluded8_fn leaf_occluded8;
     cylray_leaf_occluded16_fn leaf_occluded16;
+    /* Secondary rays: the batched forms above, on this path. Slots are only ever
+     * appended, so a table read through an older header is a prefix of this one. */
+    void (*hit_points4)(const cylray_prepared *, const cylray_ray4 *, const cylray_hit4 *,
+                        uint32_t, cylray_points4 *);
+    void (*hit_points8)(const cylray_prepared *, const cylray_ray8 *, const cylray_hit8 *,
+                        uint32_t, cylray_points8 *);
+    void (*hit_points16)(const cylray_prepared *, const cylray_ray16 *, const cylray_hit16 *,
+                         uint32_t, cylray_points16 *);
+    void (*spawn_rays4)(const cylray_prepared *, const cylray_points4 *, const cylray_hit4 *,
+                        uint32_t, cylray_ray4 *);
+    void (*spawn_rays8)(const cylray_prepared *, const cylray_points8 *, const cylray_hit8 *,
+                        uint32_t, cylray_ray8 *);
+    void (*spawn_rays16)(const cylray_prepared *, const cylray_points16 *,
+                         const cylray_hit16 *, uint32_t, cylray_ray16 *);
+    size_t (*hit_points_stream)(const cylray_prepared *, const cylray_rays *,
+                                const cylray_hits *, const cylray_points *, size_t);
+    void (*spawn_stream)(const cylray_prepared *, const cylray_points *, const int32_t *,
+                         const cylray_points *, const cylray_points *, size_t);
+    void (*leaf_hit_points4)(const cylray_leaf4 *const *, const cylray_ray1 *,
+                             const cylray_hit1 *, const cylray_points *, size_t);
+    void (*leaf_hit_points8)(const cylray_leaf8 *const *, const cylray_ray1 *,
+                             const cylray_hit1 *, const cylray_points *, size_t);
+    void (*leaf_hit_points16)(const cylray_leaf16 *const *, const cylray_ray1 *,
+                              const cylray_hit1 *, const cylray_points *, size_t);
+    void (*leaf_spawn_origins4)(const cylray_leaf4 *const *, const cylray_hit1 *,
+                                const cylray_points *, const cylray_points *,
+                                const cylray_points *, size_t);
+    void (*leaf_spawn_origins8)(const cylray_leaf8 *const *, const cylray_hit1 *,
+                                const cylray_points *, const cylray_points *,
+                                const cylray_points *, size_t);
+    void (*leaf_spawn_origins16)(const cylray_leaf16 *const *, const cylray_hit1 *,
+                                 const cylray_points *, const cylray_points *,
+                                 const cylray_points *, size_t);
+    /* the normal and side forms */
+    void (*hit_points_normal4)(const cylray_prepared *, const cylray_ray4 *,
+                               const cylray_hit4 *, uint32_t, cylray_points4 *);
+    void (*hit_points_normal8)(const cylray_prepared *, const cylray_ray8 *,
+                               const cylray_hit8 *, uint32_t, cylray_points8 *);
+    void (*hit_points_normal16)(const cylray_prepared *, const cylray_ray16 *,
+                                const cylray_hit16 *, uint32_t, cylray_points16 *);
+    void (*spawn_rays_side4)(const cylray_prepared *, const cylray_points4 *,
+                             const cylray_hit4 *, uint32_t, uint32_t, cylray_ray4 *);
+    void (*spawn_rays_side8)(const cylray_prepared *, const cylray_points8 *,
+                             const cylray_hit8 *, uint32_t, uint32_t, cylray_ray8 *);
+    void (*spawn_rays_side16)(const cylray_prepared *, const cylray_points16 *,
+                              const cylray_hit16 *, uint32_t, uint32_t, cylray_ray16 *);
+    size_t (*hit_points_normal_stream)(const cylray_prepared *, const cylray_rays *,
+                                       const cylray_hits *, const cylray_points *, size_t);
+    void (*spawn_stream_side)(const cylray_prepared *, const cylray_points *,
+                              const int32_t *, const uint8_t *, const cylray_points *,
+                              const cylray_points *, size_t);
+    void (*leaf_hit_points_normal4)(const cylray_leaf4 *const *, const cylray_ray1 *,
+                                    const cylray_hit1 *, const cylray_points *, size_t);
+    void (*leaf_hit_points_normal8)(const cylray_leaf8 *const *, const cylray_ray1 *,
+                                    const cylray_hit1 *, const cylray_points *, size_t);
+    void (*leaf_hit_points_normal16)(const cylray_leaf16 *const *, const cylray_ray1 *,
+                                     const cylray_hit1 *, const cylray_points *, size_t);
+    void (*leaf_spawn_origins_side4)(const cylray_leaf4 *const *, const cylray_hit1 *,
+                                     const cylray_points *, const uint8_t *,
+                                     const cylray_points *, const cylray_points *, size_t);
+    void (*leaf_spawn_origins_side8)(const cylray_leaf8 *const *, const cylray_hit1 *,
+                                     const cylray_points *, const uint8_t *,
+                                     const cylray_points *, const cylray_points *, size_t);
+    void (*leaf_spawn_origins_side16)(const cylray_leaf16 *const *, const cylray_hit1 *,
+                                      const cylray_points *, const uint8_t *,
+                                      const cylray_points *, const cylray_points *, size_t);
 } cylray_kernels;
 
 /* One path's table, for validation and microbenchmarks: the same signatures and

@@ -29,6 +29,13 @@
 #include "simd/undef.h"
 #undef KFN
 
+#define DFN(n) CYLRAY_CAT(n, _avx2_d4)
+#define DW 4
+#include "vecd_x86.h"
+#include "spawn_tmpl.h"
+#include "vecd_undef.h"
+#undef DFN
+
 #define KISA avx2
 #define KISA_ENUM CYLRAY_ISA_AVX2
 #define KISA_NAME "avx2"
@@ -39,4 +46,9 @@
 #define KL4 avx2_4
 #define KL8 avx2_8
 #define KL16 avx2_8
+#define SPW4 avx2_d4
+#define SPW8 avx2_d4
+#define SPW16 avx2_d4
+#define SPWS avx2_d4
+#include "spawn_entry.h"
 #include "isa/entry.h"

@@ -39,6 +39,20 @@
 #include "simd/undef.h"
 #undef KFN
 
+/* Secondary rays in double: 8 lanes in zmm, and 4 in ymm for 4-ray packets. */
+#define DFN(n) CYLRAY_CAT(n, _avx512_d8)
+#define DW 8
+#include "vecd_x86.h"
+#include "spawn_tmpl.h"
+#include "vecd_undef.h"
+#undef DFN
+#define DFN(n) CYLRAY_CAT(n, _avx512_d4)
+#define DW 4
+#include "vecd_x86.h"
+#include "spawn_tmpl.h"
+#include "vecd_undef.h"
+#undef DFN
+
 #define KISA avx512
 #define KISA_ENUM CYLRAY_ISA_AVX512
 #define KISA_NAME "avx512"
@@ -49,4 +63,9 @@
 #define KL4 avx512_4
 #define KL8 avx512_8
 #define KL16 avx512_16
+#define SPW4 avx512_d4
+#define SPW8 avx512_d8
+#define SPW16 avx512_d8
+#define SPWS avx512_d8
+#include "spawn_entry.h"
 #include "isa/entry.h"

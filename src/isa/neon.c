@@ -12,6 +12,12 @@
 #include "simd/undef.h"
 #undef KFN
 
+#define DFN(n) CYLRAY_CAT(n, _neon_d2)
+#include "vecd_neon.h"
+#include "spawn_tmpl.h"
+#include "vecd_undef.h"
+#undef DFN
+
 #define KISA neon
 #define KISA_ENUM CYLRAY_ISA_NEON
 #define KISA_NAME "neon"
@@ -22,4 +28,9 @@
 #define KL4 neon_4
 #define KL8 neon_4
 #define KL16 neon_4
+#define SPW4 neon_d2
+#define SPW8 neon_d2
+#define SPW16 neon_d2
+#define SPWS neon_d2
+#include "spawn_entry.h"
 #include "isa/entry.h"

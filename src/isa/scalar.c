@@ -8,6 +8,12 @@
 #include "simd/undef.h"
 #undef KFN
 
+#define DFN(n) CYLRAY_CAT(n, _scalar_d1)
+#include "vecd_scalar.h"
+#include "spawn_tmpl.h"
+#include "vecd_undef.h"
+#undef DFN
+
 #define KISA scalar
 #define KISA_ENUM CYLRAY_ISA_SCALAR
 #define KISA_NAME "scalar"
@@ -18,4 +24,9 @@
 #define KL4 scalar_1
 #define KL8 scalar_1
 #define KL16 scalar_1
+#define SPW4 scalar_d1
+#define SPW8 scalar_d1
+#define SPW16 scalar_d1
+#define SPWS scalar_d1
+#include "spawn_entry.h"
 #include "isa/entry.h"

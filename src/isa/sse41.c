@@ -17,6 +17,13 @@
 #undef KFN
 #undef KPAIRS
 
+#define DFN(n) CYLRAY_CAT(n, _sse41_d2)
+#define DW 2
+#include "vecd_x86.h"
+#include "spawn_tmpl.h"
+#include "vecd_undef.h"
+#undef DFN
+
 #define KISA sse41
 #define KISA_ENUM CYLRAY_ISA_SSE41
 #define KISA_NAME "sse41"
@@ -27,4 +34,9 @@
 #define KL4 sse41_4
 #define KL8 sse41_4
 #define KL16 sse41_4
+#define SPW4 sse41_d2
+#define SPW8 sse41_d2
+#define SPW16 sse41_d2
+#define SPWS sse41_d2
+#include "spawn_entry.h"
 #include "isa/entry.h"

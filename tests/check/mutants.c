@@ -220,6 +220,9 @@ static const cylray_kernels mutant = {
     CYLRAY_ISA_SCALAR, "mutant", mut_isect4, mut_isect8, mut_isect16, mut_occ4, mut_occ8,
     mut_occ16, mut_stream, mut_occ_stream,
     NULL, NULL, NULL, NULL, NULL, NULL, /* cylcheck drives no leaves */
+    /* nor secondary rays */
+    NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL,
+    NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL,
 };
 
 int main(void)

@@ -22,6 +22,9 @@
 #include "cylray.h"
 #include "fuzz_input.h"
 #include "fuzz_leaf.h"
+#ifdef HAVE_SPAWN
+#include "fuzz_spawn.h"
+#endif
 #include "guarded.h"
 #include "hitcheck.h"
 #include "tcheck.h"
@@ -40,6 +43,10 @@ static void report(void)
             fprintf(stderr, " %s=%lu", cylray_isa_name((cylray_isa)i), runs[i]);
     fprintf(stderr, "; SIMD/scalar differences excused near a boundary: %lu, by the exact "
             "reference: %lu\n", fz_excused_geometric, fz_excused_exact);
+#ifdef HAVE_SPAWN
+    fprintf(stderr, "cylray-fuzz: spawn: %lu hits through hit point and origin, %lu spawned "
+            "rays traced on every ISA\n", fz_spawn_hits, fz_spawn_traced);
+#endif
 }
 
 int LLVMFuzzerInitialize(int *argc, char ***argv)
@@ -129,5 +136,12 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         if (fz_leaf(&c, isas, nisa, why, sizeof why))
             FAIL_("leaf: %s", why);
     }
+#ifdef HAVE_SPAWN
+    if (valid) {
+        char why[512];
+        if (fz_spawn(&c, &P, &res[0], isas, nisa, why, sizeof why))
+            FAIL_("spawn: %s", why);
+    }
+#endif
     return 0;
 }

@@ -8,7 +8,9 @@
  *                       every ISA and exactly; the origin is strictly on the ray's side
  *   spawn_test nested   a coaxial cylinder 1e-5 R inside is still hit by the
  *                       transmitted ray, and the spawned origin lies between the two
- *   spawn_test batched  the packet, stream and leaf forms equal the scalar pair
+ *   spawn_test batched  the packet, stream and leaf forms (plain, side and normal) of
+ *                       every ISA equal the scalar pair bit for bit (bounds and self
+ *                       also take their points and origins from each ISA's stream forms)
  *   spawn_test side     the side form: the tracer's side from the kernel's normal
  *                       (random hits, grazing directions, and two far rods whose
  *                       kernel normal and exact normal disagree), the origin strictly
@@ -28,6 +30,7 @@
 #include "spawnref.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -123,11 +126,73 @@ static long groups_for(long full)
     return quick ? full / 100 + 1 : full;
 }
 
+
+/* ISA k's stream form of the hit points of the lanes set in m (the others are passed as
+ * CYLRAY_MISS and must stay unwritten), checked against the scalar pair bit for bit.
+ * Returns the number of lanes that differ. */
+static long isa_points(const cylray_kernels *k, const cylray_prepared *P, const cylray_ray16 *ray,
+                       const cylray_hit16 *hit, uint32_t m, float p[16][3], float err[16])
+{
+    float x[16], y[16], z[16], e[16];
+    int32_t part[16];
+    for (int i = 0; i < 16; i++) {
+        part[i] = m >> i & 1u ? hit->part[i] : CYLRAY_MISS;
+        x[i] = y[i] = z[i] = e[i] = -7.0f;
+    }
+    cylray_rays rs = {ray->ox, ray->oy, ray->oz, ray->dx, ray->dy, ray->dz, ray->tmin,
+                      (float *)(uintptr_t)ray->tmax};
+    cylray_hits hs = {(float *)(uintptr_t)hit->t, NULL, NULL, NULL, part};
+    cylray_points pts = {x, y, z, e};
+    long bad = k->hit_points_stream(P, &rs, &hs, &pts, 16) != (size_t)popcount(m);
+    for (int i = 0; i < 16; i++) {
+        if (!(m >> i & 1u)) {
+            bad += x[i] != -7.0f || y[i] != -7.0f || z[i] != -7.0f || e[i] != -7.0f;
+            continue;
+        }
+        float sp[3], se;
+        const float o[3] = {ray->ox[i], ray->oy[i], ray->oz[i]};
+        const float d[3] = {ray->dx[i], ray->dy[i], ray->dz[i]};
+        cylray_hit_point(P, o, d, hit->t[i], hit->part[i], sp, &se);
+        p[i][0] = x[i], p[i][1] = y[i], p[i][2] = z[i], err[i] = e[i];
+        bad += memcmp(sp, p[i], sizeof sp) != 0 || memcmp(&se, &err[i], sizeof se) != 0;
+    }
+    return bad;
+}
+
+/* ISA k's stream form of the origins of the lanes set in m, against the scalar pair. */
+static long isa_origins(const cylray_kernels *k, const cylray_prepared *P, const cylray_hit16 *hit,
+                        uint32_t m, const float p[16][3], const float err[16],
+                        const float w[16][3], float x0[16][3])
+{
+    float px[16], py[16], pz[16], pe[16], wx[16], wy[16], wz[16];
+    int32_t part[16];
+    for (int i = 0; i < 16; i++) {
+        part[i] = m >> i & 1u ? hit->part[i] : CYLRAY_MISS;
+        px[i] = p[i][0], py[i] = p[i][1], pz[i] = p[i][2], pe[i] = err[i];
+        wx[i] = w[i][0], wy[i] = w[i][1], wz[i] = w[i][2];
+    }
+    /* the origins over the directions, as the header allows */
+    cylray_points pts = {px, py, pz, pe}, dirs = {wx, wy, wz, NULL};
+    k->spawn_stream(P, &pts, part, &dirs, &dirs, 16);
+    long bad = 0;
+    for (int i = 0; i < 16; i++) {
+        if (!(m >> i & 1u)) {
+            bad += wx[i] != w[i][0] || wy[i] != w[i][1] || wz[i] != w[i][2];
+            continue;
+        }
+        float sx[3];
+        cylray_spawn_origin(P, p[i], err[i], hit->part[i], w[i], sx);
+        x0[i][0] = wx[i], x0[i][1] = wy[i], x0[i][2] = wz[i];
+        bad += memcmp(sx, x0[i], sizeof sx) != 0;
+    }
+    return bad;
+}
+
 /* ---- bounds ------------------------------------------------------------------- */
 
 static int run_bounds(void)
 {
-    long hits = 0, viol = 0;
+    long hits = 0, viol = 0, disagree = 0;
     const long G = groups_for(2000);
     printf("%-13s %9s %10s %12s %12s %12s\n", "category", "hits", "violations",
            "err/ulp p50", "err/ulp max", "err/exact p50");
@@ -146,11 +211,16 @@ static int run_bounds(void)
                 cylray_ray16 ray;
                 cylray_hit16 hit;
                 uint32_t m = trace_group(isas[k], &P, c, &ray, &hit);
+                /* the points of this ISA's stream form, the same as the scalar pair's */
+                float pk[16][3], ek[16];
+                if (isa_points(isas[k], &P, &ray, &hit, m, pk, ek)) {
+                    disagree++;
+                    fail("bound", &c[0], "the stream form differs from cylray_hit_point");
+                }
                 for (int i = 0; i < SREF_GROUP; i++) {
                     if (!(m >> i & 1u))
                         continue;
-                    float p[3], err;
-                    cylray_hit_point(&P, c[i].o, c[i].d, hit.t[i], hit.part[i], p, &err);
+                    const float *p = pk[i], err = ek[i];
                     const double dist = sref_dist_part(&c[i].cyl, p, hit.part[i]);
                     ch++;
                     if (!(dist <= err) || !isfinite(err)) {
@@ -177,8 +247,10 @@ static int run_bounds(void)
         hits += ch;
         viol += cv;
     }
-    printf("bounds: %ld hits over %d ISAs, %ld violations\n", hits, nisa, viol);
-    return viol == 0 && hits > 0;
+    printf("bounds: %ld hits over %d ISAs (each ISA's hits through its own stream form), "
+           "%ld violations, %ld groups where the stream form differs from the scalar one\n",
+           hits, nisa, viol, disagree);
+    return viol == 0 && disagree == 0 && hits > 0;
 }
 
 /* ---- self-intersection ------------------------------------------------------------ */
@@ -224,6 +296,7 @@ static int run_self(void)
     const long G = groups_for(200000);
     long spawns = 0, traced[CYLRAY_ISA_COUNT] = {0}, self[CYLRAY_ISA_COUNT] = {0};
     long wrong_side = 0, exact_checked = 0, exact_self = 0, too_big = 0, kernel_faults = 0;
+    long disagree = 0;
     long too_big_cat[SREF_COUNT] = {0};
     cylgen_rng rng;
     cylgen_seed(&rng, 77);
@@ -238,13 +311,17 @@ static int run_self(void)
         /* hits from one ISA per group, in turn */
         cylray_ray16 ray;
         cylray_hit16 hit;
-        uint32_t m = trace_group(isas[g % nisa], &P, c, &ray, &hit);
+        const cylray_kernels *ks = isas[g % nisa];
+        uint32_t m = trace_group(ks, &P, c, &ray, &hit);
         if (!m)
             continue;
+        /* points and origins from that ISA's stream forms, checked against the scalar
+         * pair bit for bit */
         float p[16][3], err[16];
-        for (int i = 0; i < 16; i++)
-            if (m >> i & 1u)
-                cylray_hit_point(&P, c[i].o, c[i].d, hit.t[i], hit.part[i], p[i], &err[i]);
+        if (isa_points(ks, &P, &ray, &hit, m, p, err)) {
+            disagree++;
+            fail("self", &c[0], "the stream form differs from cylray_hit_point");
+        }
         const double lim = 0.25 * fmin(cyl->radius, cyl->half_height);
         for (int dir = 0; dir < K_DIRS; dir++) {
             const int kind = dir < 2 ? K_REFL : dir < 4 ? K_TRANS : K_SHADOW;
@@ -267,7 +344,19 @@ static int run_self(void)
                 } else {
                     sref_direction(&rng, n, kind == K_REFL ? refl : -refl, w[i]);
                 }
-                cylray_spawn_origin(&P, p[i], err[i], part, w[i], x0[i]);
+                use |= 1u << i;
+            }
+            if (isa_origins(ks, &P, &hit, use, (const float(*)[3])p, err,
+                            (const float(*)[3])w, x0)) {
+                disagree++;
+                fail("self", &c[0], "the stream form differs from cylray_spawn_origin");
+            }
+            const uint32_t spawned = use;
+            use = 0;
+            for (int i = 0; i < 16; i++) {
+                if (!(spawned >> i & 1u))
+                    continue;
+                const int part = hit.part[i], Pm = part & CYLRAY_PART_MASK;
                 double mv = 0;
                 for (int k = 0; k < 3; k++)
                     mv += ((double)x0[i][k] - p[i][k]) * ((double)x0[i][k] - p[i][k]);
@@ -324,7 +413,9 @@ static int run_self(void)
             }
         }
     }
-    long bad = wrong_side + exact_self;
+    long bad = wrong_side + exact_self + disagree;
+    printf("self: points and origins from each ISA's stream forms in turn; %ld groups where "
+           "they differ from the scalar pair\n", disagree);
     printf("self: outside the guarantee by category:");
     for (int c = 0; c < SREF_COUNT; c++)
         if (too_big_cat[c])
@@ -419,6 +510,228 @@ static int same3(const float a[3], const float b[3])
     return memcmp(a, b, 3 * sizeof *a) == 0;
 }
 
+/* The batched forms of ISA K (packets 4/8/16, a stream cut at every length, leaves one
+ * at a time and in bulk) on the lanes in m, against the scalar pair (p, err, x). */
+static long batched_isa(const cylray_kernels *K, const cylray_prepared *P, const cylgen_case *c,
+                        const cylray_ray16 *ray, const cylray_hit16 *hit, uint32_t m,
+                        const float p[16][3], const float err[16], const float w[16][3],
+                        const float x[16][3], uint32_t outward, const float xs[16][3],
+                        const cylray_leaf16 *leaf, uint32_t lane, long *lanes)
+{
+    long diff = 0;
+    /* the side forms: packets, a stream, leaves in bulk */
+    {
+        cylray_points16 q16;
+        cylray_points8 q8;
+        cylray_points4 q4;
+        cylray_ray16 o16 = *ray;
+        cylray_ray8 o8;
+        cylray_ray4 o4;
+        float px[16], py[16], pz[16], pe[16], wx[16], wy[16], wz[16], ox[16], oy[16], oz[16];
+        int32_t part[16];
+        uint8_t outb[16];
+        const cylray_leaf16 *lv[16];
+        cylray_hit1 h1[16];
+        memset(&o8, 0, sizeof o8), memset(&o4, 0, sizeof o4);
+        memset(&q8, 0, sizeof q8), memset(&q4, 0, sizeof q4), memset(&q16, 0, sizeof q16);
+        for (int i = 0; i < 16; i++) {
+            q16.x[i] = px[i] = p[i][0], q16.y[i] = py[i] = p[i][1], q16.z[i] = pz[i] = p[i][2];
+            q16.err[i] = pe[i] = err[i];
+            o16.dx[i] = wx[i] = w[i][0], o16.dy[i] = wy[i] = w[i][1], o16.dz[i] = wz[i] = w[i][2];
+            ox[i] = oy[i] = oz[i] = -3.0f;
+            part[i] = m >> i & 1u ? hit->part[i] : CYLRAY_MISS;
+            outb[i] = (uint8_t)(outward >> i & 1u);
+            lv[i] = leaf;
+            cylray_hit1 h = {hit->t[i], {0, 0, 0}, part[i], 0, lane};
+            h1[i] = h;
+            if (i < 8) {
+                q8.x[i] = p[i][0], q8.y[i] = p[i][1], q8.z[i] = p[i][2], q8.err[i] = err[i];
+                o8.dx[i] = w[i][0], o8.dy[i] = w[i][1], o8.dz[i] = w[i][2];
+            }
+            if (i < 4) {
+                q4.x[i] = p[i][0], q4.y[i] = p[i][1], q4.z[i] = p[i][2], q4.err[i] = err[i];
+                o4.dx[i] = w[i][0], o4.dy[i] = w[i][1], o4.dz[i] = w[i][2];
+            }
+        }
+        K->spawn_rays_side16(P, &q16, hit, m, outward, &o16);
+        {
+            cylray_hit8 h8;
+            cylray_hit4 h4;
+            memset(&h8, 0, sizeof h8), memset(&h4, 0, sizeof h4);
+            for (int i = 0; i < 8; i++)
+                h8.part[i] = hit->part[i];
+            for (int i = 0; i < 4; i++)
+                h4.part[i] = hit->part[i];
+            K->spawn_rays_side8(P, &q8, &h8, m & 0xffu, outward, &o8);
+            K->spawn_rays_side4(P, &q4, &h4, m & 0xfu, outward, &o4);
+        }
+        cylray_points sp = {px, py, pz, pe}, dirs = {wx, wy, wz, NULL};
+        cylray_points org = {ox, oy, oz, NULL};
+        K->spawn_stream_side(P, &sp, part, outb, &dirs, &org, 16);
+        /* leaves in bulk: the hits only, compacted */
+        cylray_hit1 hc[16];
+        float cx[16], cy[16], cz[16], ce[16], cwx[16], cwy[16], cwz[16];
+        uint8_t cb[16];
+        int nc = 0;
+        for (int i = 0; i < 16; i++)
+            if (m >> i & 1u) {
+                hc[nc] = h1[i], cb[nc] = outb[i];
+                cx[nc] = p[i][0], cy[nc] = p[i][1], cz[nc] = p[i][2], ce[nc] = err[i];
+                cwx[nc] = w[i][0], cwy[nc] = w[i][1], cwz[nc] = w[i][2];
+                nc++;
+            }
+        cylray_points lp = {cx, cy, cz, ce}, ld = {cwx, cwy, cwz, NULL};
+        K->leaf_spawn_origins_side16(lv, hc, &lp, cb, &ld, &ld, (size_t)nc);
+        for (int i = 0, j = 0; i < 16; i++) {
+            if (!(m >> i & 1u)) {
+                if (ox[i] != -3.0f || oy[i] != -3.0f || oz[i] != -3.0f) {
+                    diff++;
+                    fail("batched", &c[i], "a side stream wrote a lane it does not own");
+                }
+                continue;
+            }
+            const float a[3] = {o16.ox[i], o16.oy[i], o16.oz[i]}, b[3] = {ox[i], oy[i], oz[i]};
+            const float l[3] = {cwx[j], cwy[j], cwz[j]};
+            j++;
+            int bad = !same3(a, xs[i]) || o16.tmin[i] != 0.0f || !same3(b, xs[i]) ||
+                      !same3(l, xs[i]);
+            if (i < 8) {
+                const float a8[3] = {o8.ox[i], o8.oy[i], o8.oz[i]};
+                bad |= !same3(a8, xs[i]);
+            }
+            if (i < 4) {
+                const float a4[3] = {o4.ox[i], o4.oy[i], o4.oz[i]};
+                bad |= !same3(a4, xs[i]);
+            }
+            if (bad) {
+                diff++;
+                char s[96];
+                snprintf(s, sizeof s, "%s: a side form differs from cylray_spawn_origin_side",
+                         K->name);
+                fail("batched", &c[i], s);
+            }
+        }
+    }
+    cylray_points16 pts;
+    K->hit_points16(P, ray, hit, m, &pts);
+    cylray_ray16 out = *ray;
+    for (int i = 0; i < 16; i++)
+        out.dx[i] = w[i][0], out.dy[i] = w[i][1], out.dz[i] = w[i][2];
+    K->spawn_rays16(P, &pts, hit, m, &out);
+    cylray_ray8 r8;
+    cylray_hit8 h8;
+    cylray_points8 p8;
+    cylray_ray4 r4;
+    cylray_hit4 h4;
+    cylray_points4 p4;
+    for (int i = 0; i < 8; i++) {
+        r8.ox[i] = ray->ox[i], r8.oy[i] = ray->oy[i], r8.oz[i] = ray->oz[i];
+        r8.dx[i] = ray->dx[i], r8.dy[i] = ray->dy[i], r8.dz[i] = ray->dz[i];
+        h8.t[i] = hit->t[i], h8.part[i] = hit->part[i];
+        if (i < 4) {
+            r4.ox[i] = ray->ox[i], r4.oy[i] = ray->oy[i], r4.oz[i] = ray->oz[i];
+            r4.dx[i] = ray->dx[i], r4.dy[i] = ray->dy[i], r4.dz[i] = ray->dz[i];
+            h4.t[i] = hit->t[i], h4.part[i] = hit->part[i];
+        }
+    }
+    K->hit_points8(P, &r8, &h8, m & 0xffu, &p8);
+    K->hit_points4(P, &r4, &h4, m & 0xfu, &p4);
+    for (int i = 0; i < 8; i++) {
+        r8.dx[i] = w[i][0], r8.dy[i] = w[i][1], r8.dz[i] = w[i][2];
+        if (i < 4)
+            r4.dx[i] = w[i][0], r4.dy[i] = w[i][1], r4.dz[i] = w[i][2];
+    }
+    K->spawn_rays8(P, &p8, &h8, m & 0xffu, &r8);
+    K->spawn_rays4(P, &p4, &h4, m & 0xfu, &r4);
+    /* streams of every length 1..16 from lane 16 - len on, so that each length meets
+     * full vectors and a tail of every size; what a stream does not cover stays */
+    float wx[16], wy[16], wz[16];
+    int32_t spart[16];
+    for (int i = 0; i < 16; i++) {
+        wx[i] = w[i][0], wy[i] = w[i][1], wz[i] = w[i][2];
+        spart[i] = m >> i & 1u ? hit->part[i] : CYLRAY_MISS;
+    }
+    for (int len = 1; len <= 16; len++) {
+        const int b = 16 - len;
+        float sx[16], sy[16], sz[16], se[16], ox[16], oy[16], oz[16];
+        for (int i = 0; i < 16; i++)
+            sx[i] = sy[i] = sz[i] = se[i] = ox[i] = oy[i] = oz[i] = -5.0f;
+        cylray_rays rs = {ray->ox + b, ray->oy + b, ray->oz + b, ray->dx + b, ray->dy + b,
+                          ray->dz + b, ray->tmin + b, (float *)(uintptr_t)ray->tmax + b};
+        cylray_hits hs = {(float *)(uintptr_t)hit->t + b, NULL, NULL, NULL, spart + b};
+        cylray_points sp = {sx + b, sy + b, sz + b, se + b};
+        cylray_points dirs = {wx + b, wy + b, wz + b, NULL}, org = {ox + b, oy + b, oz + b, NULL};
+        size_t ns = K->hit_points_stream(P, &rs, &hs, &sp, (size_t)len);
+        K->spawn_stream(P, &sp, spart + b, &dirs, &org, (size_t)len);
+        if (ns != (size_t)popcount(m >> b)) {
+            diff++;
+            fail("batched", &c[0], "the stream's count of points is wrong");
+        }
+        for (int i = 0; i < 16; i++) {
+            const int hitlane = i >= b && (m >> i & 1u);
+            const float s1[3] = {sx[i], sy[i], sz[i]}, s2[3] = {ox[i], oy[i], oz[i]};
+            const int bad = hitlane ? !same3(s1, p[i]) || se[i] != err[i] || !same3(s2, x[i])
+                                    : sx[i] != -5.0f || sy[i] != -5.0f || sz[i] != -5.0f ||
+                                          se[i] != -5.0f || ox[i] != -5.0f ||
+                                          oy[i] != -5.0f || oz[i] != -5.0f;
+            if (bad) {
+                diff++;
+                fail("batched", &c[i], hitlane ? "a stream differs from the scalar pair"
+                                               : "a stream wrote a lane it does not own");
+            }
+        }
+    }
+    /* the leaf in bulk: the hits (in lane `lane`) in one call, through the same leaf */
+    const cylray_leaf16 *lv[16];
+    cylray_ray1 r1[16];
+    cylray_hit1 h1[16];
+    float lx[16], ly[16], lz[16], le[16], lwx[16], lwy[16], lwz[16];
+    size_t nl = 0;
+    for (int i = 0; i < 16; i++) {
+        if (!(m >> i & 1u))
+            continue;
+        lv[nl] = leaf;
+        cylray_ray1 r = {{c[i].o[0], c[i].o[1], c[i].o[2]}, {c[i].d[0], c[i].d[1], c[i].d[2]},
+                         c[i].tmin, hit->t[i]};
+        cylray_hit1 h = {hit->t[i], {0, 0, 0}, hit->part[i], 7, lane};
+        r1[nl] = r, h1[nl] = h;
+        lwx[nl] = w[i][0], lwy[nl] = w[i][1], lwz[nl] = w[i][2];
+        nl++;
+    }
+    cylray_points lp = {lx, ly, lz, le}, ldirs = {lwx, lwy, lwz, NULL};
+    K->leaf_hit_points16(lv, r1, h1, &lp, nl);
+    K->leaf_spawn_origins16(lv, h1, &lp, &ldirs, &ldirs, nl);
+    for (int i = 0, j = 0; i < 16; i++) {
+        if (!(m >> i & 1u))
+            continue;
+        (*lanes)++;
+        const float a[3] = {pts.x[i], pts.y[i], pts.z[i]};
+        const float bb[3] = {out.ox[i], out.oy[i], out.oz[i]};
+        int bad = !same3(a, p[i]) || pts.err[i] != err[i] || !same3(bb, x[i]) ||
+                  out.tmin[i] != 0.0f;
+        if (i < 8) {
+            const float a8[3] = {p8.x[i], p8.y[i], p8.z[i]};
+            const float b8[3] = {r8.ox[i], r8.oy[i], r8.oz[i]};
+            bad |= !same3(a8, p[i]) || p8.err[i] != err[i] || !same3(b8, x[i]);
+        }
+        if (i < 4) {
+            const float a4[3] = {p4.x[i], p4.y[i], p4.z[i]};
+            const float b4[3] = {r4.ox[i], r4.oy[i], r4.oz[i]};
+            bad |= !same3(a4, p[i]) || p4.err[i] != err[i] || !same3(b4, x[i]);
+        }
+        const float q[3] = {lx[j], ly[j], lz[j]}, o[3] = {lwx[j], lwy[j], lwz[j]};
+        bad |= !same3(q, p[i]) || le[j] != err[i] || !same3(o, x[i]);
+        j++;
+        if (bad) {
+            diff++;
+            char s[96];
+            snprintf(s, sizeof s, "%s: a batched form differs from the scalar pair", K->name);
+            fail("batched", &c[i], s);
+        }
+    }
+    return diff;
+}
+
 static int run_batched(void)
 {
     const long G = groups_for(4000);
@@ -433,7 +746,7 @@ static int run_batched(void)
             continue;
         cylray_ray16 ray;
         cylray_hit16 hit;
-        uint32_t m = trace_group(isas[0], &P, c, &ray, &hit);
+        uint32_t m = trace_group(isas[g % nisa], &P, c, &ray, &hit);
         /* the scalar pair */
         float p[16][3], err[16], w[16][3], x[16][3], xs[16][3];
         const uint32_t outward = (uint32_t)(cylgen_uniform(&rng) * 65536.0);
@@ -449,7 +762,8 @@ static int run_batched(void)
                                          w[i], xs[i]);
             }
         }
-        /* packets of 16, and of 8 and 4 (their lanes are the first ones) */
+        /* the plain entry points (the path in use): packets of 16, and of 8 and 4 (their
+         * lanes are the first ones) */
         cylray_points16 pts;
         cylray_hit_points16(&P, &ray, &hit, m, &pts);
         cylray_ray16 out = ray;
@@ -507,10 +821,14 @@ static int run_batched(void)
             outw[i] = (uint8_t)(outward >> i & 1u);
         cylray_points org_s = {qx, qy, qz, NULL};
         cylray_spawn_stream_side(&P, &sp, spart, outw, &dirs, &org_s, 16);
+        if (ns != (size_t)popcount(m)) {
+            diff++;
+            fail("batched", &c[0], "cylray_hit_points_stream's count is wrong");
+        }
         /* a leaf of 6 with the cylinder in lane 5 behind five others */
         cylray_leaf16 leaf;
         cylray_cylinder six[6];
-        const size_t lane = 5;
+        const uint32_t lane = 5;
         for (int j = 0; j < 5; j++) {
             six[j] = c[0].cyl;
             six[j].center[0] += 1e5f;
@@ -522,12 +840,15 @@ static int run_batched(void)
             fail("batched", &c[0], "cylray_leaf_prepare16 refused the cylinder");
             continue;
         }
-        if (ns != (size_t)popcount(m))
-            diff++;
         for (int i = 0; i < 16; i++) {
             if (!(m >> i & 1u))
                 continue;
-            lanes++;
+            cylray_ray1 r1 = {{c[i].o[0], c[i].o[1], c[i].o[2]}, {c[i].d[0], c[i].d[1], c[i].d[2]},
+                              c[i].tmin, hit.t[i]};
+            cylray_hit1 h1 = {hit.t[i], {0, 0, 0}, hit.part[i], 7, lane};
+            float lp[3], le, lx[3];
+            cylray_leaf_hit_point16(&leaf, &r1, &h1, lp, &le);
+            cylray_leaf_spawn_origin16(&leaf, &h1, lp, le, w[i], lx);
             const float a[3] = {pts.x[i], pts.y[i], pts.z[i]};
             const float b[3] = {out.ox[i], out.oy[i], out.oz[i]};
             const float s1[3] = {sx[i], sy[i], sz[i]}, s2[3] = {ox[i], oy[i], oz[i]};
@@ -544,12 +865,6 @@ static int run_batched(void)
                 const float b4[3] = {r4.ox[i], r4.oy[i], r4.oz[i]};
                 bad |= !same3(a4, p[i]) || p4.err[i] != err[i] || !same3(b4, x[i]);
             }
-            cylray_ray1 r1 = {{c[i].o[0], c[i].o[1], c[i].o[2]}, {c[i].d[0], c[i].d[1], c[i].d[2]},
-                              c[i].tmin, hit.t[i]};
-            cylray_hit1 h1 = {hit.t[i], {0, 0, 0}, hit.part[i], 7, (uint32_t)lane};
-            float lp[3], le, lx[3];
-            cylray_leaf_hit_point16(&leaf, &r1, &h1, lp, &le);
-            cylray_leaf_spawn_origin16(&leaf, &h1, lp, le, w[i], lx);
             bad |= !same3(lp, p[i]) || le != err[i] || !same3(lx, x[i]);
             /* the side forms */
             float ls[3];
@@ -579,7 +894,24 @@ static int run_batched(void)
             }
             if (bad) {
                 diff++;
-                fail("batched", &c[i], "a batched form differs from the scalar pair");
+                fail("batched", &c[i], "a plain entry point or a leaf's scalar form differs "
+                                       "from the scalar pair");
+            }
+        }
+        /* every ISA's table, and the plain entry points (the path in use) */
+        for (int k = 0; k < nisa; k++)
+            diff += batched_isa(isas[k], &P, c, &ray, &hit, m, (const float(*)[3])p, err,
+                                (const float(*)[3])w, (const float(*)[3])x, outward,
+                                (const float(*)[3])xs, &leaf, lane, &lanes);
+        {
+            cylray_points16 pts;
+            cylray_hit_points16(&P, &ray, &hit, m, &pts);
+            for (int i = 0; i < 16; i++) {
+                const float a[3] = {pts.x[i], pts.y[i], pts.z[i]};
+                if ((m >> i & 1u) && (!same3(a, p[i]) || pts.err[i] != err[i])) {
+                    diff++;
+                    fail("batched", &c[i], "cylray_hit_points16 differs from the scalar pair");
+                }
             }
         }
     }
@@ -663,6 +995,23 @@ static int run_batched(void)
             }
             /* the bound holds for this point too */
             bad |= !(sref_dist_part(&c[i].cyl, p, hit.part[i]) <= err);
+            /* every ISA's normal forms: packets of 16, a stream, leaves in bulk */
+            for (int k = 0; k < nisa; k++) {
+                const cylray_kernels *K = isas[k];
+                cylray_points16 q;
+                float qx[16], qy[16], qz[16], qe[16];
+                cylray_points qs = {qx, qy, qz, qe};
+                const cylray_leaf8 *lv[1] = {&leaf};
+                K->hit_points_normal16(&P, &ray, &hit, 1u << i, &q);
+                K->hit_points_normal_stream(&P, &rs, &hs, &qs, 16);
+                const float a16[3] = {q.x[i], q.y[i], q.z[i]}, as[3] = {qx[i], qy[i], qz[i]};
+                float bx, by, bz, be;
+                cylray_points qb = {&bx, &by, &bz, &be};
+                K->leaf_hit_points_normal8(lv, &r1, &h1, &qb, 1);
+                const float ab[3] = {bx, by, bz};
+                bad |= !same3(a16, p) || q.err[i] != err || !same3(as, p) || qe[i] != err ||
+                       !same3(ab, p) || be != err;
+            }
             if (bad) {
                 diff++;
                 fail("batched", &c[i], "a normal form differs from the scalar one, or its bound");
@@ -670,9 +1019,9 @@ static int run_batched(void)
         }
     }
     printf("batched: %ld lanes of the normal forms compared (and their bounds)\n", nlanes);
-    printf("batched: %ld lanes compared (packets 4/8/16, stream, leaf; plain and side forms), "
-           "%ld differ\n", lanes,
-           diff);
+    printf("batched: %ld lanes compared over %d ISAs (packets 4/8/16, streams of every "
+           "length, leaves one by one and in bulk; plain, side and normal forms), %ld "
+           "differ\n", lanes, nisa, diff);
     return diff == 0 && lanes > 0;
 }
 
