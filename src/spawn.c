@@ -3,8 +3,8 @@
  * distance to it, and the origin from which a new ray leaves that surface; the scalar
  * entry points, and the batched ones dispatched to the path in use.
  *
- * Everything is evaluated in double from float inputs, in spawn_tmpl.h: one source,
- * compiled per ISA and width against a vocabulary of double vectors (vecd_*.h), whose
+ * Everything is evaluated in double from float inputs, in spawn/spawn.h: one source,
+ * compiled per ISA and width against a vocabulary of double vectors (simd/f64_*.h), whose
  * one-lane instance serves the scalar entry points here. docs/secondary-rays.md holds
  * the derivations in full, this comment their steps. Norms written |x|_1 are 1-norms,
  * which bound the 2-norms from above: where one enters a bound, the bound holds.
@@ -66,14 +66,14 @@
 /* The kernels' tolerance box is what the tests hold them to, not a proven bound: one
  * spawned ray in 10^7 (a reflection 0.0015 rad off the tangent plane, its line within
  * 1e-8 R of tangency) was still taken for a hit with the origin at the box's edge. The
- * margins (CYLRAY_SPAWN_SAFETY, in spawn_tmpl.h) are therefore twice the box, with the
+ * margins (CYLRAY_SPAWN_SAFETY, in spawn/spawn.h) are therefore twice the box, with the
  * origin's rounding counted in ulps of its world coordinates as well as of those
  * relative to the center (the FMA kernels took an origin 2.4e-6 outside a radius-2.2
  * tube, 2.5 ulps of its coordinate 8, for inside). */
 #define DFN(n) CYLRAY_CAT(n, _one_)
-#include "vecd_scalar.h"
-#include "spawn_tmpl.h"
-#include "vecd_undef.h"
+#include "simd/f64_scalar.h"
+#include "spawn/spawn.h"
+#include "simd/f64_undef.h"
 
 /* ---- the scalar entry points ------------------------------------------------ */
 

@@ -31,9 +31,9 @@
 
 #define DFN(n) CYLRAY_CAT(n, _avx2_d4)
 #define DW 4
-#include "vecd_x86.h"
-#include "spawn_tmpl.h"
-#include "vecd_undef.h"
+#include "simd/f64_x86.h"
+#include "spawn/spawn.h"
+#include "simd/f64_undef.h"
 #undef DFN
 
 #define KISA avx2
@@ -50,5 +50,5 @@
 #define SPW8 avx2_d4
 #define SPW16 avx2_d4
 #define SPWS avx2_d4
-#include "spawn_entry.h"
+#include "spawn/entry.h"
 #include "isa/entry.h"

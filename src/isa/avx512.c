@@ -42,15 +42,15 @@
 /* Secondary rays in double: 8 lanes in zmm, and 4 in ymm for 4-ray packets. */
 #define DFN(n) CYLRAY_CAT(n, _avx512_d8)
 #define DW 8
-#include "vecd_x86.h"
-#include "spawn_tmpl.h"
-#include "vecd_undef.h"
+#include "simd/f64_x86.h"
+#include "spawn/spawn.h"
+#include "simd/f64_undef.h"
 #undef DFN
 #define DFN(n) CYLRAY_CAT(n, _avx512_d4)
 #define DW 4
-#include "vecd_x86.h"
-#include "spawn_tmpl.h"
-#include "vecd_undef.h"
+#include "simd/f64_x86.h"
+#include "spawn/spawn.h"
+#include "simd/f64_undef.h"
 #undef DFN
 
 #define KISA avx512
@@ -67,5 +67,5 @@
 #define SPW8 avx512_d8
 #define SPW16 avx512_d8
 #define SPWS avx512_d8
-#include "spawn_entry.h"
+#include "spawn/entry.h"
 #include "isa/entry.h"

@@ -105,7 +105,7 @@ const cylray_kernels CYLRAY_CAT(CYLRAY_CAT(cylray_kernels_, KISA), _) = {
     KI_(intersect_stream), KI_(occluded_stream),
     KI_(leaf_intersect4), KI_(leaf_intersect8), KI_(leaf_intersect16),
     KI_(leaf_occluded4),  KI_(leaf_occluded8),  KI_(leaf_occluded16),
-    KSPAWN_SLOTS, /* spawn_entry.h */
+    KSPAWN_SLOTS, /* spawn/entry.h */
 };
 
 #undef KI_

@@ -13,9 +13,9 @@
 #undef KFN
 
 #define DFN(n) CYLRAY_CAT(n, _neon_d2)
-#include "vecd_neon.h"
-#include "spawn_tmpl.h"
-#include "vecd_undef.h"
+#include "simd/f64_neon.h"
+#include "spawn/spawn.h"
+#include "simd/f64_undef.h"
 #undef DFN
 
 #define KISA neon
@@ -32,5 +32,5 @@
 #define SPW8 neon_d2
 #define SPW16 neon_d2
 #define SPWS neon_d2
-#include "spawn_entry.h"
+#include "spawn/entry.h"
 #include "isa/entry.h"

@@ -9,9 +9,9 @@
 #undef KFN
 
 #define DFN(n) CYLRAY_CAT(n, _scalar_d1)
-#include "vecd_scalar.h"
-#include "spawn_tmpl.h"
-#include "vecd_undef.h"
+#include "simd/f64_scalar.h"
+#include "spawn/spawn.h"
+#include "simd/f64_undef.h"
 #undef DFN
 
 #define KISA scalar
@@ -28,5 +28,5 @@
 #define SPW8 scalar_d1
 #define SPW16 scalar_d1
 #define SPWS scalar_d1
-#include "spawn_entry.h"
+#include "spawn/entry.h"
 #include "isa/entry.h"

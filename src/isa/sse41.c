@@ -19,9 +19,9 @@
 
 #define DFN(n) CYLRAY_CAT(n, _sse41_d2)
 #define DW 2
-#include "vecd_x86.h"
-#include "spawn_tmpl.h"
-#include "vecd_undef.h"
+#include "simd/f64_x86.h"
+#include "spawn/spawn.h"
+#include "simd/f64_undef.h"
 #undef DFN
 
 #define KISA sse41
@@ -38,5 +38,5 @@
 #define SPW8 sse41_d2
 #define SPW16 sse41_d2
 #define SPWS sse41_d2
-#include "spawn_entry.h"
+#include "spawn/entry.h"
 #include "isa/entry.h"

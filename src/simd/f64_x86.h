@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
-/* vecd_x86.h - the secondary-ray code's vocabulary of double vectors on x86 (meanings
- * in vecd_scalar.h). DW = 2 (SSE4.1, xmm), 4 (AVX2, ymm; also under AVX-512 with
+/* simd/f64_x86.h - the secondary-ray code's vocabulary of double vectors on x86 (meanings
+ * in simd/f64_scalar.h). DW = 2 (SSE4.1, xmm), 4 (AVX2, ymm; also under AVX-512 with
  * vector masks) or 8 (AVX-512 zmm, mask registers). */
 #include <immintrin.h>
 #include <stdint.h>
@@ -51,7 +51,7 @@
 #define dgt(a, b) _mm512_cmp_pd_mask(a, b, _CMP_GT_OQ)
 #define deq(a, b) _mm512_cmp_pd_mask(a, b, _CMP_EQ_OQ)
 #else
-#error "vecd_x86.h: DW must be 2, 4 or 8"
+#error "simd/f64_x86.h: DW must be 2, 4 or 8"
 #endif
 
 #define DFULL ((uint32_t)((1u << DW) - 1u))

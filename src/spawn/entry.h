@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* spawn_entry.h - one ISA's batched secondary-ray forms, from the spawn_tmpl.h
+/* spawn/entry.h - one ISA's batched secondary-ray forms, from the spawn/spawn.h
  * instances its translation unit made, as the slots of its cylray_kernels table
  * (KSPAWN_SLOTS, which isa_entry.h appends).
  *

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* vecd_scalar.h - the secondary-ray code's vocabulary of double vectors, one lane:
+/* simd/f64_scalar.h - the secondary-ray code's vocabulary of double vectors, one lane:
  * plain C. It is also the definition of every operation the SIMD headers implement:
  *   vd: DW doubles; vdm: a lane mask (dlt, dle, dgt, deq: ordered compares);
  *   dsel(m, a, b) = m ? a : b; dmax(a, b) = a > b ? a : b, dmin(a, b) = a < b ? a : b

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* vecd_undef.h - takes back every name a vecd_*.h header defined, so that another
+/* simd/f64_undef.h - takes back every name a simd/f64_*.h header defined, so that another
  * width can be included next in the same translation unit. */
 #undef DW
 #undef DFULL

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
-/* spawn_tmpl.h - secondary rays, written once against the double-vector vocabulary
- * (vecd_*.h) and compiled per ISA and width: the hit point with its bound, and the
+/* spawn/spawn.h - secondary rays, written once against the double-vector vocabulary
+ * (simd/f64_*.h) and compiled per ISA and width: the hit point with its bound, and the
  * spawned origin. spawn.c holds the derivation of every step; this is its one
  * implementation, the scalar entry points being its one-lane instance.
  *

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
-/* vecd_neon.h - the secondary-ray code's vocabulary of double vectors on AArch64 NEON,
- * two lanes (meanings in vecd_scalar.h; max and min from a compare, so that NaN gives
+/* simd/f64_neon.h - the secondary-ray code's vocabulary of double vectors on AArch64 NEON,
+ * two lanes (meanings in simd/f64_scalar.h; max and min from a compare, so that NaN gives
  * the second operand as on x86). */
 #include <arm_neon.h>
 #include <stdint.h>
