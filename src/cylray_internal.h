@@ -7,6 +7,7 @@
 
 #include <float.h>
 #include <math.h>
+#include <stdatomic.h>
 
 #define CYLRAY_KIND_INFINITE 0u
 #define CYLRAY_KIND_OPEN 1u   /* finite, no end discs: a tube */
@@ -106,6 +107,18 @@ static inline size_t CYLRAY_CTZ(unsigned x)
     return n;
 }
 #endif
+
+/* Whether the AVX kernels store a hit vector's lanes one by one (with a plain store
+ * when every lane hit) instead of with AVX's masked stores, which AMD Zen 1 to 3 run
+ * as microcode (docs/performance.md, "Stores by vendor"). Set by cylray_kernels_for
+ * from the CPU, or CYLRAY_STORES=lanes|masked; read by every kernel call. Atomic, as
+ * the first calls of several threads may set it (to the same value) while others run. */
+extern atomic_int cylray_stores_by_lane_v_;
+static inline int cylray_stores_by_lane_(void)
+{
+    return atomic_load_explicit(&cylray_stores_by_lane_v_, memory_order_relaxed);
+}
+int cylray_cpu_stores_by_lane_(void);
 
 /* A cylinder along a coordinate axis is handled with the coordinates renamed by a
  * rotation (so cross products keep their form) that makes its axis the third one:

@@ -53,6 +53,9 @@
 #undef mxor
 #undef vstore_m
 #undef vstore_part_m
+#undef vstoreu
+#undef vstoreu_part
+#undef vstore_hits
 #undef vlanebits_
 #undef vcmpeq_i_
 #undef VW
