@@ -54,6 +54,7 @@
 typedef struct {
     unsigned kind;
     int leaf, capped, finite, one_end, aligned, scaled, occ, normal, cull, ff, refine, fast;
+    int scratch;
 } cylray_kflags_;
 
 CYLRAY_INLINE cylray_kflags_ cylray_kflags_of_(unsigned FL, unsigned rt)
@@ -74,6 +75,7 @@ CYLRAY_INLINE cylray_kflags_ cylray_kflags_of_(unsigned FL, unsigned rt)
     F.ff = (rt & CYLRAY_FACE_FORWARD) != 0;
     F.refine = (FL & CYLRAY_REFINE) != 0;
     F.fast = (FL & CYLRAY_FAST) != 0;
+    F.scratch = F.leaf || (FL & CYLRAY_KF_SCRATCH) != 0;
     return F;
 }
 
@@ -708,10 +710,12 @@ CYLRAY_INLINE void KFN(store)(const KFN(lanes) *st, const cylray_kat_ *k, const 
     if (F.normal)
         KFN(normals)(st, k, F, on_side, cap_hi, &nx, &ny, &nz);
     const size_t i = k->i;
-    if (F.leaf) {
-        /* A leaf's driver reads the hit lanes of its scratch back and no other (and
-         * sets tmax once, from the closest lane): whole vectors there. */
+    if (F.scratch) {
+        /* The driver reads the hit lanes of its scratch back and no other: whole
+         * vectors there. (A leaf's driver sets tmax once, from the closest lane.) */
         vstoreu(k->H->t + i, T);
+        if (!F.leaf)
+            vstoreu(k->R->tmax + i, T);
         vstoreu_part(k->H->part + i, part);
         if (F.normal)
             vstoreu(k->H->nx + i, nx), vstoreu(k->H->ny + i, ny), vstoreu(k->H->nz + i, nz);
@@ -890,9 +894,9 @@ CYLRAY_NOINLINE size_t KFN(stream_tail)(const cylray_prepared *P, const cylray_r
     size_t count = 0;
     for (size_t b = 0; b < rest; b += VW) {
         const uint32_t bits = rest - b >= VW ? VFULL : (uint32_t)((1u << (rest - b)) - 1u);
-        uint32_t m = KFN(block)(P, &lr, &lh, b, bits, rt, FL, NULL, 0);
+        uint32_t m = KFN(block)(P, &lr, &lh, b, bits, rt, FL | CYLRAY_KF_SCRATCH, NULL, 0);
         if (m == CYLRAY_RARE_)
-            m = KFN(block_rare)(P, &lr, &lh, b, bits, rt, FL, NULL, 0);
+            m = KFN(block_rare)(P, &lr, &lh, b, bits, rt, FL | CYLRAY_KF_SCRATCH, NULL, 0);
         count += CYLRAY_POPCOUNT(m);
         for (; m; m &= m - 1) {
             const size_t j = b + CYLRAY_CTZ(m);

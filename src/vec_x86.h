@@ -222,25 +222,11 @@ static inline vf KFN(rsqrt_fast)(vf x)
 #endif
 #define vstore_m(p, m, x) KFN(store_m)(p, m, x)
 #define vstore_part_m(p, m, x) KFN(store_part_m)(p, m, x)
-static inline __attribute__((always_inline)) void KFN(store_hits)(
-    vm m, int normal, float *pt, float *ptmax, int32_t *ppart, float *pnx, float *pny,
-    float *pnz, vf t, vf part, vf nx, vf ny, vf nz)
+/* A partly hit vector, a lane at a time: every field of a lane, then the next. */
+static inline __attribute__((always_inline)) void KFN(store_lanes)(
+    uint32_t b, int normal, float *pt, float *ptmax, int32_t *ppart, float *pnx, float *pny,
+    float *pnz, vf t, vi_ ip, vf nx, vf ny, vf nz)
 {
-    const vi_ ip = VX(cvttps_epi32)(part);
-#if X86_FMA
-    if (!X86_STORES_BY_LANE) {
-        VX(maskstore_ps)(pt, VCASTI(m), t);
-        VX(maskstore_ps)(ptmax, VCASTI(m), t);
-        VX(maskstore_epi32)((int *)ppart, VCASTI(m), ip);
-        if (normal) {
-            VX(maskstore_ps)(pnx, VCASTI(m), nx);
-            VX(maskstore_ps)(pny, VCASTI(m), ny);
-            VX(maskstore_ps)(pnz, VCASTI(m), nz);
-        }
-        return;
-    }
-#endif
-    const uint32_t b = mbits(m);
     if (b == VFULL) {
         VX(storeu_ps)(pt, t);
         VX(storeu_ps)(ptmax, t);
@@ -272,6 +258,39 @@ static inline __attribute__((always_inline)) void KFN(store_hits)(
             pnz[j] = lz[j];
         }
     }
+}
+#if X86_FMA
+/* Out of line on AVX, so that the masked stores' path keeps its registers: inline, the
+ * loop's addresses and saved registers cost every call about ten instructions. */
+static __attribute__((noinline, unused)) void KFN(store_lanes_call)(
+    uint32_t b, int normal, float *pt, float *ptmax, int32_t *ppart, float *pnx, float *pny,
+    float *pnz, vf t, vi_ ip, vf nx, vf ny, vf nz)
+{
+    KFN(store_lanes)(b, normal, pt, ptmax, ppart, pnx, pny, pnz, t, ip, nx, ny, nz);
+}
+#endif
+static inline __attribute__((always_inline)) void KFN(store_hits)(
+    vm m, int normal, float *pt, float *ptmax, int32_t *ppart, float *pnx, float *pny,
+    float *pnz, vf t, vf part, vf nx, vf ny, vf nz)
+{
+    const vi_ ip = VX(cvttps_epi32)(part);
+#if X86_FMA
+    if (__builtin_expect(!X86_STORES_BY_LANE, 1)) {
+        VX(maskstore_ps)(pt, VCASTI(m), t);
+        VX(maskstore_ps)(ptmax, VCASTI(m), t);
+        VX(maskstore_epi32)((int *)ppart, VCASTI(m), ip);
+        if (normal) {
+            VX(maskstore_ps)(pnx, VCASTI(m), nx);
+            VX(maskstore_ps)(pny, VCASTI(m), ny);
+            VX(maskstore_ps)(pnz, VCASTI(m), nz);
+        }
+    } else {
+        KFN(store_lanes_call)(mbits(m), normal, pt, ptmax, ppart, pnx, pny, pnz, t, ip, nx,
+                              ny, nz);
+    }
+#else
+    KFN(store_lanes)(mbits(m), normal, pt, ptmax, ppart, pnx, pny, pnz, t, ip, nx, ny, nz);
+#endif
 }
 /* One field alone, as vstore_hits stores it. */
 static inline __attribute__((always_inline)) void KFN(store_m)(float *p, vm m, vf x)
