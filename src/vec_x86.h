@@ -259,16 +259,6 @@ static inline __attribute__((always_inline)) void KFN(store_lanes)(
         }
     }
 }
-#if X86_FMA
-/* Out of line on AVX, so that the masked stores' path keeps its registers: inline, the
- * loop's addresses and saved registers cost every call about ten instructions. */
-static __attribute__((noinline, unused)) void KFN(store_lanes_call)(
-    uint32_t b, int normal, float *pt, float *ptmax, int32_t *ppart, float *pnx, float *pny,
-    float *pnz, vf t, vi_ ip, vf nx, vf ny, vf nz)
-{
-    KFN(store_lanes)(b, normal, pt, ptmax, ppart, pnx, pny, pnz, t, ip, nx, ny, nz);
-}
-#endif
 static inline __attribute__((always_inline)) void KFN(store_hits)(
     vm m, int normal, float *pt, float *ptmax, int32_t *ppart, float *pnx, float *pny,
     float *pnz, vf t, vf part, vf nx, vf ny, vf nz)
@@ -284,13 +274,13 @@ static inline __attribute__((always_inline)) void KFN(store_hits)(
             VX(maskstore_ps)(pny, VCASTI(m), ny);
             VX(maskstore_ps)(pnz, VCASTI(m), nz);
         }
-    } else {
-        KFN(store_lanes_call)(mbits(m), normal, pt, ptmax, ppart, pnx, pny, pnz, t, ip, nx,
-                              ny, nz);
+        return;
     }
-#else
-    KFN(store_lanes)(mbits(m), normal, pt, ptmax, ppart, pnx, pny, pnz, t, ip, nx, ny, nz);
 #endif
+    /* Inline: out of line, with vectors for arguments, gcc 12 left the upper halves of
+     * the ymm registers dirty on return from a one-vector packet, and the caller's SSE
+     * code then ran 4x slower. */
+    KFN(store_lanes)(mbits(m), normal, pt, ptmax, ppart, pnx, pny, pnz, t, ip, nx, ny, nz);
 }
 /* One field alone, as vstore_hits stores it. */
 static inline __attribute__((always_inline)) void KFN(store_m)(float *p, vm m, vf x)
