@@ -12,7 +12,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "../morton.h"
+#include "morton.h"
 
 const char *eb_variant_name(eb_variant v)
 {

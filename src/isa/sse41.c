@@ -1,9 +1,9 @@
 /* SPDX-License-Identifier: MIT */
-/* isa_sse41.c - the kernel on SSE4.1, 4 lanes (compiled with -msse4.1). */
+/* isa/sse41.c - the kernel on SSE4.1, 4 lanes (compiled with -msse4.1). */
 #include "cylray_internal.h"
 
 #ifndef __SSE4_1__
-#error "isa_sse41.c needs -msse4.1"
+#error "isa/sse41.c needs -msse4.1"
 #endif
 
 #define VW 4
@@ -11,9 +11,9 @@
 #define X86_KMASK 0
 #define KFN(n) CYLRAY_CAT(n, _sse41_4)
 #define KPAIRS(F) 1 /* streams keep two vectors in flight (docs/performance.md) */
-#include "vec_x86.h"
-#include "kernel_tmpl.h"
-#include "vec_undef.h"
+#include "simd/x86.h"
+#include "kernel/kernel.h"
+#include "simd/undef.h"
 #undef KFN
 #undef KPAIRS
 
@@ -27,4 +27,4 @@
 #define KL4 sse41_4
 #define KL8 sse41_4
 #define KL16 sse41_4
-#include "isa_entry.h"
+#include "isa/entry.h"

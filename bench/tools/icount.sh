@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
-# bench/icount.sh - instructions per ray of every kernel driver, counted by valgrind, for
+# bench/tools/icount.sh - instructions per ray of every kernel driver, counted by valgrind, for
 # machines whose performance counters are out of reach (virtual machines, containers).
 #
-#   bench/icount.sh [--passes=N] [--check] [--isa=LIST] [--scenario=LIST]
+#   bench/tools/icount.sh [--passes=N] [--check] [--isa=LIST] [--scenario=LIST]
 #
 # Each configuration (ISA x driver x flag set x scenario) runs twice under callgrind,
 # with N and 2N passes (default 16) over the scenario's 512-ray batches, and reports
@@ -17,7 +17,7 @@
 # is timing something). Writes icount.csv to the output directory.
 set -euo pipefail
 
-here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 root=$(dirname "$here")
 build=${CYLBENCH_BUILD:-$root/build-bench}
 out=${CYLBENCH_OUT:-$here/out}
@@ -137,7 +137,7 @@ for s in $scenarios; do
     done
 done
 echo
-printf '%s\n' "- textbook: the auto-vectorized peer of the same ISA (bench/naive.c); it has one" \
+printf '%s\n' "- textbook: the auto-vectorized peer of the same ISA (bench/peer/naive.c); it has one" \
     "  contract, normals always, so only its normal column is filled."
 [ "$check" -eq 1 ] && echo "- a/b: N -> 2N passes / 2N -> 4N passes"
 if ((${#notes[@]})); then

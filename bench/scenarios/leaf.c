@@ -9,17 +9,13 @@
  * as a BVH's leaves are, and each ray is aimed at a random point of one run's box from a
  * few box sizes away. The closest hit is kept through tmax across the run (occlusion
  * stops at the first hit). The scene is sized so that its leaves sit in L1 (leaf-l1)
- * or in L2 (leaf-l2). Rates are ray-cylinder tests per second: LEAF_RUN per ray.
- *
- * Built when the library has the leaf kernels (CYLBENCH_HAVE_LEAF, see meson.build). */
+ * or in L2 (leaf-l2). Rates are ray-cylinder tests per second: LEAF_RUN per ray. */
 #include "leaf.h"
 
 #include "clock.h"
 
 #include <stdio.h>
 #include <string.h>
-
-#ifdef CYLBENCH_HAVE_LEAF
 
 #include <math.h>
 #include <stdlib.h>
@@ -489,17 +485,3 @@ void leaf_run(const options *opt, result_list *results, leaf_report *rep)
     }
 }
 
-#else /* a library without the leaf kernels */
-
-int leaf_available(void)
-{
-    return 0;
-}
-
-void leaf_run(const options *opt, result_list *results, leaf_report *rep)
-{
-    (void)opt, (void)results;
-    memset(rep, 0, sizeof *rep);
-}
-
-#endif

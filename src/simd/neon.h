@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
-/* vec_neon.h - the kernel's vector vocabulary on AArch64 NEON (4 lanes).
- * Semantics as stated in vec_scalar.h; min/max are built from a compare so that NaN
+/* simd/neon.h - the kernel's vector vocabulary on AArch64 NEON (4 lanes).
+ * Semantics as stated in simd/scalar.h; min/max are built from a compare so that NaN
  * lanes give the second operand, as on x86. */
 #include <arm_neon.h>
 #include <stdint.h>
@@ -64,7 +64,6 @@ static inline vf KFN(rsqrt_fast)(vf x)
 #define mand(a, b) vandq_u32(a, b)
 #define mor(a, b) vorrq_u32(a, b)
 #define mandn(a, b) vbicq_u32(a, b)
-#define mnot(a) vmvnq_u32(a)
 #define many(m) (vmaxvq_u32(m) != 0)
 static inline uint32_t KFN(mbits)(vm m)
 {

@@ -1,11 +1,11 @@
 /* SPDX-License-Identifier: MIT */
-/* isa_scalar.c - the portable path: the kernel at one lane, plain C. */
+/* isa/scalar.c - the portable path: the kernel at one lane, plain C. */
 #include "cylray_internal.h"
 
 #define KFN(n) CYLRAY_CAT(n, _scalar_1)
-#include "vec_scalar.h"
-#include "kernel_tmpl.h"
-#include "vec_undef.h"
+#include "simd/scalar.h"
+#include "kernel/kernel.h"
+#include "simd/undef.h"
 #undef KFN
 
 #define KISA scalar
@@ -18,4 +18,4 @@
 #define KL4 scalar_1
 #define KL8 scalar_1
 #define KL16 scalar_1
-#include "isa_entry.h"
+#include "isa/entry.h"

@@ -1,10 +1,10 @@
 /* SPDX-License-Identifier: MIT */
-/* isa_avx512.c - the kernel on AVX-512 F+VL+DQ: 16 lanes in zmm, 8 and 4 in ymm and
+/* isa/avx512.c - the kernel on AVX-512 F+VL+DQ: 16 lanes in zmm, 8 and 4 in ymm and
  * xmm with mask registers (compiled with -mavx512f -mavx512vl -mavx512dq). */
 #include "cylray_internal.h"
 
 #if !defined(__AVX512F__) || !defined(__AVX512VL__) || !defined(__AVX512DQ__)
-#error "isa_avx512.c needs -mavx512f -mavx512vl -mavx512dq"
+#error "isa/avx512.c needs -mavx512f -mavx512vl -mavx512dq"
 #endif
 
 #define X86_FMA 1
@@ -19,24 +19,24 @@
  * leaf's) lost what rays that hit gained. */
 #define KPAIRS(F) (!(F).aligned)
 #define KGROUP(F) ((F).capped && !(F).fast && !(F).refine ? 8 : 2)
-#include "vec_x86.h"
-#include "kernel_tmpl.h"
-#include "vec_undef.h"
+#include "simd/x86.h"
+#include "kernel/kernel.h"
+#include "simd/undef.h"
 #undef KFN
 #undef KPAIRS
 
 #define VW 8
 #define KFN(n) CYLRAY_CAT(n, _avx512_8)
-#include "vec_x86.h"
-#include "kernel_tmpl.h"
-#include "vec_undef.h"
+#include "simd/x86.h"
+#include "kernel/kernel.h"
+#include "simd/undef.h"
 #undef KFN
 
 #define VW 4
 #define KFN(n) CYLRAY_CAT(n, _avx512_4)
-#include "vec_x86.h"
-#include "kernel_tmpl.h"
-#include "vec_undef.h"
+#include "simd/x86.h"
+#include "kernel/kernel.h"
+#include "simd/undef.h"
 #undef KFN
 
 #define KISA avx512
@@ -49,4 +49,4 @@
 #define KL4 avx512_4
 #define KL8 avx512_8
 #define KL16 avx512_16
-#include "isa_entry.h"
+#include "isa/entry.h"

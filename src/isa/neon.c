@@ -1,15 +1,15 @@
 /* SPDX-License-Identifier: MIT */
-/* isa_neon.c - the kernel on AArch64 NEON, 4 lanes. */
+/* isa/neon.c - the kernel on AArch64 NEON, 4 lanes. */
 #include "cylray_internal.h"
 
 #ifndef __aarch64__
-#error "isa_neon.c is for AArch64"
+#error "isa/neon.c is for AArch64"
 #endif
 
 #define KFN(n) CYLRAY_CAT(n, _neon_4)
-#include "vec_neon.h"
-#include "kernel_tmpl.h"
-#include "vec_undef.h"
+#include "simd/neon.h"
+#include "kernel/kernel.h"
+#include "simd/undef.h"
 #undef KFN
 
 #define KISA neon
@@ -22,4 +22,4 @@
 #define KL4 neon_4
 #define KL8 neon_4
 #define KL16 neon_4
-#include "isa_entry.h"
+#include "isa/entry.h"

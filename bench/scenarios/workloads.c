@@ -12,9 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#ifdef CYLBENCH_HAVE_REF
 #include "gen.h"
-#endif
 
 #define ALL_OPS ((1u << OP_COUNT) - 1u)
 #define ALL_WIDTHS ((1u << BW_COUNT) - 1u)
@@ -37,9 +35,7 @@ typedef struct scen_def {
 } scen_def;
 
 #define MAX_SCEN 48
-#ifdef CYLBENCH_HAVE_REF
 static char gen_names[MAX_SCEN][40]; /* "stress-" + the category names of gen.h */
-#endif
 
 static scen_def table[MAX_SCEN];
 static int ntable;
@@ -98,7 +94,6 @@ static void init_table(void)
     };
     for (size_t i = 0; i < sizeof fixed / sizeof fixed[0]; i++)
         table[ntable++] = fixed[i];
-#ifdef CYLBENCH_HAVE_REF
     for (int c = 0; c < cylgen_category_count() && ntable < MAX_SCEN; c++) {
         snprintf(gen_names[c], sizeof gen_names[c], "stress-%s", cylgen_category_name(c));
         scen_def s = {gen_names[c], "stress", cylgen_category_description(c), S_GEN,
@@ -107,7 +102,6 @@ static void init_table(void)
                       1u << BW_16, 1, 0, c, 0};
         table[ntable++] = s;
     }
-#endif
 }
 
 int workloads_count(void)
@@ -255,7 +249,6 @@ int workloads_build(int idx, workload *w, const options *opt)
         break;
     }
     case S_GEN: {
-#ifdef CYLBENCH_HAVE_REF
         size_t ncases = n;
         cylgen_case *cs = malloc(ncases * sizeof *cs);
         if (!cs || alloc_cyls(w, (int)(ncases / CYLGEN_BATCH))) {
@@ -273,9 +266,6 @@ int workloads_build(int idx, workload *w, const options *opt)
                 w->cyl[i / CYLGEN_BATCH] = cs[i].cyl;
         }
         free(cs);
-#else
-        return -1;
-#endif
         break;
     }
     }

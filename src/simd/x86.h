@@ -1,13 +1,13 @@
 /* SPDX-License-Identifier: MIT */
-/* vec_x86.h - the kernel's vector vocabulary on x86: SSE4.1, AVX2+FMA and AVX-512.
+/* simd/x86.h - the kernel's vector vocabulary on x86: SSE4.1, AVX2+FMA and AVX-512.
  *
  * Included once per vector width by an ISA's translation unit, with:
  *   VW         lanes per vector: 4 (xmm), 8 (ymm) or 16 (zmm)
  *   X86_FMA    1 when the FMA3 instructions may be used
  *   X86_KMASK  1 for AVX-512: lane masks live in mask registers (needs VL below 16)
- * vec_undef.h takes every name back, so the next width can define them again.
+ * simd/undef.h takes every name back, so the next width can define them again.
  *
- * Every operation has one meaning on every ISA (see vec_scalar.h for the plain
+ * Every operation has one meaning on every ISA (see simd/scalar.h for the plain
  * statement of each); in particular vmin/vmax return the second operand when either
  * is NaN, as minps/maxps do, so that NaN lanes behave the same everywhere. */
 #include <immintrin.h>
@@ -15,27 +15,27 @@
 
 #if VW == 4
 #define vf __m128
-#define vi_ __m128i
 #define VX(n) _mm_##n
 #define VXI(n) _mm_##n##_si128
+#define vi_ __m128i
 #define VCASTI(x) _mm_castps_si128(x)
 #define VCASTF(x) _mm_castsi128_ps(x)
 #elif VW == 8
 #define vf __m256
-#define vi_ __m256i
 #define VX(n) _mm256_##n
 #define VXI(n) _mm256_##n##_si256
+#define vi_ __m256i
 #define VCASTI(x) _mm256_castps_si256(x)
 #define VCASTF(x) _mm256_castsi256_ps(x)
 #elif VW == 16
 #define vf __m512
-#define vi_ __m512i
 #define VX(n) _mm512_##n
 #define VXI(n) _mm512_##n##_si512
+#define vi_ __m512i
 #define VCASTI(x) _mm512_castps_si512(x)
 #define VCASTF(x) _mm512_castsi512_ps(x)
 #else
-#error "vec_x86.h: VW must be 4, 8 or 16"
+#error "simd/x86.h: VW must be 4, 8 or 16"
 #endif
 
 #define VFULL ((uint32_t)((1u << VW) - 1u))
@@ -166,7 +166,6 @@ static inline vf KFN(rsqrt_fast)(vf x)
 #define mand(a, b) ((vm)((a) & (b)))
 #define mor(a, b) ((vm)((a) | (b)))
 #define mandn(a, b) ((vm)((a) & ~(b)))
-#define mnot(a) ((vm)(~(a) & VFULL))
 #define many(m) ((m) != 0)
 #define mbits(m) ((uint32_t)(m))
 #define mfrom_bits(b) ((vm)((b) & VFULL))
@@ -193,7 +192,6 @@ static inline vf KFN(rsqrt_fast)(vf x)
 #define mand(a, b) VX(and_ps)(a, b)
 #define mor(a, b) VX(or_ps)(a, b)
 #define mandn(a, b) VX(andnot_ps)(b, a)
-#define mnot(a) VX(xor_ps)(a, VCASTF(VX(set1_epi32)(-1)))
 #define mbits(m) ((uint32_t)VX(movemask_ps)(m))
 #define many(m) (mbits(m) != 0)
 #define vsel(m, a, b) VX(blendv_ps)(b, a, m)

@@ -1,13 +1,13 @@
 /* SPDX-License-Identifier: MIT */
-/* isa_avx2.c - the kernel on AVX2+FMA: 8 lanes in ymm, and 4 in xmm for 4-ray packets
+/* isa/avx2.c - the kernel on AVX2+FMA: 8 lanes in ymm, and 4 in xmm for 4-ray packets
  * (compiled with -mavx2 -mfma, never -march=native, which would add AVX-512). */
 #include "cylray_internal.h"
 
 #if !defined(__AVX2__) || !defined(__FMA__)
-#error "isa_avx2.c needs -mavx2 -mfma"
+#error "isa/avx2.c needs -mavx2 -mfma"
 #endif
 #ifdef __AVX512F__
-#error "isa_avx2.c must not be compiled with AVX-512 enabled"
+#error "isa/avx2.c must not be compiled with AVX-512 enabled"
 #endif
 
 #define X86_FMA 1
@@ -16,17 +16,17 @@
 #define VW 8
 #define KFN(n) CYLRAY_CAT(n, _avx2_8)
 #define KPAIRS(F) 1 /* streams keep two vectors in flight (docs/performance.md) */
-#include "vec_x86.h"
-#include "kernel_tmpl.h"
-#include "vec_undef.h"
+#include "simd/x86.h"
+#include "kernel/kernel.h"
+#include "simd/undef.h"
 #undef KFN
 #undef KPAIRS
 
 #define VW 4
 #define KFN(n) CYLRAY_CAT(n, _avx2_4)
-#include "vec_x86.h"
-#include "kernel_tmpl.h"
-#include "vec_undef.h"
+#include "simd/x86.h"
+#include "kernel/kernel.h"
+#include "simd/undef.h"
 #undef KFN
 
 #define KISA avx2
@@ -39,4 +39,4 @@
 #define KL4 avx2_4
 #define KL8 avx2_8
 #define KL16 avx2_8
-#include "isa_entry.h"
+#include "isa/entry.h"

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* icount.c - cylicount: one configuration of the harness run for a fixed number of
- * passes and nothing else, to be counted under valgrind (bench/icount.sh).
+ * passes and nothing else, to be counted under valgrind (bench/tools/icount.sh).
  *
  *   cylicount --isa=scalar|sse41|avx2|avx512|neon --driver=4|8|16|stream|textbook
  *             --flags=t|normal|occluded|refine|fast --scenario=NAME --passes=N
@@ -8,7 +8,7 @@
  *
  * Without hardware counters, instructions can only be counted by a simulator, and a
  * simulator counts the whole process. The scenario, the packing and the pass are the
- * harness's own objects (workloads.c, timing.c), so what is counted is what cylbench
+ * harness's own code (the cylbench_core library), so what is counted is what cylbench
  * times, bookkeeping of the pass included (the tmax restore, the hit count); set-up
  * cancels when two runs that differ only in N are subtracted. Exit status 2: the
  * path or build is not available here (valgrind hides AVX-512 from the CPU it

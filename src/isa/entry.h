@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* isa_entry.h - one ISA's public entry points and its cylray_kernels table, from the
+/* isa/entry.h - one ISA's public entry points and its cylray_kernels table, from the
  * kernel instantiations its translation unit made.
  *
  * Parameters: KISA (suffix, e.g. avx2), KISA_ENUM, KISA_NAME, and KW4, KW8, KW16 (the
@@ -25,7 +25,7 @@
             return KW_(packet_generic, KW##n)(P, ray->ox, hit->t, n, active, flags);    \
         const KW_(packet_fn, KW##n) *t = n == KW_(vw, KW##n) ? KW_(isect1_table, KW##n)   \
                                                             : KW_(isect_table, KW##n);   \
-        return t[cylray_isect_index_(cylray_variant_(P), flags)](                     \
+        return t[cylray_isect_index_(P->variant, flags)](                     \
             P, ray->ox, hit->t, n, active, flags & CYLRAY_KF_RUNTIME);                 \
     }                                                                                  \
     static uint32_t KI_(occluded##n)(const cylray_prepared *P, const cylray_ray##n *ray, \
@@ -40,7 +40,7 @@
                                               active, flags);                         \
         const KW_(packet_fn, KW##n) *t = n == KW_(vw, KW##n) ? KW_(occ1_table, KW##n)     \
                                                             : KW_(occ_table, KW##n);     \
-        return t[cylray_occ_index_(cylray_variant_(P), flags)](                       \
+        return t[cylray_occ_index_(P->variant, flags)](                       \
             P, (float *)(uintptr_t)ray->ox, NULL, n, active, flags & CYLRAY_CULL_BACK);  \
     }
 KPACKET_(4)
@@ -54,7 +54,7 @@ static size_t KI_(intersect_stream)(const cylray_prepared *P, const cylray_rays 
         return 0;
     if (cylray_generic_(P))
         return KW_(stream_generic, KWSTREAM)(P, rays, hits, NULL, n, flags);
-    return KW_(isect_stream_table, KWSTREAM)[cylray_isect_index_(cylray_variant_(P), flags)](
+    return KW_(isect_stream_table, KWSTREAM)[cylray_isect_index_(P->variant, flags)](
         P, rays, hits, NULL, n, flags & CYLRAY_KF_RUNTIME);
 }
 
@@ -65,7 +65,7 @@ static size_t KI_(occluded_stream)(const cylray_prepared *P, const cylray_rays *
         return 0;
     if (cylray_generic_(P))
         return KW_(stream_generic, KWSTREAM)(P, rays, NULL, occluded, n, flags);
-    return KW_(occ_stream_table, KWSTREAM)[cylray_occ_index_(cylray_variant_(P), flags)](
+    return KW_(occ_stream_table, KWSTREAM)[cylray_occ_index_(P->variant, flags)](
         P, rays, NULL, occluded, n, flags & CYLRAY_CULL_BACK);
 }
 

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* vec_scalar.h - the kernel's vector vocabulary for one lane: plain C.
+/* simd/scalar.h - the kernel's vector vocabulary for one lane: plain C.
  *
  * This is also the definition of every operation the SIMD headers implement:
  *   vfma(a,b,c) = a*b + c, vfms = a*b - c, vfnma = c - a*b; fused where the ISA can,
@@ -78,7 +78,6 @@ static inline float KFN(dop_x)(float a, float b, float c, float d)
 #define mand(a, b) ((a) & (b))
 #define mor(a, b) ((a) | (b))
 #define mandn(a, b) ((a) & !(b))
-#define mnot(a) (!(a))
 #define many(m) (m)
 #define mbits(m) ((uint32_t)(m))
 #define mfrom_bits(b) ((int)((b) & 1u))

@@ -13,7 +13,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#ifdef CYLBENCH_HAVE_REF
 #include "cylref.h"
 
 int accuracy_available(void)
@@ -225,38 +224,3 @@ done:
     free(xs);
 }
 
-#else /* no reference in this build: the timing side still works */
-
-int accuracy_available(void)
-{
-    return 0;
-}
-
-void accuracy_reference(workload *w)
-{
-    w->ref = NULL;
-}
-
-void accuracy_release(workload *w)
-{
-    (void)w;
-}
-
-void accuracy_measure(const workload *w, int isa, int width_id, int op, result *r)
-{
-    size_t n = w->rays.n;
-    uint8_t *hit = malloc(n);
-    float *t = malloc(n * sizeof *t);
-    int32_t *part = malloc(n * sizeof *part);
-    if (hit && t && part && bench_run_once(w, isa, width_id, op, hit, t, part) == 0) {
-        size_t nh = 0;
-        for (size_t i = 0; i < n; i++)
-            nh += hit[i];
-        r->hit_frac = (double)nh / (double)n;
-    }
-    free(hit);
-    free(t);
-    free(part);
-}
-
-#endif

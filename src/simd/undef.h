@@ -1,11 +1,11 @@
 /* SPDX-License-Identifier: MIT */
-/* vec_undef.h - takes back every name a vec_*.h header defined, so that another
+/* simd/undef.h - takes back every name a simd/ header defined, so that another
  * width or ISA can be included next in the same translation unit. */
 #undef vf
-#undef vi_
 #undef vm
 #undef VX
 #undef VXI
+#undef vi_
 #undef VCASTI
 #undef VCASTF
 #undef VFULL
@@ -44,7 +44,6 @@
 #undef mand
 #undef mor
 #undef mandn
-#undef mnot
 #undef many
 #undef mbits
 #undef mfrom_bits

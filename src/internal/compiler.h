@@ -1,0 +1,38 @@
+/* SPDX-License-Identifier: MIT */
+/* internal/compiler.h - the compiler's attributes and builtins, with plain C
+ * where they are missing. */
+#ifndef CYLRAY_INTERNAL_COMPILER_H
+#define CYLRAY_INTERNAL_COMPILER_H
+
+#if defined(__GNUC__) || defined(__clang__)
+#define CYLRAY_INLINE static inline __attribute__((always_inline))
+#define CYLRAY_NOINLINE static __attribute__((noinline, cold))
+/* Makes the compiler read memory again after this point instead of keeping what it
+ * read before in registers (or in spill slots). */
+#define CYLRAY_REREAD() __asm__ volatile("" ::: "memory")
+#define CYLRAY_MAYBE_UNUSED __attribute__((unused))
+#define CYLRAY_POPCOUNT(x) ((unsigned)__builtin_popcount(x))
+#define CYLRAY_CTZ(x) ((size_t)__builtin_ctz(x))
+#else
+#define CYLRAY_INLINE static inline
+#define CYLRAY_NOINLINE static
+#define CYLRAY_REREAD() ((void)0)
+#define CYLRAY_MAYBE_UNUSED
+static inline unsigned CYLRAY_POPCOUNT(unsigned x)
+{
+    unsigned n = 0;
+    for (; x; x &= x - 1) n++;
+    return n;
+}
+static inline size_t CYLRAY_CTZ(unsigned x)
+{
+    size_t n = 0;
+    for (; !(x & 1u); x >>= 1) n++;
+    return n;
+}
+#endif
+
+#define CYLRAY_CAT_(a, b) a##b
+#define CYLRAY_CAT(a, b) CYLRAY_CAT_(a, b)
+
+#endif

@@ -1,0 +1,114 @@
+/* SPDX-License-Identifier: MIT */
+/* kernel/ends.h - stages 6 and 7: the ends of a finite cylinder, and the decision. */
+
+/* Where a disc is not part of the surface, the solid is still what decides entry and
+ * exit (so the other rim stays watertight), but a bound made by that disc is no hit:
+ * the ray passes through the open end. Going up the axis (dv > 0) it enters by the low
+ * disc and leaves by the high one. */
+CYLRAY_INLINE void KFN(open_ends)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F,
+                                  vf slab_in, vf slab_out)
+{
+    vm lo_on, hi_on;
+    if (F.leaf) {
+        const uint32_t *meta = (const uint32_t *)(const void *)(k->L + CYLRAY_LF_COUNT * k->lm);
+        lo_on = mfrom_bits(meta[CYLRAY_LM_LO] >> k->i);
+        hi_on = mfrom_bits(meta[CYLRAY_LM_HI] >> k->i);
+    } else {
+        lo_on = mfrom_bits(k->P->caps & CYLRAY_CAPPED_LO ? VFULL : 0u);
+        hi_on = mfrom_bits(k->P->caps & CYLRAY_CAPPED_HI ? VFULL : 0u);
+    }
+    vm up = vgt(st->dv, vzero());
+    vm in_disc = vgt(slab_in, st->side_lo), out_disc = vlt(slab_out, st->side_hi);
+    vm in_open = mandn(in_disc, mor(mand(up, lo_on), mandn(hi_on, up)));
+    vm out_open = mandn(out_disc, mor(mand(up, hi_on), mandn(lo_on, up)));
+    st->ok_in = mandn(st->ok_in, in_open);
+    st->ok_out = mandn(st->ok_out, out_open);
+}
+
+/* Stage 6, the ends: entry and exit relative to p, and whether each is on the
+ * surface (the slab and the caps of a finite cylinder). */
+CYLRAY_INLINE void KFN(ends)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
+{
+    const vf zero = vzero(), inf = vset1(INFINITY), tn = st->tn, tf = st->tf;
+    st->side_lo = tn, st->side_hi = tf;
+    /* The axial coordinate z0 + t dv, over |v|. An aligned axis is measured along the
+     * third coordinate itself, whatever its sign: the slab is symmetric, and the sign
+     * only names the caps. */
+    vf z0 = zero, dv = zero;
+    if (F.finite) {
+        z0 = F.aligned ? st->pz : KDOT(st->px, st->py, st->pz, st->vx, st->vy, st->vz);
+        dv = F.aligned ? st->dz : KDOT(st->dx, st->dy, st->dz, st->vx, st->vy, st->vz);
+    }
+    st->z0 = z0, st->dv = dv;
+    if (F.capped) {
+        /* The solid is the infinite one cut by the slab |z| <= H: inside on [max of the
+         * entries, min of the exits]. The rim is then shared, not tested twice. A ray
+         * parallel to the axis inside the tube is inside the side everywhere. */
+        st->side_lo = vsel(st->inpar, vneg(inf), tn), st->side_hi = vsel(st->inpar, inf, tf);
+        const vf hv = KC_(h_v, KL_(HV));
+        /* Two divisions rather than one reciprocal: a cap hit is then as exact as
+         * the plane's offset, and dv = 0 gives the infinities the slab wants. */
+        vf na = vsub(vneg(hv), z0), nb = vsub(hv, z0);
+        vf ta, tb;
+        if (F.fast) {
+            vf rdv = vdiv(vset1(1.0f), dv);
+            ta = vmul(na, rdv), tb = vmul(nb, rdv);
+        } else {
+            ta = vdiv(na, dv), tb = vdiv(nb, dv);
+        }
+        vf slab_in = vmin(ta, tb), slab_out = vmax(ta, tb);
+        st->t_in = vmax(st->side_lo, slab_in);
+        st->t_out = vmin(st->side_hi, slab_out);
+        st->ok_in = mand(mor(st->side, st->inpar), vle(st->t_in, st->t_out));
+        st->ok_out = st->ok_in;
+        if (F.one_end)
+            KFN(open_ends)(st, k, F, slab_in, slab_out);
+    } else {
+        st->t_in = tn, st->t_out = tf;
+        st->ok_in = st->ok_out = st->side;
+        if (F.kind == CYLRAY_KIND_OPEN) {
+            const vf hv = vset1(k->P->h_v);
+            st->ok_in = mand(st->ok_in, vle(vabs(vfma(tn, dv, z0)), hv));
+            st->ok_out = mand(st->ok_out, vle(vabs(vfma(tf, dv, z0)), hv));
+        }
+    }
+}
+
+/* Stage 7, the decision: the entry if it is not before tmin, else the exit (a hit from
+ * inside); then one range test for whichever it is. Rounding s + t is monotonic, so the
+ * entry test decides correctly which of the two can be the first in [tmin, tmax]. The
+ * bounds are clamped to finite values, so that no infinite t ever hits. Returns the
+ * hit lanes. */
+CYLRAY_INLINE uint32_t KFN(decide)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
+{
+    const vf one = vset1(1.0f);
+    vf tmin = vmax(vset1(-FLT_MAX), KR_(tmin)); /* a NaN bound stays */
+    vf tmax = vmin(vset1(FLT_MAX), KR_(tmax));
+    /* (min, max and comparisons take subnormals without an assist) */
+    vf T_in = vadd(st->s, st->t_in), T_out = vadd(st->s, st->t_out);
+    /* With a scaled direction the range test is made where no scaling rounds: a
+     * shrunk d (m < 1) moves the bounds to t' (exact, or overflowing as it should), a
+     * grown one moves T to t (the same): t_to_test takes t' there, t_to_user takes
+     * that to t. */
+    st->t_to_user = one;
+    if (F.scaled) {
+        vm shrunk = vlt(st->tscale, one);
+        vf rs = vdiv(one, st->tscale);
+        tmin = vsel(shrunk, vmul(tmin, rs), tmin);
+        tmax = vsel(shrunk, vmul(tmax, rs), tmax);
+        vf t_to_test = vsel(shrunk, one, st->tscale);
+        st->t_to_user = vsel(shrunk, st->tscale, one);
+        T_in = vmul(T_in, t_to_test), T_out = vmul(T_out, t_to_test);
+    }
+    vm front = mand(st->ok_in, vge(T_in, tmin));
+    vm cand = F.cull ? front : mor(front, st->ok_out);
+    st->tr = vsel(front, st->t_in, st->t_out); /* relative to the shifted origin */
+    st->T = vsel(front, T_in, T_out);
+    vm hit = mand(cand, mand(vge(st->T, tmin), vle(st->T, tmax)));
+    if (k->bits != VFULL) /* a whole vector is the common case, and needs no mask */
+        hit = mand(hit, mfrom_bits(k->bits));
+    st->back = mandn(hit, front);
+    st->front = mand(hit, front);
+    st->hit = hit;
+    return mbits(hit);
+}

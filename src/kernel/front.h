@@ -1,0 +1,112 @@
+/* SPDX-License-Identifier: MIT */
+/* kernel/front.h - stages 1 and 2: the ray, and the cheap rejections that end most
+ * vectors that miss. */
+
+/* Stage 1, the ray: A (aligned), d.d and the lanes in play. An Inf or NaN anywhere but
+ * in d turns C or D into NaN later, which takes the lane out there. Returns
+ * nonzero for a vector that the rare instance must take, else 0. */
+CYLRAY_INLINE int KFN(load_ray)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
+{
+    const vf zero = vzero(), one = vset1(1.0f), inf = vset1(INFINITY);
+    KLOAD_O_();
+    st->dx = KR_(dx), st->dy = KR_(dy), st->dz = KR_(dz);
+    if (KPARTIAL_)
+        KSANE_(dx, zero), KSANE_(dy, one), KSANE_(dz, zero);
+    vf dx = st->dx, dy = st->dy, dz = st->dz;
+    vf A = F.aligned ? vfma(dx, dx, vmul(dy, dy)) : zero; /* the side's |d_perp|^2 */
+    vf dd = F.aligned ? vfma(dz, dz, A) : KDOT(dx, dy, dz, dx, dy, dz);
+    vm act = mand(vge(dd, vset1(KM_DD_LO)), vle(dd, vset1(KM_DD_HI)));
+    /* A direction far from unit length makes A, D and their products under- or
+     * overflow (|d| = 2^-56 loses a tiny radius, 2^64 overflows d.d). A vector with
+     * such an active lane (or a bad one) goes to the rare instance, where every lane
+     * takes d times an exact power of two m, so that its largest component lies in
+     * [2^-29, 2^20]: the line is the same, and t = m t'. Everything after works in t'
+     * but the range test and T itself. A zero, infinite or NaN direction never hits. */
+    vf tscale = one;
+    if (F.scaled) {
+        vf M = vmax(vabs(dx), vmax(vabs(dy), vabs(dz)));
+        tscale = vsel(vlt(M, vset1(0x1p-20f)), vset1(0x1p40f), tscale);
+        tscale = vsel(vlt(M, vset1(0x1p-60f)), vset1(0x1p80f), tscale);
+        tscale = vsel(vlt(M, vset1(0x1p-100f)), vset1(0x1p120f), tscale);
+        tscale = vsel(vgt(M, vset1(0x1p20f)), vset1(0x1p-40f), tscale);
+        tscale = vsel(vgt(M, vset1(0x1p60f)), vset1(0x1p-80f), tscale);
+        tscale = vsel(vgt(M, vset1(0x1p100f)), vset1(0x1p-120f), tscale);
+        dx = vmul(dx, tscale), dy = vmul(dy, tscale), dz = vmul(dz, tscale);
+        st->dx = dx, st->dy = dy, st->dz = dz;
+        A = F.aligned ? vfma(dx, dx, vmul(dy, dy)) : zero;
+        dd = F.aligned ? vfma(dz, dz, A) : KDOT(dx, dy, dz, dx, dy, dz);
+        act = mand(mand(vgt(dd, zero), vlt(dd, inf)), vlt(M, inf));
+    }
+    st->A = A, st->dd = dd, st->act = act, st->tscale = tscale;
+    if (!F.scaled && (mbits(act) & k->bits) != k->bits)
+        return 1; /* KFN(vector) calls the rare instance */
+    return 0;
+}
+
+/* Stage 2, the cheap rejections: the sphere around a finite cylinder and the tube
+ * around the axis, from w = o - c rounded. Returns whether any lane is left. */
+CYLRAY_INLINE int KFN(reject)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
+{
+    const vf zero = vzero(), inf = vset1(INFINITY);
+    const vf dx = st->dx, dy = st->dy, dz = st->dz, dd = st->dd;
+    vf vx = zero, vy = zero;
+    if (!F.aligned)
+        vx = KC_(v[0], KL_(VX)), vy = KC_(v[1], KL_(VY));
+    const vf vz = F.leaf ? KL_(VZ) : vset1(F.aligned ? k->P->vr : k->P->v[2]);
+    st->vx = vx, st->vy = vy, st->vz = vz;
+    /* A leaf derives what it does not store from what it does (64 bytes a lane). */
+    st->rad = F.leaf ? KL_(R) : zero;
+    st->rr = KC_(rr, vmul(st->rad, st->rad)), st->rr_vv = KC_(rr_vv, KL_(RRVV));
+    st->fin = F.leaf ? vlt(KL_(HV), inf) : vle(zero, zero);
+    st->infl = F.leaf ? vge(KL_(HV), inf) : vlt(vset1(1.0f), zero);
+
+    /* w = o - c, rounded here; its rounding error wl is recovered by the shift stage
+     * (two-sum), once the cheap whole-vector rejections are behind. */
+    vf whx = vsub(st->ox, st->cx), why = vsub(st->oy, st->cy), whz = vsub(st->oz, st->cz);
+    st->whx = whx, st->why = why, st->whz = whz;
+    vf ww = KDOT(whx, why, whz, whx, why, whz), wd = KDOT(whx, why, whz, dx, dy, dz);
+    vm act = st->act;
+
+    /* Shift to the closest approach to the center. s need not be accurate: any s is
+     * exact as long as w' is formed from the same s, and t = s + t'. So a refined
+     * reciprocal estimate serves, and the divider is kept for the roots. */
+    const vf rdd = vrcp_fast(dd);
+    vf s = vmul(vneg(wd), rdd);
+    if (F.finite) {
+        /* ww + s wd = ww - wd^2 / dd is the squared distance of the closest approach
+         * to the center; a finite cylinder lies in a sphere, and a ray that passes
+         * outside it misses. The slack (KM_SPHERE) covers the cancellation of a far
+         * origin. */
+        vf wd2 = vmul(vmul(wd, wd), rdd); /* wd^2 / dd; wd^2 is formed beside rdd */
+        act = mand(act, vle(vfnma(ww, vset1(KM_SPHERE), vsub(ww, wd2)), KC_(bound2, KL_(BOUND2))));
+        /* A shift that brings the origin less than a factor sqrt(2) closer gains less
+         * than it costs: a small t would lose its low bits in s + t'. (ww > 2 pp.) */
+        s = F.leaf ? vsel(st->fin, vkeep(vgt(vadd(wd2, wd2), ww), s), s)
+                   : vkeep(vgt(vadd(wd2, wd2), ww), s);
+    }
+    st->rdd = rdd, st->s = s;
+
+    /* e = d x v to a relative accuracy that survives a ray almost along the axis.
+     * With an aligned axis v = (0, 0, +-1) and e = (dy, -dx, 0) up to the sign of v,
+     * which no product below sees. */
+    vf g0, A = st->A;
+    st->ex = st->ey = st->ez = zero;
+    if (F.aligned) {
+        g0 = vfms(whx, dy, vmul(why, dx)); /* plain: within the margin below */
+    } else {
+        st->ex = vdop_x(dy, vz, dz, vy), st->ey = vdop_x(dz, vx, dx, vz);
+        st->ez = vdop_x(dx, vy, dy, vx);
+        A = KDOT(st->ex, st->ey, st->ez, st->ex, st->ey, st->ez);
+        g0 = KDOT(st->ex, st->ey, st->ez, whx, why, whz);
+    }
+    st->A = A;
+    /* The ray's line passes at |g| / sqrt(A) from the axis (g = e.w moves neither with
+     * the shift nor along the axis). g0 is off from the exact g by less than
+     * 2^-21 sqrt(A ww); beyond that margin the line misses the tube. A vector whose
+     * rays all miss the sphere or the tube ends here, before the exact work, at one
+     * branch (two would mispredict on a mix of the two kinds of miss). */
+    act = mandn(act, vgt(vmul(g0, g0),
+                         vmul(vmul(A, vset1(KM_TUBE_A)), vfma(ww, vset1(KM_TUBE_WW), st->rr))));
+    st->act = act;
+    return many(act);
+}

@@ -1,0 +1,138 @@
+/* SPDX-License-Identifier: MIT */
+/* kernel/store.h - stage 8: t, the part and the normal of the hit lanes. */
+
+/* A hit point that rounding moved well off the surface (a radius far below the
+ * coordinates' ulp) gets a true normalisation, divided by its largest component
+ * first, so that a length whose square underflows or overflows still normalises. */
+CYLRAY_INLINE void KFN(renormalize)(const KFN(lanes) *st, const cylray_kflags_ F, vm off,
+                                    vf *nx, vf *ny, vf *nz, vf *corr)
+{
+    const vf zero = vzero(), inf = vset1(INFINITY);
+    vf m = vmax(vabs(*nx), vmax(vabs(*ny), vabs(*nz)));
+    vm lost = mandn(off, mand(vgt(m, zero), vlt(m, inf)));
+    if (many(lost)) {
+        /* A hit point that rounds onto the axis (a radius far below the coordinates'
+         * ulp), or one so far from it that the offset is not finite (an origin far
+         * beyond the documented 2^62), has no direction of its own: the side then
+         * faces the ray, along -d_perp (v x e = v.v d_perp) on entry. */
+        vf ux = st->dx, uy = st->dy, uz = zero;
+        if (!F.aligned) {
+            ux = vfms(st->vy, st->ez, vmul(st->vz, st->ey));
+            uy = vfms(st->vz, st->ex, vmul(st->vx, st->ez));
+            uz = vfms(st->vx, st->ey, vmul(st->vy, st->ex));
+        }
+        *nx = vsel(lost, vsel(st->front, vneg(ux), ux), *nx);
+        *ny = vsel(lost, vsel(st->front, vneg(uy), uy), *ny);
+        *nz = vsel(lost, vsel(st->front, vneg(uz), uz), *nz);
+        m = vmax(vabs(*nx), vmax(vabs(*ny), vabs(*nz)));
+    }
+    /* n / m by division: 1 / m overflows where m is subnormal. */
+    vf sx = vdiv(*nx, m), sy = vdiv(*ny, m), sz = vdiv(*nz, m);
+    vf kk = vdiv(vset1(1.0f), vsqrt(KDOT(sx, sy, sz, sx, sy, sz)));
+    vm ok = mand(off, mand(vgt(m, zero), vlt(m, inf)));
+    *nx = vsel(ok, vmul(sx, kk), *nx), *ny = vsel(ok, vmul(sy, kk), *ny);
+    *nz = vsel(ok, vmul(sz, kk), *nz);
+    *corr = vsel(ok, vset1(1.0f), *corr);
+}
+
+#ifndef vstore_hits
+/* The fields of a hit vector, each stored at the hit lanes (the ISA header may store
+ * them together instead). */
+#define vstore_hits(m, normal, pt, ptmax, ppart, pnx, pny, pnz, t, part, nx, ny, nz)      \
+    do {                                                                               \
+        vstore_m(pt, m, t);                                                            \
+        vstore_m(ptmax, m, t);                                                         \
+        vstore_part_m(ppart, m, part);                                                 \
+        if (normal) {                                                                  \
+            vstore_m(pnx, m, nx);                                                      \
+            vstore_m(pny, m, ny);                                                      \
+            vstore_m(pnz, m, nz);                                                      \
+        }                                                                              \
+    } while (0)
+#endif
+
+/* Stage 8b, the unit normal at the hit lanes. */
+CYLRAY_INLINE void KFN(normals)(const KFN(lanes) *st, const cylray_kat_ *k,
+                                const cylray_kflags_ F, vm on_side, vm cap_hi, vf *onx,
+                                vf *ony, vf *onz)
+{
+    const vf zero = vzero(), one = vset1(1.0f), tr = st->tr;
+    const vm hit = st->hit;
+    vf nx, ny, nz;
+    if (F.aligned) {
+        const vf kn = vset1(k->P->nscale);
+        nx = vmul(vfma(tr, st->dx, st->px), kn);
+        ny = vmul(vfma(tr, st->dy, st->py), kn);
+        nz = zero;
+    } else {
+        /* v x (p x v) = v.v p_perp, with p x v = f + t e already perpendicular, so
+         * no axial magnitude leaks in; vk = v / (R v.v) makes it unit length. */
+        const vf ns = F.leaf ? KL_(NSCALE) : zero;
+        const vf kx = KC_(vk[0], vmul(st->vx, ns)), ky = KC_(vk[1], vmul(st->vy, ns)),
+                 kz = KC_(vk[2], vmul(st->vz, ns));
+        vf ux = vfms(tr, st->ex, st->fx), uy = vfms(tr, st->ey, st->fy),
+           uz = vfms(tr, st->ez, st->fz);
+        nx = vfms(ky, uz, vmul(kz, uy));
+        ny = vfms(kz, ux, vmul(kx, uz));
+        nz = vfms(kx, uy, vmul(ky, ux));
+    }
+    if (F.capped) {
+        vm cap = mandn(hit, on_side);
+        vf sgn = vsel(cap_hi, one, vset1(-1.0f));
+        if (F.leaf) /* 1 / |v| = R |v| / (R v.v) */
+            sgn = vmul(sgn, vmul(vmul(KL_(NSCALE), st->rad), vmul(KL_(SQS), KL_(GS))));
+        nx = vsel(cap, F.aligned ? zero : vmul(sgn, KC_(n[0], st->vx)), nx);
+        ny = vsel(cap, F.aligned ? zero : vmul(sgn, KC_(n[1], st->vy)), ny);
+        nz = vsel(cap, F.aligned ? sgn : vmul(sgn, KC_(n[2], st->vz)), nz);
+    }
+    /* One Newton step of 1/sqrt(n.n) around 1 removes what rounding left of the
+     * length error, whatever the hit point's distance from the axis. */
+    vf l2 = KDOT(nx, ny, nz, nx, ny, nz);
+    vf corr = vfnma(vset1(0.5f), l2, vset1(1.5f));
+    vm off = mand(hit, vgt(vabs(vsub(l2, one)), vset1(KM_NORMAL_OFF)));
+    if (many(off)) /* rare enough to branch */
+        KFN(renormalize)(st, F, off, &nx, &ny, &nz, &corr);
+    if (F.ff)
+        corr = vsel(st->back, vneg(corr), corr);
+    *onx = vmul(nx, corr), *ony = vmul(ny, corr), *onz = vmul(nz, corr);
+}
+
+/* Stage 8, the store: t, the part and (with CYLRAY_NORMAL) the normal of the hit
+ * lanes. On a capped cylinder, the chosen t is the side's or a cap's; which cap
+ * follows from the direction: entering upwards (or leaving downwards) is the low one.
+ * An aligned axis pointing down the third coordinate swaps the names (P->cap_up). */
+CYLRAY_INLINE void KFN(store)(const KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
+{
+    const vf one = vset1(1.0f);
+    const vm hit = st->hit;
+    vm on_side = hit, cap_hi = hit;
+    vf part = one;
+    if (F.capped) {
+        on_side = mand(hit, veq(st->tr, vsel(st->front, st->side_lo, st->side_hi)));
+        cap_hi = mxor(vgt(st->dv, vzero()), st->front);
+        part = vsel(on_side, one,
+                    F.aligned ? vsel(cap_hi, vset1(k->P->cap_up), vset1(k->P->cap_down))
+                              : vsel(cap_hi, vset1(CYLRAY_CAP_HI), vset1(CYLRAY_CAP_LO)));
+    }
+    part = vadd(part, vkeep(st->back, vset1(CYLRAY_BACKFACE)));
+    vf T = F.scaled ? vmul(st->T, st->t_to_user) : st->T;
+    vf nx = one, ny = one, nz = one;
+    if (F.normal)
+        KFN(normals)(st, k, F, on_side, cap_hi, &nx, &ny, &nz);
+    const size_t i = k->i;
+    if (F.scratch) {
+        /* The driver reads the hit lanes of its scratch back and no other: whole
+         * vectors there. (A leaf's driver sets tmax once, from the closest lane.) */
+        vstoreu(k->H->t + i, T);
+        if (!F.leaf)
+            vstoreu(k->R->tmax + i, T);
+        vstoreu_part(k->H->part + i, part);
+        if (F.normal)
+            vstoreu(k->H->nx + i, nx), vstoreu(k->H->ny + i, ny), vstoreu(k->H->nz + i, nz);
+        return;
+    }
+    float *const pnx = F.normal ? k->H->nx + i : NULL, *const pny = F.normal ? k->H->ny + i : NULL,
+                 *const pnz = F.normal ? k->H->nz + i : NULL;
+    vstore_hits(hit, F.normal, k->H->t + i, k->R->tmax + i, k->H->part + i, pnx, pny, pnz, T,
+                part, nx, ny, nz);
+}
