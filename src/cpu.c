@@ -41,6 +41,26 @@ int cylray_cpu_has_(cylray_isa isa)
         return 0;
     }
 }
+
+/* AMD Zen 1, Zen+, Zen 2 (family 17h), Hygon's Zen (18h) and Zen 3 (19h, models 00h-0Fh
+ * and 20h-5Fh) run AVX's masked stores to memory as microcode; Intel cores and Zen 4
+ * and later do not (docs/performance.md, "Stores by vendor"). */
+int cylray_cpu_stores_by_lane_(void)
+{
+    unsigned a, b, c, d;
+    if (!__get_cpuid(0, &a, &b, &c, &d))
+        return 0;
+    const int amd = b == 0x68747541u && d == 0x69746e65u && c == 0x444d4163u; /* AuthenticAMD */
+    const int hygon = b == 0x6f677948u && d == 0x6e65476eu && c == 0x656e6975u; /* HygonGenuine */
+    if ((!amd && !hygon) || !__get_cpuid(1, &a, &b, &c, &d))
+        return 0;
+    const unsigned base = (a >> 8) & 0xfu;
+    const unsigned family = base + (base == 0xfu ? (a >> 20) & 0xffu : 0u);
+    const unsigned model = ((a >> 4) & 0xfu) | (base == 0xfu ? ((a >> 16) & 0xfu) << 4 : 0u);
+    if (family == 0x17u || family == 0x18u)
+        return 1;
+    return family == 0x19u && (model <= 0x0fu || (model >= 0x20u && model <= 0x5fu));
+}
 #elif defined(__aarch64__)
 int cylray_cpu_has_(cylray_isa isa)
 {
@@ -51,5 +71,11 @@ int cylray_cpu_has_(cylray_isa isa)
 int cylray_cpu_has_(cylray_isa isa)
 {
     return isa == CYLRAY_ISA_SCALAR;
+}
+#endif
+#if !defined(__x86_64__) && !defined(__i386__)
+int cylray_cpu_stores_by_lane_(void)
+{
+    return 0;
 }
 #endif

@@ -46,10 +46,26 @@ const char *cylray_isa_name(cylray_isa isa)
     return (unsigned)isa < CYLRAY_ISA_COUNT ? names[isa] : "unknown";
 }
 
+atomic_int cylray_stores_by_lane_v_;
+
+/* The store policy of the AVX kernels: the CPU's, or CYLRAY_STORES=lanes|masked (to
+ * test either on any CPU; another value is ignored). */
+static void choose_stores(void)
+{
+    const char *want = getenv("CYLRAY_STORES");
+    int lanes = cylray_cpu_stores_by_lane_();
+    if (want && strcmp(want, "lanes") == 0)
+        lanes = 1;
+    else if (want && strcmp(want, "masked") == 0)
+        lanes = 0;
+    atomic_store_explicit(&cylray_stores_by_lane_v_, lanes, memory_order_relaxed);
+}
+
 const cylray_kernels *cylray_kernels_for(cylray_isa isa)
 {
     if ((unsigned)isa >= CYLRAY_ISA_COUNT || !built[isa] || !cylray_cpu_has_(isa))
         return NULL;
+    choose_stores();
     return built[isa];
 }
 

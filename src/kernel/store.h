@@ -35,9 +35,26 @@ CYLRAY_INLINE void KFN(renormalize)(const KFN(lanes) *st, const cylray_kflags_ F
     *corr = vsel(ok, vset1(1.0f), *corr);
 }
 
-/* Stage 8b, the unit normal at the hit lanes, stored. */
+#ifndef vstore_hits
+/* The fields of a hit vector, each stored at the hit lanes (the ISA header may store
+ * them together instead). */
+#define vstore_hits(m, normal, pt, ptmax, ppart, pnx, pny, pnz, t, part, nx, ny, nz)      \
+    do {                                                                               \
+        vstore_m(pt, m, t);                                                            \
+        vstore_m(ptmax, m, t);                                                         \
+        vstore_part_m(ppart, m, part);                                                 \
+        if (normal) {                                                                  \
+            vstore_m(pnx, m, nx);                                                      \
+            vstore_m(pny, m, ny);                                                      \
+            vstore_m(pnz, m, nz);                                                      \
+        }                                                                              \
+    } while (0)
+#endif
+
+/* Stage 8b, the unit normal at the hit lanes. */
 CYLRAY_INLINE void KFN(normals)(const KFN(lanes) *st, const cylray_kat_ *k,
-                                const cylray_kflags_ F, vm on_side, vm cap_hi)
+                                const cylray_kflags_ F, vm on_side, vm cap_hi, vf *onx,
+                                vf *ony, vf *onz)
 {
     const vf zero = vzero(), one = vset1(1.0f), tr = st->tr;
     const vm hit = st->hit;
@@ -77,9 +94,7 @@ CYLRAY_INLINE void KFN(normals)(const KFN(lanes) *st, const cylray_kat_ *k,
         KFN(renormalize)(st, F, off, &nx, &ny, &nz, &corr);
     if (F.ff)
         corr = vsel(st->back, vneg(corr), corr);
-    vstore_m(k->H->nx + k->i, hit, vmul(nx, corr));
-    vstore_m(k->H->ny + k->i, hit, vmul(ny, corr));
-    vstore_m(k->H->nz + k->i, hit, vmul(nz, corr));
+    *onx = vmul(nx, corr), *ony = vmul(ny, corr), *onz = vmul(nz, corr);
 }
 
 /* Stage 8, the store: t, the part and (with CYLRAY_NORMAL) the normal of the hit
@@ -101,10 +116,23 @@ CYLRAY_INLINE void KFN(store)(const KFN(lanes) *st, const cylray_kat_ *k, const 
     }
     part = vadd(part, vkeep(st->back, vset1(CYLRAY_BACKFACE)));
     vf T = F.scaled ? vmul(st->T, st->t_to_user) : st->T;
-    vstore_m(k->H->t + k->i, hit, T);
-    if (!F.leaf) /* a leaf's driver sets tmax once, from the closest lane */
-        vstore_m(k->R->tmax + k->i, hit, T);
-    vstore_part_m(k->H->part + k->i, hit, part);
+    vf nx = one, ny = one, nz = one;
     if (F.normal)
-        KFN(normals)(st, k, F, on_side, cap_hi);
+        KFN(normals)(st, k, F, on_side, cap_hi, &nx, &ny, &nz);
+    const size_t i = k->i;
+    if (F.scratch) {
+        /* The driver reads the hit lanes of its scratch back and no other: whole
+         * vectors there. (A leaf's driver sets tmax once, from the closest lane.) */
+        vstoreu(k->H->t + i, T);
+        if (!F.leaf)
+            vstoreu(k->R->tmax + i, T);
+        vstoreu_part(k->H->part + i, part);
+        if (F.normal)
+            vstoreu(k->H->nx + i, nx), vstoreu(k->H->ny + i, ny), vstoreu(k->H->nz + i, nz);
+        return;
+    }
+    float *const pnx = F.normal ? k->H->nx + i : NULL, *const pny = F.normal ? k->H->ny + i : NULL,
+                 *const pnz = F.normal ? k->H->nz + i : NULL;
+    vstore_hits(hit, F.normal, k->H->t + i, k->R->tmax + i, k->H->part + i, pnx, pny, pnz, T,
+                part, nx, ny, nz);
 }

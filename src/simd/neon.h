@@ -106,4 +106,6 @@ static inline void KFN(store_part_m)(int32_t *p, vm m, vf x)
     }
 }
 #define vstore_m(p, m, x) KFN(store_m)(p, m, x)
+#define vstoreu(p, x) vst1q_f32(p, x)
+#define vstoreu_part(p, x) vst1q_s32(p, vcvtq_s32_f32(x))
 #define vstore_part_m(p, m, x) KFN(store_part_m)(p, m, x)

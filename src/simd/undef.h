@@ -5,6 +5,7 @@
 #undef vm
 #undef VX
 #undef VXI
+#undef vi_
 #undef VCASTI
 #undef VCASTF
 #undef VFULL
@@ -51,6 +52,9 @@
 #undef mxor
 #undef vstore_m
 #undef vstore_part_m
+#undef vstoreu
+#undef vstoreu_part
+#undef vstore_hits
 #undef vlanebits_
 #undef vcmpeq_i_
 #undef VW
