@@ -1,0 +1,106 @@
+/* SPDX-License-Identifier: MIT */
+/* spawn/geo.h - one cylinder per lane (what the derivation reads of it), and the ulp
+ * helpers */
+
+/* One cylinder per lane, and what the derivation reads of it. */
+typedef struct DFN(geo) {
+    vd c[3], v[3];
+    vd sv, inv_vv, inv_sv; /* |v|, 1/(v.v), 1/|v| */
+    vd R, inv_R, Hf, hs;   /* Hf: H, 0 when infinite; hs = H/|v| (INFINITY: infinite) */
+    vd H;                  /* INFINITY: infinite */
+    vd tilt, uR2, uH2;     /* 2 sqrt(3) ulp(max|v_k|)/|v|, 2 ulp(R), 2 ulp(H) */
+    vd praw[3], Lp;        /* a vector perpendicular to v, and its length */
+    vd pu[3];              /* the same, of unit length */
+    vdm lo, hi;            /* the discs that are part of the surface */
+} DFN(geo);
+
+/* The spacing of floats at |x| or above it (never less): the exponent of x rounded to
+ * float, which can only round up into the next binade; 2^-149 below FLT_MIN. */
+static inline vd DFN(ulp_f)(vd x)
+{
+    return dmax(dmul(dexpo(dround_f(dabs(x))), dset1(0x1p-23)), dset1(0x1p-149));
+}
+
+/* The float next to the float f, above it where up is set, below it elsewhere: one
+ * spacing away from zero, half of one toward zero from a power of two above FLT_MIN. */
+static inline vd DFN(next_f)(vd f, vdm up)
+{
+    const vd u = DFN(ulp_f)(f), af = dabs(f);
+    const vdm toward0 = dmor(dmand(up, dlt(f, dset1(0.0))),
+                             dmandn(dgt(f, dset1(0.0)), up));
+    const vdm half = dmand(toward0, dmand(deq(af, dmul(u, dset1(0x1p23))),
+                                          dgt(af, dset1(0x1p-126))));
+    const vd step = dsel(half, dmul(u, dset1(0.5)), u);
+    return dsel(up, dadd(f, step), dsub(f, step));
+}
+
+static inline vd DFN(max3)(vd a, vd b, vd c)
+{
+    return dmax(a, dmax(b, c));
+}
+
+static inline vd DFN(dot3)(const vd a[3], const vd b[3])
+{
+    return dadd(dadd(dmul(a[0], b[0]), dmul(a[1], b[1])), dmul(a[2], b[2]));
+}
+
+static inline vd DFN(l1)(const vd a[3])
+{
+    return dadd(dadd(dabs(a[0]), dabs(a[1])), dabs(a[2]));
+}
+
+/* The cylinders' derived values, from their floats (c, v, R, H and the discs). */
+CYLRAY_INLINE void DFN(geo_make)(DFN(geo) *g, const vd c[3], const vd v[3], vd R, vd H,
+                                 vdm lo, vdm hi)
+{
+    const vd one = dset1(1.0), zero = dset1(0.0);
+    for (int k = 0; k < 3; k++) {
+        g->c[k] = c[k];
+        g->v[k] = v[k];
+    }
+    const vd vv = DFN(dot3)(v, v);
+    g->sv = dsqrt(vv);
+    g->inv_vv = ddiv(one, vv);
+    g->inv_sv = ddiv(one, g->sv);
+    g->R = R;
+    g->inv_R = ddiv(one, R);
+    g->H = H;
+    const vdm finite = dlt(H, dset1(INFINITY));
+    g->Hf = dsel(finite, H, zero);
+    g->hs = dmul(H, g->inv_sv);
+    g->lo = dmand(lo, finite);
+    g->hi = dmand(hi, finite);
+    const vd a0 = dabs(v[0]), a1 = dabs(v[1]), a2 = dabs(v[2]);
+    g->tilt = dmul(dmul(dset1(2 * CYLRAY_SQRT3), DFN(ulp_f)(DFN(max3)(a0, a1, a2))),
+                   g->inv_sv);
+    g->uR2 = dmul(dset1(2.0), DFN(ulp_f)(R));
+    g->uH2 = dmul(dset1(2.0), DFN(ulp_f)(H));
+    /* v x e_k, with e_k the coordinate axis along which v is shortest (ties: the first
+     * of the shortest), for points on the axis itself */
+    const vdm k0 = dmand(dle(a0, a1), dle(a0, a2));
+    const vdm k1 = dmand(dmnot(dle(a0, a1)), dle(a1, a2));
+    const vdm k2 = dmnot(dmor(k0, k1));
+    const vd e0 = dsel(k0, one, zero), e1 = dsel(k1, one, zero), e2 = dsel(k2, one, zero);
+    g->praw[0] = dsub(dmul(v[1], e2), dmul(v[2], e1));
+    g->praw[1] = dsub(dmul(v[2], e0), dmul(v[0], e2));
+    g->praw[2] = dsub(dmul(v[0], e1), dmul(v[1], e0));
+    g->Lp = dsqrt(DFN(dot3)(g->praw, g->praw));
+    const vd il = ddiv(one, g->Lp);
+    for (int k = 0; k < 3; k++)
+        g->pu[k] = dmul(g->praw[k], il);
+}
+
+/* A prepared cylinder in every lane. */
+static inline void DFN(geo_prepared)(DFN(geo) *g, const cylray_prepared *P)
+{
+    vd c[3], v[3];
+    for (int k = 0; k < 3; k++) {
+        c[k] = dset1((double)P->c[k]);
+        v[k] = dset1((double)P->v[k]);
+    }
+    const vd yes = dset1(1.0), zero = dset1(0.0);
+    DFN(geo_make)(g, c, v, dset1((double)P->radius), dset1((double)P->half_height),
+                  dgt(dset1((P->caps & CYLRAY_CAPPED_LO) ? 1.0 : 0.0), zero),
+                  dgt(dset1((P->caps & CYLRAY_CAPPED_HI) ? 1.0 : 0.0), zero));
+    (void)yes;
+}

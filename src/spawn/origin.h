@@ -1,0 +1,110 @@
+/* SPDX-License-Identifier: MIT */
+/* spawn/origin.h - the spawned origin */
+
+/* One surface to clear: its outward normal n, p's signed distance sigma, l1 = |n|_1,
+ * the sign of the move along n, how far p lies on its wrong side (base), and the lanes
+ * that clear it. A surface no lane clears is skipped: it would add zeros only. */
+typedef struct DFN(surf) {
+    vd n[3], sigma, l1, sgn, base;
+    vdm in, pos;
+    int any; /* some lane clears it */
+} DFN(surf);
+
+/* THE SPAWNED ORIGIN leaving p (doubles of floats, bound err) on `part` in direction
+ * w: out, doubles of floats. side: +1 or -1 puts the origin on that side of the part's
+ * own surface (+1: where its outward normal points), 0 on w's side; any other surface
+ * it must clear is cleared to w's side. */
+CYLRAY_INLINE void DFN(spawn)(const DFN(geo) *g, const vd p[3], vd err, vd part,
+                              vd side, const vd w[3], vd out[3])
+{
+    const vd zero = dset1(0.0), one = dset1(1.0);
+    vd q[3], r[3];
+    for (int k = 0; k < 3; k++)
+        q[k] = dsub(p[k], g->c[k]);
+    const vd s = dmul(DFN(dot3)(q, g->v), g->inv_vv), z = dmul(s, g->sv);
+    for (int k = 0; k < 3; k++)
+        r[k] = dsub(q[k], dmul(s, g->v[k]));
+    vd rho = dsqrt(DFN(dot3)(r, r));
+    const vdm off_axis = dgt(rho, zero);
+    const vd ir = ddiv(one, rho);
+    for (int k = 0; k < 3; k++)
+        r[k] = dsel(off_axis, dmul(r[k], ir), g->pu[k]);
+    rho = dsel(off_axis, rho, zero);
+    const vd e_d = dmul(dset1(0x1p-47), dadd(dadd(DFN(l1)(q), g->R), g->Hf));
+    const vd qmax = DFN(max3)(dabs(q[0]), dabs(q[1]), dabs(q[2]));
+    const vd pmax = DFN(max3)(dabs(p[0]), dabs(p[1]), dabs(p[2]));
+    const vd az = dabs(z);
+
+    /* the side, then the discs at -H and +H */
+    DFN(surf) S[3];
+    for (int k = 0; k < 3; k++) {
+        S[0].n[k] = r[k];
+        S[2].n[k] = dmul(g->v[k], g->inv_sv);
+        S[1].n[k] = dsub(zero, S[2].n[k]);
+    }
+    S[0].sigma = dsub(rho, g->R);
+    S[1].sigma = dsub(dsub(zero, z), g->H);
+    S[2].sigma = dsub(z, g->H);
+    const vdm here[3] = {deq(part, dset1(CYLRAY_SIDE)), deq(part, dset1(CYLRAY_CAP_LO)),
+                         deq(part, dset1(CYLRAY_CAP_HI))};
+    const vdm exists[3] = {deq(zero, zero), dmor(here[1], g->lo), dmor(here[2], g->hi)};
+    /* the margin at p, for the test of reach; refined below at the origin */
+    const vd u2 = dmul(dset1(2.0), DFN(ulp_f)(dmax(qmax, pmax)));
+    vd move = zero, count = zero;
+    for (int i = 0; i < 3; i++) {
+        DFN(surf) *x = &S[i];
+        x->l1 = DFN(l1)(x->n);
+        const vd m = dmul(dset1(CYLRAY_SPAWN_SAFETY),
+                          dadd(dadd(dmul(u2, x->l1), dmul(i == 0 ? az : rho, g->tilt)),
+                               i == 0 ? g->uR2 : g->uH2));
+        x->in = dmand(exists[i],
+                      dmor(here[i], dle(dabs(x->sigma), dadd(dadd(err, m), e_d))));
+        x->any = dmbits(x->in) != 0;
+        x->pos = x->in;
+        x->sgn = one;
+        x->base = zero;
+        if (!x->any) /* no lane clears it: it adds nothing below */
+            continue;
+        /* to w's side; the part's own surface to the side asked for, where one is */
+        const vdm chosen = dmand(here[i], dmnot(deq(side, zero)));
+        x->pos = dmor(dmand(chosen, dgt(side, zero)),
+                      dmandn(dgt(DFN(dot3)(x->n, w), zero), chosen));
+        x->sgn = dsel(x->pos, one, dset1(-1.0));
+        /* max(0, -sign sigma): how far p lies on the wrong side */
+        x->base = dmax(zero, dsel(x->pos, dsub(zero, x->sigma), x->sigma));
+        move = dadd(move, dsel(x->in, dadd(dadd(x->base, e_d), m), zero));
+        count = dadd(count, dsel(x->in, one, zero));
+    }
+
+    /* Second pass: the margins at the origin, whose coordinates are bounded by those of
+     * p plus the first pass's moves, enlarged by 2^-19 to cover the second's growth. */
+    const vd grow = dset1(1 + 0x1p-19);
+    const vd wmax = dmul(dadd(qmax, move), grow), zmax = dmul(dadd(az, move), grow);
+    const vd rmax = dmul(dadd(rho, move), grow), xmax = dmul(dadd(pmax, move), grow);
+    const vd rnd = dmul(dset1(CYLRAY_SQRT3), DFN(ulp_f)(xmax));
+    const vd v2 = dmul(dset1(2.0), DFN(ulp_f)(dmax(wmax, xmax)));
+    const vd rim = dsel(dgt(count, one), rnd, zero);
+    vd delta[3] = {zero, zero, zero};
+    for (int i = 0; i < 3; i++) {
+        const DFN(surf) *x = &S[i];
+        if (!x->any)
+            continue;
+        const vd m = dmul(dset1(CYLRAY_SPAWN_SAFETY),
+                          dadd(dadd(dmul(v2, x->l1), dmul(i == 0 ? zmax : rmax, g->tilt)),
+                               i == 0 ? g->uR2 : g->uH2));
+        vd a = dadd(dadd(dadd(x->base, e_d), m), rim);
+        if (i == 0) /* inward from the side: the rounding's tangential part */
+            a = dadd(a, dsel(x->pos, zero, dmul(dmul(dmul(dset1(2.0), rnd), rnd), g->inv_R)));
+        a = dmul(dmul(a, dset1(1 + 0x1p-20)), x->sgn);
+        for (int k = 0; k < 3; k++)
+            delta[k] = dadd(delta[k], dsel(x->in, dmul(a, x->n[k]), zero));
+    }
+    for (int k = 0; k < 3; k++) {
+        const vd f = dround_f(dadd(p[k], delta[k])), moved = dsub(f, p[k]);
+        /* never short of the move: the next float beyond, when rounding fell back */
+        const vdm up = dmand(dgt(delta[k], zero), dlt(moved, delta[k]));
+        const vdm down = dmand(dlt(delta[k], zero), dgt(moved, delta[k]));
+        const vdm push = dmor(up, down);
+        out[k] = dmbits(push) ? dsel(push, DFN(next_f)(f, up), f) : f;
+    }
+}

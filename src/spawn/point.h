@@ -1,0 +1,93 @@
+/* SPDX-License-Identifier: MIT */
+/* spawn/point.h - the hit point and its error bound */
+
+/* THE HIT POINT of the rays o + t d at t on `part` (as doubles of its low bits): the
+ * point p (doubles of floats) and the bound err (likewise). */
+CYLRAY_INLINE void DFN(hit_point)(const DFN(geo) *g, const vd o[3], const vd d[3], vd t,
+                                  vd part, const vd *nk, vd back, vd p[3], vd *err)
+{
+    const vd zero = dset1(0.0), one = dset1(1.0);
+    const vdm side = deq(part, dset1(CYLRAY_SIDE)), chi = deq(part, dset1(CYLRAY_CAP_HI));
+    const vdm on_cap = dmor(deq(part, dset1(CYLRAY_CAP_LO)), chi);
+    vd q[3], r[3];
+    for (int k = 0; k < 3; k++) /* t d_k is exact */
+        q[k] = dsub(dadd(o[k], dmul(t, d[k])), g->c[k]);
+    if (nk) {
+        /* The kernel's normal nk of a side hit (or NULL). Where float t or the
+         * coordinates cannot place the hit (ulp(t)|d| not small against R), o + t d may
+         * lie far around the tube from the hit the kernel found, whose normal is
+         * accurate: the point is then taken at the kernel's azimuth, q = (q.v / v.v) v +
+         * R n. The analysis holds for any q, and the normal at the point agrees with the
+         * kernel's. The sign of n: the outward one (the BACKFACE bit against d where d.n
+         * is clear of zero, else the side of q), so a face-forwarded normal serves too. */
+        const vd s0 = dmul(DFN(dot3)(q, g->v), g->inv_vv);
+        const vd sn = dmul(DFN(dot3)(nk, g->v), g->inv_vv);
+        vd rn[3], qr[3];
+        for (int k = 0; k < 3; k++) {
+            rn[k] = dsub(nk[k], dmul(sn, g->v[k]));
+            qr[k] = dsub(q[k], dmul(s0, g->v[k]));
+        }
+        const vd rl = dsqrt(DFN(dot3)(rn, rn)), nl = dsqrt(DFN(dot3)(nk, nk));
+        const vd dn = DFN(dot3)(d, nk);
+        /* not a side normal (or not finite): q stays */
+        const vdm valid = dmand(dmand(side, dgt(rl, dmul(dset1(0x1p-10), nl))),
+                                dlt(rl, dset1(INFINITY)));
+        const vdm clear = dgt(dabs(dn), dmul(dmul(dset1(0x1p-7), dsqrt(DFN(dot3)(d, d))), nl));
+        const vdm dpos = dgt(dn, zero), bk = dgt(back, zero);
+        const vdm flip = dmor(dmand(clear, dmor(dmandn(dpos, bk), dmandn(bk, dpos))),
+                              dmandn(dlt(DFN(dot3)(rn, qr), zero), clear));
+        const vd gn = ddiv(dsel(flip, dsub(zero, g->R), g->R), rl);
+        for (int k = 0; k < 3; k++)
+            q[k] = dsel(valid, dadd(dmul(s0, g->v[k]), dmul(gn, rn[k])), q[k]);
+    }
+    vd s = dmul(DFN(dot3)(q, g->v), g->inv_vv);
+    for (int k = 0; k < 3; k++)
+        r[k] = dsub(q[k], dmul(s, g->v[k]));
+    const vd qn = DFN(l1)(q); /* |q|_1 >= |q|: the bound's terms in |q| stay bounds */
+    vd L = dsqrt(DFN(dot3)(r, r));
+    /* a side point on the axis: any radial direction serves; a cap point there stays
+     * there (r = 0), the disc's center */
+    const vdm on_axis = dmandn(dmnot(dgt(L, zero)), on_cap);
+    for (int k = 0; k < 3; k++)
+        r[k] = dsel(on_axis, g->praw[k], r[k]);
+    L = dsel(on_axis, g->Lp, L);
+    const vd inv_L = dsel(dgt(L, zero), ddiv(one, L), zero);
+    /* cap: onto the plane, and into the disc; side: onto the radius, within the ends */
+    const vd s_cap = dsel(chi, g->hs, dsub(zero, g->hs));
+    const vd gain_cap = dsel(dgt(L, g->R), dmul(g->R, inv_L), one);
+    const vd nhs = dsub(zero, g->hs);
+    const vd s_side = dsel(dlt(s, nhs), nhs, dsel(dgt(s, g->hs), g->hs, s));
+    s = dsel(on_cap, s_cap, s_side);
+    const vd gain = dsel(on_cap, gain_cap, dmul(g->R, inv_L));
+    const vd rad = dsel(on_cap, dmul(L, gain_cap), g->R);
+    vd Pd[3];
+    for (int k = 0; k < 3; k++) {
+        Pd[k] = dadd(g->c[k], dadd(dmul(s, g->v[k]), dmul(gain, r[k])));
+        p[k] = dround_f(Pd[k]);
+    }
+    const vd Pn = DFN(l1)(Pd);
+    const vd side_gain = dsel(side, gain, zero);
+    const vd a = dmul(dmul(dset1(0x1p-49), qn), inv_L);
+    const vd env = dadd(dmul(dmul(dset1(0x1p-47), dadd(dadd(dadd(g->R, g->Hf), qn), Pn)),
+                             dadd(one, side_gain)),
+                        dsel(side, dmul(dmul(g->R, a), a), zero));
+
+    /* e = P - P' exactly (Sterbenz); n, the normal at P' */
+    vd e[3], n[3];
+    for (int k = 0; k < 3; k++) {
+        e[k] = dsub(p[k], Pd[k]);
+        n[k] = dsel(side, dmul(r[k], inv_L),
+                    dmul(dsel(chi, g->v[k], dsub(zero, g->v[k])), g->inv_sv));
+    }
+    const vd en = dabs(DFN(dot3)(e, n)), ee = DFN(dot3)(e, e), el = dsqrt(ee);
+    const vd z = dmul(dabs(s), g->sv);
+    const vdm c_side = dmand(side, dmand(dle(el, dmul(dset1(0.5), g->R)),
+                                         dle(dadd(z, el), g->H)));
+    const vdm c_cap = dmandn(dle(dadd(rad, el), g->R), side);
+    const vd dist = dsel(c_side, dadd(en, dmul(ee, g->inv_R)), dsel(c_cap, en, el));
+    /* (1 + 2^-40) covers the few roundings of dist itself */
+    const vd bound = dmul(dadd(dist, dmul(dset1(3.0), env)), dset1(1 + 0x1p-40));
+    const vd f = dround_f(bound);
+    const vdm push = dlt(f, bound);
+    *err = dmbits(push) ? dsel(push, DFN(next_f)(f, dgt(one, zero)), f) : f;
+}
