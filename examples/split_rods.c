@@ -174,6 +174,12 @@ int main(int argc, char **argv)
     printf("  k = %-3zu                 %6zu boxes, %7.2f cylinder calls per ray\n", kfix,
            nb[2], (double)calls[2] / (double)rays);
     printf("  rays whose closest hit differs between them: %ld\n", differ);
+    free(lo);
+    free(hi);
+    for (int m = 0; m < 3; m++)
+        free(bx[m]);
+    free(hit);
+    free(rods);
     /* the point of the split: fewer calls; and no seams */
     return differ != 0 || calls[1] >= calls[0];
 }
