@@ -9,8 +9,9 @@
  *     strictly on the side asked for;
  *   - and there, a spawned ray that an ISA's kernel finds on the surface it leaves
  *     (tests/spawn/spawnref.h) is counted and the first one printed, not failed: the
- *     fuzzer finds rare ones from origins next to cylinders of radius about 1e-10 near
- *     the world's origin, which the spawn margins do not cover yet. */
+ *     fuzzer finds them (80 of 14,148 traced in the CI run's inputs) at tiny scales
+ *     near the world's origin (radii of 1e-10 and below, origins of 1e-16), which the
+ *     spawn margins do not cover yet. */
 #include "fuzz_spawn.h"
 
 #include "spawnref.h"
