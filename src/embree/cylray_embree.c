@@ -258,15 +258,12 @@ static void put_hit(const struct RTCIntersectFunctionNArguments *a, unsigned i,
         RU(hb, N, H_INST + l, i) = a->context->instID[l];
 }
 
-/* Offers hit h of lane i to the filter functions, as Embree's own geometries do: the
- * ray's tfar set to the hit's t meanwhile, the whole packet passed with only lane i
- * valid. 1 when accepted (the hit is then in the record), 0 when rejected (tfar back). */
-static int filter_hit(const struct RTCIntersectFunctionNArguments *a, unsigned i,
-                      const hitrec *h)
+/* The arguments of a filter call offering hit h of lane i, as Embree's own geometries
+ * make them: the whole packet with only lane i valid, the hit in hb, and the ray's tfar
+ * set to the hit's t meanwhile (its old value returned, to put back on a rejection). */
+static float offer(unsigned N, unsigned i, const hitrec *h, unsigned geomID,
+                   const struct RTCIntersectContext *ctx, void *ray, int valid[16], float *hb)
 {
-    unsigned N = a->N;
-    float hb[H_NFIELDS * 16];
-    int valid[16];
     for (unsigned j = 0; j < N; j++)
         valid[j] = 0;
     valid[i] = -1;
@@ -276,11 +273,23 @@ static int filter_hit(const struct RTCIntersectFunctionNArguments *a, unsigned i
     RF(hb, N, H_U, i) = h->u;
     RF(hb, N, H_V, i) = h->v;
     RU(hb, N, H_PRIM, i) = h->prim;
-    RU(hb, N, H_GEOM, i) = a->geomID;
+    RU(hb, N, H_GEOM, i) = geomID;
     for (unsigned l = 0; l < RTC_MAX_INSTANCE_LEVEL_COUNT; l++)
-        RU(hb, N, H_INST + l, i) = a->context->instID[l];
-    float old = RF(a->rayhit, N, R_TFAR, i);
-    RF(a->rayhit, N, R_TFAR, i) = h->t;
+        RU(hb, N, H_INST + l, i) = ctx->instID[l];
+    const float old = RF(ray, N, R_TFAR, i);
+    RF(ray, N, R_TFAR, i) = h->t;
+    return old;
+}
+
+/* Offers hit h of lane i to the filter functions: 1 when accepted (the hit is then in
+ * the record), 0 when rejected (tfar back). */
+static int filter_hit(const struct RTCIntersectFunctionNArguments *a, unsigned i,
+                      const hitrec *h)
+{
+    const unsigned N = a->N;
+    float hb[H_NFIELDS * 16];
+    int valid[16];
+    const float old = offer(N, i, h, a->geomID, a->context, a->rayhit, valid, hb);
     struct RTCFilterFunctionNArguments f = {valid, a->geometryUserPtr, a->context,
                                             (struct RTCRayN *)a->rayhit,
                                             (struct RTCHitN *)hb, N};
@@ -296,23 +305,10 @@ static int filter_hit(const struct RTCIntersectFunctionNArguments *a, unsigned i
 static int filter_occ(const struct RTCOccludedFunctionNArguments *a, unsigned i,
                       const hitrec *h)
 {
-    unsigned N = a->N;
+    const unsigned N = a->N;
     float hb[H_NFIELDS * 16];
     int valid[16];
-    for (unsigned j = 0; j < N; j++)
-        valid[j] = 0;
-    valid[i] = -1;
-    RF(hb, N, H_NGX, i) = h->n[0];
-    RF(hb, N, H_NGY, i) = h->n[1];
-    RF(hb, N, H_NGZ, i) = h->n[2];
-    RF(hb, N, H_U, i) = h->u;
-    RF(hb, N, H_V, i) = h->v;
-    RU(hb, N, H_PRIM, i) = h->prim;
-    RU(hb, N, H_GEOM, i) = a->geomID;
-    for (unsigned l = 0; l < RTC_MAX_INSTANCE_LEVEL_COUNT; l++)
-        RU(hb, N, H_INST + l, i) = a->context->instID[l];
-    float old = RF(a->ray, N, R_TFAR, i);
-    RF(a->ray, N, R_TFAR, i) = h->t;
+    const float old = offer(N, i, h, a->geomID, a->context, a->ray, valid, hb);
     struct RTCFilterFunctionNArguments f = {valid, a->geometryUserPtr, a->context,
                                             a->ray, (struct RTCHitN *)hb, N};
     rtcFilterOcclusion(a, &f);
