@@ -27,9 +27,6 @@
 /* The hits go to the driver's own scratch, which reads back the hit lanes alone: the
  * kernel may store whole vectors there (the stream tail; a leaf always does). */
 #define CYLRAY_KF_SCRATCH 0x4000u
-/* A stream's hits go to the driver's ring of scratch vectors (slot i mod 4 VW, the part
- * as a float) and reach the caller's arrays one vector later (kernel/stream.h). */
-#define CYLRAY_KF_DEFER 0x8000u
 /* The public flags every kernel reads at run time rather than being specialised for. */
 #define CYLRAY_KF_RUNTIME (CYLRAY_FACE_FORWARD | CYLRAY_CULL_BACK)
 

@@ -16,7 +16,6 @@
 #define VW 8
 #define KFN(n) CYLRAY_CAT(n, _avx2_8)
 #define KPAIRS(F) 1 /* streams keep two vectors in flight (docs/performance.md) */
-#define KDEFER 1
 #include "simd/x86.h"
 #include "kernel/kernel.h"
 #include "simd/undef.h"

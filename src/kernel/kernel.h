@@ -8,9 +8,6 @@
  *              flight (KFN(block2)); one at a time unless the ISA file says otherwise
  *   KGROUP(F)  optional: after how many vectors in a row that pass the rejection such
  *              a stream resumes its pairs; 2 unless the ISA file says otherwise
- *   KDEFER     optional: 1 where a stream stores each vector's hits one vector late
- *              (where the store of a partly hit vector branches on its lanes); 0
- *              unless the ISA file says otherwise
  * It defines KFN(block), the kernel for one vector of rays, and the flag-specialised
  * packet and stream drivers with their lookup tables: KFN(isect1_table) and
  * KFN(occ1_table) for packets of one vector, KFN(isect_table) and KFN(occ_table) for
@@ -38,9 +35,6 @@
 #ifndef KGROUP
 #define KGROUP(F) 2 /* coherent rays come in runs: two that pass say the next pair will */
 #endif
-#ifndef KDEFER
-#define KDEFER 0
-#endif
 
 typedef uint32_t (*KFN(packet_fn))(const cylray_prepared *, float *, float *, size_t,
                                    uint32_t, unsigned);
@@ -60,4 +54,3 @@ typedef int (*KFN(leaf_fn))(const float *, size_t, cylray_ray1 *, cylray_hit1 *,
 #include "tables.h"
 
 #undef KGROUP
-#undef KDEFER

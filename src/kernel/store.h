@@ -119,18 +119,14 @@ CYLRAY_INLINE void KFN(store)(const KFN(lanes) *st, const cylray_kat_ *k, const 
     vf nx = one, ny = one, nz = one;
     if (F.normal)
         KFN(normals)(st, k, F, on_side, cap_hi, &nx, &ny, &nz);
-    const size_t i = F.defer ? k->i % (4 * VW) : k->i;
+    const size_t i = k->i;
     if (F.scratch) {
         /* The driver reads the hit lanes of its scratch back and no other: whole
-         * vectors there. (A leaf's driver sets tmax once, from the closest lane; a
-         * deferred stream's, from t.) */
+         * vectors there. (A leaf's driver sets tmax once, from the closest lane.) */
         vstoreu(k->H->t + i, T);
-        if (!F.leaf && !F.defer)
+        if (!F.leaf)
             vstoreu(k->R->tmax + i, T);
-        if (F.defer)
-            vstoreu((float *)(void *)(k->H->part + i), part);
-        else
-            vstoreu_part(k->H->part + i, part);
+        vstoreu_part(k->H->part + i, part);
         if (F.normal)
             vstoreu(k->H->nx + i, nx), vstoreu(k->H->ny + i, ny), vstoreu(k->H->nz + i, nz);
         return;

@@ -6,33 +6,8 @@
  * was measured to pay), a stream keeps two vectors in flight (KFN(block2)) while the
  * rejection drops none; once a pair sees a vector rejected, the vectors go one at a time
  * until KGROUP_ in a row pass it (a rejected vector would otherwise run beside one that
- * hits, as its twin, and cost what the pair saves). Occlusion streams run the same way.
- *
- * Where KDEFER is set, a vector's hits go to a ring of scratch vectors and reach the
- * caller's arrays after the next vector's (or pair's) work has been issued: the store
- * of a partly hit vector branches on its hit lanes, and that branch, resolved at the end
- * of the vector's long chain, would otherwise throw away the next vector's work each
- * time it mispredicts. One vector late, the lanes are known when the branch is reached.
- * Each ray's tmax is read by its own vector only, so the order of the stores is not
- * seen. */
+ * hits, as its twin, and cost what the pair saves). Occlusion streams run the same way. */
 #define KGROUP_ KGROUP(cylray_kflags_of_(FL, rt))
-/* A deferred vector's hits, from its scratch slot to the caller's arrays at its hit
- * lanes (the stores of the ISA, vstore_hits). */
-CYLRAY_INLINE void KFN(flush)(const cylray_rays *R, const cylray_hits *H, const cylray_hits *S,
-                              size_t i, uint32_t m, const unsigned FL)
-{
-    const int normal = (FL & CYLRAY_NORMAL) != 0;
-    if (!m)
-        return;
-    const size_t s = i % (4 * VW);
-    const vf z = vzero();
-    vstore_hits(mfrom_bits(m), normal, H->t + i, R->tmax + i, H->part + i,
-                normal ? H->nx + i : NULL, normal ? H->ny + i : NULL, normal ? H->nz + i : NULL,
-                vloadu(S->t + s), vloadu((const float *)(const void *)(S->part + s)),
-                normal ? vloadu(S->nx + s) : z, normal ? vloadu(S->ny + s) : z,
-                normal ? vloadu(S->nz + s) : z);
-}
-
 CYLRAY_INLINE size_t KFN(stream)(const cylray_prepared *P, const cylray_rays *R0,
                                  const cylray_hits *H0, uint8_t *occluded, size_t n,
                                  unsigned rt, const unsigned FL)
@@ -46,20 +21,6 @@ CYLRAY_INLINE size_t KFN(stream)(const cylray_prepared *P, const cylray_rays *R0
     const size_t whole = n - n % VW;
     size_t count = 0;
     const int pairs = KPAIRS(cylray_kflags_of_(FL, rt));
-    const int defer = KDEFER && !occ;
-    float sc[5][4 * VW];
-    const cylray_hits S = {sc[0], sc[1], sc[2], sc[3], (int32_t *)(void *)sc[4]};
-    const cylray_hits *HK = defer ? &S : H;
-    const unsigned FLK = defer ? FL | CYLRAY_KF_DEFER : FL;
-    size_t di[2] = {0, 0};
-    uint32_t dm[2] = {0u, 0u};
-#define KFLUSH_()                                                                      \
-    do {                                                                               \
-        if (defer) {                                                                   \
-            KFN(flush)(R, H, &S, di[0], dm[0], FL);                                    \
-            KFN(flush)(R, H, &S, di[1], dm[1], FL);                                    \
-        }                                                                              \
-    } while (0)
     /* The occluded bytes without a branch per hit lane: a loop over the set bits
      * mispredicts on a mix of hits and misses. A lane that missed keeps its byte. */
 #define KOCC_MARK_(i, m)                                                               \
@@ -74,9 +35,7 @@ CYLRAY_INLINE size_t KFN(stream)(const cylray_prepared *P, const cylray_rays *R0
          * slower than in a driver without pairs. Two vectors at a time until a pair
          * sees one rejected... */
         for (uint32_t r = 0; pairs && !r && i + 2 * VW <= whole; i += 2 * VW) {
-            const cylray_kres_ v = KFN(vector2)(P, R, HK, i, rt, FLK);
-            KFLUSH_();
-            di[0] = i, dm[0] = v.hit[0], di[1] = i + VW, dm[1] = v.hit[1];
+            const cylray_kres_ v = KFN(vector2)(P, R, H, i, rt, FL);
             r = v.rejected;
             count += (size_t)CYLRAY_POPCOUNT(v.hit[0]) + (size_t)CYLRAY_POPCOUNT(v.hit[1]);
             KOCC_MARK_(i, v.hit[0]);
@@ -87,16 +46,12 @@ CYLRAY_INLINE size_t KFN(stream)(const cylray_prepared *P, const cylray_rays *R0
         for (int passed = 0;
              i < whole && (!pairs || passed < KGROUP_ || i + 2 * VW > whole); i += VW) {
             const cylray_kres_ v =
-                KFN(vector)(P, R, HK, i, VFULL, rt, FLK, NULL, 0, 0, NULL, NULL, 0);
-            KFLUSH_();
-            di[0] = i, dm[0] = v.hit[0], dm[1] = 0u;
+                KFN(vector)(P, R, H, i, VFULL, rt, FL, NULL, 0, 0, NULL, NULL, 0);
             count += CYLRAY_POPCOUNT(v.hit[0]);
             KOCC_MARK_(i, v.hit[0]);
             passed = v.rejected ? 0 : passed + 1;
         }
     }
-    KFLUSH_();
-#undef KFLUSH_
 #undef KOCC_MARK_
     if (whole < n)
         count += KFN(stream_tail)(P, R, H, occluded, n, whole, rt, FL);
