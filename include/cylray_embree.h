@@ -23,10 +23,10 @@
  * context's) see each hit before it is accepted; when one is rejected, the next hit of
  * the same cylinder along the ray is offered, as Embree's curves do.
  *
- * Embree 3 only: the Embree-facing code lives in one source file that checks
- * RTC_VERSION_MAJOR == 3 when it is compiled; a port to Embree 4 (rtcore.h under
- * embree4/, RTCRayQueryContext, the arguments' new fields) changes that file and the
- * include below. */
+ * Embree 3 only: what depends on Embree's API version lives in one internal header of
+ * the adapter, which checks RTC_VERSION_MAJOR == 3 when it is compiled; a port to
+ * Embree 4 (rtcore.h under embree4/, RTCRayQueryContext, the arguments' new fields)
+ * changes that header and the include below. */
 #ifndef CYLRAY_EMBREE_H
 #define CYLRAY_EMBREE_H
 
