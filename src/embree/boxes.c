@@ -47,24 +47,6 @@ void ceb_whole_box(const cylray_prepared *p, struct RTCBounds *b)
     ceb_set_box(b, lo, hi, 0);
 }
 
-/* How many boxes a cylinder gets with CYLRAY_EMBREE_SPLIT: its single box is wider
- * than the cylinder by about L sin(theta) across, theta the angle from the nearest
- * coordinate axis; pieces of a length whose lateral spread is about 8 radii keep each
- * box within a few diameters of its stretch of the cylinder, while short or
- * axis-aligned cylinders keep one box (more boxes only mean more calls there). */
-static uint32_t pieces_for(const frame *f, float R)
-{
-    double aa = 0, mx = 0;
-    for (int k = 0; k < 3; k++) {
-        double c = (double)f->a[k] * f->a[k];
-        aa += c;
-        mx = fmax(mx, c);
-    }
-    double L = sqrt(aa), lat = sqrt(fmax(0.0, 1 - mx / aa));
-    double k = floor(L * lat / (8.0 * R));
-    return k < 1 ? 1u : k > CEB_MAX_PIECES ? CEB_MAX_PIECES : (uint32_t)k;
-}
-
 void *ceb_alloc_aligned(size_t bytes)
 {
     size_t b = (bytes + 63) / 64 * 64;
@@ -77,9 +59,14 @@ int ceb_make_boxes(ceb *g, const cylray_cylinder *cyl)
 {
     size_t total = 0;
     int split = (g->options & CYLRAY_EMBREE_SPLIT) != 0;
+    /* The toolkit's rule (cylray_split_boxes with k = 0): the fewest pieces, at most
+     * CYLRAY_SPLIT_MAX, whose boxes are at most twice the cylinder's width across;
+     * short or axis-aligned cylinders keep one box. */
     for (size_t i = 0; i < g->n; i++) {
-        if (split)
-            g->fr[i].pieces = pieces_for(&g->fr[i], cyl[i].radius);
+        if (split) {
+            size_t k = cylray_split_boxes(&g->prep[i], 0, NULL, NULL);
+            g->fr[i].pieces = k < 1 ? 1u : (uint32_t)k;
+        }
         total += g->fr[i].pieces;
     }
     if (total > 0xffffffffu)
@@ -95,9 +82,8 @@ int ceb_make_boxes(ceb *g, const cylray_cylinder *cyl)
     }
     g->prim_cyl = malloc(total * sizeof *g->prim_cyl);
     g->prim_piece = malloc(total * sizeof *g->prim_piece);
-    float(*lo)[3] = malloc(CEB_MAX_PIECES * sizeof *lo);
-    float(*hi)[3] = malloc(CEB_MAX_PIECES * sizeof *hi);
-    int bad = !g->prim_cyl || !g->prim_piece || !lo || !hi;
+    float lo[CYLRAY_SPLIT_MAX][3], hi[CYLRAY_SPLIT_MAX][3];
+    int bad = !g->prim_cyl || !g->prim_piece;
     size_t p = 0;
     for (size_t i = 0; !bad && i < g->n; i++) {
         const frame *f = &g->fr[i];
@@ -128,7 +114,5 @@ int ceb_make_boxes(ceb *g, const cylray_cylinder *cyl)
             g->prim_piece[p] = k;
         }
     }
-    free(lo);
-    free(hi);
     return bad ? -1 : 0;
 }

@@ -13,7 +13,6 @@
 #define CEB_MAGIC 0x63656232u /* "ceb2" */
 #define CEB_KFLAGS (CYLRAY_CULL_BACK | CYLRAY_FAST | CYLRAY_REFINE)
 #define CEB_OPTIONS (CYLRAY_EMBREE_LEAVES | CYLRAY_EMBREE_SPLIT | CYLRAY_EMBREE_FILTER)
-#define CEB_MAX_PIECES 1024u
 
 /* Per cylinder, what a hit record needs beyond the prepared cylinder: the endpoint
  * form for u, the unit axis and the frame of Duff et al. for v. */
