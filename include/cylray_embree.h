@@ -60,8 +60,9 @@ extern "C" {
 #define CYLRAY_EMBREE_LEAVES 0x1u
 /* Split boxes: a long cylinder tilted off the coordinate axes gets several boxes along
  * its axis instead of one (its single box would be mostly empty and make Embree call
- * the geometry for rays that pass far from it). Each hit is reported by the one box
- * whose stretch of the axis holds it. Ignored with CYLRAY_EMBREE_LEAVES. */
+ * the geometry for rays that pass far from it): the slices of cylray_split_boxes, as
+ * many as its own rule (k = 0) gives. Each hit is reported by the one box whose
+ * stretch of the axis holds it. Ignored with CYLRAY_EMBREE_LEAVES. */
 #define CYLRAY_EMBREE_SPLIT 0x2u
 /* Filters: pass every hit through rtcFilterIntersection / rtcFilterOcclusion. Embree 3
  * does not tell a user geometry whether filter functions were set on it, so say so
