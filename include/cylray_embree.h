@@ -23,10 +23,10 @@
  * context's) see each hit before it is accepted; when one is rejected, the next hit of
  * the same cylinder along the ray is offered, as Embree's curves do.
  *
- * Embree 3 only: the Embree-facing code lives in one source file that checks
- * RTC_VERSION_MAJOR == 3 when it is compiled; a port to Embree 4 (rtcore.h under
- * embree4/, RTCRayQueryContext, the arguments' new fields) changes that file and the
- * include below. */
+ * Embree 3 only: what depends on Embree's API version lives in one internal header of
+ * the adapter, which checks RTC_VERSION_MAJOR == 3 when it is compiled; a port to
+ * Embree 4 (rtcore.h under embree4/, RTCRayQueryContext, the arguments' new fields)
+ * changes that header and the include below. */
 #ifndef CYLRAY_EMBREE_H
 #define CYLRAY_EMBREE_H
 
@@ -60,8 +60,9 @@ extern "C" {
 #define CYLRAY_EMBREE_LEAVES 0x1u
 /* Split boxes: a long cylinder tilted off the coordinate axes gets several boxes along
  * its axis instead of one (its single box would be mostly empty and make Embree call
- * the geometry for rays that pass far from it). Each hit is reported by the one box
- * whose stretch of the axis holds it. Ignored with CYLRAY_EMBREE_LEAVES. */
+ * the geometry for rays that pass far from it): the slices of cylray_split_boxes, as
+ * many as its own rule (k = 0) gives. Each hit is reported by the one box whose
+ * stretch of the axis holds it. Ignored with CYLRAY_EMBREE_LEAVES. */
 #define CYLRAY_EMBREE_SPLIT 0x2u
 /* Filters: pass every hit through rtcFilterIntersection / rtcFilterOcclusion. Embree 3
  * does not tell a user geometry whether filter functions were set on it, so say so

@@ -38,12 +38,70 @@ CYLRAY_MAYBE_UNUSED CYLRAY_NOINLINE int KFN(leaf_any)(const float *L, size_t lm,
     return KFN(leaf)(L, lm, ray, hit, rt, FL);
 }
 
+#if VW == 1
+/* One lane a vector: a packet of several is a stream of its lanes, and runs through a
+ * stream driver (its slot's, or the one with the flags read at run time), a run of
+ * consecutive active lanes a call (a whole packet is one call). The lanes see the same
+ * kernel with the same inputs, so the answers are the same; a second copy of every
+ * kernel (about a third of this path's code) is not. The hit lanes are read back from
+ * the parts, which the stream writes to a local copy (a hit's part is never 0), or
+ * from the occluded bytes. */
+CYLRAY_INLINE uint32_t KFN(by_stream_)(const cylray_prepared *P, float *ray, float *hit,
+                                       size_t n, uint32_t active, unsigned rt,
+                                       KFN(stream_fn) st, unsigned FL)
+{
+    int32_t part[32] = {0};
+    uint8_t occ[32] = {0};
+    for (size_t b = 0; b < n;) {
+        if (!((active >> b) & 1u)) {
+            b++;
+            continue;
+        }
+        size_t e = b + 1;
+        while (e < n && ((active >> e) & 1u))
+            e++;
+        const cylray_rays R = {ray + b,         ray + n + b,     ray + 2 * n + b,
+                               ray + 3 * n + b, ray + 4 * n + b, ray + 5 * n + b,
+                               ray + 6 * n + b, ray + 7 * n + b};
+        const cylray_hits H = {hit ? hit + b : NULL, hit ? hit + n + b : NULL,
+                               hit ? hit + 2 * n + b : NULL, hit ? hit + 3 * n + b : NULL,
+                               part + b};
+        if (st)
+            st(P, &R, hit ? &H : NULL, hit ? NULL : occ + b, e - b, rt);
+        else
+            KFN(stream_any)(P, &R, hit ? &H : NULL, hit ? NULL : occ + b, e - b, rt, FL);
+        b = e;
+    }
+    int32_t *out = hit ? (int32_t *)(void *)(hit + 4 * n) : NULL;
+    uint32_t hits = 0;
+    for (size_t j = 0; j < n; j++) {
+        if (hit ? part[j] != 0 : occ[j] != 0) {
+            hits |= 1u << j;
+            if (hit)
+                out[j] = part[j];
+        }
+    }
+    return hits;
+}
+static uint32_t KFN(packet_by_stream)(const cylray_prepared *P, float *ray, float *hit,
+                                      size_t n, uint32_t active, unsigned rt,
+                                      KFN(stream_fn) st)
+{
+    return KFN(by_stream_)(P, ray, hit, n, active, rt, st, 0u);
+}
+#endif
+
 CYLRAY_MAYBE_UNUSED static uint32_t KFN(packet_generic)(const cylray_prepared *P, float *ray,
                                                         float *hit, size_t n, uint32_t active,
                                                         unsigned flags)
 {
+#if VW == 1 /* KFN(by_stream_) above */
+    return KFN(by_stream_)(P, ray, hit, n, active, flags & CYLRAY_KF_RUNTIME, NULL,
+                           KFN(generic_fl)(P, flags, hit == NULL));
+#else
     return KFN(packet_any)(P, ray, hit, n, active, flags & CYLRAY_KF_RUNTIME,
                            KFN(generic_fl)(P, flags, hit == NULL));
+#endif
 }
 
 CYLRAY_MAYBE_UNUSED static size_t KFN(stream_generic)(const cylray_prepared *P,
@@ -90,14 +148,19 @@ CYLRAY_MAYBE_UNUSED static size_t KFN(stream_generic)(const cylray_prepared *P,
     {                                                                                  \
         pk_body;                                                                       \
     }
-/* A packet of several vectors runs through its slot's stream driver. */
+#if VW == 1
+#define KPACKET_SEVERAL_(kind, b, fl, drv)                                             \
+    return KFN(packet_by_stream)(P, R, H, n, a, rt, KFN(st_##kind##_##b))
+#else
+/* A packet of several vectors, one vector at a time (KFN(packet)). */
+#define KPACKET_SEVERAL_(kind, b, fl, drv) return KFN(drv)(P, R, H, n, a, rt, fl)
+#endif
 #define KSPEC_(kind, b, fl)                                                            \
-    KSLOT_(kind, b, KFN(packet1)(P, R, H, a, rt, fl),                                   \
-           return KFN(packet)(P, R, H, n, a, rt, fl), KFN(stream)(P, R, H, o, n, rt, fl))
+    KSLOT_(kind, b, KFN(packet1)(P, R, H, a, rt, fl), KPACKET_SEVERAL_(kind, b, fl, packet), \
+           KFN(stream)(P, R, H, o, n, rt, fl))
 #define KANY_(kind, b, fl)                                                             \
     KSLOT_(kind, b, KFN(packet_any)(P, R, H, n, a, rt, fl),                             \
-           return KFN(packet_any)(P, R, H, n, a, rt, fl),                              \
-           KFN(stream_any)(P, R, H, o, n, rt, fl))
+           KPACKET_SEVERAL_(kind, b, fl, packet_any), KFN(stream_any)(P, R, H, o, n, rt, fl))
 #define KISECT_(kind, b) KSPEC_(kind, b, KFL_(kind, b, 0u))
 #define KOCC_(kind, b) KSPEC_(kind, o##b, KFL_(kind, (b) << 1, CYLRAY_KF_OCCLUDED))
 #define KISECTANY_(kind, b) KANY_(kind, b, KFL_(kind, b, 0u))
@@ -161,6 +224,7 @@ KTABLE_SIZE_(leaf_occ_table, CYLRAY_OCC_SPECS);
 #undef KFL_
 #undef KLFL_
 #undef KSPEC_
+#undef KPACKET_SEVERAL_
 #undef KSLOT_
 #undef KISECT_
 #undef KOCC_

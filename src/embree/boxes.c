@@ -1,0 +1,118 @@
+/* SPDX-License-Identifier: MIT */
+/* embree/boxes.c - a cylinder's frame (the endpoint form and the basis for u, v) and
+ * the boxes Embree builds its BVH over: one per cylinder, or pieces along a long
+ * tilted one (CYLRAY_EMBREE_SPLIT). */
+#include "ceb.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+/* ---- geometry of one cylinder -------------------------------------------------- */
+
+void ceb_frame_init(frame *f, const float p0[3], const float p1[3])
+{
+    double a[3], aa = 0;
+    for (int k = 0; k < 3; k++) {
+        f->p0[k] = p0[k];
+        a[k] = (double)p1[k] - p0[k];
+        f->a[k] = (float)a[k];
+        aa += a[k] * a[k];
+    }
+    f->inv_aa = (float)(1.0 / aa);
+    double l = sqrt(aa), n[3] = {a[0] / l, a[1] / l, a[2] / l};
+    /* Duff et al., "Building an Orthonormal Basis, Revisited" (JCGT 2017) */
+    double s = n[2] >= 0 ? 1.0 : -1.0, q = -1.0 / (s + n[2]), b = n[0] * n[1] * q;
+    double b1[3] = {1.0 + s * n[0] * n[0] * q, s * b, -s * n[0]};
+    double b2[3] = {b, s + n[1] * n[1] * q, -n[1]};
+    for (int k = 0; k < 3; k++) {
+        f->n[k] = (float)n[k];
+        f->b1[k] = (float)b1[k];
+        f->b2[k] = (float)b2[k];
+    }
+    f->pieces = 1;
+}
+
+void ceb_set_box(struct RTCBounds *b, const float lo[3], const float hi[3], float pad)
+{
+    b->lower_x = lo[0] - pad, b->lower_y = lo[1] - pad, b->lower_z = lo[2] - pad;
+    b->upper_x = hi[0] + pad, b->upper_y = hi[1] + pad, b->upper_z = hi[2] + pad;
+    b->align0 = b->align1 = 0;
+}
+
+/* The box of the whole cylinder: cylray_bounds, the exact box rounded outward. */
+void ceb_whole_box(const cylray_prepared *p, struct RTCBounds *b)
+{
+    float lo[3], hi[3];
+    cylray_bounds(p, lo, hi);
+    ceb_set_box(b, lo, hi, 0);
+}
+
+void *ceb_alloc_aligned(size_t bytes)
+{
+    size_t b = (bytes + 63) / 64 * 64;
+    return aligned_alloc(64, b ? b : 64);
+}
+
+/* ---- one box a primitive, split along long tilted cylinders --------------------- */
+
+int ceb_make_boxes(ceb *g, const cylray_cylinder *cyl)
+{
+    size_t total = 0;
+    int split = (g->options & CYLRAY_EMBREE_SPLIT) != 0;
+    /* The toolkit's rule (cylray_split_boxes with k = 0): the fewest pieces, at most
+     * CYLRAY_SPLIT_MAX, whose boxes are at most twice the cylinder's width across;
+     * short or axis-aligned cylinders keep one box. */
+    for (size_t i = 0; i < g->n; i++) {
+        if (split) {
+            size_t k = cylray_split_boxes(&g->prep[i], 0, NULL, NULL);
+            g->fr[i].pieces = k < 1 ? 1u : (uint32_t)k;
+        }
+        total += g->fr[i].pieces;
+    }
+    if (total > 0xffffffffu)
+        return 1;
+    g->nprim = total;
+    g->box = malloc(total * sizeof *g->box);
+    if (!g->box)
+        return -1;
+    if (total == g->n) {
+        for (size_t i = 0; i < g->n; i++)
+            ceb_whole_box(&g->prep[i], &g->box[i]);
+        return 0;
+    }
+    g->prim_cyl = malloc(total * sizeof *g->prim_cyl);
+    g->prim_piece = malloc(total * sizeof *g->prim_piece);
+    float lo[CYLRAY_SPLIT_MAX][3], hi[CYLRAY_SPLIT_MAX][3];
+    int bad = !g->prim_cyl || !g->prim_piece;
+    size_t p = 0;
+    for (size_t i = 0; !bad && i < g->n; i++) {
+        const frame *f = &g->fr[i];
+        uint32_t K = f->pieces;
+        if (K == 1) {
+            ceb_whole_box(&g->prep[i], &g->box[p]);
+            g->prim_cyl[p] = (uint32_t)i;
+            g->prim_piece[p++] = 0;
+            continue;
+        }
+        /* cylray_split_boxes' slice k holds the stretch u in [k/K, (k+1)/K] exactly; a
+         * hit is owned by the slice its rounded u falls in, so each box reaches beyond
+         * its stretch by more than that rounding and the hit point's: 2^-16 of the
+         * coordinates and the length, in every direction */
+        double big = 0, L = 0;
+        for (int k = 0; k < 3; k++) {
+            big = fmax(big, fabs(f->p0[k]) + fabs(f->a[k]));
+            L += (double)f->a[k] * f->a[k];
+        }
+        float pad = (float)(0x1p-16 * (big + sqrt(L)) + 0x1p-10 * cyl[i].radius);
+        if (cylray_split_boxes(&g->prep[i], K, lo, hi) != K) {
+            bad = 1;
+            break;
+        }
+        for (uint32_t k = 0; k < K; k++, p++) {
+            ceb_set_box(&g->box[p], lo[k], hi[k], pad);
+            g->prim_cyl[p] = (uint32_t)i;
+            g->prim_piece[p] = k;
+        }
+    }
+    return bad ? -1 : 0;
+}

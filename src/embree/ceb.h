@@ -1,0 +1,73 @@
+/* SPDX-License-Identifier: MIT */
+/* embree/ceb.h - what the adapter's files share: a geometry's state, a hit record, and
+ * the functions one file gives the others. Names shared between files start with ceb_:
+ * they are hidden in the shared library, but a static one links them into the user's
+ * program. */
+#ifndef CYLRAY_EMBREE_CEB_H
+#define CYLRAY_EMBREE_CEB_H
+
+#include "rtc.h"
+
+#include <stdint.h>
+
+#define CEB_MAGIC 0x63656232u /* "ceb2" */
+#define CEB_KFLAGS (CYLRAY_CULL_BACK | CYLRAY_FAST | CYLRAY_REFINE)
+#define CEB_OPTIONS (CYLRAY_EMBREE_LEAVES | CYLRAY_EMBREE_SPLIT | CYLRAY_EMBREE_FILTER)
+
+/* Per cylinder, what a hit record needs beyond the prepared cylinder: the endpoint
+ * form for u, the unit axis and the frame of Duff et al. for v. */
+typedef struct frame {
+    float p0[3], a[3]; /* p0 and p1 - p0 */
+    float inv_aa;      /* 1 / |a|^2 */
+    float n[3];        /* the unit axis */
+    float b1[3], b2[3];
+    uint32_t pieces;   /* split boxes along the axis (1: one box) */
+} frame;
+
+typedef struct ceb {
+    uint32_t magic;
+    const cylray_kernels *k;
+    unsigned options, iflags, oflags; /* intersect and occluded kernel flags */
+    size_t n;                         /* cylinders */
+    cylray_prepared *prep;            /* n */
+    frame *fr;                        /* n */
+    size_t nprim;                     /* Embree's primitives */
+    uint32_t *prim_cyl;               /* split: primitive -> cylinder */
+    uint32_t *prim_piece;             /* split: primitive -> its piece of that cylinder */
+    struct RTCBounds *box;            /* one per primitive */
+    void *leaves;                     /* leaves: cylray_leafM[nprim] */
+    int m;                            /* 4, 8 or 16 */
+    RTCGeometry geom;
+} ceb;
+
+typedef struct hitrec {
+    float t, n[3], u, v;
+    unsigned prim;
+} hitrec;
+
+/* boxes.c: a cylinder's frame and its boxes */
+void ceb_frame_init(frame *f, const float p0[3], const float p1[3]);
+void ceb_set_box(struct RTCBounds *b, const float lo[3], const float hi[3], float pad);
+void ceb_whole_box(const cylray_prepared *p, struct RTCBounds *b);
+int ceb_make_boxes(ceb *g, const cylray_cylinder *cyl);
+void *ceb_alloc_aligned(size_t bytes);
+
+/* group.c: cylinders grouped into leaves with Embree's SAH builder */
+int ceb_group_leaves(ceb *g, RTCDevice dev, const cylray_cylinder *cyl);
+
+/* filter.c: a hit offered to the filter functions */
+int ceb_filter_hit(const struct RTCIntersectFunctionNArguments *a, unsigned i,
+                   const hitrec *h);
+int ceb_filter_occ(const struct RTCOccludedFunctionNArguments *a, unsigned i,
+                   const hitrec *h);
+
+/* single.c, leaves.c: the intersect and occluded callbacks */
+void ceb_single_intersect(const struct RTCIntersectFunctionNArguments *a);
+void ceb_single_occluded(const struct RTCOccludedFunctionNArguments *a);
+RTCIntersectFunctionN ceb_leaf_intersect(int m);
+RTCOccludedFunctionN ceb_leaf_occluded(int m);
+
+/* cylray_embree.c: the adapter's state of a geometry, NULL when it is not one */
+ceb *ceb_of(RTCGeometry geometry);
+
+#endif

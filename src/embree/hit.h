@@ -1,0 +1,112 @@
+/* SPDX-License-Identifier: MIT */
+/* embree/hit.h - a hit's u and v, and its record written into Embree's ray: what every
+ * callback does per hit, kept inline in each. */
+#ifndef CYLRAY_EMBREE_HIT_H
+#define CYLRAY_EMBREE_HIT_H
+
+#include "ceb.h"
+
+#include <math.h>
+
+/* The axial coordinate of the point o + t d on cylinder f: 0 at p0, 1 at p1, clamped;
+ * the end discs give 0 and 1 exactly. */
+static inline float axial_u(const frame *f, const float o[3], const float d[3], float t,
+                            int part)
+{
+    part &= CYLRAY_PART_MASK;
+    if (part == CYLRAY_CAP_LO)
+        return 0.0f;
+    if (part == CYLRAY_CAP_HI)
+        return 1.0f;
+    double s = 0;
+    for (int k = 0; k < 3; k++)
+        s += ((double)o[k] + (double)t * d[k] - f->p0[k]) * f->a[k];
+    s *= f->inv_aa;
+    return s <= 0 ? 0.0f : s >= 1 ? 1.0f : (float)s;
+}
+
+/* atan2(y, x) / 2pi in [0, 1). Every hit a query reports is written with its v, most of
+ * them overwritten by a closer one, and libm's atan2f cost as much as the intersection
+ * test: a polynomial for atan on [0, 1] (absolute error below 3e-6 rad, 4e-7 in v)
+ * with the octant folded in serves. */
+static inline float turns(float y, float x)
+{
+    float ax = fabsf(x), ay = fabsf(y), mx = fmaxf(ax, ay), mn = fminf(ax, ay);
+    if (mx == 0)
+        return 0.0f;
+    float a = mn / mx, s = a * a;
+    float r = a * (0.99997726f +
+                   s * (-0.33262347f +
+                        s * (0.19354346f + s * (-0.11643287f + s * (0.05265332f +
+                                                                    s * -0.01172120f)))));
+    const float half_pi = 1.57079632679489662f, pi = 3.14159265358979324f;
+    if (ay > ax)
+        r = half_pi - r;
+    if (x < 0)
+        r = pi - r;
+    if (y < 0)
+        r = -r;
+    float v = r * (float)(0.5 / 3.14159265358979323846);
+    if (v < 0)
+        v += 1.0f;
+    return v >= 1.0f ? 0.0f : v;
+}
+
+/* The azimuth in [0, 1) of the radial vector r in the frame (b1, b2). */
+static inline float azimuth_v(const frame *f, const float r[3])
+{
+    float x = r[0] * f->b1[0] + r[1] * f->b1[1] + r[2] * f->b1[2];
+    float y = r[0] * f->b2[0] + r[1] * f->b2[1] + r[2] * f->b2[2];
+    return turns(y, x);
+}
+
+/* u and v of a hit: on the side the outward normal is the radial direction; on a disc
+ * the radial vector comes from the hit point. */
+static inline void hit_uv(const frame *f, const float o[3], const float d[3], float t, int part,
+                   const float n[3], float *u, float *v)
+{
+    *u = axial_u(f, o, d, t, part);
+    if ((part & CYLRAY_PART_MASK) == CYLRAY_SIDE) {
+        *v = azimuth_v(f, n);
+        return;
+    }
+    double q[3], s = 0;
+    for (int k = 0; k < 3; k++) {
+        q[k] = (double)o[k] + (double)t * d[k] - f->p0[k];
+        s += q[k] * f->n[k];
+    }
+    float r[3];
+    for (int k = 0; k < 3; k++)
+        r[k] = (float)(q[k] - s * f->n[k]);
+    *v = azimuth_v(f, r);
+}
+
+/* Hit h written into lane i's ray and hit record. */
+static inline void put_hit(const struct RTCIntersectFunctionNArguments *a, unsigned i,
+                           const hitrec *h)
+{
+    void *rh = a->rayhit;
+    unsigned N = a->N;
+    float *hb = (float *)rh + R_NFIELDS * N;
+    RF(rh, N, R_TFAR, i) = h->t;
+    RF(hb, N, H_NGX, i) = h->n[0];
+    RF(hb, N, H_NGY, i) = h->n[1];
+    RF(hb, N, H_NGZ, i) = h->n[2];
+    RF(hb, N, H_U, i) = h->u;
+    RF(hb, N, H_V, i) = h->v;
+    RU(hb, N, H_PRIM, i) = h->prim;
+    RU(hb, N, H_GEOM, i) = a->geomID;
+    for (unsigned l = 0; l < RTC_MAX_INSTANCE_LEVEL_COUNT; l++)
+        RU(hb, N, H_INST + l, i) = ceb_inst_id(a->context, l);
+}
+
+/* Lane i's ray origin and direction. */
+static inline void ray_of(const void *base, unsigned N, unsigned i, float o[3], float d[3])
+{
+    for (int k = 0; k < 3; k++) {
+        o[k] = RF(base, N, R_OX + k, i);
+        d[k] = RF(base, N, R_DX + k, i);
+    }
+}
+
+#endif

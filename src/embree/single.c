@@ -1,0 +1,242 @@
+/* SPDX-License-Identifier: MIT */
+/* embree/single.c - the callbacks of a geometry of one cylinder a primitive (or one
+ * piece of a split one): Embree's N = 1, 4, 8 and 16 lanes through cylray's packet
+ * kernels. */
+#include "hit.h"
+
+/* ---- one ray against one cylinder, for the rarer paths ------------------------- */
+
+/* The first hit of one ray on cylinder c in [tmin, tmax] through the 4-wide kernel,
+ * the ray repeated in every lane (the lanes stay valid numbers, never stack garbage,
+ * whose subnormals would cost microcode assists). */
+static int one_ray(const ceb *g, uint32_t c, const float o[3], const float d[3], float tmin,
+                   float tmax, float *t, float n[3], int32_t *part)
+{
+    cylray_ray4 r;
+    cylray_hit4 h;
+    for (int j = 0; j < 4; j++) {
+        r.ox[j] = o[0], r.oy[j] = o[1], r.oz[j] = o[2];
+        r.dx[j] = d[0], r.dy[j] = d[1], r.dz[j] = d[2];
+        r.tmin[j] = tmin, r.tmax[j] = tmax;
+    }
+    if (!g->k->intersect4(&g->prep[c], &r, &h, 1u, g->iflags))
+        return 0;
+    *t = h.t[0];
+    n[0] = h.nx[0], n[1] = h.ny[0], n[2] = h.nz[0];
+    *part = h.part[0];
+    return 1;
+}
+
+/* Does this hit belong to primitive prim? With split boxes each hit is reported by the
+ * one piece whose stretch of the axis holds its u; the pieces' boxes are padded by more
+ * than u's rounding, so that piece's box holds the hit point. */
+static int owns(const ceb *g, unsigned prim, uint32_t c, float u)
+{
+    if (!g->prim_piece)
+        return 1;
+    uint32_t K = g->fr[c].pieces;
+    if (K == 1)
+        return 1;
+    float x = u * (float)K;
+    uint32_t piece = x <= 0 ? 0 : x >= (float)(K - 1) ? K - 1 : (uint32_t)x;
+    return piece == g->prim_piece[prim];
+}
+
+
+/* A hit the kernel found for lane i on cylinder c: reported when primitive prim owns
+ * it and the filters (when called) accept it; otherwise the next hit of c along the
+ * ray is tried, until one is reported or there is none. occ: an occlusion query. */
+static void resolve(const ceb *g, const void *a_, int occ, int filt, unsigned i, uint32_t c,
+                    float t, float n[3], int32_t part)
+{
+    const struct RTCIntersectFunctionNArguments *ai = a_;
+    const struct RTCOccludedFunctionNArguments *ao = a_;
+    unsigned prim = occ ? ao->primID : ai->primID, N = occ ? ao->N : ai->N;
+    const void *base = occ ? (const void *)ao->ray : (const void *)ai->rayhit;
+    float o[3], d[3];
+    ray_of(base, N, i, o, d);
+    /* a cylinder has at most two hits along a ray; the bound only guards the loop */
+    for (int tries = 0; tries < 8; tries++) {
+        hitrec h = {t, {n[0], n[1], n[2]}, 0, 0, (unsigned)c};
+        hit_uv(&g->fr[c], o, d, t, part, n, &h.u, &h.v);
+        if (owns(g, prim, c, h.u)) {
+            if (occ ? (filt ? ceb_filter_occ(ao, i, &h)
+                            : (RF(ao->ray, N, R_TFAR, i) = -INFINITY, 1))
+                    : (filt ? ceb_filter_hit(ai, i, &h) : (put_hit(ai, i, &h), 1)))
+                return;
+        }
+        float tmax = RF(base, N, R_TFAR, i);
+        if (!one_ray(g, c, o, d, nextafterf(t, INFINITY), tmax, &t, n, &part))
+            return;
+    }
+}
+
+/* ---- one cylinder a primitive: cylray's packet kernels ------------------------- */
+
+/* The valid lanes, in order. Embree's hybrid traversal of incoherent packets calls with
+ * N = 8 or 16 and one valid lane more often than not: the mask is built without a
+ * branch per lane (a loop of constant length the compiler vectorises), and only the
+ * valid lanes are visited. */
+static uint32_t valid_bits(const int *valid, unsigned N)
+{
+    uint32_t m = 0;
+    switch (N) {
+    case 16:
+        for (unsigned i = 0; i < 16; i++)
+            m |= (uint32_t)(valid[i] != 0) << i;
+        return m;
+    case 8:
+        for (unsigned i = 0; i < 8; i++)
+            m |= (uint32_t)(valid[i] != 0) << i;
+        return m;
+    case 4:
+        for (unsigned i = 0; i < 4; i++)
+            m |= (uint32_t)(valid[i] != 0) << i;
+        return m;
+    default:
+        for (unsigned i = 0; i < N && i < 32; i++)
+            m |= (uint32_t)(valid[i] != 0) << i;
+        return m;
+    }
+}
+
+static unsigned active_lanes(const int *valid, unsigned N, unsigned lane[16])
+{
+    uint32_t m = valid_bits(valid, N);
+    unsigned n = 0;
+    for (unsigned i = 0; m; i++, m >>= 1) {
+        lane[n] = i;
+        n += m & 1;
+    }
+    return n;
+}
+
+/* The valid lanes packed into the narrowest cylray packet that holds them; unused
+ * lanes repeat the first ray. */
+#define CEB_GATHER(pk, base, N, lane, n, W)                                                \
+    do {                                                                                   \
+        for (unsigned j = 0; j < (W); j++) {                                               \
+            unsigned i_ = (lane)[j < (n) ? j : 0];                                         \
+            (pk).ox[j] = RF(base, N, R_OX, i_), (pk).oy[j] = RF(base, N, R_OY, i_);        \
+            (pk).oz[j] = RF(base, N, R_OZ, i_), (pk).dx[j] = RF(base, N, R_DX, i_);        \
+            (pk).dy[j] = RF(base, N, R_DY, i_), (pk).dz[j] = RF(base, N, R_DZ, i_);        \
+            (pk).tmin[j] = RF(base, N, R_TNEAR, i_);                                       \
+            (pk).tmax[j] = RF(base, N, R_TFAR, i_);                                        \
+        }                                                                                  \
+    } while (0)
+
+#define CEB_SINGLE(W)                                                                      \
+    static void isect##W(const struct RTCIntersectFunctionNArguments *a, const ceb *g,     \
+                         uint32_t c, const unsigned *lane, unsigned n, int filt)           \
+    {                                                                                      \
+        cylray_ray##W ray;                                                                 \
+        cylray_hit##W hit;                                                                 \
+        CEB_GATHER(ray, a->rayhit, a->N, lane, n, W);                                      \
+        uint32_t m = g->k->intersect##W(&g->prep[c], &ray, &hit,                           \
+                                        (uint32_t)((1ull << n) - 1), g->iflags);           \
+        for (unsigned j = 0; m; j++, m >>= 1)                                              \
+            if (m & 1) {                                                                   \
+                float nn[3] = {hit.nx[j], hit.ny[j], hit.nz[j]};                           \
+                resolve(g, a, 0, filt, lane[j], c, hit.t[j], nn, hit.part[j]);             \
+            }                                                                              \
+    }                                                                                      \
+    static void occ##W(const struct RTCOccludedFunctionNArguments *a, const ceb *g,        \
+                       uint32_t c, const unsigned *lane, unsigned n, int filt)             \
+    {                                                                                      \
+        cylray_ray##W ray;                                                                 \
+        CEB_GATHER(ray, a->ray, a->N, lane, n, W);                                         \
+        uint32_t act = (uint32_t)((1ull << n) - 1);                                        \
+        if (!filt) {                                                                       \
+            uint32_t m = g->k->occluded##W(&g->prep[c], &ray, act, g->oflags);             \
+            for (unsigned j = 0; m; j++, m >>= 1)                                          \
+                if (m & 1)                                                                 \
+                    RF(a->ray, a->N, R_TFAR, lane[j]) = -INFINITY;                         \
+            return;                                                                        \
+        }                                                                                  \
+        cylray_hit##W hit;                                                                 \
+        uint32_t m = g->k->intersect##W(&g->prep[c], &ray, &hit, act, g->iflags);          \
+        for (unsigned j = 0; m; j++, m >>= 1)                                              \
+            if (m & 1) {                                                                   \
+                float nn[3] = {hit.nx[j], hit.ny[j], hit.nz[j]};                           \
+                resolve(g, a, 1, filt, lane[j], c, hit.t[j], nn, hit.part[j]);             \
+            }                                                                              \
+    }
+CEB_SINGLE(4)
+CEB_SINGLE(8)
+CEB_SINGLE(16)
+
+static uint32_t cyl_of(const ceb *g, unsigned prim)
+{
+    return g->prim_cyl ? g->prim_cyl[prim] : prim;
+}
+
+/* One valid lane, as Embree's hybrid traversal of incoherent packets calls: the ray is
+ * broadcast, not gathered. */
+static void isect1(const struct RTCIntersectFunctionNArguments *a, const ceb *g, uint32_t c,
+                   unsigned i, int filt)
+{
+    float o[3], d[3], t, n[3];
+    int32_t part;
+    ray_of(a->rayhit, a->N, i, o, d);
+    if (one_ray(g, c, o, d, RF(a->rayhit, a->N, R_TNEAR, i), RF(a->rayhit, a->N, R_TFAR, i),
+                &t, n, &part))
+        resolve(g, a, 0, filt, i, c, t, n, part);
+}
+
+static void occ1(const struct RTCOccludedFunctionNArguments *a, const ceb *g, uint32_t c,
+                 unsigned i, int filt)
+{
+    float o[3], d[3], t, n[3];
+    int32_t part;
+    ray_of(a->ray, a->N, i, o, d);
+    float tmin = RF(a->ray, a->N, R_TNEAR, i), tmax = RF(a->ray, a->N, R_TFAR, i);
+    if (!filt) {
+        cylray_ray4 r;
+        for (int j = 0; j < 4; j++) {
+            r.ox[j] = o[0], r.oy[j] = o[1], r.oz[j] = o[2];
+            r.dx[j] = d[0], r.dy[j] = d[1], r.dz[j] = d[2];
+            r.tmin[j] = tmin, r.tmax[j] = tmax;
+        }
+        if (g->k->occluded4(&g->prep[c], &r, 1u, g->oflags))
+            RF(a->ray, a->N, R_TFAR, i) = -INFINITY;
+        return;
+    }
+    if (one_ray(g, c, o, d, tmin, tmax, &t, n, &part))
+        resolve(g, a, 1, filt, i, c, t, n, part);
+}
+
+void ceb_single_intersect(const struct RTCIntersectFunctionNArguments *a)
+{
+    const ceb *g = a->geometryUserPtr;
+    unsigned lane[16], n = active_lanes(a->valid, a->N, lane);
+    int filt = (g->options & CYLRAY_EMBREE_FILTER) || CEB_CONTEXT_FILTER(a);
+    uint32_t c = cyl_of(g, a->primID);
+    if (n == 0)
+        return;
+    if (n == 1)
+        isect1(a, g, c, lane[0], filt);
+    else if (n <= 4)
+        isect4(a, g, c, lane, n, filt);
+    else if (n <= 8)
+        isect8(a, g, c, lane, n, filt);
+    else
+        isect16(a, g, c, lane, n, filt);
+}
+
+void ceb_single_occluded(const struct RTCOccludedFunctionNArguments *a)
+{
+    const ceb *g = a->geometryUserPtr;
+    unsigned lane[16], n = active_lanes(a->valid, a->N, lane);
+    int filt = (g->options & CYLRAY_EMBREE_FILTER) || CEB_CONTEXT_FILTER(a);
+    uint32_t c = cyl_of(g, a->primID);
+    if (n == 0)
+        return;
+    if (n == 1)
+        occ1(a, g, c, lane[0], filt);
+    else if (n <= 4)
+        occ4(a, g, c, lane, n, filt);
+    else if (n <= 8)
+        occ8(a, g, c, lane, n, filt);
+    else
+        occ16(a, g, c, lane, n, filt);
+}

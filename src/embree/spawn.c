@@ -1,0 +1,47 @@
+/* SPDX-License-Identifier: MIT */
+/* embree/spawn.c - secondary rays from a hit Embree reported: cylray's hit point and
+ * spawned origin, the part read back from the hit's normal. */
+#include "ceb.h"
+
+#include <math.h>
+
+/* The hit's part from its normal: the discs' normals are the axis, the side's are
+ * perpendicular to it. -1 for a geometry or primID not ours, or a useless Ng. */
+static int hit_part(const ceb *g, unsigned primID, const float Ng[3])
+{
+    if (!g || primID >= g->n || !isfinite(Ng[0]) || !isfinite(Ng[1]) || !isfinite(Ng[2]) ||
+        (Ng[0] == 0 && Ng[1] == 0 && Ng[2] == 0))
+        return -1;
+    const float *n = g->fr[primID].n;
+    float c = Ng[0] * n[0] + Ng[1] * n[1] + Ng[2] * n[2];
+    float l = sqrtf(Ng[0] * Ng[0] + Ng[1] * Ng[1] + Ng[2] * Ng[2]);
+    return c > 0.5f * l ? CYLRAY_CAP_HI : c < -0.5f * l ? CYLRAY_CAP_LO : CYLRAY_SIDE;
+}
+
+int cylray_embree_spawn_origin(RTCGeometry geometry, unsigned primID, const float o[3],
+                               const float d[3], float t, const float Ng[3], const float w[3],
+                               float out[3])
+{
+    const ceb *g = ceb_of(geometry);
+    int part = hit_part(g, primID, Ng);
+    if (part < 0)
+        return -1;
+    float p[3], err;
+    cylray_hit_point(&g->prep[primID], o, d, t, part, p, &err);
+    cylray_spawn_origin(&g->prep[primID], p, err, part, w, out);
+    return 0;
+}
+
+int cylray_embree_spawn_origin_side(RTCGeometry geometry, unsigned primID, const float o[3],
+                                    const float d[3], float t, const float Ng[3], int outward,
+                                    const float w[3], float out[3])
+{
+    const ceb *g = ceb_of(geometry);
+    int part = hit_part(g, primID, Ng);
+    if (part < 0)
+        return -1;
+    float p[3], err;
+    cylray_hit_point(&g->prep[primID], o, d, t, part, p, &err);
+    cylray_spawn_origin_side(&g->prep[primID], p, err, part, outward, w, out);
+    return 0;
+}
