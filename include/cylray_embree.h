@@ -143,6 +143,33 @@ CYLRAY_EMBREE_API int cylray_embree_spawn_origin_side(RTCGeometry geometry, unsi
                                                       float t, const float Ng[3], int outward,
                                                       const float w[3], float out[3]);
 
+/* Packets through a scene that holds such a geometry, in place of rtcIntersect4/8/16
+ * and rtcOccluded4/8/16 (same arguments, same results): Embree's packet call where the
+ * packet is coherent (the context's flags say RTC_INTERSECT_CONTEXT_FLAG_COHERENT, or
+ * at least three valid rays share one direction octant), and otherwise rtcIntersect1 /
+ * rtcOccluded1 for each valid ray with the same context. Embree 3 traverses user
+ * geometry in packets without ever dropping to one ray at a time, so an incoherent
+ * packet would cost more than its rays one a call. Filter functions run as with
+ * Embree's own calls (with N = 1 for rays traced one a call). */
+CYLRAY_EMBREE_API void cylray_embree_intersect4(const int *valid, RTCScene scene,
+                                                struct RTCIntersectContext *context,
+                                                struct RTCRayHit4 *rayhit);
+CYLRAY_EMBREE_API void cylray_embree_intersect8(const int *valid, RTCScene scene,
+                                                struct RTCIntersectContext *context,
+                                                struct RTCRayHit8 *rayhit);
+CYLRAY_EMBREE_API void cylray_embree_intersect16(const int *valid, RTCScene scene,
+                                                 struct RTCIntersectContext *context,
+                                                 struct RTCRayHit16 *rayhit);
+CYLRAY_EMBREE_API void cylray_embree_occluded4(const int *valid, RTCScene scene,
+                                               struct RTCIntersectContext *context,
+                                               struct RTCRay4 *ray);
+CYLRAY_EMBREE_API void cylray_embree_occluded8(const int *valid, RTCScene scene,
+                                               struct RTCIntersectContext *context,
+                                               struct RTCRay8 *ray);
+CYLRAY_EMBREE_API void cylray_embree_occluded16(const int *valid, RTCScene scene,
+                                                struct RTCIntersectContext *context,
+                                                struct RTCRay16 *ray);
+
 #ifdef __cplusplus
 }
 #endif

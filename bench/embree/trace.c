@@ -100,7 +100,9 @@ void eb_camera_rays(eb_rays *r, const eb_scene *s, int w, int h)
 
 /* ---- tracing -------------------------------------------------------------------- */
 
-/* Copies rays [i, i + N) into an Embree packet, traces it, copies the answers back. */
+/* Copies rays [i, i + N) into an Embree packet, traces it as a renderer with
+ * cylray_embree would (cylray_embree_intersectN: a coherent packet as one, an
+ * incoherent one a ray a call), copies the answers back. */
 #define EB_PACKET(N)                                                                       \
     static void packet##N(RTCScene sc, eb_rays *r, size_t i0, int occ)                     \
     {                                                                                      \
@@ -128,9 +130,9 @@ void eb_camera_rays(eb_rays *r, const eb_scene *s, int w, int h)
         if (!any)                                                                          \
             return;                                                                        \
         if (occ)                                                                           \
-            rtcOccluded##N(valid, sc, &ctx, &rh.ray);                                      \
+            cylray_embree_occluded##N(valid, sc, &ctx, &rh.ray);                           \
         else                                                                               \
-            rtcIntersect##N(valid, sc, &ctx, &rh);                                         \
+            cylray_embree_intersect##N(valid, sc, &ctx, &rh);                              \
         for (int j = 0; j < N; j++) {                                                      \
             size_t i = i0 + (size_t)j;                                                     \
             if (!valid[j])                                                                 \

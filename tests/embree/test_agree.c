@@ -291,6 +291,7 @@ static int exact(const char *what, const eb_geom *g, const eb_ref *ref, const eb
 static void rays_for(eb_rays *r, float *tfar0, uint8_t *valid0)
 {
     eb_camera_rays(r, S, W, H);
+    r->incoherent = 0;
     rng gen = {99};
     for (size_t i = 0; i < r->n; i++) {
         r->valid[i] = i % 7 != 3;
@@ -298,6 +299,23 @@ static void rays_for(eb_rays *r, float *tfar0, uint8_t *valid0)
             r->tfar[i] = (float)rng_range(&gen, 5, 40);
         tfar0[i] = r->tfar[i];
         valid0[i] = r->valid[i];
+    }
+}
+
+/* The same rays with every other one turned around from beyond the scene, and the
+ * context told they are incoherent: the packets then mix direction octants, and
+ * cylray_embree_intersectN / occludedN trace them one ray a call. */
+static void mix_rays(eb_rays *r)
+{
+    const double dist = 2 * sqrt((double)(S->look[0] - S->eye[0]) * (S->look[0] - S->eye[0]) +
+                                 (double)(S->look[1] - S->eye[1]) * (S->look[1] - S->eye[1]) +
+                                 (double)(S->look[2] - S->eye[2]) * (S->look[2] - S->eye[2]));
+    r->incoherent = 1;
+    for (size_t i = 1; i < r->n; i += 2) {
+        r->ox[i] = (float)(r->ox[i] + dist * r->dx[i]);
+        r->oy[i] = (float)(r->oy[i] + dist * r->dy[i]);
+        r->oz[i] = (float)(r->oz[i] + dist * r->dz[i]);
+        r->dx[i] = -r->dx[i], r->dy[i] = -r->dy[i], r->dz[i] = -r->dz[i];
     }
 }
 
@@ -342,12 +360,15 @@ int main(void)
         if (v == EB_SPLIT)
             REPORT(g.nprim <= s.ns, "%s: %zu boxes for %zu cylinders", vn, g.nprim, s.ns);
         for (int p = 0; p < 4; p++)
-            for (int occ = 0; occ < 2; occ++) {
+            for (int m = 0; m < 4; m++) {
+                const int occ = m & 1, mixed = m >> 1;
                 rays_for(&r, tfar0, valid0);
+                if (mixed)
+                    mix_rays(&r);
                 eb_trace(g.scene, &r, packets[p], 2, occ, NULL);
                 char what[96];
-                snprintf(what, sizeof what, "%s packet %d %s", vn, packets[p],
-                         occ ? "occluded" : "intersect");
+                snprintf(what, sizeof what, "%s packet %d%s %s", vn, packets[p],
+                         mixed ? " incoherent" : "", occ ? "occluded" : "intersect");
                 int bad = check(what, &r, tfar0, valid0, occ, v != EB_LEAF, 0);
                 REPORT(bad, "%s", what);
             }
@@ -371,12 +392,15 @@ int main(void)
         rtcAttachGeometry(sc, geo);
         rtcCommitScene(sc);
         for (int p = 0; p < 4; p++)
-            for (int occ = 0; occ < 2; occ++) {
+            for (int m = 0; m < 4; m++) {
+                const int occ = m & 1, mixed = m >> 1;
                 rays_for(&r, tfar0, valid0);
+                if (mixed)
+                    mix_rays(&r);
                 eb_trace(sc, &r, packets[p], 2, occ, NULL);
                 char what[96];
-                snprintf(what, sizeof what, "%s filtered packet %d %s", vn, packets[p],
-                         occ ? "occluded" : "intersect");
+                snprintf(what, sizeof what, "%s filtered packet %d%s %s", vn, packets[p],
+                         mixed ? " incoherent" : "", occ ? "occluded" : "intersect");
                 bad = check(what, &r, tfar0, valid0, occ, v != EB_LEAF, 1);
                 REPORT(bad, "%s", what);
             }
