@@ -18,16 +18,27 @@ static int hit_part(const ceb *g, unsigned primID, const float Ng[3])
     return c > 0.5f * l ? CYLRAY_CAP_HI : c < -0.5f * l ? CYLRAY_CAP_LO : CYLRAY_SIDE;
 }
 
+/* The hit point of primID's hit at t on o + t d, with its bound and part: 0, or -1 for a
+ * hit this geometry cannot place. */
+static int point_of(const ceb *g, unsigned primID, const float o[3], const float d[3], float t,
+                    const float Ng[3], float p[3], float *err, int *part)
+{
+    *part = hit_part(g, primID, Ng);
+    if (*part < 0)
+        return -1;
+    cylray_hit_point(&g->prep[primID], o, d, t, *part, p, err);
+    return 0;
+}
+
 int cylray_embree_spawn_origin(RTCGeometry geometry, unsigned primID, const float o[3],
                                const float d[3], float t, const float Ng[3], const float w[3],
                                float out[3])
 {
     const ceb *g = ceb_of(geometry);
-    int part = hit_part(g, primID, Ng);
-    if (part < 0)
-        return -1;
     float p[3], err;
-    cylray_hit_point(&g->prep[primID], o, d, t, part, p, &err);
+    int part;
+    if (point_of(g, primID, o, d, t, Ng, p, &err, &part))
+        return -1;
     cylray_spawn_origin(&g->prep[primID], p, err, part, w, out);
     return 0;
 }
@@ -37,11 +48,10 @@ int cylray_embree_spawn_origin_side(RTCGeometry geometry, unsigned primID, const
                                     const float w[3], float out[3])
 {
     const ceb *g = ceb_of(geometry);
-    int part = hit_part(g, primID, Ng);
-    if (part < 0)
-        return -1;
     float p[3], err;
-    cylray_hit_point(&g->prep[primID], o, d, t, part, p, &err);
+    int part;
+    if (point_of(g, primID, o, d, t, Ng, p, &err, &part))
+        return -1;
     cylray_spawn_origin_side(&g->prep[primID], p, err, part, outward, w, out);
     return 0;
 }

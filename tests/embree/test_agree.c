@@ -319,6 +319,28 @@ static void mix_rays(eb_rays *r)
     }
 }
 
+/* Every packet size, intersect and occluded, on the camera rays and on the incoherent
+ * ones: each answer held to check(); the counts go to *passed and *failed. */
+static void packet_passes(RTCScene sc, const char *vn, int exact_t, int filtered, eb_rays *r,
+                          float *tfar0, uint8_t *valid0, int *passed, int *failed)
+{
+    static const int packets[4] = {1, 4, 8, 16};
+    for (int p = 0; p < 4; p++)
+        for (int m = 0; m < 4; m++) {
+            const int occ = m & 1, mixed = m >> 1;
+            rays_for(r, tfar0, valid0);
+            if (mixed)
+                mix_rays(r);
+            eb_trace(sc, r, packets[p], 2, occ, NULL);
+            char what[96];
+            snprintf(what, sizeof what, "%s%s packet %d%s %s", vn, filtered ? " filtered" : "",
+                     packets[p], mixed ? " incoherent" : "", occ ? "occluded" : "intersect");
+            const int bad = check(what, r, tfar0, valid0, occ, exact_t, filtered);
+            printf("%s %s (%d disagreements)\n", bad ? "FAIL" : "ok  ", what, bad);
+            bad ? (*failed)++ : (*passed)++;
+        }
+}
+
 int main(void)
 {
     eb_scene s;
@@ -338,7 +360,6 @@ int main(void)
         return 1;
     static float tfar0[W * H];
     static uint8_t valid0[W * H];
-    static const int packets[4] = {1, 4, 8, 16};
     int passed = 0, failed = 0;
 #define REPORT(bad, ...)                                                                   \
     do {                                                                                   \
@@ -359,19 +380,7 @@ int main(void)
          * tests nothing new) */
         if (v == EB_SPLIT)
             REPORT(g.nprim <= s.ns, "%s: %zu boxes for %zu cylinders", vn, g.nprim, s.ns);
-        for (int p = 0; p < 4; p++)
-            for (int m = 0; m < 4; m++) {
-                const int occ = m & 1, mixed = m >> 1;
-                rays_for(&r, tfar0, valid0);
-                if (mixed)
-                    mix_rays(&r);
-                eb_trace(g.scene, &r, packets[p], 2, occ, NULL);
-                char what[96];
-                snprintf(what, sizeof what, "%s packet %d%s %s", vn, packets[p],
-                         mixed ? " incoherent" : "", occ ? "occluded" : "intersect");
-                int bad = check(what, &r, tfar0, valid0, occ, v != EB_LEAF, 0);
-                REPORT(bad, "%s", what);
-            }
+        packet_passes(g.scene, vn, v != EB_LEAF, 0, &r, tfar0, valid0, &passed, &failed);
         eb_camera_rays(&r, &s, W, H);
         int bad = exact(vn, &g, &ref, &r);
         REPORT(bad, "%s: the exact reference, and the spawn helper's secondary rays", vn);
@@ -391,19 +400,7 @@ int main(void)
         RTCScene sc = rtcNewScene(dev);
         rtcAttachGeometry(sc, geo);
         rtcCommitScene(sc);
-        for (int p = 0; p < 4; p++)
-            for (int m = 0; m < 4; m++) {
-                const int occ = m & 1, mixed = m >> 1;
-                rays_for(&r, tfar0, valid0);
-                if (mixed)
-                    mix_rays(&r);
-                eb_trace(sc, &r, packets[p], 2, occ, NULL);
-                char what[96];
-                snprintf(what, sizeof what, "%s filtered packet %d%s %s", vn, packets[p],
-                         mixed ? " incoherent" : "", occ ? "occluded" : "intersect");
-                bad = check(what, &r, tfar0, valid0, occ, v != EB_LEAF, 1);
-                REPORT(bad, "%s", what);
-            }
+        packet_passes(sc, vn, v != EB_LEAF, 1, &r, tfar0, valid0, &passed, &failed);
         rtcReleaseScene(sc);
         cylray_embree_release_geometry(geo);
 
