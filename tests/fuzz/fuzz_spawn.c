@@ -132,8 +132,9 @@ int fz_spawn(const fz_case *c, const cylray_prepared *P, const gresult *res,
                 if (trace(isas[k], P, x0, w, &th, &ph) &&
                     sref_self_hit(cyl, x0, w, part, ph, th)) {
                     snprintf(why, whylen, "ray %zu: %s meets the surface it leaves (part %d "
-                             "at t %.3g) from the origin %.9g %.9g %.9g", i, isas[k]->name,
-                             ph, (double)th, x0[0], x0[1], x0[2]);
+                             "at t %a) from the origin %a %a %a along %a %a %a", i,
+                             isas[k]->name, ph, (double)th, x0[0], x0[1], x0[2], w[0], w[1],
+                             w[2]);
                     return 1;
                 }
             }
