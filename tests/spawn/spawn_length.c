@@ -7,9 +7,9 @@
  *   spawn_length fuzz   the fuzzer's cases: tubes of radius 1e-10 hit at t = 0 by rays
  *                       of length FLT_MAX, spawned back along the ray and on through
  *                       the surface (as tests/fuzz/fuzz_spawn.c does)
- *   spawn_length sweep  hits of every category of spawnref.h, spawned along reflected,
- *                       transmitted and reversed directions scaled to lengths from 1
- *                       to FLT_MAX
+ *   spawn_length sweep  hits of every category of spawnref.h (at its scale and shrunk
+ *                       by 2^-20 and 2^-40), spawned along reflected, transmitted,
+ *                       reversed and random directions of lengths from 1 to FLT_MAX
  *
  * Both: every ISA's batched forms (a packet of 16, a stream) equal the scalar forms bit
  * for bit; where the guarantee's condition holds (offset below R/4 and H/4, and w clear
@@ -60,7 +60,7 @@ static int trace(const cylray_kernels *k, const cylray_prepared *P, const float 
 }
 
 typedef struct stats {
-    long spawned, traced;
+    long spawned, traced, selfhits;
 } stats;
 
 /* The spawned origins leaving p (bound err) on `part` along w, at lane L of a packet:
@@ -116,6 +116,7 @@ static void check(const cylray_cylinder *cyl, const cylray_prepared *P, const fl
         float th;
         int32_t ph;
         if (trace(isas[k], P, x0, w, &th, &ph) && sref_self_hit(cyl, x0, w, part, ph, th)) {
+            st->selfhits++;
             char why[160];
             snprintf(why, sizeof why, "%s meets the surface it leaves at t %a from %a %a %a",
                      isas[k]->name, (double)th, x0[0], x0[1], x0[2]);
@@ -154,7 +155,7 @@ static const struct {
 
 static int run_fuzz(void)
 {
-    stats st = {0, 0};
+    stats st = {0, 0, 0};
     const int ncase = (int)(sizeof fuzz_cases / sizeof fuzz_cases[0]);
     for (int i = 0; i < ncase; i++) {
         cylray_cylinder cyl;
@@ -164,7 +165,7 @@ static int run_fuzz(void)
         cyl.radius = TEN, cyl.half_height = INFINITY;
         cylray_prepared P;
         const float *p = fuzz_cases[i].p, *d = fuzz_cases[i].d;
-        if (cylray_prepare(&cyl, &P) != CYLRAY_OK) {
+        if (cylray_prepare(&P, &cyl) != CYLRAY_OK) {
             fail(&cyl, p, d, "the fuzzer's tube is refused");
             continue;
         }
@@ -173,8 +174,8 @@ static int run_fuzz(void)
             check(&cyl, &P, p, fuzz_cases[i].err, CYLRAY_SIDE, w, (i + dir) % 16, &st);
         }
     }
-    printf("fuzz: %ld origins spawned, %ld rays traced on %d ISAs\n", st.spawned, st.traced,
-           nisa);
+    printf("fuzz: %ld origins spawned, %ld rays traced on %d ISAs, %ld meeting their surface\n",
+           st.spawned, st.traced, nisa, st.selfhits);
     return failures == 0;
 }
 
@@ -193,8 +194,19 @@ static int run_sweep(int quick)
         for (int gi = 0; gi < groups; gi++) {
             cylgen_case c[SREF_GROUP];
             sref_group(cat, (uint64_t)cat << 32 | (unsigned)gi, c);
+            /* a third of the scenes at their scale, the others shrunk by 2^-20 or 2^-40
+             * (exact): radii down to 1e-16, which long directions cross in one step of t */
+            const float scale = gi % 3 == 0 ? 1.0f : gi % 3 == 1 ? 0x1p-20f : 0x1p-40f;
+            for (int i = 0; i < SREF_GROUP; i++) {
+                for (int k = 0; k < 3; k++) {
+                    c[i].cyl.center[k] *= scale;
+                    c[i].o[k] *= scale;
+                }
+                c[i].cyl.radius *= scale;
+                c[i].cyl.half_height *= scale;
+            }
             cylray_prepared P;
-            if (cylray_prepare(&c[0].cyl, &P) != CYLRAY_OK)
+            if (cylray_prepare(&P, &c[0].cyl) != CYLRAY_OK)
                 continue;
             for (int i = 0; i < SREF_GROUP; i++) {
                 float t, p[3], err;
@@ -227,8 +239,9 @@ static int run_sweep(int quick)
     }
     long traced_long = 0;
     for (int e = 0; e < NLEN; e++) {
-        printf("sweep: length 2^%d: %ld origins spawned, %ld rays traced on %d ISAs\n",
-               lengths[e], st[e].spawned, st[e].traced, nisa);
+        printf("sweep: length 2^%d: %ld origins spawned, %ld rays traced on %d ISAs, %ld "
+               "meeting their surface\n", lengths[e], st[e].spawned, st[e].traced, nisa,
+               st[e].selfhits);
         if (lengths[e] >= 126)
             traced_long += st[e].traced;
     }
