@@ -313,7 +313,10 @@ CYLRAY_API cylray_status cylray_cylinder_from_endpoints(cylray_cylinder *out, co
  * never hits again, on any ISA, the surface it leaves at that point (nor, at a rim, the
  * other surface through it), and it starts strictly on its own side of each of them, by
  * twice the kernels' tested tolerance and no more, whenever that offset is below a
- * quarter of the radius and of the half height.
+ * quarter of the radius and of the half height. The tolerance includes that of t, a
+ * float whose spacing at 0 is 2^-149: along a direction w the origin keeps about
+ * 2^-147 |w| from the surface, which matters only for directions far longer than the
+ * scene (2^-19 for |w| = FLT_MAX).
  *
  * For a hit of the ray o + t d at t on `part` of cyl: p, the hit point (moved onto
  * the surface of that part where that pays), and *err, a bound on the distance from p

@@ -46,7 +46,9 @@
  *   m_side = 2 ulp(X) |n|_1 + |z| tilt + 2 ulp(R),
  *   m_cap  = 2 ulp(X) |n|_1 + rho tilt + 2 ulp(H),   tilt = 2 sqrt(3) ulp(max|v_k|)/|v|,
  * with X = max|w_k| (z, rho: the origin's axial and radial coordinates) may be taken for
- * lying on its other side. The margins m_i used are twice these, with X the larger of
+ * lying on its other side. The kernels' t is held to 4 ulps, and below 2^-126 an ulp of
+ * t is 2^-149: a surface within tau = 4 2^-149 |w|_1 of the origin along the new
+ * direction w may be met at t = 0, so tau joins both margins (1e-44 for |w| = 1). The margins m_i used are twice these, with X the larger of
  * max|w_k| and the origin's own max|x_k| (the note below says why). So the
  * origin is moved along each surface's outward normal n_i, to w's side (sign of
  * dot(w, n_i), inward when 0), by

@@ -34,6 +34,14 @@ CYLRAY_INLINE void DFN(spawn)(const DFN(geo) *g, const vd p[3], vd err, vd part,
     const vd qmax = DFN(max3)(dabs(q[0]), dabs(q[1]), dabs(q[2]));
     const vd pmax = DFN(max3)(dabs(p[0]), dabs(p[1]), dabs(p[2]));
     const vd az = dabs(z);
+    /* The kernels' t is a float, held to 4 ulps of the exact one: below 2^-126 that is
+     * 4 * 2^-149 whatever the scale, so a surface within 2^-147 |w| of the origin along
+     * w may be met at t = 0. That distance (|w|_1 >= |w|) joins each surface's box; for
+     * a direction of length 1 it is 1e-44, for one of length FLT_MAX 2^-19. A w that is
+     * not finite adds nothing (its ray is nothing to trace). */
+    const vd wl = DFN(l1)(w);
+    const vd tau = dsel(dlt(wl, dset1(INFINITY)), dmul(dset1(0x1p-147), wl), zero);
+    const vd uRt = dadd(g->uR2, tau), uHt = dadd(g->uH2, tau);
 
     /* the side, then the discs at -H and +H */
     DFN(surf) S[3];
@@ -56,7 +64,7 @@ CYLRAY_INLINE void DFN(spawn)(const DFN(geo) *g, const vd p[3], vd err, vd part,
         x->l1 = DFN(l1)(x->n);
         const vd m = dmul(dset1(CYLRAY_SPAWN_SAFETY),
                           dadd(dadd(dmul(u2, x->l1), dmul(i == 0 ? az : rho, g->tilt)),
-                               i == 0 ? g->uR2 : g->uH2));
+                               i == 0 ? uRt : uHt));
         x->in = dmand(exists[i],
                       dmor(here[i], dle(dabs(x->sigma), dadd(dadd(err, m), e_d))));
         x->any = dmbits(x->in) != 0;
@@ -91,7 +99,7 @@ CYLRAY_INLINE void DFN(spawn)(const DFN(geo) *g, const vd p[3], vd err, vd part,
             continue;
         const vd m = dmul(dset1(CYLRAY_SPAWN_SAFETY),
                           dadd(dadd(dmul(v2, x->l1), dmul(i == 0 ? zmax : rmax, g->tilt)),
-                               i == 0 ? g->uR2 : g->uH2));
+                               i == 0 ? uRt : uHt));
         vd a = dadd(dadd(dadd(x->base, e_d), m), rim);
         if (i == 0) /* inward from the side: the rounding's tangential part */
             a = dadd(a, dsel(x->pos, zero, dmul(dmul(dmul(dset1(2.0), rnd), rnd), g->inv_R)));

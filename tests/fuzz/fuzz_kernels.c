@@ -45,8 +45,7 @@ static void report(void)
             "reference: %lu\n", fz_excused_geometric, fz_excused_exact);
 #ifdef HAVE_SPAWN
     fprintf(stderr, "cylray-fuzz: spawn: %lu hits through hit point and origin, %lu spawned "
-            "rays traced on every ISA, %lu of them meeting the surface they leave\n",
-            fz_spawn_hits, fz_spawn_traced, fz_spawn_selfhits);
+            "rays traced on every ISA\n", fz_spawn_hits, fz_spawn_traced);
 #endif
 }
 

@@ -15,6 +15,6 @@ int fz_spawn(const fz_case *c, const cylray_prepared *P, const gresult *res,
              const cylray_kernels *const *isas, int nisa, char *why, size_t whylen);
 
 /* Hits that went through the helpers, and spawned rays traced under the guarantee. */
-extern unsigned long fz_spawn_hits, fz_spawn_traced, fz_spawn_selfhits;
+extern unsigned long fz_spawn_hits, fz_spawn_traced;
 
 #endif
