@@ -61,8 +61,8 @@ static float enter(const box *b, const float o[3], const float inv[3])
 
 /* One camera ray through the boxes, front to back; returns the closest t (INFINITY on
  * a miss) and adds the cylinder calls to *calls. */
-static float trace(const cylray_prepared *rods, box *bx, size_t nb, box *hit,
-                   const float o[3], const float d[3], long *calls)
+static float trace(const cylray_prepared *rods, box *bx, size_t nb, box *hit, const float o[3],
+                   const float d[3], long *calls)
 {
     float inv[3] = {1 / d[0], 1 / d[1], 1 / d[2]};
     size_t n = 0;
@@ -111,7 +111,7 @@ int main(int argc, char **argv)
         float p0[3], p1[3];
         /* along a coordinate axis (a third of them) or 1.1 to 6.4 degrees off one, in a
          * coordinate plane: (a, b, len) with a^2 + b^2 = len^2, permuted and signed */
-        static const int q[6][3] = {{0, 1, 1},       {0, 1, 1},       {200, 9999, 10001},
+        static const int q[6][3] = {{0, 1, 1},         {0, 1, 1},      {200, 9999, 10001},
                                     {120, 3599, 3601}, {60, 899, 901}, {36, 323, 325}};
         static const int P[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2},
                                     {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
@@ -165,8 +165,8 @@ int main(int argc, char **argv)
             hits += t[0] < INFINITY;
             differ += t[1] != t[0] || t[2] != t[0];
         }
-    printf("split_rods: %d rods (R 0.25, length 2500), %ld camera rays, %ld hit\n", NRODS,
-           rays, hits);
+    printf("split_rods: %d rods (R 0.25, length 2500), %ld camera rays, %ld hit\n", NRODS, rays,
+           hits);
     printf("  one box per rod:        %6zu boxes, %7.2f cylinder calls per ray\n", nb[0],
            (double)calls[0] / (double)rays);
     printf("  the rule (k = 0):       %6zu boxes, %7.2f cylinder calls per ray\n", nb[1],

@@ -634,10 +634,12 @@ int main(int argc, char **argv)
     long total = s.rays[0] + s.rays[1] + s.rays[2];
     printf("tracer: %s, isa %s, %d bonds, %zu nodes, %zu leaves; %dx%d; "
            "rays: %ld camera, %ld shadow, %ld bounce; image fnv %016llx\n",
-           packets ? "packets of 8" : LEAF_WIDTH == 4 ? "leaf4" : LEAF_WIDTH == 8 ? "leaf8" : "leaf16",
-           cylray_kernels_best()->name, nb, s.t.nnodes, s.t.nleaves, w, h,
-           s.rays[0] / passes, s.rays[1] / passes, s.rays[2] / passes,
-           (unsigned long long)fnv);
+           packets           ? "packets of 8"
+           : LEAF_WIDTH == 4 ? "leaf4"
+           : LEAF_WIDTH == 8 ? "leaf8"
+                             : "leaf16",
+           cylray_kernels_best()->name, nb, s.t.nnodes, s.t.nleaves, w, h, s.rays[0] / passes,
+           s.rays[1] / passes, s.rays[2] / passes, (unsigned long long)fnv);
     if (repeats > 0)
         printf("time: %.1f ns per ray (%d passes, %.3f s of processor time)\n",
                1e9 * dt / (double)total, passes, dt);

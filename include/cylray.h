@@ -86,7 +86,7 @@ extern "C" {
 
 typedef enum cylray_status {
     CYLRAY_OK = 0,
-    CYLRAY_EINVAL = 1     /* an argument outside the documented limits (cylray_prepare) */
+    CYLRAY_EINVAL = 1 /* an argument outside the documented limits (cylray_prepare) */
 } cylray_status;
 
 /* A constant English sentence for s (never NULL, also for an unknown status). */
@@ -102,14 +102,14 @@ CYLRAY_API const char *cylray_strerror(cylray_status s);
 #define CYLRAY_CAPPED 0x3u    /* both discs: a closed solid */
 
 typedef struct cylray_cylinder {
-    float center[3];    /* a point on the axis, halfway between the ends */
-    float axis[3];      /* direction of the axis; any nonzero length (cylray_prepare),
+    float center[3];   /* a point on the axis, halfway between the ends */
+    float axis[3];     /* direction of the axis; any nonzero length (cylray_prepare),
                          * taken as exact: never normalised, the floats given are the
                          * geometry */
-    float radius;       /* in world units */
-    float half_height;  /* in world units whatever the axis length: the ends are at
+    float radius;      /* in world units */
+    float half_height; /* in world units whatever the axis length: the ends are at
                          * center +- half_height axis/|axis|; INFINITY: infinite */
-    unsigned flags;     /* CYLRAY_CAPPED, CYLRAY_CAPPED_LO, CYLRAY_CAPPED_HI or 0 */
+    unsigned flags;    /* CYLRAY_CAPPED, CYLRAY_CAPPED_LO, CYLRAY_CAPPED_HI or 0 */
 } cylray_cylinder;
 
 /* What cylray_prepare derives once per cylinder; read-only for the kernels. The
@@ -117,31 +117,31 @@ typedef struct cylray_cylinder {
  * it starts a cache line; that alignment is advisory (see the top of this file): 16
  * bytes serve. It holds no pointers: a memcpy of it is as good as it. */
 typedef struct CYLRAY_ALIGN(64) cylray_prepared {
-    float c[3];        /* center */
-    float v[3];        /* axis scaled by an exact power of two */
-    float n[3];        /* unit axis, for the cap normals */
-    float inv_vv;      /* 1 / (v.v) */
-    float rr_vv;       /* R^2 (v.v) */
-    float sqrt_vv;     /* |v| */
-    float h_v;         /* H |v|; INFINITY when infinite */
-    float nscale;      /* 1 / (R v.v): scales v x (p x v) to a unit normal */
-    float vk[3];       /* v * nscale */
-    float bound2;      /* squared radius of a bounding sphere, with a margin */
-    float rr_d;        /* R^2 2^-2j, for the discriminant: j keeps A R^2 in range */
-    float g_s;         /* 2^-j, which scales g there */
-    uint32_t kind;     /* CYLRAY_KIND_*: infinite, open tube, capped */
-    uint32_t axis_id;  /* 0 general, 1..3: along +-x, +-y, +-z */
-    uint32_t magic;    /* set by cylray_prepare; kernels reject anything else */
-    float rr;          /* R^2 */
-    float par_eps;     /* A below par_eps * d.d: parallel to the axis */
-    float cr[3];       /* along a coordinate axis: the center with that axis third */
-    float vr;          /* along a coordinate axis: its sign (v there is (0, 0, vr)) */
+    float c[3];             /* center */
+    float v[3];             /* axis scaled by an exact power of two */
+    float n[3];             /* unit axis, for the cap normals */
+    float inv_vv;           /* 1 / (v.v) */
+    float rr_vv;            /* R^2 (v.v) */
+    float sqrt_vv;          /* |v| */
+    float h_v;              /* H |v|; INFINITY when infinite */
+    float nscale;           /* 1 / (R v.v): scales v x (p x v) to a unit normal */
+    float vk[3];            /* v * nscale */
+    float bound2;           /* squared radius of a bounding sphere, with a margin */
+    float rr_d;             /* R^2 2^-2j, for the discriminant: j keeps A R^2 in range */
+    float g_s;              /* 2^-j, which scales g there */
+    uint32_t kind;          /* CYLRAY_KIND_*: infinite, open tube, capped */
+    uint32_t axis_id;       /* 0 general, 1..3: along +-x, +-y, +-z */
+    uint32_t magic;         /* set by cylray_prepare; kernels reject anything else */
+    float rr;               /* R^2 */
+    float par_eps;          /* A below par_eps * d.d: parallel to the axis */
+    float cr[3];            /* along a coordinate axis: the center with that axis third */
+    float vr;               /* along a coordinate axis: its sign (v there is (0, 0, vr)) */
     float cap_up, cap_down; /* along a coordinate axis: the parts at renamed z = +-H */
-    uint8_t order[3];  /* the renamed coordinates: the j-th is the user's order[j] */
-    uint8_t variant;   /* which kernel table entry serves this cylinder */
-    float radius;      /* R, as given */
-    float half_height; /* H, as given */
-    uint32_t caps;     /* CYLRAY_CAPPED_LO | CYLRAY_CAPPED_HI of a finite cylinder */
+    uint8_t order[3];       /* the renamed coordinates: the j-th is the user's order[j] */
+    uint8_t variant;        /* which kernel table entry serves this cylinder */
+    float radius;           /* R, as given */
+    float half_height;      /* H, as given */
+    uint32_t caps;          /* CYLRAY_CAPPED_LO | CYLRAY_CAPPED_HI of a finite cylinder */
 } cylray_prepared;
 
 /* Checks *in and derives what the kernels need into *out. Returns CYLRAY_OK, or
@@ -160,10 +160,10 @@ CYLRAY_API cylray_status cylray_prepare(cylray_prepared *out, const cylray_cylin
 
 /* ---- hit output ----------------------------------------------------------- */
 
-#define CYLRAY_MISS     0
-#define CYLRAY_SIDE     1
-#define CYLRAY_CAP_LO   2    /* the disc at axial coordinate -H: center - H axis/|axis| */
-#define CYLRAY_CAP_HI   3    /* the disc at +H: center + H axis/|axis| */
+#define CYLRAY_MISS 0
+#define CYLRAY_SIDE 1
+#define CYLRAY_CAP_LO 2       /* the disc at axial coordinate -H: center - H axis/|axis| */
+#define CYLRAY_CAP_HI 3       /* the disc at +H: center + H axis/|axis| */
 #define CYLRAY_PART_MASK 0x0f /* part & CYLRAY_PART_MASK: SIDE, CAP_LO or CAP_HI */
 /* OR'ed into part: met from inside the solid, dot(d, n_out) > 0 with n_out the
  * outward normal (also with one cap or none, where the surface is not closed) */
@@ -171,25 +171,25 @@ CYLRAY_API cylray_status cylray_prepare(cylray_prepared *out, const cylray_cylin
 
 /* Kernel flags, OR'ed. Each selects a kernel compiled for it, so a flag not given
  * costs nothing. Normals are unit length and outward unless CYLRAY_FACE_FORWARD. */
-#define CYLRAY_NORMAL       0x01u /* write nx, ny, nz; otherwise they stay untouched */
+#define CYLRAY_NORMAL 0x01u       /* write nx, ny, nz; otherwise they stay untouched */
 #define CYLRAY_FACE_FORWARD 0x02u /* flip the normal to face the ray: dot(n, d) <= 0 */
-#define CYLRAY_CULL_BACK    0x04u /* ignore hits met from inside (BACKFACE) */
-#define CYLRAY_REFINE       0x08u /* polish the root once more from the first hit */
+#define CYLRAY_CULL_BACK 0x04u    /* ignore hits met from inside (BACKFACE) */
+#define CYLRAY_REFINE 0x08u       /* polish the root once more from the first hit */
 /* CYLRAY_FAST: reciprocal and square-root estimates refined by a Newton step instead
  * of divisions and square roots; t is held to 8 ulps beyond the exact band instead of
  * 4 (docs/design.md, section 4). */
-#define CYLRAY_FAST         0x10u
-#define CYLRAY_FLAGS_ALL    0x1fu
+#define CYLRAY_FAST 0x10u
+#define CYLRAY_FLAGS_ALL 0x1fu
 
 /* ---- packets (SoA, aligned to their width in bytes: required) ------------- */
 
-#define CYLRAY_PACKET_(n, al)                                                     \
-    typedef struct CYLRAY_ALIGN(al) cylray_ray##n {                              \
-        float ox[n], oy[n], oz[n], dx[n], dy[n], dz[n], tmin[n], tmax[n];        \
-    } cylray_ray##n;                                                            \
-    typedef struct CYLRAY_ALIGN(al) cylray_hit##n {                              \
-        float t[n], nx[n], ny[n], nz[n];                                         \
-        int32_t part[n];                                                         \
+#define CYLRAY_PACKET_(n, al)                                                                  \
+    typedef struct CYLRAY_ALIGN(al) cylray_ray##n {                                            \
+        float ox[n], oy[n], oz[n], dx[n], dy[n], dz[n], tmin[n], tmax[n];                      \
+    } cylray_ray##n;                                                                           \
+    typedef struct CYLRAY_ALIGN(al) cylray_hit##n {                                            \
+        float t[n], nx[n], ny[n], nz[n];                                                       \
+        int32_t part[n];                                                                       \
     } cylray_hit##n;
 CYLRAY_PACKET_(4, 16)
 CYLRAY_PACKET_(8, 32)
@@ -204,20 +204,20 @@ CYLRAY_PACKET_(16, 64)
  * when its direction is zero, or when tmin > tmax; the other lanes' answers do not
  * depend on it. */
 CYLRAY_API uint32_t cylray_intersect4(const cylray_prepared *cyl, cylray_ray4 *ray,
-                           cylray_hit4 *hit, uint32_t active, unsigned flags);
+                                      cylray_hit4 *hit, uint32_t active, unsigned flags);
 CYLRAY_API uint32_t cylray_intersect8(const cylray_prepared *cyl, cylray_ray8 *ray,
-                           cylray_hit8 *hit, uint32_t active, unsigned flags);
+                                      cylray_hit8 *hit, uint32_t active, unsigned flags);
 CYLRAY_API uint32_t cylray_intersect16(const cylray_prepared *cyl, cylray_ray16 *ray,
-                            cylray_hit16 *hit, uint32_t active, unsigned flags);
+                                       cylray_hit16 *hit, uint32_t active, unsigned flags);
 
 /* Bit i set: lane i has some hit in [tmin, tmax] (one the intersect call with the
  * same flags would report). Writes nothing. */
 CYLRAY_API uint32_t cylray_occluded4(const cylray_prepared *cyl, const cylray_ray4 *ray,
-                          uint32_t active, unsigned flags);
+                                     uint32_t active, unsigned flags);
 CYLRAY_API uint32_t cylray_occluded8(const cylray_prepared *cyl, const cylray_ray8 *ray,
-                          uint32_t active, unsigned flags);
+                                     uint32_t active, unsigned flags);
 CYLRAY_API uint32_t cylray_occluded16(const cylray_prepared *cyl, const cylray_ray16 *ray,
-                           uint32_t active, unsigned flags);
+                                      uint32_t active, unsigned flags);
 
 /* ---- streams (any length, any alignment) ---------------------------------- */
 
@@ -237,7 +237,7 @@ typedef struct cylray_hits {
  * call the kernels keep more than one vector of rays in flight where that pays, which
  * packets, one call per vector, cannot. */
 CYLRAY_API size_t cylray_intersect_stream(const cylray_prepared *cyl, const cylray_rays *rays,
-                               const cylray_hits *hits, size_t n, unsigned flags);
+                                          const cylray_hits *hits, size_t n, unsigned flags);
 /* Sets occluded[i] = 1 for each ray with a hit, leaves the others; returns the count. */
 CYLRAY_API size_t cylray_occluded_stream(const cylray_prepared *cyl, const cylray_rays *rays,
                                          uint8_t *occluded, size_t n, unsigned flags);
@@ -250,18 +250,18 @@ typedef struct cylray_ray1 {
 } cylray_ray1;
 
 typedef struct cylray_hit1 {
-    float t, n[3];  /* n only with CYLRAY_NORMAL */
-    int32_t part;   /* CYLRAY_SIDE, CYLRAY_CAP_LO or CYLRAY_CAP_HI, maybe | BACKFACE */
-    uint32_t id;    /* the id given to cylray_leaf_prepareM for the hit cylinder */
-    uint32_t lane;  /* its place in the leaf, 0..M-1 */
+    float t, n[3]; /* n only with CYLRAY_NORMAL */
+    int32_t part;  /* CYLRAY_SIDE, CYLRAY_CAP_LO or CYLRAY_CAP_HI, maybe | BACKFACE */
+    uint32_t id;   /* the id given to cylray_leaf_prepareM for the hit cylinder */
+    uint32_t lane; /* its place in the leaf, 0..M-1 */
 } cylray_hit1;
 
 /* M prepared cylinders in SoA, 64 bytes a cylinder, aligned to the vector width
  * (required). The fields are not part of the API; the size is part of the ABI. */
-#define CYLRAY_LEAF_(m, al)                                                       \
-    typedef struct CYLRAY_ALIGN(al) cylray_leaf##m {                              \
-        float geom_[14][m];                                                       \
-        uint32_t meta_[m], id_[m];                                                \
+#define CYLRAY_LEAF_(m, al)                                                                    \
+    typedef struct CYLRAY_ALIGN(al) cylray_leaf##m {                                           \
+        float geom_[14][m];                                                                    \
+        uint32_t meta_[m], id_[m];                                                             \
     } cylray_leaf##m;
 CYLRAY_LEAF_(4, 16)
 CYLRAY_LEAF_(8, 32)
@@ -355,16 +355,16 @@ CYLRAY_API void cylray_spawn_origin(const cylray_prepared *cyl, const float p[3]
  * Where the side requested is w's side of the exact normal at p, the origin is
  * cylray_spawn_origin's, bit for bit. */
 CYLRAY_API void cylray_spawn_origin_side(const cylray_prepared *cyl, const float p[3],
-                                         float err, int32_t part, int outward,
-                                         const float w[3], float out[3]);
+                                         float err, int32_t part, int outward, const float w[3],
+                                         float out[3]);
 
 /* Batched forms: vectorised on every path (in double, several lanes at a time), with
  * the same answer as the scalar pair lane by lane, bit for bit, on every path; a tracer
  * that does not call them pays nothing. Hit points with their bounds, in SoA like the
  * packets: */
-#define CYLRAY_POINTS_(n, al)                                                     \
-    typedef struct CYLRAY_ALIGN(al) cylray_points##n {                           \
-        float x[n], y[n], z[n], err[n];                                          \
+#define CYLRAY_POINTS_(n, al)                                                                  \
+    typedef struct CYLRAY_ALIGN(al) cylray_points##n {                                         \
+        float x[n], y[n], z[n], err[n];                                                        \
     } cylray_points##n;
 CYLRAY_POINTS_(4, 16)
 CYLRAY_POINTS_(8, 32)
@@ -375,11 +375,9 @@ CYLRAY_POINTS_(16, 64)
  * point of ray i (its o and d; t and part come from hit) into lane i of *pts. Other
  * lanes are not written. */
 CYLRAY_API void cylray_hit_points4(const cylray_prepared *cyl, const cylray_ray4 *ray,
-                                   const cylray_hit4 *hit, uint32_t mask,
-                                   cylray_points4 *pts);
+                                   const cylray_hit4 *hit, uint32_t mask, cylray_points4 *pts);
 CYLRAY_API void cylray_hit_points8(const cylray_prepared *cyl, const cylray_ray8 *ray,
-                                   const cylray_hit8 *hit, uint32_t mask,
-                                   cylray_points8 *pts);
+                                   const cylray_hit8 *hit, uint32_t mask, cylray_points8 *pts);
 CYLRAY_API void cylray_hit_points16(const cylray_prepared *cyl, const cylray_ray16 *ray,
                                     const cylray_hit16 *hit, uint32_t mask,
                                     cylray_points16 *pts);
@@ -391,9 +389,9 @@ CYLRAY_API void cylray_hit_points_normal4(const cylray_prepared *cyl, const cylr
 CYLRAY_API void cylray_hit_points_normal8(const cylray_prepared *cyl, const cylray_ray8 *ray,
                                           const cylray_hit8 *hit, uint32_t mask,
                                           cylray_points8 *pts);
-CYLRAY_API void cylray_hit_points_normal16(const cylray_prepared *cyl,
-                                           const cylray_ray16 *ray, const cylray_hit16 *hit,
-                                           uint32_t mask, cylray_points16 *pts);
+CYLRAY_API void cylray_hit_points_normal16(const cylray_prepared *cyl, const cylray_ray16 *ray,
+                                           const cylray_hit16 *hit, uint32_t mask,
+                                           cylray_points16 *pts);
 /* For each lane i set in `mask`: out->dx..dz[i] hold the new direction on entry; the
  * spawned origin goes to out->ox..oz[i] and tmin[i] is set to 0 (tmax is the caller's:
  * INFINITY, or the distance to a light). *out may be the packet that was traced. */
@@ -402,19 +400,18 @@ CYLRAY_API void cylray_spawn_rays4(const cylray_prepared *cyl, const cylray_poin
 CYLRAY_API void cylray_spawn_rays8(const cylray_prepared *cyl, const cylray_points8 *pts,
                                    const cylray_hit8 *hit, uint32_t mask, cylray_ray8 *out);
 CYLRAY_API void cylray_spawn_rays16(const cylray_prepared *cyl, const cylray_points16 *pts,
-                                    const cylray_hit16 *hit, uint32_t mask,
-                                    cylray_ray16 *out);
+                                    const cylray_hit16 *hit, uint32_t mask, cylray_ray16 *out);
 /* The same with the side of each lane's part chosen by the tracer: bit i of outward
  * set, the side its outward normal points to (as cylray_spawn_origin_side). */
 CYLRAY_API void cylray_spawn_rays_side4(const cylray_prepared *cyl, const cylray_points4 *pts,
-                                        const cylray_hit4 *hit, uint32_t mask,
-                                        uint32_t outward, cylray_ray4 *out);
+                                        const cylray_hit4 *hit, uint32_t mask, uint32_t outward,
+                                        cylray_ray4 *out);
 CYLRAY_API void cylray_spawn_rays_side8(const cylray_prepared *cyl, const cylray_points8 *pts,
-                                        const cylray_hit8 *hit, uint32_t mask,
-                                        uint32_t outward, cylray_ray8 *out);
-CYLRAY_API void cylray_spawn_rays_side16(const cylray_prepared *cyl,
-                                         const cylray_points16 *pts, const cylray_hit16 *hit,
-                                         uint32_t mask, uint32_t outward, cylray_ray16 *out);
+                                        const cylray_hit8 *hit, uint32_t mask, uint32_t outward,
+                                        cylray_ray8 *out);
+CYLRAY_API void cylray_spawn_rays_side16(const cylray_prepared *cyl, const cylray_points16 *pts,
+                                         const cylray_hit16 *hit, uint32_t mask,
+                                         uint32_t outward, cylray_ray16 *out);
 
 /* Streams: separate arrays (err may be NULL where no bound is read or written). */
 typedef struct cylray_points {
@@ -422,9 +419,9 @@ typedef struct cylray_points {
 } cylray_points;
 /* For each ray i whose hits->part[i] is not CYLRAY_MISS (the caller clears part before
  * the intersect call), its hit point into pts; returns how many were written. */
-CYLRAY_API size_t cylray_hit_points_stream(const cylray_prepared *cyl,
-                                           const cylray_rays *rays, const cylray_hits *hits,
-                                           const cylray_points *pts, size_t n);
+CYLRAY_API size_t cylray_hit_points_stream(const cylray_prepared *cyl, const cylray_rays *rays,
+                                           const cylray_hits *hits, const cylray_points *pts,
+                                           size_t n);
 /* The same from the normals in hits (nx, ny, nz required), as cylray_hit_point_normal. */
 CYLRAY_API size_t cylray_hit_points_normal_stream(const cylray_prepared *cyl,
                                                   const cylray_rays *rays,
@@ -464,30 +461,28 @@ CYLRAY_API void cylray_leaf_spawn_origin4(const cylray_leaf4 *leaf, const cylray
 CYLRAY_API void cylray_leaf_spawn_origin8(const cylray_leaf8 *leaf, const cylray_hit1 *hit,
                                           const float p[3], float err, const float w[3],
                                           float out[3]);
-CYLRAY_API void cylray_leaf_spawn_origin16(const cylray_leaf16 *leaf,
-                                           const cylray_hit1 *hit, const float p[3],
-                                           float err, const float w[3], float out[3]);
+CYLRAY_API void cylray_leaf_spawn_origin16(const cylray_leaf16 *leaf, const cylray_hit1 *hit,
+                                           const float p[3], float err, const float w[3],
+                                           float out[3]);
 /* With the side chosen by the tracer (as cylray_spawn_origin_side). */
-CYLRAY_API void cylray_leaf_spawn_origin_side4(const cylray_leaf4 *leaf,
-                                               const cylray_hit1 *hit, const float p[3],
-                                               float err, int outward, const float w[3],
-                                               float out[3]);
-CYLRAY_API void cylray_leaf_spawn_origin_side8(const cylray_leaf8 *leaf,
-                                               const cylray_hit1 *hit, const float p[3],
-                                               float err, int outward, const float w[3],
-                                               float out[3]);
+CYLRAY_API void cylray_leaf_spawn_origin_side4(const cylray_leaf4 *leaf, const cylray_hit1 *hit,
+                                               const float p[3], float err, int outward,
+                                               const float w[3], float out[3]);
+CYLRAY_API void cylray_leaf_spawn_origin_side8(const cylray_leaf8 *leaf, const cylray_hit1 *hit,
+                                               const float p[3], float err, int outward,
+                                               const float w[3], float out[3]);
 CYLRAY_API void cylray_leaf_spawn_origin_side16(const cylray_leaf16 *leaf,
                                                 const cylray_hit1 *hit, const float p[3],
                                                 float err, int outward, const float w[3],
                                                 float out[3]);
 /* Leaves' hits in bulk: hit i, returned by a query of leaf[i] with ray[i] (a leaf may
  * appear many times), into point i of pts (err may be NULL). */
-CYLRAY_API void cylray_leaf_hit_points4(const cylray_leaf4 *const *leaf,
-                                        const cylray_ray1 *ray, const cylray_hit1 *hit,
-                                        const cylray_points *pts, size_t n);
-CYLRAY_API void cylray_leaf_hit_points8(const cylray_leaf8 *const *leaf,
-                                        const cylray_ray1 *ray, const cylray_hit1 *hit,
-                                        const cylray_points *pts, size_t n);
+CYLRAY_API void cylray_leaf_hit_points4(const cylray_leaf4 *const *leaf, const cylray_ray1 *ray,
+                                        const cylray_hit1 *hit, const cylray_points *pts,
+                                        size_t n);
+CYLRAY_API void cylray_leaf_hit_points8(const cylray_leaf8 *const *leaf, const cylray_ray1 *ray,
+                                        const cylray_hit1 *hit, const cylray_points *pts,
+                                        size_t n);
 CYLRAY_API void cylray_leaf_hit_points16(const cylray_leaf16 *const *leaf,
                                          const cylray_ray1 *ray, const cylray_hit1 *hit,
                                          const cylray_points *pts, size_t n);
@@ -502,8 +497,7 @@ CYLRAY_API void cylray_leaf_spawn_origins8(const cylray_leaf8 *const *leaf,
                                            const cylray_points *dirs,
                                            const cylray_points *origins, size_t n);
 CYLRAY_API void cylray_leaf_spawn_origins16(const cylray_leaf16 *const *leaf,
-                                            const cylray_hit1 *hit,
-                                            const cylray_points *pts,
+                                            const cylray_hit1 *hit, const cylray_points *pts,
                                             const cylray_points *dirs,
                                             const cylray_points *origins, size_t n);
 /* The same from the hits' normals (the queries made with CYLRAY_NORMAL), as
@@ -515,29 +509,19 @@ CYLRAY_API void cylray_leaf_hit_points_normal8(const cylray_leaf8 *const *leaf,
                                                const cylray_ray1 *ray, const cylray_hit1 *hit,
                                                const cylray_points *pts, size_t n);
 CYLRAY_API void cylray_leaf_hit_points_normal16(const cylray_leaf16 *const *leaf,
-                                                const cylray_ray1 *ray,
-                                                const cylray_hit1 *hit,
+                                                const cylray_ray1 *ray, const cylray_hit1 *hit,
                                                 const cylray_points *pts, size_t n);
 /* With the side chosen by the tracer: outward[i] nonzero, the side hit i's part's
  * outward normal points to (as cylray_spawn_origin_side). */
-CYLRAY_API void cylray_leaf_spawn_origins_side4(const cylray_leaf4 *const *leaf,
-                                                const cylray_hit1 *hit,
-                                                const cylray_points *pts,
-                                                const uint8_t *outward,
-                                                const cylray_points *dirs,
-                                                const cylray_points *origins, size_t n);
-CYLRAY_API void cylray_leaf_spawn_origins_side8(const cylray_leaf8 *const *leaf,
-                                                const cylray_hit1 *hit,
-                                                const cylray_points *pts,
-                                                const uint8_t *outward,
-                                                const cylray_points *dirs,
-                                                const cylray_points *origins, size_t n);
-CYLRAY_API void cylray_leaf_spawn_origins_side16(const cylray_leaf16 *const *leaf,
-                                                 const cylray_hit1 *hit,
-                                                 const cylray_points *pts,
-                                                 const uint8_t *outward,
-                                                 const cylray_points *dirs,
-                                                 const cylray_points *origins, size_t n);
+CYLRAY_API void cylray_leaf_spawn_origins_side4(
+    const cylray_leaf4 *const *leaf, const cylray_hit1 *hit, const cylray_points *pts,
+    const uint8_t *outward, const cylray_points *dirs, const cylray_points *origins, size_t n);
+CYLRAY_API void cylray_leaf_spawn_origins_side8(
+    const cylray_leaf8 *const *leaf, const cylray_hit1 *hit, const cylray_points *pts,
+    const uint8_t *outward, const cylray_points *dirs, const cylray_points *origins, size_t n);
+CYLRAY_API void cylray_leaf_spawn_origins_side16(
+    const cylray_leaf16 *const *leaf, const cylray_hit1 *hit, const cylray_points *pts,
+    const uint8_t *outward, const cylray_points *dirs, const cylray_points *origins, size_t n);
 
 /* ---- per-ISA access ------------------------------------------------------- */
 
@@ -550,16 +534,16 @@ typedef enum cylray_isa {
     CYLRAY_ISA_COUNT
 } cylray_isa;
 
-typedef uint32_t (*cylray_intersect4_fn)(const cylray_prepared *, cylray_ray4 *,
-                                         cylray_hit4 *, uint32_t, unsigned);
-typedef uint32_t (*cylray_intersect8_fn)(const cylray_prepared *, cylray_ray8 *,
-                                         cylray_hit8 *, uint32_t, unsigned);
+typedef uint32_t (*cylray_intersect4_fn)(const cylray_prepared *, cylray_ray4 *, cylray_hit4 *,
+                                         uint32_t, unsigned);
+typedef uint32_t (*cylray_intersect8_fn)(const cylray_prepared *, cylray_ray8 *, cylray_hit8 *,
+                                         uint32_t, unsigned);
 typedef uint32_t (*cylray_intersect16_fn)(const cylray_prepared *, cylray_ray16 *,
                                           cylray_hit16 *, uint32_t, unsigned);
-typedef uint32_t (*cylray_occluded4_fn)(const cylray_prepared *, const cylray_ray4 *,
-                                        uint32_t, unsigned);
-typedef uint32_t (*cylray_occluded8_fn)(const cylray_prepared *, const cylray_ray8 *,
-                                        uint32_t, unsigned);
+typedef uint32_t (*cylray_occluded4_fn)(const cylray_prepared *, const cylray_ray4 *, uint32_t,
+                                        unsigned);
+typedef uint32_t (*cylray_occluded8_fn)(const cylray_prepared *, const cylray_ray8 *, uint32_t,
+                                        unsigned);
 typedef uint32_t (*cylray_occluded16_fn)(const cylray_prepared *, const cylray_ray16 *,
                                          uint32_t, unsigned);
 typedef size_t (*cylray_intersect_stream_fn)(const cylray_prepared *, const cylray_rays *,
@@ -570,12 +554,11 @@ typedef int (*cylray_leaf_intersect4_fn)(const cylray_leaf4 *, cylray_ray1 *, cy
                                          unsigned);
 typedef int (*cylray_leaf_intersect8_fn)(const cylray_leaf8 *, cylray_ray1 *, cylray_hit1 *,
                                          unsigned);
-typedef int (*cylray_leaf_intersect16_fn)(const cylray_leaf16 *, cylray_ray1 *,
-                                          cylray_hit1 *, unsigned);
+typedef int (*cylray_leaf_intersect16_fn)(const cylray_leaf16 *, cylray_ray1 *, cylray_hit1 *,
+                                          unsigned);
 typedef int (*cylray_leaf_occluded4_fn)(const cylray_leaf4 *, const cylray_ray1 *, unsigned);
 typedef int (*cylray_leaf_occluded8_fn)(const cylray_leaf8 *, const cylray_ray1 *, unsigned);
-typedef int (*cylray_leaf_occluded16_fn)(const cylray_leaf16 *, const cylray_ray1 *,
-                                         unsigned);
+typedef int (*cylray_leaf_occluded16_fn)(const cylray_leaf16 *, const cylray_ray1 *, unsigned);
 
 typedef struct cylray_kernels {
     cylray_isa isa;
@@ -606,8 +589,8 @@ typedef struct cylray_kernels {
                         uint32_t, cylray_ray4 *);
     void (*spawn_rays8)(const cylray_prepared *, const cylray_points8 *, const cylray_hit8 *,
                         uint32_t, cylray_ray8 *);
-    void (*spawn_rays16)(const cylray_prepared *, const cylray_points16 *,
-                         const cylray_hit16 *, uint32_t, cylray_ray16 *);
+    void (*spawn_rays16)(const cylray_prepared *, const cylray_points16 *, const cylray_hit16 *,
+                         uint32_t, cylray_ray16 *);
     size_t (*hit_points_stream)(const cylray_prepared *, const cylray_rays *,
                                 const cylray_hits *, const cylray_points *, size_t);
     void (*spawn_stream)(const cylray_prepared *, const cylray_points *, const int32_t *,
@@ -642,9 +625,9 @@ typedef struct cylray_kernels {
                               const cylray_hit16 *, uint32_t, uint32_t, cylray_ray16 *);
     size_t (*hit_points_normal_stream)(const cylray_prepared *, const cylray_rays *,
                                        const cylray_hits *, const cylray_points *, size_t);
-    void (*spawn_stream_side)(const cylray_prepared *, const cylray_points *,
-                              const int32_t *, const uint8_t *, const cylray_points *,
-                              const cylray_points *, size_t);
+    void (*spawn_stream_side)(const cylray_prepared *, const cylray_points *, const int32_t *,
+                              const uint8_t *, const cylray_points *, const cylray_points *,
+                              size_t);
     void (*leaf_hit_points_normal4)(const cylray_leaf4 *const *, const cylray_ray1 *,
                                     const cylray_hit1 *, const cylray_points *, size_t);
     void (*leaf_hit_points_normal8)(const cylray_leaf8 *const *, const cylray_ray1 *,

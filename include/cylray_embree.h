@@ -89,10 +89,10 @@ typedef struct cylray_embree_desc {
     size_t radius_stride;
     const unsigned *caps;
     size_t caps_stride;
-    unsigned options;               /* CYLRAY_EMBREE_* */
-    unsigned flags;                 /* kernel flags: CYLRAY_CULL_BACK, CYLRAY_FAST,
+    unsigned options;              /* CYLRAY_EMBREE_* */
+    unsigned flags;                /* kernel flags: CYLRAY_CULL_BACK, CYLRAY_FAST,
                                      * CYLRAY_REFINE (normals are always computed) */
-    const cylray_kernels *kernels;  /* the path to call; NULL: cylray_kernels_best() */
+    const cylray_kernels *kernels; /* the path to call; NULL: cylray_kernels_best() */
 } cylray_embree_desc;
 
 /* A new RTCGeometry on device holding desc's cylinders, not yet committed: set what

@@ -113,12 +113,12 @@ static cylray_status leaf_bounds(const float *geom, const uint32_t *meta, unsign
     return CYLRAY_OK;
 }
 
-#define LEAF_BOUNDS_(m)                                                                  \
-    cylray_status cylray_leaf_bounds##m(const cylray_leaf##m *leaf, float lo[3], float hi[3]) \
-    {                                                                                    \
-        if (!leaf)                                                                       \
-            return CYLRAY_EINVAL;                                                        \
-        return leaf_bounds(&leaf->geom_[0][0], leaf->meta_, m, lo, hi);                  \
+#define LEAF_BOUNDS_(m)                                                                        \
+    cylray_status cylray_leaf_bounds##m(const cylray_leaf##m *leaf, float lo[3], float hi[3])  \
+    {                                                                                          \
+        if (!leaf)                                                                             \
+            return CYLRAY_EINVAL;                                                              \
+        return leaf_bounds(&leaf->geom_[0][0], leaf->meta_, m, lo, hi);                        \
     }
 LEAF_BOUNDS_(4)
 LEAF_BOUNDS_(8)
@@ -162,8 +162,7 @@ static size_t split_count(const cylray_prepared *cyl)
     return want >= CYLRAY_SPLIT_MAX ? CYLRAY_SPLIT_MAX : (size_t)want;
 }
 
-size_t cylray_split_boxes(const cylray_prepared *cyl, size_t k, float (*lo)[3],
-                          float (*hi)[3])
+size_t cylray_split_boxes(const cylray_prepared *cyl, size_t k, float (*lo)[3], float (*hi)[3])
 {
     if (!cylray_prepared_ok_(cyl) || cyl->kind == CYLRAY_KIND_INFINITE)
         return 0;

@@ -51,7 +51,8 @@ int cylray_cpu_stores_by_lane_(void)
     if (!__get_cpuid(0, &a, &b, &c, &d))
         return 0;
     const int amd = b == 0x68747541u && d == 0x69746e65u && c == 0x444d4163u; /* AuthenticAMD */
-    const int hygon = b == 0x6f677948u && d == 0x6e65476eu && c == 0x656e6975u; /* HygonGenuine */
+    const int hygon =
+        b == 0x6f677948u && d == 0x6e65476eu && c == 0x656e6975u; /* HygonGenuine */
     if ((!amd && !hygon) || !__get_cpuid(1, &a, &b, &c, &d))
         return 0;
     const unsigned base = (a >> 8) & 0xfu;

@@ -39,7 +39,7 @@ static const cylray_kernels *const built[CYLRAY_ISA_COUNT] = {
 };
 
 static const char *const names[CYLRAY_ISA_COUNT] = {"scalar", "sse41", "avx2", "avx512",
-                                                      "neon"};
+                                                    "neon"};
 
 const char *cylray_isa_name(cylray_isa isa)
 {
@@ -151,8 +151,8 @@ uint32_t cylray_occluded8(const cylray_prepared *cyl, const cylray_ray8 *ray, ui
 {
     return cylray_kernels_best()->occluded8(cyl, ray, active, flags);
 }
-uint32_t cylray_occluded16(const cylray_prepared *cyl, const cylray_ray16 *ray,
-                           uint32_t active, unsigned flags)
+uint32_t cylray_occluded16(const cylray_prepared *cyl, const cylray_ray16 *ray, uint32_t active,
+                           unsigned flags)
 {
     return cylray_kernels_best()->occluded16(cyl, ray, active, flags);
 }
@@ -167,16 +167,16 @@ size_t cylray_occluded_stream(const cylray_prepared *cyl, const cylray_rays *ray
     return cylray_kernels_best()->occluded_stream(cyl, rays, occluded, n, flags);
 }
 
-#define LEAF_ENTRY_(m)                                                                  \
-    int cylray_leaf_intersect##m(const cylray_leaf##m *leaf, cylray_ray1 *ray,            \
-                                 cylray_hit1 *hit, unsigned flags)                      \
-    {                                                                                   \
-        return cylray_kernels_best()->leaf_intersect##m(leaf, ray, hit, flags);          \
-    }                                                                                   \
-    int cylray_leaf_occluded##m(const cylray_leaf##m *leaf, const cylray_ray1 *ray,       \
-                                unsigned flags)                                         \
-    {                                                                                   \
-        return cylray_kernels_best()->leaf_occluded##m(leaf, ray, flags);                \
+#define LEAF_ENTRY_(m)                                                                         \
+    int cylray_leaf_intersect##m(const cylray_leaf##m *leaf, cylray_ray1 *ray,                 \
+                                 cylray_hit1 *hit, unsigned flags)                             \
+    {                                                                                          \
+        return cylray_kernels_best()->leaf_intersect##m(leaf, ray, hit, flags);                \
+    }                                                                                          \
+    int cylray_leaf_occluded##m(const cylray_leaf##m *leaf, const cylray_ray1 *ray,            \
+                                unsigned flags)                                                \
+    {                                                                                          \
+        return cylray_kernels_best()->leaf_occluded##m(leaf, ray, flags);                      \
     }
 LEAF_ENTRY_(4)
 LEAF_ENTRY_(8)

@@ -21,13 +21,19 @@ static cylray_status leaf_prepare(void *out, size_t m, size_t bytes, const cylra
         if (cylray_prepare(&p, &cyl[k]) != CYLRAY_OK)
             return CYLRAY_EINVAL;
         const float f[CYLRAY_LF_COUNT] = {
-            [CYLRAY_LF_CX] = p.c[0],        [CYLRAY_LF_CY] = p.c[1],
-            [CYLRAY_LF_CZ] = p.c[2],        [CYLRAY_LF_VX] = p.v[0],
-            [CYLRAY_LF_VY] = p.v[1],        [CYLRAY_LF_VZ] = p.v[2],
-            [CYLRAY_LF_R] = p.radius,       [CYLRAY_LF_H] = p.half_height,
-            [CYLRAY_LF_RRVV] = p.rr_vv,     [CYLRAY_LF_HV] = p.h_v,
+            [CYLRAY_LF_CX] = p.c[0],
+            [CYLRAY_LF_CY] = p.c[1],
+            [CYLRAY_LF_CZ] = p.c[2],
+            [CYLRAY_LF_VX] = p.v[0],
+            [CYLRAY_LF_VY] = p.v[1],
+            [CYLRAY_LF_VZ] = p.v[2],
+            [CYLRAY_LF_R] = p.radius,
+            [CYLRAY_LF_H] = p.half_height,
+            [CYLRAY_LF_RRVV] = p.rr_vv,
+            [CYLRAY_LF_HV] = p.h_v,
             [CYLRAY_LF_SQS] = p.sqrt_vv / p.g_s, /* an exact power-of-two scaling */
-            [CYLRAY_LF_GS] = p.g_s,         [CYLRAY_LF_NSCALE] = p.nscale,
+            [CYLRAY_LF_GS] = p.g_s,
+            [CYLRAY_LF_NSCALE] = p.nscale,
             [CYLRAY_LF_BOUND2] = p.bound2,
         };
         for (int j = 0; j < CYLRAY_LF_COUNT; j++)
@@ -48,13 +54,13 @@ static cylray_status leaf_prepare(void *out, size_t m, size_t bytes, const cylra
     return CYLRAY_OK;
 }
 
-#define LEAF_PREPARE_(m)                                                                \
-    _Static_assert(sizeof(cylray_leaf##m) == (CYLRAY_LF_COUNT + 2) * m * 4,              \
-                   "a leaf is its field arrays, 64 bytes a lane");                     \
-    cylray_status cylray_leaf_prepare##m(cylray_leaf##m *out, const cylray_cylinder *cyl, \
-                                         const uint32_t *ids, size_t n)                \
-    {                                                                                   \
-        return leaf_prepare(out, m, sizeof *out, cyl, ids, n);                          \
+#define LEAF_PREPARE_(m)                                                                       \
+    _Static_assert(sizeof(cylray_leaf##m) == (CYLRAY_LF_COUNT + 2) * m * 4,                    \
+                   "a leaf is its field arrays, 64 bytes a lane");                             \
+    cylray_status cylray_leaf_prepare##m(cylray_leaf##m *out, const cylray_cylinder *cyl,      \
+                                         const uint32_t *ids, size_t n)                        \
+    {                                                                                          \
+        return leaf_prepare(out, m, sizeof *out, cyl, ids, n);                                 \
     }
 LEAF_PREPARE_(4)
 LEAF_PREPARE_(8)

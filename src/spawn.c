@@ -79,8 +79,8 @@
 
 /* ---- the scalar entry points ------------------------------------------------ */
 
-void cylray_hit_point(const cylray_prepared *cyl, const float o[3], const float d[3],
-                      float t, int32_t part, float p[3], float *err)
+void cylray_hit_point(const cylray_prepared *cyl, const float o[3], const float d[3], float t,
+                      int32_t part, float p[3], float *err)
 {
     DFN(geo) g;
     DFN(geo_prepared)(&g, cyl);
@@ -95,8 +95,8 @@ void cylray_hit_point_normal(const cylray_prepared *cyl, const float o[3], const
     DFN(hit_point1)(&g, o, d, t, part, n, p, err);
 }
 
-void cylray_spawn_origin(const cylray_prepared *cyl, const float p[3], float err,
-                         int32_t part, const float w[3], float out[3])
+void cylray_spawn_origin(const cylray_prepared *cyl, const float p[3], float err, int32_t part,
+                         const float w[3], float out[3])
 {
     DFN(geo) g;
     DFN(geo_prepared)(&g, cyl);
@@ -112,71 +112,65 @@ void cylray_spawn_origin_side(const cylray_prepared *cyl, const float p[3], floa
 }
 
 /* Leaves: the lane the hit names; in bulk, the path in use. */
-#define CYLRAY_SPAWN_LEAF_(m)                                                            \
-    void cylray_leaf_hit_point##m(const cylray_leaf##m *leaf, const cylray_ray1 *ray,    \
-                                  const cylray_hit1 *hit, float p[3], float *err)        \
-    {                                                                                    \
-        const float *geom = leaf->geom_[0];                                              \
-        DFN(geo) g;                                                                      \
-        DFN(leaf_geo)(&g, &geom, hit, m, 1);                                             \
-        DFN(hit_point1)(&g, ray->o, ray->d, hit->t, hit->part, NULL, p, err);            \
-    }                                                                                    \
-    void cylray_leaf_hit_point_normal##m(const cylray_leaf##m *leaf,                     \
-                                         const cylray_ray1 *ray, const cylray_hit1 *hit, \
-                                         float p[3], float *err)                         \
-    {                                                                                    \
-        const float *geom = leaf->geom_[0];                                              \
-        DFN(geo) g;                                                                      \
-        DFN(leaf_geo)(&g, &geom, hit, m, 1);                                             \
-        DFN(hit_point1)(&g, ray->o, ray->d, hit->t, hit->part, hit->n, p, err);          \
-    }                                                                                    \
-    void cylray_leaf_spawn_origin##m(const cylray_leaf##m *leaf, const cylray_hit1 *hit, \
-                                     const float p[3], float err, const float w[3],      \
-                                     float out[3])                                       \
-    {                                                                                    \
-        const float *geom = leaf->geom_[0];                                              \
-        DFN(geo) g;                                                                      \
-        DFN(leaf_geo)(&g, &geom, hit, m, 1);                                             \
-        DFN(spawn1)(&g, p, err, hit->part, 0, w, out);                                   \
-    }                                                                                    \
-    void cylray_leaf_spawn_origin_side##m(const cylray_leaf##m *leaf,                    \
-                                          const cylray_hit1 *hit, const float p[3],      \
-                                          float err, int outward, const float w[3],      \
-                                          float out[3])                                  \
-    {                                                                                    \
-        const float *geom = leaf->geom_[0];                                              \
-        DFN(geo) g;                                                                      \
-        DFN(leaf_geo)(&g, &geom, hit, m, 1);                                             \
-        DFN(spawn1)(&g, p, err, hit->part, outward ? 1 : -1, w, out);                    \
-    }                                                                                    \
-    void cylray_leaf_hit_points##m(const cylray_leaf##m *const *leaf,                    \
-                                   const cylray_ray1 *ray, const cylray_hit1 *hit,       \
-                                   const cylray_points *pts, size_t n)                   \
-    {                                                                                    \
-        cylray_kernels_best()->leaf_hit_points##m(leaf, ray, hit, pts, n);               \
-    }                                                                                    \
-    void cylray_leaf_hit_points_normal##m(const cylray_leaf##m *const *leaf,             \
-                                          const cylray_ray1 *ray, const cylray_hit1 *hit, \
-                                          const cylray_points *pts, size_t n)            \
-    {                                                                                    \
-        cylray_kernels_best()->leaf_hit_points_normal##m(leaf, ray, hit, pts, n);        \
-    }                                                                                    \
-    void cylray_leaf_spawn_origins##m(const cylray_leaf##m *const *leaf,                 \
-                                      const cylray_hit1 *hit, const cylray_points *pts,  \
-                                      const cylray_points *dirs,                         \
-                                      const cylray_points *origins, size_t n)            \
-    {                                                                                    \
-        cylray_kernels_best()->leaf_spawn_origins##m(leaf, hit, pts, dirs, origins, n);  \
-    }                                                                                    \
-    void cylray_leaf_spawn_origins_side##m(const cylray_leaf##m *const *leaf,            \
-                                           const cylray_hit1 *hit,                       \
-                                           const cylray_points *pts,                     \
-                                           const uint8_t *outward,                       \
-                                           const cylray_points *dirs,                    \
-                                           const cylray_points *origins, size_t n)       \
-    {                                                                                    \
-        cylray_kernels_best()->leaf_spawn_origins_side##m(leaf, hit, pts, outward, dirs, \
-                                                          origins, n);                   \
+#define CYLRAY_SPAWN_LEAF_(m)                                                                  \
+    void cylray_leaf_hit_point##m(const cylray_leaf##m *leaf, const cylray_ray1 *ray,          \
+                                  const cylray_hit1 *hit, float p[3], float *err)              \
+    {                                                                                          \
+        const float *geom = leaf->geom_[0];                                                    \
+        DFN(geo) g;                                                                            \
+        DFN(leaf_geo)(&g, &geom, hit, m, 1);                                                   \
+        DFN(hit_point1)(&g, ray->o, ray->d, hit->t, hit->part, NULL, p, err);                  \
+    }                                                                                          \
+    void cylray_leaf_hit_point_normal##m(const cylray_leaf##m *leaf, const cylray_ray1 *ray,   \
+                                         const cylray_hit1 *hit, float p[3], float *err)       \
+    {                                                                                          \
+        const float *geom = leaf->geom_[0];                                                    \
+        DFN(geo) g;                                                                            \
+        DFN(leaf_geo)(&g, &geom, hit, m, 1);                                                   \
+        DFN(hit_point1)(&g, ray->o, ray->d, hit->t, hit->part, hit->n, p, err);                \
+    }                                                                                          \
+    void cylray_leaf_spawn_origin##m(const cylray_leaf##m *leaf, const cylray_hit1 *hit,       \
+                                     const float p[3], float err, const float w[3],            \
+                                     float out[3])                                             \
+    {                                                                                          \
+        const float *geom = leaf->geom_[0];                                                    \
+        DFN(geo) g;                                                                            \
+        DFN(leaf_geo)(&g, &geom, hit, m, 1);                                                   \
+        DFN(spawn1)(&g, p, err, hit->part, 0, w, out);                                         \
+    }                                                                                          \
+    void cylray_leaf_spawn_origin_side##m(const cylray_leaf##m *leaf, const cylray_hit1 *hit,  \
+                                          const float p[3], float err, int outward,            \
+                                          const float w[3], float out[3])                      \
+    {                                                                                          \
+        const float *geom = leaf->geom_[0];                                                    \
+        DFN(geo) g;                                                                            \
+        DFN(leaf_geo)(&g, &geom, hit, m, 1);                                                   \
+        DFN(spawn1)(&g, p, err, hit->part, outward ? 1 : -1, w, out);                          \
+    }                                                                                          \
+    void cylray_leaf_hit_points##m(const cylray_leaf##m *const *leaf, const cylray_ray1 *ray,  \
+                                   const cylray_hit1 *hit, const cylray_points *pts, size_t n) \
+    {                                                                                          \
+        cylray_kernels_best()->leaf_hit_points##m(leaf, ray, hit, pts, n);                     \
+    }                                                                                          \
+    void cylray_leaf_hit_points_normal##m(const cylray_leaf##m *const *leaf,                   \
+                                          const cylray_ray1 *ray, const cylray_hit1 *hit,      \
+                                          const cylray_points *pts, size_t n)                  \
+    {                                                                                          \
+        cylray_kernels_best()->leaf_hit_points_normal##m(leaf, ray, hit, pts, n);              \
+    }                                                                                          \
+    void cylray_leaf_spawn_origins##m(                                                         \
+        const cylray_leaf##m *const *leaf, const cylray_hit1 *hit, const cylray_points *pts,   \
+        const cylray_points *dirs, const cylray_points *origins, size_t n)                     \
+    {                                                                                          \
+        cylray_kernels_best()->leaf_spawn_origins##m(leaf, hit, pts, dirs, origins, n);        \
+    }                                                                                          \
+    void cylray_leaf_spawn_origins_side##m(const cylray_leaf##m *const *leaf,                  \
+                                           const cylray_hit1 *hit, const cylray_points *pts,   \
+                                           const uint8_t *outward, const cylray_points *dirs,  \
+                                           const cylray_points *origins, size_t n)             \
+    {                                                                                          \
+        cylray_kernels_best()->leaf_spawn_origins_side##m(leaf, hit, pts, outward, dirs,       \
+                                                          origins, n);                         \
     }
 CYLRAY_SPAWN_LEAF_(4)
 CYLRAY_SPAWN_LEAF_(8)
@@ -185,30 +179,28 @@ CYLRAY_SPAWN_LEAF_(16)
 
 /* ---- the batched forms: the path in use ------------------------------------- */
 
-#define CYLRAY_SPAWN_PACKET_(n)                                                          \
-    void cylray_hit_points##n(const cylray_prepared *cyl, const cylray_ray##n *ray,      \
-                              const cylray_hit##n *hit, uint32_t mask,                   \
-                              cylray_points##n *pts)                                     \
-    {                                                                                    \
-        cylray_kernels_best()->hit_points##n(cyl, ray, hit, mask, pts);                  \
-    }                                                                                    \
-    void cylray_hit_points_normal##n(const cylray_prepared *cyl, const cylray_ray##n *ray, \
-                                     const cylray_hit##n *hit, uint32_t mask,            \
-                                     cylray_points##n *pts)                              \
-    {                                                                                    \
-        cylray_kernels_best()->hit_points_normal##n(cyl, ray, hit, mask, pts);           \
-    }                                                                                    \
-    void cylray_spawn_rays##n(const cylray_prepared *cyl, const cylray_points##n *pts,   \
-                              const cylray_hit##n *hit, uint32_t mask,                   \
-                              cylray_ray##n *out)                                        \
-    {                                                                                    \
-        cylray_kernels_best()->spawn_rays##n(cyl, pts, hit, mask, out);                  \
-    }                                                                                    \
-    void cylray_spawn_rays_side##n(const cylray_prepared *cyl, const cylray_points##n *pts, \
-                                   const cylray_hit##n *hit, uint32_t mask,              \
-                                   uint32_t outward, cylray_ray##n *out)                 \
-    {                                                                                    \
-        cylray_kernels_best()->spawn_rays_side##n(cyl, pts, hit, mask, outward, out);    \
+#define CYLRAY_SPAWN_PACKET_(n)                                                                \
+    void cylray_hit_points##n(const cylray_prepared *cyl, const cylray_ray##n *ray,            \
+                              const cylray_hit##n *hit, uint32_t mask, cylray_points##n *pts)  \
+    {                                                                                          \
+        cylray_kernels_best()->hit_points##n(cyl, ray, hit, mask, pts);                        \
+    }                                                                                          \
+    void cylray_hit_points_normal##n(const cylray_prepared *cyl, const cylray_ray##n *ray,     \
+                                     const cylray_hit##n *hit, uint32_t mask,                  \
+                                     cylray_points##n *pts)                                    \
+    {                                                                                          \
+        cylray_kernels_best()->hit_points_normal##n(cyl, ray, hit, mask, pts);                 \
+    }                                                                                          \
+    void cylray_spawn_rays##n(const cylray_prepared *cyl, const cylray_points##n *pts,         \
+                              const cylray_hit##n *hit, uint32_t mask, cylray_ray##n *out)     \
+    {                                                                                          \
+        cylray_kernels_best()->spawn_rays##n(cyl, pts, hit, mask, out);                        \
+    }                                                                                          \
+    void cylray_spawn_rays_side##n(const cylray_prepared *cyl, const cylray_points##n *pts,    \
+                                   const cylray_hit##n *hit, uint32_t mask, uint32_t outward,  \
+                                   cylray_ray##n *out)                                         \
+    {                                                                                          \
+        cylray_kernels_best()->spawn_rays_side##n(cyl, pts, hit, mask, outward, out);          \
     }
 CYLRAY_SPAWN_PACKET_(4)
 CYLRAY_SPAWN_PACKET_(8)
@@ -237,8 +229,7 @@ void cylray_spawn_stream(const cylray_prepared *cyl, const cylray_points *pts,
 
 void cylray_spawn_stream_side(const cylray_prepared *cyl, const cylray_points *pts,
                               const int32_t *part, const uint8_t *outward,
-                              const cylray_points *dirs, const cylray_points *origins,
-                              size_t n)
+                              const cylray_points *dirs, const cylray_points *origins, size_t n)
 {
     cylray_kernels_best()->spawn_stream_side(cyl, pts, part, outward, dirs, origins, n);
 }

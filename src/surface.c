@@ -126,13 +126,12 @@ static void leaf_surface(const float *geom, const uint32_t *meta, unsigned m,
     surface_at(&s, p, hit->part, uv, dpdu, dpdv);
 }
 
-#define LEAF_SURFACE_(m)                                                                \
-    void cylray_leaf_surface##m(const cylray_leaf##m *leaf, const cylray_hit1 *hit,     \
-                                const float p[3], float uv[2], float dpdu[3],           \
-                                float dpdv[3])                                          \
-    {                                                                                   \
-        if (leaf)                                                                       \
-            leaf_surface(&leaf->geom_[0][0], leaf->meta_, m, hit, p, uv, dpdu, dpdv);   \
+#define LEAF_SURFACE_(m)                                                                       \
+    void cylray_leaf_surface##m(const cylray_leaf##m *leaf, const cylray_hit1 *hit,            \
+                                const float p[3], float uv[2], float dpdu[3], float dpdv[3])   \
+    {                                                                                          \
+        if (leaf)                                                                              \
+            leaf_surface(&leaf->geom_[0][0], leaf->meta_, m, hit, p, uv, dpdu, dpdv);          \
     }
 LEAF_SURFACE_(4)
 LEAF_SURFACE_(8)

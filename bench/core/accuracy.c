@@ -69,7 +69,8 @@ static void ref_closest(const workload *w, size_t i, ref_answer *out)
     out->part = 0;
     for (int c = c0; c < c1; c++) {
         cylref_hit h;
-        if (cylref_intersect(&w->cyl[c], o, d, tmin, tmax, 0, &h) == 1 && (!out->hit || h.t < out->t)) {
+        if (cylref_intersect(&w->cyl[c], o, d, tmin, tmax, 0, &h) == 1 &&
+            (!out->hit || h.t < out->t)) {
             out->hit = 1;
             out->t = h.t;
             out->part = h.part;
@@ -223,4 +224,3 @@ done:
     free(ulps);
     free(xs);
 }
-

@@ -37,22 +37,22 @@ static inline int bench_is_textbook(int isa)
 }
 
 typedef struct options {
-    unsigned isa_mask;      /* bit per cylray_isa and textbook build */
-    unsigned width_mask;    /* bit per BW_* */
-    const char *scenarios;  /* comma-separated names or groups, NULL for all */
+    unsigned isa_mask;     /* bit per cylray_isa and textbook build */
+    unsigned width_mask;   /* bit per BW_* */
+    const char *scenarios; /* comma-separated names or groups, NULL for all */
     int quick;
-    int flush_subnormals;   /* --flush-subnormals: DAZ/FTZ set for the whole run */
+    int flush_subnormals; /* --flush-subnormals: DAZ/FTZ set for the whole run */
     const char *out_dir;
-    int reps;               /* timed samples per configuration */
-    double sample_ns;       /* length of one sample */
-    double warm_ns;         /* warm-up before the first configuration of an ISA */
-    size_t big_rays;        /* rays in the larger-than-cache stream */
+    int reps;         /* timed samples per configuration */
+    double sample_ns; /* length of one sample */
+    double warm_ns;   /* warm-up before the first configuration of an ISA */
+    size_t big_rays;  /* rays in the larger-than-cache stream */
     int scene_w, scene_h;
 } options;
 
 /* The exact reference's answer for one ray (closest hit over the workload's cylinders). */
 typedef struct ref_answer {
-    double t;        /* exact t; meaningless on a miss */
+    double t; /* exact t; meaningless on a miss */
     int hit, part;
 } ref_answer;
 
@@ -60,51 +60,51 @@ typedef struct ref_answer {
  * as one pass over arrays far larger than the caches). */
 typedef struct workload {
     const char *name, *group, *what;
-    raysoa rays;                /* master copy; tmax here is never modified */
-    size_t batch;               /* rays per timed batch; rays.n for a big stream */
+    raysoa rays;  /* master copy; tmax here is never modified */
+    size_t batch; /* rays per timed batch; rays.n for a big stream */
     int ncyl;
-    int grouped;                /* 0: every ray meets every cylinder; k: ray i meets only
+    int grouped;           /* 0: every ray meets every cylinder; k: ray i meets only
                                    cylinder i / k (the stress sets: 16 rays per cylinder) */
-    cylray_cylinder *cyl;       /* ncyl */
-    cylray_prepared *prep;      /* ncyl, 64-byte aligned */
-    tb_cylinder *tb;            /* ncyl, for the textbook peer */
-    unsigned ops;               /* bit per OP_* measured */
-    unsigned widths;            /* bit per BW_* measured (before the --width filter) */
-    int textbook;               /* also time and check the textbook peer */
-    int big;                    /* stream over arrays far larger than the caches */
-    uint32_t lanes;             /* the packets' active lanes (bit per lane; all: ~0u);
+    cylray_cylinder *cyl;  /* ncyl */
+    cylray_prepared *prep; /* ncyl, 64-byte aligned */
+    tb_cylinder *tb;       /* ncyl, for the textbook peer */
+    unsigned ops;          /* bit per OP_* measured */
+    unsigned widths;       /* bit per BW_* measured (before the --width filter) */
+    int textbook;          /* also time and check the textbook peer */
+    int big;               /* stream over arrays far larger than the caches */
+    uint32_t lanes;        /* the packets' active lanes (bit per lane; all: ~0u);
                                    the rays of the others hold a fill, never looked at */
-    ref_answer *ref;            /* per ray, or NULL without a reference */
-    size_t ref_stride;          /* big streams check every ref_stride-th ray */
-    void **bands;               /* per ray, computed when a disagreement needs judging */
+    ref_answer *ref;       /* per ray, or NULL without a reference */
+    size_t ref_stride;     /* big streams check every ref_stride-th ray */
+    void **bands;          /* per ray, computed when a disagreement needs judging */
 } workload;
 
 typedef struct result {
     char scenario[24], group[16], isa[16], op[12];
     int isa_id, width_id, op_id;
-    size_t rays_timed;          /* rays per pass */
+    size_t rays_timed; /* rays per pass */
     int ncyl;
-    stat5 ns;                   /* ns per ray and cylinder: median, min, max, quartiles */
-    double ticks;               /* median TSC ticks per ray and cylinder */
-    double mrays;               /* 1e3 / median ns */
-    double speedup;             /* scalar's median / this median, same scenario, width, op */
-    double hit_frac;            /* share of rays with a hit (or occluded) */
-    int reps;                   /* samples the median is over */
-    int samples, clean;         /* samples taken; of those, not interrupted */
-    long passes_per_sample;     /* set by the first visit's warm-up */
+    stat5 ns;               /* ns per ray and cylinder: median, min, max, quartiles */
+    double ticks;           /* median TSC ticks per ray and cylinder */
+    double mrays;           /* 1e3 / median ns */
+    double speedup;         /* scalar's median / this median, same scenario, width, op */
+    double hit_frac;        /* share of rays with a hit (or occluded) */
+    int reps;               /* samples the median is over */
+    int samples, clean;     /* samples taken; of those, not interrupted */
+    long passes_per_sample; /* set by the first visit's warm-up */
     double s_wall[BENCH_MAXSAMP], s_cpu[BENCH_MAXSAMP], s_tick[BENCH_MAXSAMP];
     unsigned char s_clean[BENCH_MAXSAMP];
-    int cpu_timed;              /* too few clean samples (a busy machine): the figures
+    int cpu_timed; /* too few clean samples (a busy machine): the figures
                                    come from the thread's CPU time instead of wall time */
     /* error side (have_err == 0: no reference in this build) */
     int have_err;
     size_t n_cmp, n_hits_ref;
     double ulp_med, ulp_p99, ulp_max;
-    double xs_p99, xs_max;      /* ulps outside the reference's tolerance band (rays within
+    double xs_p99, xs_max;        /* ulps outside the reference's tolerance band (rays within
                                    1 ulp of exact count as 0) */
-    size_t extra_hits, lost_hits;  /* kernel hit where the exact answer misses; reverse */
-    size_t part_diff;              /* both hit, different part (side, cap, back face) */
-    size_t unexcused;              /* of those, outside the reference's tolerance band */
+    size_t extra_hits, lost_hits; /* kernel hit where the exact answer misses; reverse */
+    size_t part_diff;             /* both hit, different part (side, cap, back face) */
+    size_t unexcused;             /* of those, outside the reference's tolerance band */
     /* big streams */
     double gbytes_s, memcpy_gbytes_s;
 } result;
@@ -134,7 +134,7 @@ double bench_memcpy_gbs(const workload *w, const options *opt);
 
 /* accuracy.c */
 int accuracy_available(void);
-void accuracy_reference(workload *w);  /* fills w->ref (or leaves it NULL) */
+void accuracy_reference(workload *w); /* fills w->ref (or leaves it NULL) */
 void accuracy_release(workload *w);
 /* Runs the configuration once more on the same rays and compares with w->ref. */
 void accuracy_measure(const workload *w, int isa, int width_id, int op, result *r);

@@ -191,8 +191,8 @@ static int for_configs(workload *w, const options *o, config_fn fn, void *ctx)
 typedef struct run_ctx {
     const options *opt;
     result_list *results;
-    size_t next;          /* the result the next configuration samples into */
-    int want;             /* clean samples per configuration in this round */
+    size_t next; /* the result the next configuration samples into */
+    int want;    /* clean samples per configuration in this round */
     int done, total, tty;
     int warmed[BENCH_NISA];
     double memcpy_gbs, t_start;
@@ -336,7 +336,8 @@ int main(int argc, char **argv)
         memset(&w, 0, sizeof w);
         if (!strcmp(workloads_group(i), "stream")) {
             /* the configurations are counted now, the rays drawn when their turn comes */
-            if (workloads_build(i, &w, &(options){.big_rays = 16, .quick = 1}) == 0 && nbig < 8) {
+            if (workloads_build(i, &w, &(options){.big_rays = 16, .quick = 1}) == 0 &&
+                nbig < 8) {
                 big_idx[nbig++] = i;
                 ctx.total += for_configs(&w, &opt, NULL, NULL);
             }

@@ -18,8 +18,7 @@
 const int bench_width_lanes[BW_COUNT] = {4, 8, 16, 0};
 const char *const bench_width_name[BW_COUNT] = {"4", "8", "16", "stream"};
 const char *const bench_op_name[OP_COUNT] = {"t", "normal", "occluded", "refine", "fast"};
-const unsigned bench_op_flags[OP_COUNT] = {0u, CYLRAY_NORMAL, 0u,
-                                           CYLRAY_NORMAL | CYLRAY_REFINE,
+const unsigned bench_op_flags[OP_COUNT] = {0u, CYLRAY_NORMAL, 0u, CYLRAY_NORMAL | CYLRAY_REFINE,
                                            CYLRAY_NORMAL | CYLRAY_FAST};
 
 static volatile uint64_t sink; /* where every pass's hit count ends up */
@@ -53,49 +52,49 @@ static unsigned popc(uint32_t m)
 /* One pass over batch b for packets of N lanes: every packet against every cylinder,
  * keeping the closest hit through tmax (occlusion stops once all lanes are blocked);
  * or, for grouped sets, each packet against its own group's cylinder. */
-#define PASS_PACKET(N)                                                                   \
-    static uint64_t pass_##N(const runner *x, size_t b)                                  \
-    {                                                                                    \
-        cylray_ray##N *pk = (cylray_ray##N *)x->pk + b * x->ppb;                         \
-        cylray_hit##N *h = (cylray_hit##N *)x->hit + b * x->ppb;                         \
-        const float *t0 = x->w->rays.tmax + b * x->w->batch;                             \
-        const cylray_prepared *P = x->w->prep;                                           \
-        const int nc = x->w->ncyl;                                                       \
-        const size_t grp = (size_t)x->w->grouped, first = b * x->w->batch;               \
-        const unsigned fl = x->flags;                                                    \
-        const uint32_t full = (uint32_t)((1ull << N) - 1u) & x->w->lanes;                \
-        uint64_t acc = 0;                                                                \
-        if (x->op == OP_OCC) {                                                           \
-            const cylray_occluded##N##_fn f = x->k->occluded##N;                         \
-            if (grp) {                                                                   \
-                for (size_t p = 0; p < x->ppb; p++)                                      \
-                    acc += popc(f(P + (first + p * N) / grp, pk + p, full, fl));         \
-                return acc;                                                              \
-            }                                                                            \
-            for (size_t p = 0; p < x->ppb; p++) {                                        \
-                uint32_t m = 0;                                                          \
-                for (int c = 0; c < nc && m != full; c++)                                \
-                    m |= f(P + c, pk + p, full & ~m, fl);                                \
-                acc += popc(m);                                                          \
-            }                                                                            \
-            return acc;                                                                  \
-        }                                                                                \
-        const cylray_intersect##N##_fn f = x->k->intersect##N;                           \
-        if (grp) {                                                                       \
-            for (size_t p = 0; p < x->ppb; p++) {                                        \
-                memcpy(pk[p].tmax, t0 + p * N, sizeof pk[p].tmax);                       \
-                acc += popc(f(P + (first + p * N) / grp, pk + p, h + p, full, fl));      \
-            }                                                                            \
-            return acc;                                                                  \
-        }                                                                                \
-        for (size_t p = 0; p < x->ppb; p++) {                                            \
-            uint32_t m = 0;                                                              \
-            memcpy(pk[p].tmax, t0 + p * N, sizeof pk[p].tmax);                           \
-            for (int c = 0; c < nc; c++)                                                 \
-                m |= f(P + c, pk + p, h + p, full, fl);                                  \
-            acc += popc(m);                                                              \
-        }                                                                                \
-        return acc;                                                                      \
+#define PASS_PACKET(N)                                                                         \
+    static uint64_t pass_##N(const runner *x, size_t b)                                        \
+    {                                                                                          \
+        cylray_ray##N *pk = (cylray_ray##N *)x->pk + b * x->ppb;                               \
+        cylray_hit##N *h = (cylray_hit##N *)x->hit + b * x->ppb;                               \
+        const float *t0 = x->w->rays.tmax + b * x->w->batch;                                   \
+        const cylray_prepared *P = x->w->prep;                                                 \
+        const int nc = x->w->ncyl;                                                             \
+        const size_t grp = (size_t)x->w->grouped, first = b * x->w->batch;                     \
+        const unsigned fl = x->flags;                                                          \
+        const uint32_t full = (uint32_t)((1ull << N) - 1u) & x->w->lanes;                      \
+        uint64_t acc = 0;                                                                      \
+        if (x->op == OP_OCC) {                                                                 \
+            const cylray_occluded##N##_fn f = x->k->occluded##N;                               \
+            if (grp) {                                                                         \
+                for (size_t p = 0; p < x->ppb; p++)                                            \
+                    acc += popc(f(P + (first + p * N) / grp, pk + p, full, fl));               \
+                return acc;                                                                    \
+            }                                                                                  \
+            for (size_t p = 0; p < x->ppb; p++) {                                              \
+                uint32_t m = 0;                                                                \
+                for (int c = 0; c < nc && m != full; c++)                                      \
+                    m |= f(P + c, pk + p, full & ~m, fl);                                      \
+                acc += popc(m);                                                                \
+            }                                                                                  \
+            return acc;                                                                        \
+        }                                                                                      \
+        const cylray_intersect##N##_fn f = x->k->intersect##N;                                 \
+        if (grp) {                                                                             \
+            for (size_t p = 0; p < x->ppb; p++) {                                              \
+                memcpy(pk[p].tmax, t0 + p * N, sizeof pk[p].tmax);                             \
+                acc += popc(f(P + (first + p * N) / grp, pk + p, h + p, full, fl));            \
+            }                                                                                  \
+            return acc;                                                                        \
+        }                                                                                      \
+        for (size_t p = 0; p < x->ppb; p++) {                                                  \
+            uint32_t m = 0;                                                                    \
+            memcpy(pk[p].tmax, t0 + p * N, sizeof pk[p].tmax);                                 \
+            for (int c = 0; c < nc; c++)                                                       \
+                m |= f(P + c, pk + p, h + p, full, fl);                                        \
+            acc += popc(m);                                                                    \
+        }                                                                                      \
+        return acc;                                                                            \
     }
 PASS_PACKET(4)
 PASS_PACKET(8)
@@ -104,7 +103,7 @@ PASS_PACKET(16)
 static cylray_rays stream_rays(const runner *x, size_t off)
 {
     const raysoa *r = &x->w->rays;
-    cylray_rays R = {r->ox + off, r->oy + off, r->oz + off, r->dx + off,
+    cylray_rays R = {r->ox + off, r->oy + off, r->oz + off,   r->dx + off,
                      r->dy + off, r->dz + off, r->tmin + off, x->tmax + off};
     return R;
 }
@@ -166,21 +165,21 @@ static uint64_t pass_textbook(const runner *x, size_t b)
 }
 
 /* Packs the rays into packets of the width, or allocates the stream's outputs. */
-#define PACK(N)                                                                          \
-    do {                                                                                 \
-        cylray_ray##N *pk = bench_alloc(x->np * sizeof *pk);                             \
-        x->pk = pk;                                                                      \
-        x->hit = bench_alloc(x->np * sizeof(cylray_hit##N));                             \
-        if (!pk || !x->hit)                                                              \
-            return -1;                                                                   \
-        for (size_t g = 0; g < x->np; g++)                                               \
-            for (int l = 0; l < N; l++) {                                                \
-                size_t i = g * N + (size_t)l;                                            \
-                pk[g].ox[l] = r->ox[i], pk[g].oy[l] = r->oy[i], pk[g].oz[l] = r->oz[i];  \
-                pk[g].dx[l] = r->dx[i], pk[g].dy[l] = r->dy[i], pk[g].dz[l] = r->dz[i];  \
-                pk[g].tmin[l] = r->tmin[i], pk[g].tmax[l] = r->tmax[i];                  \
-            }                                                                            \
-        x->pass = pass_##N;                                                              \
+#define PACK(N)                                                                                \
+    do {                                                                                       \
+        cylray_ray##N *pk = bench_alloc(x->np * sizeof *pk);                                   \
+        x->pk = pk;                                                                            \
+        x->hit = bench_alloc(x->np * sizeof(cylray_hit##N));                                   \
+        if (!pk || !x->hit)                                                                    \
+            return -1;                                                                         \
+        for (size_t g = 0; g < x->np; g++)                                                     \
+            for (int l = 0; l < N; l++) {                                                      \
+                size_t i = g * N + (size_t)l;                                                  \
+                pk[g].ox[l] = r->ox[i], pk[g].oy[l] = r->oy[i], pk[g].oz[l] = r->oz[i];        \
+                pk[g].dx[l] = r->dx[i], pk[g].dy[l] = r->dy[i], pk[g].dz[l] = r->dz[i];        \
+                pk[g].tmin[l] = r->tmin[i], pk[g].tmax[l] = r->tmax[i];                        \
+            }                                                                                  \
+        x->pass = pass_##N;                                                                    \
     } while (0)
 
 int runner_init(runner *x, const workload *w, int isa, int width_id, int op)
@@ -361,10 +360,10 @@ void bench_summarize(const workload *w, result *res, int reps)
 }
 
 /* The lane's outputs from a packet array of N lanes. */
-#define LANE_OUT(N)                                                                      \
-    do {                                                                                 \
-        const cylray_hit##N *hh = (const cylray_hit##N *)x.hit + i / N;                  \
-        pt = hh->part[i % N], tt = hh->t[i % N];                                         \
+#define LANE_OUT(N)                                                                            \
+    do {                                                                                       \
+        const cylray_hit##N *hh = (const cylray_hit##N *)x.hit + i / N;                        \
+        pt = hh->part[i % N], tt = hh->t[i % N];                                               \
     } while (0)
 
 int bench_run_once(const workload *w, int isa, int width_id, int op, uint8_t *hit, float *t,

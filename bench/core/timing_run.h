@@ -11,14 +11,14 @@ typedef uint64_t (*pass_fn)(const runner *x, size_t batch);
 
 struct runner {
     const workload *w;
-    const cylray_kernels *k;    /* NULL for the textbook peer */
-    tb_stream_fn tb;            /* the textbook peer's build, or NULL */
+    const cylray_kernels *k; /* NULL for the textbook peer */
+    tb_stream_fn tb;         /* the textbook peer's build, or NULL */
     int op, width_id, restore_outside;
     unsigned flags;
     pass_fn pass;
-    size_t np, ppb;             /* packets in all, per batch */
-    void *pk, *hit;             /* cylray_rayN[np], cylray_hitN[np] */
-    float *tmax;                /* streams: the working tmax (the master stays intact) */
+    size_t np, ppb; /* packets in all, per batch */
+    void *pk, *hit; /* cylray_rayN[np], cylray_hitN[np] */
+    float *tmax;    /* streams: the working tmax (the master stays intact) */
     float *t, *nx, *ny, *nz;
     int32_t *part;
     uint8_t *occ;

@@ -171,16 +171,16 @@ static void pipes(builder *b, rng *g)
 /* Integer vectors of integer length (a^2 + b^2 + c^2 = m^2): the coordinate axes, and
  * tilts of 1.1 to 6.4 degrees off them ((m^2 - 1, 2m, m^2 + 1) for m = 100, 60, 30, 18).
  * Rods near an axis keep their boxes slim, so the BVH stays useful for rods this long. */
-static const int quads[][4] = {{0, 0, 1, 1},           {0, 0, 1, 1},
-                               {0, 200, 9999, 10001},  {0, 120, 3599, 3601},
-                               {0, 60, 899, 901},      {0, 36, 323, 325}};
+static const int quads[][4] = {{0, 0, 1, 1},         {0, 0, 1, 1},      {0, 200, 9999, 10001},
+                               {0, 120, 3599, 3601}, {0, 60, 899, 901}, {0, 36, 323, 325}};
 
 /* A direction from the table, its coordinates permuted and signed; *len = m. */
 static void int_direction(rng *g, double out[3], double *len)
 {
     const int *q = quads[(int)(rng_unit(g) * (sizeof quads / sizeof quads[0]))];
     int perm = (int)(rng_unit(g) * 6);
-    static const int P[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+    static const int P[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2},
+                                {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
     for (int c = 0; c < 3; c++)
         out[c] = q[P[perm][c]] * (rng_unit(g) < 0.5 ? -1 : 1);
     *len = q[3];
@@ -270,11 +270,20 @@ int eb_scene_make(eb_scene *s, int which, uint64_t seed)
     builder b = {.s = s};
     rng g = {seed * 0x2545f4914f6cdd1dull + (uint64_t)which};
     switch (which) {
-    case EB_MOLECULE: molecule(&b, &g); break;
-    case EB_PIPES: pipes(&b, &g); break;
-    case EB_FAR_RODS: far_rods(&b, &g); break;
-    case EB_LATTICE: lattice(&b); break;
-    default: return -1;
+    case EB_MOLECULE:
+        molecule(&b, &g);
+        break;
+    case EB_PIPES:
+        pipes(&b, &g);
+        break;
+    case EB_FAR_RODS:
+        far_rods(&b, &g);
+        break;
+    case EB_LATTICE:
+        lattice(&b);
+        break;
+    default:
+        return -1;
     }
     if (finish(&b)) {
         eb_scene_free(s);

@@ -91,8 +91,8 @@ static int by_t(const void *pa, const void *pb)
     return a->t < b->t ? -1 : a->t > b->t ? 1 : (a->id > b->id) - (a->id < b->id);
 }
 
-int eb_ref_closest(const eb_ref *r, const float o[3], const float d[3], float tmin,
-                   float tmax, uint32_t *id, cylref_hit *h)
+int eb_ref_closest(const eb_ref *r, const float o[3], const float d[3], float tmin, float tmax,
+                   uint32_t *id, cylref_hit *h)
 {
     collect_ctx c;
     memset(&c, 0, sizeof c);

@@ -20,7 +20,7 @@ int eb_ref_init(eb_ref *r, RTCDevice dev, const eb_scene *s);
 void eb_ref_free(eb_ref *r);
 
 /* The exact first hit over the scene: 1 with *id and *h, or 0. */
-int eb_ref_closest(const eb_ref *r, const float o[3], const float d[3], float tmin,
-                   float tmax, uint32_t *id, cylref_hit *h);
+int eb_ref_closest(const eb_ref *r, const float o[3], const float d[3], float tmin, float tmax,
+                   uint32_t *id, cylref_hit *h);
 
 #endif

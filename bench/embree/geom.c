@@ -10,8 +10,8 @@
 
 const char *eb_variant_name(eb_variant v)
 {
-    static const char *const n[EB_NVARIANTS] = {"embree-curve", "cylray-single",
-                                                "cylray-split", "cylray-leaf"};
+    static const char *const n[EB_NVARIANTS] = {"embree-curve", "cylray-single", "cylray-split",
+                                                "cylray-leaf"};
     return v < EB_NVARIANTS ? n[v] : "?";
 }
 
@@ -24,10 +24,14 @@ cylray_embree_desc eb_scene_desc(const eb_scene *s, unsigned options, const cylr
 {
     return (cylray_embree_desc){
         .count = s->ns,
-        .p0 = s->p0[0], .p0_stride = sizeof s->p0[0],
-        .p1 = s->p1[0], .p1_stride = sizeof s->p1[0],
-        .radius = &s->radius, .radius_stride = 0,
-        .caps = s->caps, .caps_stride = sizeof s->caps[0],
+        .p0 = s->p0[0],
+        .p0_stride = sizeof s->p0[0],
+        .p1 = s->p1[0],
+        .p1_stride = sizeof s->p1[0],
+        .radius = &s->radius,
+        .radius_stride = 0,
+        .caps = s->caps,
+        .caps_stride = sizeof s->caps[0],
         .options = options,
         .kernels = k,
     };
@@ -59,8 +63,8 @@ static RTCGeometry native_geometry(RTCDevice dev, const eb_scene *s)
                                        4 * sizeof(float), s->nv);
     unsigned *idx = rtcSetNewGeometryBuffer(geo, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT,
                                             sizeof(unsigned), s->ns);
-    unsigned char *fl = rtcSetNewGeometryBuffer(geo, RTC_BUFFER_TYPE_FLAGS, 0,
-                                                RTC_FORMAT_UCHAR, 1, s->ns);
+    unsigned char *fl =
+        rtcSetNewGeometryBuffer(geo, RTC_BUFFER_TYPE_FLAGS, 0, RTC_FORMAT_UCHAR, 1, s->ns);
     if (!v || !idx || !fl) {
         rtcReleaseGeometry(geo);
         return NULL;
@@ -73,10 +77,11 @@ static RTCGeometry native_geometry(RTCDevice dev, const eb_scene *s)
      * unless the flag says a segment joins there. */
     for (size_t i = 0; i < s->ns; i++) {
         idx[i] = s->first[i];
-        fl[i] = (unsigned char)(((s->caps[i] & CYLRAY_CAPPED_LO) ? 0
-                                                                 : RTC_CURVE_FLAG_NEIGHBOR_LEFT) |
-                                ((s->caps[i] & CYLRAY_CAPPED_HI) ? 0
-                                                                 : RTC_CURVE_FLAG_NEIGHBOR_RIGHT));
+        fl[i] =
+            (unsigned char)(((s->caps[i] & CYLRAY_CAPPED_LO) ? 0
+                                                             : RTC_CURVE_FLAG_NEIGHBOR_LEFT) |
+                            ((s->caps[i] & CYLRAY_CAPPED_HI) ? 0
+                                                             : RTC_CURVE_FLAG_NEIGHBOR_RIGHT));
     }
     return geo;
 }

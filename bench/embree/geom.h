@@ -18,9 +18,9 @@ typedef struct eb_geom {
     eb_variant variant;
     RTCScene scene;
     const eb_scene *src;
-    RTCGeometry cyl;   /* the cylray variants' geometry (cylray_embree_new_geometry) */
-    size_t nprim;      /* Embree's primitives: segments, boxes or leaves */
-    double build_s;    /* seconds to prepare and to build Embree's BVH */
+    RTCGeometry cyl; /* the cylray variants' geometry (cylray_embree_new_geometry) */
+    size_t nprim;    /* Embree's primitives: segments, boxes or leaves */
+    double build_s;  /* seconds to prepare and to build Embree's BVH */
 } eb_geom;
 
 /* The options cylray_embree_new_geometry gets for a cylray variant. */

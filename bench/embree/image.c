@@ -62,7 +62,8 @@ size_t eb_diff(const eb_rays *pa, const eb_rays *sa, const eb_rays *pb, const eb
         if (ha != hb) {
             c[0] = 1, bad++;
         } else if (ha && pa->prim[i] != pb->prim[i] &&
-                   fabs((double)pa->tfar[i] - pb->tfar[i]) > 8 * cylref_float_ulp(pa->tfar[i])) {
+                   fabs((double)pa->tfar[i] - pb->tfar[i]) >
+                       8 * cylref_float_ulp(pa->tfar[i])) {
             c[0] = c[1] = 1, bad++;
         } else if (ha && (sa->valid[i] && sa->tfar[i] == -INFINITY) !=
                              (sb->valid[i] && sb->tfar[i] == -INFINITY)) {

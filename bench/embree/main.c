@@ -51,7 +51,10 @@ static int list_has(const char *list, const char *name)
 static int parse(opts *o, int argc, char **argv)
 {
     long nproc = sysconf(_SC_NPROCESSORS_ONLN);
-    *o = (opts){.w = 1024, .h = 768, .reps = 3, .samples = 20000,
+    *o = (opts){.w = 1024,
+                .h = 768,
+                .reps = 3,
+                .samples = 20000,
                 .threads = nproc > 0 ? (int)(nproc < EB_MAXT ? nproc : EB_MAXT) : 1,
                 .out = "bench/out"};
     const char *scenes = NULL, *isas = "best", *packets = NULL;
@@ -304,7 +307,8 @@ static int run_scene(const opts *o, RTCDevice dev, cylray_isa isa, int which, eb
         eb_scene_free(&sc);
         return -1;
     }
-    size_t nset[EB_NSETS] = {(size_t)o->samples, (size_t)o->samples / 4, (size_t)o->samples / 4};
+    size_t nset[EB_NSETS] = {(size_t)o->samples, (size_t)o->samples / 4,
+                             (size_t)o->samples / 4};
     eb_sample *sets[EB_NSETS];
     rng g = {77 + (uint64_t)which};
     for (int s = 0; s < EB_NSETS; s++) {
@@ -336,7 +340,7 @@ static int run_scene(const opts *o, RTCDevice dev, cylray_isa isa, int which, eb
         snprintf(r->scene, sizeof r->scene, "%s", sc.name);
         snprintf(r->variant, sizeof r->variant, "%s", eb_variant_name((eb_variant)v));
         /* the adapter's leaf width: the kernels' vector width */
-        r->leaf_m = v != EB_LEAF                ? 0
+        r->leaf_m = v != EB_LEAF               ? 0
                     : isa == CYLRAY_ISA_AVX512 ? 16
                     : isa == CYLRAY_ISA_AVX2   ? 8
                                                : 4;
@@ -345,8 +349,7 @@ static int run_scene(const opts *o, RTCDevice dev, cylray_isa isa, int which, eb
         for (int p = 0; p < EB_NPHASES; p++)
             for (int q = 0; q < EB_NPACKETS; q++)
                 r->mrays[p][q] = NAN;
-        if (frame_alloc(&fr[v], npix) ||
-            eb_geom_build(&geo[v], dev, &sc, (eb_variant)v, k)) {
+        if (frame_alloc(&fr[v], npix) || eb_geom_build(&geo[v], dev, &sc, (eb_variant)v, k)) {
             r->skipped = 1;
             snprintf(r->why, sizeof r->why, "build failed");
             continue;
@@ -362,9 +365,8 @@ static int run_scene(const opts *o, RTCDevice dev, cylray_isa isa, int which, eb
     for (int t = 1; t <= o->threads; t++)
         for (int v = 0; v < EB_NVARIANTS; v++)
             if (built[v])
-                rows[first_row + v].scaling[t] =
-                    timed(geo[v].scene, &fr[v].prim, NULL, 1, t, 0, o->reps,
-                          &rows[first_row + v].cores[t]);
+                rows[first_row + v].scaling[t] = timed(geo[v].scene, &fr[v].prim, NULL, 1, t, 0,
+                                                       o->reps, &rows[first_row + v].cores[t]);
     /* Embree offers a packet no wider than its ISA's vectors */
     int widest = isa == CYLRAY_ISA_SSE41 ? 4 : isa == CYLRAY_ISA_AVX2 ? 8 : 16;
     for (int q = 0; q < EB_NPACKETS; q++) {
@@ -388,8 +390,8 @@ static int run_scene(const opts *o, RTCDevice dev, cylray_isa isa, int which, eb
         for (int v = 0; v < EB_NVARIANTS; v++)
             if (built[v]) {
                 eb_row *r = &rows[first_row + v];
-                r->mrays[EB_BOUNCE][q] = timed(geo[v].scene, &fr[v].bounce, NULL,
-                                               eb_packets[q], o->threads, 0, o->reps, NULL);
+                r->mrays[EB_BOUNCE][q] = timed(geo[v].scene, &fr[v].bounce, NULL, eb_packets[q],
+                                               o->threads, 0, o->reps, NULL);
                 r->mrays[EB_SHADOW][q] = timed(geo[v].scene, &fr[v].shadow, fr[v].shadow_tfar,
                                                eb_packets[q], o->threads, 1, o->reps, NULL);
             }
@@ -454,8 +456,8 @@ int main(int argc, char **argv)
     machine_info mi;
     machine_probe(&mi);
     char machine[1024];
-    snprintf(machine, sizeof machine, "%s (%s), %d logical CPUs%s, %s; Embree %s; %s",
-             mi.cpu, mi.cpuid, mi.cores, mi.hypervisor ? ", virtual machine" : "", mi.os,
+    snprintf(machine, sizeof machine, "%s (%s), %d logical CPUs%s, %s; Embree %s; %s", mi.cpu,
+             mi.cpuid, mi.cores, mi.hypervisor ? ", virtual machine" : "", mi.os,
              RTC_VERSION_STRING, mi.compiler);
     eb_row *rows = calloc(CYLRAY_ISA_COUNT * EB_NSCENES * EB_NVARIANTS, sizeof *rows);
     size_t nrows = 0;

@@ -41,8 +41,9 @@ static err_summary summarize(eb_err *e)
 
 static void speed(FILE *f, const eb_row *r, size_t n)
 {
-    fprintf(f, "\nM rays/s (%d threads; packet = rays per Embree call; cylray-leaf: up to %d "
-               "cylinders a leaf, grouped by Embree's SAH builder)\n",
+    fprintf(f,
+            "\nM rays/s (%d threads; packet = rays per Embree call; cylray-leaf: up to %d "
+            "cylinders a leaf, grouped by Embree's SAH builder)\n",
             r[0].threads, r[EB_LEAF < n ? EB_LEAF : 0].leaf_m);
     fprintf(f, "%-7s %-9s %-16s %8s", "isa", "scene", "variant", "build s");
     for (int p = 0; p < EB_NPHASES; p++)
@@ -112,8 +113,10 @@ static void ratios(FILE *f, const eb_row *r, size_t n)
 static void scaling(FILE *f, const eb_row *r, size_t n)
 {
     int T = r[0].threads;
-    fprintf(f, "\nScaling: primary rays, one ray a call, M rays/s at 1..%d threads (in\n"
-               "brackets the cores the process got: CPU time over wall time)\n", T);
+    fprintf(f,
+            "\nScaling: primary rays, one ray a call, M rays/s at 1..%d threads (in\n"
+            "brackets the cores the process got: CPU time over wall time)\n",
+            T);
     fprintf(f, "%-7s %-9s %-16s", "isa", "scene", "variant");
     for (int t = 1; t <= T; t++)
         fprintf(f, "   T=%-9d", t);
@@ -136,8 +139,8 @@ static void errors(FILE *f, const eb_row *r, size_t n)
                "tolerance band; t in float ulps (beyond: outside the band), normal in\n"
                "radians (up to sign); self =\n"
                "secondary rays from a front face that hit their own cylinder\n");
-    fprintf(f, "%-7s %-9s %-16s %-6s %6s %5s %5s %5s %5s %8s %8s %8s %8s %8s %11s\n",
-            "isa", "scene", "variant", "set", "rays", "wrong", "leak", "phant", "exc", "t med",
+    fprintf(f, "%-7s %-9s %-16s %-6s %6s %5s %5s %5s %5s %8s %8s %8s %8s %8s %11s\n", "isa",
+            "scene", "variant", "set", "rays", "wrong", "leak", "phant", "exc", "t med",
             "t p99", "t max", "beyond", "n p99", "self/sec");
     for (size_t i = 0; i < n; i++) {
         if (r[i].skipped)
@@ -145,11 +148,11 @@ static void errors(FILE *f, const eb_row *r, size_t n)
         for (int s = 0; s < EB_NSETS; s++) {
             eb_err e = r[i].err[s];
             const err_summary q = summarize(&e);
-            fprintf(f, "%-7s %-9s %-16s %-6s %6zu %5zu %5zu %5zu %5zu %8.3g %8.3g %8.3g %8.3g "
-                       "%8.2g",
-                    r[i].isa, r[i].scene, r[i].variant, eb_set_name(s), e.rays, e.wrong,
-                    e.leak, e.phantom, e.excused, q.t_med, q.t_p99, q.t_max, q.beyond_max,
-                    q.n_p99);
+            fprintf(f,
+                    "%-7s %-9s %-16s %-6s %6zu %5zu %5zu %5zu %5zu %8.3g %8.3g %8.3g %8.3g "
+                    "%8.2g",
+                    r[i].isa, r[i].scene, r[i].variant, eb_set_name(s), e.rays, e.wrong, e.leak,
+                    e.phantom, e.excused, q.t_med, q.t_p99, q.t_max, q.beyond_max, q.n_p99);
             if (s == EB_SET_CAMERA)
                 fprintf(f, " %5zu/%-5zu", e.self, e.sec);
             fprintf(f, "\n");
@@ -176,10 +179,11 @@ void eb_report_csv(FILE *f, const eb_row *r, size_t n)
             fprintf(f, ",%s_%d_mrays", phase_name[p], eb_packets[k]);
     fprintf(f, ",primary_1thread_mrays");
     for (int s = 0; s < EB_NSETS; s++)
-        fprintf(f, ",%s_rays,%s_wrong,%s_leak,%s_phantom,%s_excused,%s_t_p99_ulps,"
-                   "%s_t_beyond_max_ulps,%s_n_p99_rad",
-                eb_set_name(s), eb_set_name(s), eb_set_name(s), eb_set_name(s),
-                eb_set_name(s), eb_set_name(s), eb_set_name(s), eb_set_name(s));
+        fprintf(f,
+                ",%s_rays,%s_wrong,%s_leak,%s_phantom,%s_excused,%s_t_p99_ulps,"
+                "%s_t_beyond_max_ulps,%s_n_p99_rad",
+                eb_set_name(s), eb_set_name(s), eb_set_name(s), eb_set_name(s), eb_set_name(s),
+                eb_set_name(s), eb_set_name(s), eb_set_name(s));
     fprintf(f, ",secondary,self_intersections,diff_pixels\n");
     for (size_t i = 0; i < n; i++) {
         if (r[i].skipped)

@@ -24,7 +24,7 @@ typedef struct eb_row {
     double scaling[EB_MAXT + 1];           /* primary, one ray a call, at 1..threads */
     double cores[EB_MAXT + 1];             /* CPU time / wall time in those runs */
     eb_err err[EB_NSETS];
-    size_t diff_pixels;                    /* red + yellow against embree-curve */
+    size_t diff_pixels; /* red + yellow against embree-curve */
 } eb_row;
 
 const char *eb_set_name(int set);

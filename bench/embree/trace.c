@@ -19,8 +19,8 @@ int eb_rays_alloc(eb_rays *r, size_t n)
 {
     memset(r, 0, sizeof *r);
     r->n = n;
-    float **f[13] = {&r->ox, &r->oy, &r->oz, &r->dx, &r->dy, &r->dz, &r->tnear,
-                     &r->tfar, &r->ngx, &r->ngy, &r->ngz, &r->u, &r->v};
+    float **f[13] = {&r->ox,   &r->oy,  &r->oz,  &r->dx,  &r->dy, &r->dz, &r->tnear,
+                     &r->tfar, &r->ngx, &r->ngy, &r->ngz, &r->u,  &r->v};
     int bad = 0;
     for (int k = 0; k < 13; k++)
         bad |= !(*f[k] = bench_alloc(n * sizeof(float)));
@@ -33,8 +33,8 @@ int eb_rays_alloc(eb_rays *r, size_t n)
 
 void eb_rays_free(eb_rays *r)
 {
-    void *p[15] = {r->ox, r->oy,  r->oz,  r->dx, r->dy, r->dz,   r->tnear, r->tfar,
-                   r->ngx, r->ngy, r->ngz, r->u, r->v,  r->prim, r->valid};
+    void *p[15] = {r->ox,  r->oy,  r->oz,  r->dx, r->dy, r->dz,   r->tnear, r->tfar,
+                   r->ngx, r->ngy, r->ngz, r->u,  r->v,  r->prim, r->valid};
     for (int k = 0; k < 15; k++)
         bench_free(p[k]);
     memset(r, 0, sizeof *r);
@@ -55,8 +55,7 @@ void eb_pixel_of(size_t idx, int w, int h, int *x, int *y)
     *y = (int)((tile / tiles_x) * 16 + (block / 4) * 4 + px / 4);
 }
 
-void eb_camera_ray(const eb_scene *s, int w, int h, double x, double y, float o[3],
-                   float d[3])
+void eb_camera_ray(const eb_scene *s, int w, int h, double x, double y, float o[3], float d[3])
 {
     double f[3], r[3], u[3], fl = 0, rl = 0;
     for (int k = 0; k < 3; k++)
@@ -103,49 +102,48 @@ void eb_camera_rays(eb_rays *r, const eb_scene *s, int w, int h)
 /* Copies rays [i, i + N) into an Embree packet, traces it as a renderer with
  * cylray_embree would (cylray_embree_intersectN: a coherent packet as one, an
  * incoherent one a ray a call), copies the answers back. */
-#define EB_PACKET(N)                                                                       \
-    static void packet##N(RTCScene sc, eb_rays *r, size_t i0, int occ)                     \
-    {                                                                                      \
-        struct RTCRayHit##N rh;                                                            \
-        int valid[N], any = 0;                                                             \
-        struct RTCIntersectContext ctx;                                                    \
-        rtcInitIntersectContext(&ctx);                                                     \
-        ctx.flags = r->incoherent ? RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT                  \
-                                  : RTC_INTERSECT_CONTEXT_FLAG_COHERENT;                   \
-        for (int j = 0; j < N; j++) {                                                      \
-            size_t i = i0 + (size_t)j;                                                     \
-            valid[j] = i < r->n && r->valid[i] ? -1 : 0;                                   \
-            any |= valid[j];                                                               \
-            if (i >= r->n)                                                                 \
-                i = r->n - 1;                                                              \
-            rh.ray.org_x[j] = r->ox[i], rh.ray.org_y[j] = r->oy[i];                        \
-            rh.ray.org_z[j] = r->oz[i], rh.ray.tnear[j] = r->tnear[i];                     \
-            rh.ray.dir_x[j] = r->dx[i], rh.ray.dir_y[j] = r->dy[i];                        \
-            rh.ray.dir_z[j] = r->dz[i], rh.ray.time[j] = 0;                                \
-            rh.ray.tfar[j] = r->tfar[i], rh.ray.mask[j] = ~0u;                             \
-            rh.ray.id[j] = (unsigned)j, rh.ray.flags[j] = 0;                               \
-            rh.hit.geomID[j] = RTC_INVALID_GEOMETRY_ID;                                    \
-            rh.hit.primID[j] = RTC_INVALID_GEOMETRY_ID;                                    \
-        }                                                                                  \
-        if (!any)                                                                          \
-            return;                                                                        \
-        if (occ)                                                                           \
-            cylray_embree_occluded##N(valid, sc, &ctx, &rh.ray);                           \
-        else                                                                               \
-            cylray_embree_intersect##N(valid, sc, &ctx, &rh);                              \
-        for (int j = 0; j < N; j++) {                                                      \
-            size_t i = i0 + (size_t)j;                                                     \
-            if (!valid[j])                                                                 \
-                continue;                                                                  \
-            r->tfar[i] = rh.ray.tfar[j];                                                   \
-            if (occ)                                                                       \
-                continue;                                                                  \
-            r->prim[i] = rh.hit.geomID[j] == RTC_INVALID_GEOMETRY_ID                       \
-                             ? RTC_INVALID_GEOMETRY_ID                                     \
-                             : rh.hit.primID[j];                                           \
-            r->ngx[i] = rh.hit.Ng_x[j], r->ngy[i] = rh.hit.Ng_y[j];                        \
-            r->ngz[i] = rh.hit.Ng_z[j], r->u[i] = rh.hit.u[j], r->v[i] = rh.hit.v[j];      \
-        }                                                                                  \
+#define EB_PACKET(N)                                                                           \
+    static void packet##N(RTCScene sc, eb_rays *r, size_t i0, int occ)                         \
+    {                                                                                          \
+        struct RTCRayHit##N rh;                                                                \
+        int valid[N], any = 0;                                                                 \
+        struct RTCIntersectContext ctx;                                                        \
+        rtcInitIntersectContext(&ctx);                                                         \
+        ctx.flags = r->incoherent ? RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT                      \
+                                  : RTC_INTERSECT_CONTEXT_FLAG_COHERENT;                       \
+        for (int j = 0; j < N; j++) {                                                          \
+            size_t i = i0 + (size_t)j;                                                         \
+            valid[j] = i < r->n && r->valid[i] ? -1 : 0;                                       \
+            any |= valid[j];                                                                   \
+            if (i >= r->n)                                                                     \
+                i = r->n - 1;                                                                  \
+            rh.ray.org_x[j] = r->ox[i], rh.ray.org_y[j] = r->oy[i];                            \
+            rh.ray.org_z[j] = r->oz[i], rh.ray.tnear[j] = r->tnear[i];                         \
+            rh.ray.dir_x[j] = r->dx[i], rh.ray.dir_y[j] = r->dy[i];                            \
+            rh.ray.dir_z[j] = r->dz[i], rh.ray.time[j] = 0;                                    \
+            rh.ray.tfar[j] = r->tfar[i], rh.ray.mask[j] = ~0u;                                 \
+            rh.ray.id[j] = (unsigned)j, rh.ray.flags[j] = 0;                                   \
+            rh.hit.geomID[j] = RTC_INVALID_GEOMETRY_ID;                                        \
+            rh.hit.primID[j] = RTC_INVALID_GEOMETRY_ID;                                        \
+        }                                                                                      \
+        if (!any)                                                                              \
+            return;                                                                            \
+        if (occ)                                                                               \
+            cylray_embree_occluded##N(valid, sc, &ctx, &rh.ray);                               \
+        else                                                                                   \
+            cylray_embree_intersect##N(valid, sc, &ctx, &rh);                                  \
+        for (int j = 0; j < N; j++) {                                                          \
+            size_t i = i0 + (size_t)j;                                                         \
+            if (!valid[j])                                                                     \
+                continue;                                                                      \
+            r->tfar[i] = rh.ray.tfar[j];                                                       \
+            if (occ)                                                                           \
+                continue;                                                                      \
+            r->prim[i] = rh.hit.geomID[j] == RTC_INVALID_GEOMETRY_ID ? RTC_INVALID_GEOMETRY_ID \
+                                                                     : rh.hit.primID[j];       \
+            r->ngx[i] = rh.hit.Ng_x[j], r->ngy[i] = rh.hit.Ng_y[j];                            \
+            r->ngz[i] = rh.hit.Ng_z[j], r->u[i] = rh.hit.u[j], r->v[i] = rh.hit.v[j];          \
+        }                                                                                      \
     }
 EB_PACKET(4)
 EB_PACKET(8)
@@ -170,14 +168,14 @@ static void single(RTCScene sc, eb_rays *r, size_t i, int occ)
     }
     rtcIntersect1(sc, &ctx, &rh);
     r->tfar[i] = rh.ray.tfar;
-    r->prim[i] = rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? RTC_INVALID_GEOMETRY_ID
-                                                          : rh.hit.primID;
+    r->prim[i] =
+        rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? RTC_INVALID_GEOMETRY_ID : rh.hit.primID;
     r->ngx[i] = rh.hit.Ng_x, r->ngy[i] = rh.hit.Ng_y, r->ngz[i] = rh.hit.Ng_z;
     r->u[i] = rh.hit.u, r->v[i] = rh.hit.v;
 }
 
-uint32_t eb_trace1(RTCScene scene, const float o[3], const float d[3], float tnear,
-                   float tfar, float *t, float ng[3])
+uint32_t eb_trace1(RTCScene scene, const float o[3], const float d[3], float tnear, float tfar,
+                   float *t, float ng[3])
 {
     struct RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
@@ -210,10 +208,18 @@ static void *worker(void *arg)
                 jb->r->prim[i] = RTC_INVALID_GEOMETRY_ID;
         for (size_t i = a; i < b; i += (size_t)jb->packet) {
             switch (jb->packet) {
-            case 4: packet4(jb->scene, jb->r, i, jb->occ); break;
-            case 8: packet8(jb->scene, jb->r, i, jb->occ); break;
-            case 16: packet16(jb->scene, jb->r, i, jb->occ); break;
-            default: single(jb->scene, jb->r, i, jb->occ); break;
+            case 4:
+                packet4(jb->scene, jb->r, i, jb->occ);
+                break;
+            case 8:
+                packet8(jb->scene, jb->r, i, jb->occ);
+                break;
+            case 16:
+                packet16(jb->scene, jb->r, i, jb->occ);
+                break;
+            default:
+                single(jb->scene, jb->r, i, jb->occ);
+                break;
             }
         }
     }
@@ -255,7 +261,8 @@ double eb_trace(RTCScene scene, eb_rays *r, int packet, int threads, int occlude
 void eb_facing_normal(const float ng[3], const float d[3], float n[3])
 {
     double l = sqrt((double)ng[0] * ng[0] + (double)ng[1] * ng[1] + (double)ng[2] * ng[2]);
-    double s = ((double)ng[0] * d[0] + (double)ng[1] * d[1] + (double)ng[2] * d[2]) > 0 ? -1 : 1;
+    double s =
+        ((double)ng[0] * d[0] + (double)ng[1] * d[1] + (double)ng[2] * d[2]) > 0 ? -1 : 1;
     for (int k = 0; k < 3; k++)
         n[k] = l > 0 ? (float)(s * ng[k] / l) : 0;
 }

@@ -34,8 +34,7 @@ void eb_pixel_of(size_t idx, int w, int h, int *x, int *y);
 /* The pinhole camera's rays of s, w x h pixels, tnear 0, tfar INFINITY. */
 void eb_camera_rays(eb_rays *r, const eb_scene *s, int w, int h);
 /* One camera ray, in double until the final rounding. */
-void eb_camera_ray(const eb_scene *s, int w, int h, double x, double y, float o[3],
-                   float d[3]);
+void eb_camera_ray(const eb_scene *s, int w, int h, double x, double y, float o[3], float d[3]);
 
 /* Traces the valid rays of r through scene: rtcIntersect (occluded = 0) or rtcOccluded
  * (occluded = 1), `packet` rays to a call (1, 4, 8 or 16), on `threads` threads that take
@@ -47,8 +46,8 @@ double eb_trace(RTCScene scene, eb_rays *r, int packet, int threads, int occlude
 
 /* One ray, rtcIntersect1 on the calling thread: the hit's primID (or
  * RTC_INVALID_GEOMETRY_ID), with *t and ng on a hit. */
-uint32_t eb_trace1(RTCScene scene, const float o[3], const float d[3], float tnear,
-                   float tfar, float *t, float ng[3]);
+uint32_t eb_trace1(RTCScene scene, const float o[3], const float d[3], float tnear, float tfar,
+                   float *t, float ng[3]);
 
 /* ---- secondary rays ------------------------------------------------------------ */
 

@@ -37,7 +37,7 @@
 #endif
 
 size_t TB_CAT(tb_stream_, TB_VARIANT)(const tb_cylinder *cy, const cylray_rays *rays,
-                                       const cylray_hits *hits, size_t n)
+                                      const cylray_hits *hits, size_t n)
 {
     const float *restrict ox = rays->ox, *restrict oy = rays->oy, *restrict oz = rays->oz;
     const float *restrict dxs = rays->dx, *restrict dys = rays->dy, *restrict dzs = rays->dz;

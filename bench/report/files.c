@@ -30,13 +30,13 @@ typedef enum col_type { T_STR, T_WIDTH, T_INT, T_SIZE, T_DBL, T_FN } col_type;
 typedef double (*col_fn)(const result *r, const machine_info *m);
 
 typedef struct column {
-    const char *name;  /* the CSV heading and the JSON key */
-    const char *unit;  /* "" for names and plain counts */
+    const char *name; /* the CSV heading and the JSON key */
+    const char *unit; /* "" for names and plain counts */
     col_kind kind;
     col_when when;
     const char *fmt;
-    const char *head;  /* the table.txt heading; NULL: not in table.txt */
-    int width;         /* its table.txt width; negative: left-aligned */
+    const char *head; /* the table.txt heading; NULL: not in table.txt */
+    int width;        /* its table.txt width; negative: left-aligned */
     col_type type;
     size_t off;
     col_fn fn;
@@ -216,9 +216,14 @@ static void write_json(const result_list *l, const machine_info *m, const option
         return;
     const struct {
         const char *key, *val;
-    } mtext[] = {{"cpu", m->cpu},         {"cpuid", m->cpuid},        {"compiler", m->compiler},
-                 {"buildtype", m->buildtype}, {"os", m->os},           {"paths", m->isas},
-                 {"pinning", m->pinned},  {"date", m->date}};
+    } mtext[] = {{"cpu", m->cpu},
+                 {"cpuid", m->cpuid},
+                 {"compiler", m->compiler},
+                 {"buildtype", m->buildtype},
+                 {"os", m->os},
+                 {"paths", m->isas},
+                 {"pinning", m->pinned},
+                 {"date", m->date}};
     fprintf(f, "{\n  \"machine\": {\"cores\": %d, \"virtual\": %s, \"tsc_ghz\": ", m->cores,
             m->hypervisor ? "true" : "false");
     json_num(f, m->tsc_ghz);
@@ -232,15 +237,17 @@ static void write_json(const result_list *l, const machine_info *m, const option
         fprintf(f, ", \"%s\": ", mtext[k].key);
         json_str(f, mtext[k].val);
     }
-    fprintf(f, "},\n  \"settings\": {\"quick\": %s, \"reps\": %d, \"sample_ms\": %.3f, "
-               "\"batch_rays\": %d, \"big_stream_rays\": %zu, \"exact_reference\": %s, "
-               "\"flush_subnormals\": %s, \"wall_s\": %.1f},\n",
+    fprintf(f,
+            "},\n  \"settings\": {\"quick\": %s, \"reps\": %d, \"sample_ms\": %.3f, "
+            "\"batch_rays\": %d, \"big_stream_rays\": %zu, \"exact_reference\": %s, "
+            "\"flush_subnormals\": %s, \"wall_s\": %.1f},\n",
             opt->quick ? "true" : "false", opt->reps, opt->sample_ns * 1e-6, BENCH_BATCH,
             opt->big_rays, accuracy_available() ? "true" : "false",
             opt->flush_subnormals ? "true" : "false", wall);
     if (sc->have) {
-        fprintf(f, "  \"scene\": {\"width\": %d, \"height\": %d, \"cylinders\": %d, "
-                   "\"primary_rays\": %zu, \"shadow_rays\": %zu, \"image\": ",
+        fprintf(f,
+                "  \"scene\": {\"width\": %d, \"height\": %d, \"cylinders\": %d, "
+                "\"primary_rays\": %zu, \"shadow_rays\": %zu, \"image\": ",
                 sc->w, sc->h, sc->ncyl, sc->primary, sc->shadow);
         json_str(f, sc->image);
         fprintf(f, "},\n");
@@ -290,8 +297,9 @@ static void write_long(const result_list *l, const machine_info *m, const option
     machine_line(m, ml, sizeof ml);
     fprintf(f, "cylbench %s\n%s; %s%s\n\n", m->date, ml, m->pinned,
             opt->flush_subnormals ? "; subnormals flushed to zero (--flush-subnormals)" : "");
-    fprintf(f, "ticks: TSC ticks per ray (%.3f GHz); cycles: ns x the measured core clock "
-               "(%.2f GHz); ~: CPU-timed (busy machine); -: not measured\n\n",
+    fprintf(f,
+            "ticks: TSC ticks per ray (%.3f GHz); cycles: ns x the measured core clock "
+            "(%.2f GHz); ~: CPU-timed (busy machine); -: not measured\n\n",
             m->tsc_ghz, m->core_ghz);
     const char *sep = "";
     for (size_t c = 0; c < NCOLUMNS; c++)

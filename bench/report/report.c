@@ -15,25 +15,28 @@ void report_all(const result_list *l, const machine_info *m, const options *opt,
     fprintf(f, "cylbench: cylray ray/cylinder kernels, run time against error (%s)\n", m->date);
     fprintf(f, "machine: %s\n", ml);
     fprintf(f, "         %s; cylray paths on this CPU: %s; %s\n", m->os, m->isas, m->pinned);
-    fprintf(f, "method:  batches of %d rays timed while in L1; per configuration %d samples of "
-               ">= %.1f ms each, taken in\n         rounds over all configurations (a busy "
-               "spell hits all alike), after a warm-up; median, spread in\n         "
-               "results.csv (min, max, quartiles); per-ISA calls through "
-               "cylray_kernels_for(isa); tmax restored\n         per packet inside the timed "
-               "loop; hit counts summed into a volatile sink%s\n",
+    fprintf(f,
+            "method:  batches of %d rays timed while in L1; per configuration %d samples of "
+            ">= %.1f ms each, taken in\n         rounds over all configurations (a busy "
+            "spell hits all alike), after a warm-up; median, spread in\n         "
+            "results.csv (min, max, quartiles); per-ISA calls through "
+            "cylray_kernels_for(isa); tmax restored\n         per packet inside the timed "
+            "loop; hit counts summed into a volatile sink%s\n",
             BENCH_BATCH, opt->reps, opt->sample_ns * 1e-6, opt->quick ? "; --quick" : "");
     if (opt->flush_subnormals)
-        fprintf(f, "         --flush-subnormals: subnormal inputs read as 0 and subnormal results "
-                   "flushed to 0 throughout\n");
+        fprintf(f,
+                "         --flush-subnormals: subnormal inputs read as 0 and subnormal results "
+                "flushed to 0 throughout\n");
     size_t busy = 0, timed = 0;
     for (size_t i = 0; i < l->n; i++)
         if (strcmp(l->r[i].scenario, "scene")) {
             timed++;
             busy += (size_t)l->r[i].cpu_timed;
         }
-    fprintf(f, "load:    1-minute load average %.2f at the start, %.2f at the end, on %d cores; "
-               "samples interrupted by other\n         processes are retaken; %zu of %zu "
-               "configurations had too few clean ones and were timed by thread CPU time (~)\n",
+    fprintf(f,
+            "load:    1-minute load average %.2f at the start, %.2f at the end, on %d cores; "
+            "samples interrupted by other\n         processes are retaken; %zu of %zu "
+            "configurations had too few clean ones and were timed by thread CPU time (~)\n",
             m->load_start, m->load_end, m->cores, busy, timed);
     fprintf(f, "error:   %s\n",
             accuracy_available()

@@ -16,7 +16,8 @@ void report_all(const result_list *l, const machine_info *m, const options *opt,
                 const scene_report *sc, const leaf_report *lr, double wall_s);
 
 /* tables.c: the tables on stdout; files.c: results.csv, results.json, table.txt. */
-void report_tables(FILE *f, const result_list *l, const scene_report *sc, const leaf_report *lr);
+void report_tables(FILE *f, const result_list *l, const scene_report *sc,
+                   const leaf_report *lr);
 void report_files(const result_list *l, const machine_info *m, const options *opt,
                   const scene_report *sc, double wall_s);
 
@@ -25,7 +26,7 @@ int svg_time_vs_error(const char *path, const result_list *l, const machine_info
 int svg_speedup(const char *path, const result_list *l, const machine_info *m);
 
 /* fmt.c: small formatting and lookup helpers shared by the writers. */
-const char *fmt_ulps(double u, char *buf, size_t n);   /* "0.5", "12", "3.4k", "2e+06" */
+const char *fmt_ulps(double u, char *buf, size_t n); /* "0.5", "12", "3.4k", "2e+06" */
 const result *find_result(const result_list *l, const char *scenario, int isa, int width_id,
                           int op);
 /* The one-line machine description used in every output. */

@@ -18,11 +18,12 @@ static void header(FILE *f, const char *title, const machine_info *m)
 {
     char ml[512];
     machine_line(m, ml, sizeof ml);
-    fprintf(f, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%d\" height=\"%d\" "
-               "viewBox=\"0 0 %d %d\" font-family=\"sans-serif\">\n"
-               "<rect width=\"%d\" height=\"%d\" fill=\"white\"/>\n"
-               "<text x=\"%d\" y=\"24\" font-size=\"17\" font-weight=\"bold\">%s</text>\n"
-               "<text x=\"%d\" y=\"44\" font-size=\"11\" fill=\"#444\">%s</text>\n",
+    fprintf(f,
+            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%d\" height=\"%d\" "
+            "viewBox=\"0 0 %d %d\" font-family=\"sans-serif\">\n"
+            "<rect width=\"%d\" height=\"%d\" fill=\"white\"/>\n"
+            "<text x=\"%d\" y=\"24\" font-size=\"17\" font-weight=\"bold\">%s</text>\n"
+            "<text x=\"%d\" y=\"44\" font-size=\"11\" fill=\"#444\">%s</text>\n",
             W, H, W, H, W, H, ML, title, ML, ml);
 }
 
@@ -48,16 +49,22 @@ static void log_ticks(FILE *f, double lo, double hi, int vertical)
             snprintf(lab, sizeof lab, v >= 1e4 || v < 0.01 ? "%.0e" : "%g", v);
             if (vertical) {
                 double y = ly(v, lo, hi);
-                fprintf(f, "<line x1=\"%d\" x2=\"%d\" y1=\"%.1f\" y2=\"%.1f\" stroke=\"%s\"/>\n",
+                fprintf(f,
+                        "<line x1=\"%d\" x2=\"%d\" y1=\"%.1f\" y2=\"%.1f\" stroke=\"%s\"/>\n",
                         ML, W - MR, y, y, k ? "#f0f0f0" : "#d8d8d8");
-                fprintf(f, "<text x=\"%d\" y=\"%.1f\" font-size=\"11\" text-anchor=\"end\">%s"
-                           "</text>\n", ML - 6, y + 4, lab);
+                fprintf(f,
+                        "<text x=\"%d\" y=\"%.1f\" font-size=\"11\" text-anchor=\"end\">%s"
+                        "</text>\n",
+                        ML - 6, y + 4, lab);
             } else {
                 double x = lx(v, lo, hi);
-                fprintf(f, "<line x1=\"%.1f\" x2=\"%.1f\" y1=\"%d\" y2=\"%d\" stroke=\"%s\"/>\n",
+                fprintf(f,
+                        "<line x1=\"%.1f\" x2=\"%.1f\" y1=\"%d\" y2=\"%d\" stroke=\"%s\"/>\n",
                         x, x, MT, H - MB, k ? "#f0f0f0" : "#d8d8d8");
-                fprintf(f, "<text x=\"%.1f\" y=\"%d\" font-size=\"11\" text-anchor=\"middle\">"
-                           "%s</text>\n", x, H - MB + 16, lab);
+                fprintf(f,
+                        "<text x=\"%.1f\" y=\"%d\" font-size=\"11\" text-anchor=\"middle\">"
+                        "%s</text>\n",
+                        x, H - MB + 16, lab);
             }
         }
 }
@@ -99,8 +106,9 @@ int svg_time_vs_error(const char *path, const result_list *l, const machine_info
         return -1;
     header(f, "cylray: run time against error (p99 of |t - t_exact| in float ulps)", m);
     if (!np) {
-        fprintf(f, "<text x=\"%d\" y=\"%d\" font-size=\"14\">no error figures: run the "
-                   "stress scenarios with the exact reference built</text>\n</svg>\n",
+        fprintf(f,
+                "<text x=\"%d\" y=\"%d\" font-size=\"14\">no error figures: run the "
+                "stress scenarios with the exact reference built</text>\n</svg>\n",
                 ML, H / 2);
         fclose(f);
         return 0;
@@ -111,51 +119,69 @@ int svg_time_vs_error(const char *path, const result_list *l, const machine_info
         y1 = fmax(y1, pts[i].y);
     }
     x0 /= 1.5, x1 *= 1.5, y1 *= 3;
-    fprintf(f, "<rect x=\"%d\" y=\"%d\" width=\"%d\" height=\"%d\" fill=\"none\" "
-               "stroke=\"#888\"/>\n", ML, MT, W - ML - MR, H - MT - MB);
+    fprintf(f,
+            "<rect x=\"%d\" y=\"%d\" width=\"%d\" height=\"%d\" fill=\"none\" "
+            "stroke=\"#888\"/>\n",
+            ML, MT, W - ML - MR, H - MT - MB);
     log_ticks(f, x0, x1, 0);
     log_ticks(f, y0, y1, 1);
-    fprintf(f, "<text x=\"%d\" y=\"%d\" font-size=\"13\" text-anchor=\"middle\">ns per ray "
-               "(median; 16-wide packets, textbook streams; normals; log)</text>\n",
+    fprintf(f,
+            "<text x=\"%d\" y=\"%d\" font-size=\"13\" text-anchor=\"middle\">ns per ray "
+            "(median; 16-wide packets, textbook streams; normals; log)</text>\n",
             (ML + W - MR) / 2, H - MB + 40);
-    fprintf(f, "<text transform=\"translate(22 %d) rotate(-90)\" font-size=\"13\" "
-               "text-anchor=\"middle\">p99 t error, ulps (log; 0 drawn at 0.1)</text>\n",
+    fprintf(f,
+            "<text transform=\"translate(22 %d) rotate(-90)\" font-size=\"13\" "
+            "text-anchor=\"middle\">p99 t error, ulps (log; 0 drawn at 0.1)</text>\n",
             (MT + H - MB) / 2);
     for (int i = 0; i < np; i++) {
         const point *p = &pts[i];
         double x = lx(p->x, x0, x1), y = ly(p->y, y0, y1);
         if (p->cat == 0)
-            fprintf(f, "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"5\" fill=\"%s\" fill-opacity=\"0.8\"/>\n",
-                    x, y, var_col[p->variant]);
+            fprintf(
+                f,
+                "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"5\" fill=\"%s\" fill-opacity=\"0.8\"/>\n",
+                x, y, var_col[p->variant]);
         else
-            fprintf(f, "<rect x=\"%.1f\" y=\"%.1f\" width=\"10\" height=\"10\" fill=\"none\" "
-                       "stroke=\"%s\" stroke-width=\"2\"/>\n",
+            fprintf(f,
+                    "<rect x=\"%.1f\" y=\"%.1f\" width=\"10\" height=\"10\" fill=\"none\" "
+                    "stroke=\"%s\" stroke-width=\"2\"/>\n",
                     x - 5, y - 5, var_col[p->variant]);
         /* labels staggered by variant, so points at one error level stay readable; the
          * textbook builds share one error level, so they alternate above and below */
-        int stagger = p->variant == 3 ? 22 * ((p->isa - BENCH_ISA_TEXTBOOK) % 2) : 10 * p->variant;
+        int stagger =
+            p->variant == 3 ? 22 * ((p->isa - BENCH_ISA_TEXTBOOK) % 2) : 10 * p->variant;
         fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" font-size=\"9\" fill=\"%s\">%s%s</text>\n",
                 x + 7, y - 8 + stagger, var_col[p->variant], bench_isa_name(p->isa),
-                p->variant == 0 || p->variant == 3 ? "" : p->variant == 1 ? " R" : " F");
+                p->variant == 0 || p->variant == 3 ? ""
+                : p->variant == 1                  ? " R"
+                                                   : " F");
     }
     /* legend */
     int lx0 = W - MR + 20, ly0 = MT + 10;
     for (int v = 0; v < 4; v++)
-        fprintf(f, "<circle cx=\"%d\" cy=\"%d\" r=\"5\" fill=\"%s\"/><text x=\"%d\" y=\"%d\" "
-                   "font-size=\"12\">%s</text>\n",
+        fprintf(f,
+                "<circle cx=\"%d\" cy=\"%d\" r=\"5\" fill=\"%s\"/><text x=\"%d\" y=\"%d\" "
+                "font-size=\"12\">%s</text>\n",
                 lx0, ly0 + 20 * v, var_col[v], lx0 + 12, ly0 + 20 * v + 4, var_name[v]);
-    fprintf(f, "<circle cx=\"%d\" cy=\"%d\" r=\"5\" fill=\"#999\"/><text x=\"%d\" y=\"%d\" "
-               "font-size=\"12\">%s</text>\n",
+    fprintf(f,
+            "<circle cx=\"%d\" cy=\"%d\" r=\"5\" fill=\"#999\"/><text x=\"%d\" y=\"%d\" "
+            "font-size=\"12\">%s</text>\n",
             lx0, ly0 + 100, lx0 + 12, ly0 + 104, cat_label[0]);
-    fprintf(f, "<rect x=\"%d\" y=\"%d\" width=\"10\" height=\"10\" fill=\"none\" stroke=\"#999\" "
-               "stroke-width=\"2\"/><text x=\"%d\" y=\"%d\" font-size=\"12\">%s</text>\n",
+    fprintf(f,
+            "<rect x=\"%d\" y=\"%d\" width=\"10\" height=\"10\" fill=\"none\" stroke=\"#999\" "
+            "stroke-width=\"2\"/><text x=\"%d\" y=\"%d\" font-size=\"12\">%s</text>\n",
             lx0 - 5, ly0 + 115, lx0 + 12, ly0 + 124, cat_label[1]);
-    fprintf(f, "<text x=\"%d\" y=\"%d\" font-size=\"10\" fill=\"#444\">R: REFINE, F: FAST</text>\n",
-            lx0 - 5, ly0 + 150);
-    fprintf(f, "<text x=\"%d\" y=\"%d\" font-size=\"10\" fill=\"#444\">textbook: naive.c, "
-               "plain float; scalar</text>\n", lx0 - 5, ly0 + 166);
-    fprintf(f, "<text x=\"%d\" y=\"%d\" font-size=\"10\" fill=\"#444\">and auto-vectorized "
-               "per ISA (streams)</text>\n", lx0 - 5, ly0 + 180);
+    fprintf(
+        f, "<text x=\"%d\" y=\"%d\" font-size=\"10\" fill=\"#444\">R: REFINE, F: FAST</text>\n",
+        lx0 - 5, ly0 + 150);
+    fprintf(f,
+            "<text x=\"%d\" y=\"%d\" font-size=\"10\" fill=\"#444\">textbook: naive.c, "
+            "plain float; scalar</text>\n",
+            lx0 - 5, ly0 + 166);
+    fprintf(f,
+            "<text x=\"%d\" y=\"%d\" font-size=\"10\" fill=\"#444\">and auto-vectorized "
+            "per ISA (streams)</text>\n",
+            lx0 - 5, ly0 + 180);
     fprintf(f, "</svg>\n");
     return fclose(f) ? -1 : 0;
 }
@@ -183,20 +209,25 @@ int svg_speedup(const char *path, const result_list *l, const machine_info *m)
         return -1;
     header(f, "cylray: speedup over the scalar path, per ISA and width", m);
     if (!ni) {
-        fprintf(f, "<text x=\"%d\" y=\"%d\" font-size=\"14\">no results for the incoherent "
-                   "scenario</text>\n</svg>\n", ML, H / 2);
+        fprintf(f,
+                "<text x=\"%d\" y=\"%d\" font-size=\"14\">no results for the incoherent "
+                "scenario</text>\n</svg>\n",
+                ML, H / 2);
         fclose(f);
         return 0;
     }
     double top = ceil(ymax * 1.15);
     const int pw = W - ML - MR, ph = H - MT - MB;
-    fprintf(f, "<rect x=\"%d\" y=\"%d\" width=\"%d\" height=\"%d\" fill=\"none\" "
-               "stroke=\"#888\"/>\n", ML, MT, pw, ph);
+    fprintf(f,
+            "<rect x=\"%d\" y=\"%d\" width=\"%d\" height=\"%d\" fill=\"none\" "
+            "stroke=\"#888\"/>\n",
+            ML, MT, pw, ph);
     double step = top <= 10 ? 1 : top <= 25 ? 2 : 5;
     for (double v = 0; v <= top + 1e-9; v += step) {
         double y = H - MB - v / top * ph;
-        fprintf(f, "<line x1=\"%d\" x2=\"%d\" y1=\"%.1f\" y2=\"%.1f\" stroke=\"%s\"/>\n"
-                   "<text x=\"%d\" y=\"%.1f\" font-size=\"11\" text-anchor=\"end\">%gx</text>\n",
+        fprintf(f,
+                "<line x1=\"%d\" x2=\"%d\" y1=\"%.1f\" y2=\"%.1f\" stroke=\"%s\"/>\n"
+                "<text x=\"%d\" y=\"%.1f\" font-size=\"11\" text-anchor=\"end\">%gx</text>\n",
                 ML, W - MR, y, y, v == 1 ? "#888" : "#e4e4e4", ML - 6, y + 4, v);
     }
     double gw = (double)pw / ni, bw = gw * 0.8 / BW_COUNT;
@@ -207,26 +238,35 @@ int svg_speedup(const char *path, const result_list *l, const machine_info *m)
             if (!r)
                 continue;
             double h = r->speedup / top * ph, x = gx + w * bw;
-            fprintf(f, "<rect x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" height=\"%.1f\" "
-                       "fill=\"%s\"/>\n", x, H - MB - h, bw - 2, h, wcol[w]);
-            fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" font-size=\"10\" text-anchor=\"middle\">"
-                       "%.1f</text>\n", x + bw / 2 - 1, H - MB - h - 4, r->speedup);
-            fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" font-size=\"9\" text-anchor=\"middle\" "
-                       "fill=\"#555\">%.0f</text>\n", x + bw / 2 - 1, (double)H - MB + 28,
-                    r->mrays);
+            fprintf(f,
+                    "<rect x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" height=\"%.1f\" "
+                    "fill=\"%s\"/>\n",
+                    x, H - MB - h, bw - 2, h, wcol[w]);
+            fprintf(f,
+                    "<text x=\"%.1f\" y=\"%.1f\" font-size=\"10\" text-anchor=\"middle\">"
+                    "%.1f</text>\n",
+                    x + bw / 2 - 1, H - MB - h - 4, r->speedup);
+            fprintf(f,
+                    "<text x=\"%.1f\" y=\"%.1f\" font-size=\"9\" text-anchor=\"middle\" "
+                    "fill=\"#555\">%.0f</text>\n",
+                    x + bw / 2 - 1, (double)H - MB + 28, r->mrays);
         }
-        fprintf(f, "<text x=\"%.1f\" y=\"%d\" font-size=\"13\" text-anchor=\"middle\">%s</text>\n",
+        fprintf(f,
+                "<text x=\"%.1f\" y=\"%d\" font-size=\"13\" text-anchor=\"middle\">%s</text>\n",
                 gx + gw * 0.4, H - MB + 15, bench_isa_name(isas[g]));
     }
-    fprintf(f, "<text x=\"%d\" y=\"%d\" font-size=\"11\" fill=\"#555\">small numbers under the "
-               "bars: M rays/s. Ordinary (incoherent) rays, capped cylinder, normals, batches "
-               "in L1, one core</text>\n", ML, H - MB + 50);
+    fprintf(f,
+            "<text x=\"%d\" y=\"%d\" font-size=\"11\" fill=\"#555\">small numbers under the "
+            "bars: M rays/s. Ordinary (incoherent) rays, capped cylinder, normals, batches "
+            "in L1, one core</text>\n",
+            ML, H - MB + 50);
     int lx0 = W - MR + 20, ly0 = MT + 10;
     for (int w = 0; w < BW_COUNT; w++)
-        fprintf(f, "<rect x=\"%d\" y=\"%d\" width=\"12\" height=\"12\" fill=\"%s\"/><text "
-                   "x=\"%d\" y=\"%d\" font-size=\"12\">%s%s</text>\n",
-                lx0, ly0 + 20 * w, wcol[w], lx0 + 18, ly0 + 20 * w + 11,
-                bench_width_name[w], w == BW_STREAM ? "" : " rays per packet");
+        fprintf(f,
+                "<rect x=\"%d\" y=\"%d\" width=\"12\" height=\"12\" fill=\"%s\"/><text "
+                "x=\"%d\" y=\"%d\" font-size=\"12\">%s%s</text>\n",
+                lx0, ly0 + 20 * w, wcol[w], lx0 + 18, ly0 + 20 * w + 11, bench_width_name[w],
+                w == BW_STREAM ? "" : " rays per packet");
     fprintf(f, "</svg>\n");
     return fclose(f) ? -1 : 0;
 }

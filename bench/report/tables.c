@@ -54,9 +54,9 @@ static void print_group(FILE *f, const result_list *l, const char *group, const 
         size_t dis = 0, unexc = 0;
         double hit = -1;
         for (int c = 0; c < nc; c++) {
-            const result *q = find_result(l, r->scenario, cols[c],
-                                          cols[c] == BENCH_ISA_TEXTBOOK ? -1 : r->width_id,
-                                          r->op_id);
+            const result *q =
+                find_result(l, r->scenario, cols[c],
+                            cols[c] == BENCH_ISA_TEXTBOOK ? -1 : r->width_id, r->op_id);
             /* the textbook has one row per flag set: show it on the first width's row */
             if (q && cols[c] == BENCH_ISA_TEXTBOOK && r->isa_id != BENCH_ISA_TEXTBOOK) {
                 const result *first = NULL;
@@ -160,17 +160,19 @@ static void print_peer(FILE *f, const result_list *l)
         any = is_auto(l->r[i].isa_id) && !strcmp(l->r[i].group, "main");
     if (!any)
         return;
-    fprintf(f, "\n== cylray against the textbook loop a user would write (naive.c, built per ISA "
-               "and auto-vectorized): same rays,\n   same capped cylinder, normals, calls of "
-               "%d rays in L1 ==\n", BENCH_BATCH);
+    fprintf(f,
+            "\n== cylray against the textbook loop a user would write (naive.c, built per ISA "
+            "and auto-vectorized): same rays,\n   same capped cylinder, normals, calls of "
+            "%d rays in L1 ==\n",
+            BENCH_BATCH);
     fprintf(f, "   M rays/s; x peer: the peer's time over cylray's (>= 1: accuracy for free); "
                "error: p99 ulps, dN hit/miss or part\n   disagreements with the exact "
                "answer, !M of them unexcused by the tolerance band\n");
     fprintf(f, "%-11s %-7s %9s %9s %-6s %-12s %9s %7s %7s | %-15s %-15s\n", "scenario", "isa",
             "stream", "packet", "width", "peer", "peer", "x peer", "x peer", "cylray error",
             "peer error");
-    fprintf(f, "%-11s %-7s %9s %9s %-6s %-12s %9s %7s %7s |\n", "", "", "", "(best)", "", "", "",
-            "stream", "packet");
+    fprintf(f, "%-11s %-7s %9s %9s %-6s %-12s %9s %7s %7s |\n", "", "", "", "(best)", "", "",
+            "", "stream", "packet");
     for (size_t i = 0; i < l->n; i++) {
         const result *pr = &l->r[i];
         if (!bench_is_textbook(pr->isa_id) || strcmp(pr->group, "main"))
@@ -213,8 +215,8 @@ static void print_skips(FILE *f, const result_list *l)
                "capped/infinite: the same rays;\n   all-hit/all-miss: packets of 100%% "
                "hits vs 100%% misses (ns/ray of each in brackets)\n");
     fprintf(f, "%-8s %-6s %8s %9s %9s %14s %10s %13s %22s\n", "isa", "width", "normal",
-               "normal/t", "norm/occ", "general/align", "capd/open", "capd/infinite",
-               "all-hit/all-miss");
+            "normal/t", "norm/occ", "general/align", "capd/open", "capd/infinite",
+            "all-hit/all-miss");
     for (int isa = 0; isa < CYLRAY_ISA_COUNT; isa++)
         for (int w = 0; w < BW_COUNT; w++) {
             const result *gen = find_result(l, "general", isa, w, OP_NORMAL);
@@ -223,7 +225,8 @@ static void print_skips(FILE *f, const result_list *l)
                 continue;
             const result *ah = find_result(l, "all-hit", isa, w, OP_NORMAL);
             const result *am = find_result(l, "all-miss", isa, w, OP_NORMAL);
-            fprintf(f, "%-8s %-6s %8.2f %8.2fx %8.2fx %13.2fx %9.2fx %12.2fx %6.2fx (%.2f/%.2f)\n",
+            fprintf(f,
+                    "%-8s %-6s %8.2f %8.2fx %8.2fx %13.2fx %9.2fx %12.2fx %6.2fx (%.2f/%.2f)\n",
                     bench_isa_name(isa), bench_width_name[w], inc ? inc->ns.med : 0,
                     ratio(inc, find_result(l, "incoherent", isa, w, OP_T)),
                     ratio(inc, find_result(l, "incoherent", isa, w, OP_OCC)),
@@ -243,8 +246,9 @@ static void print_lanes(FILE *f, const result_list *l)
         any = !strcmp(l->r[i].scenario, "half-subnormal");
     if (!any)
         return;
-    fprintf(f, "\n== inactive lanes: packets with every other lane inactive, those lanes all zeros "
-               "or all subnormals (1e-40) ==\n");
+    fprintf(
+        f, "\n== inactive lanes: packets with every other lane inactive, those lanes all zeros "
+           "or all subnormals (1e-40) ==\n");
     fprintf(f, "   ns per packet call (median; the active lanes hold the same incoherent rays "
                "in both); subnormal/zero: > 1 means the\n   garbage in lanes whose results are "
                "thrown away costs time\n");
@@ -305,15 +309,17 @@ static void print_leaf(FILE *f, const result_list *l, const leaf_report *lr)
         kd += snprintf(diffs + kd, sizeof diffs - (size_t)kd, "%s%zu (%s)", kd ? ", " : "",
                        lr->diff[s], tag[s]);
     }
-    fprintf(f, "\n== leaf: one incoherent ray against %d cylinders (molecule bonds, pipes) in "
-               "leaves of M; scenes of %s cylinders ==\n",
+    fprintf(f,
+            "\n== leaf: one incoherent ray against %d cylinders (molecule bonds, pipes) in "
+            "leaves of M; scenes of %s cylinders ==\n",
             lr->run, sizes);
-    fprintf(f, "   M ray-cylinder tests/s (median) for t, normal, occluded. With normals: x loop "
-               "= the scalar loop's time over this\n   one's (scalar-loop: the scalar path, a "
-               "4-wide packet call with one active lane per cylinder), x 1-lane = the\n   "
-               "same over one-lane intersect8 calls of %s; occ/normal = intersect with normals "
-               "over occluded.\n   Leaf bytes per cylinder: %d (M = 4), %d (8), %d (16); "
-               "answers that differ from the scalar loop's: %s\n",
+    fprintf(f,
+            "   M ray-cylinder tests/s (median) for t, normal, occluded. With normals: x loop "
+            "= the scalar loop's time over this\n   one's (scalar-loop: the scalar path, a "
+            "4-wide packet call with one active lane per cylinder), x 1-lane = the\n   "
+            "same over one-lane intersect8 calls of %s; occ/normal = intersect with normals "
+            "over occluded.\n   Leaf bytes per cylinder: %d (M = 4), %d (8), %d (16); "
+            "answers that differ from the scalar loop's: %s\n",
             lr->best, lr->bytes_per_cyl[0], lr->bytes_per_cyl[1], lr->bytes_per_cyl[2], diffs);
     fprintf(f, "%-8s %-14s %-3s %10s %10s %10s | %8s %9s %11s\n", "data", "path", "M", "t",
             "normal", "occluded", "x loop", "x 1-lane", "occ/normal");
@@ -341,8 +347,9 @@ static void print_stream(FILE *f, const result_list *l)
     for (size_t i = 0; i < l->n; i++)
         if (!strcmp(l->r[i].scenario, "big-stream"))
             n = l->r[i].rays_timed;
-    fprintf(f, "\n== big stream: %zu rays (%.0f MB of ray input) through the stream API, one "
-               "pass per sample ==\n",
+    fprintf(f,
+            "\n== big stream: %zu rays (%.0f MB of ray input) through the stream API, one "
+            "pass per sample ==\n",
             n, 32e-6 * (double)n);
     fprintf(f, "   GB/s: the 32 bytes of ray input per ray over the time; memcpy: a plain "
                "memcpy of the same bytes (GB/s copied,\n   and its time per ray); x memcpy: "
@@ -406,10 +413,10 @@ static void print_errors(FILE *f, const result_list *l)
         int seen = 0;
         for (size_t j = 0; j < l->n && !seen; j++)
             seen = j != i && l->r[j].have_err && !is_auto(l->r[j].isa_id) &&
-                   !strcmp(l->r[j].scenario, r->scenario) &&
-                   l->r[j].op_id == r->op_id &&
-                   (j < i ? 1 : r->isa_id == BENCH_ISA_TEXTBOOK &&
-                                    l->r[j].isa_id != BENCH_ISA_TEXTBOOK);
+                   !strcmp(l->r[j].scenario, r->scenario) && l->r[j].op_id == r->op_id &&
+                   (j < i ? 1
+                          : r->isa_id == BENCH_ISA_TEXTBOOK &&
+                                l->r[j].isa_id != BENCH_ISA_TEXTBOOK);
         if (seen)
             continue;
         fprintf(f, "%-19s %-8s", r->scenario, r->op);
@@ -454,11 +461,12 @@ static void print_scene(FILE *f, const result_list *l, const scene_report *sc)
 {
     if (!sc->have)
         return;
-    fprintf(f, "\n== scene: %d capped cylinders, %dx%d, 16-ray packets against every cylinder, "
-               "%zu primary + %zu shadow rays per frame ==\n",
+    fprintf(f,
+            "\n== scene: %d capped cylinders, %dx%d, 16-ray packets against every cylinder, "
+            "%zu primary + %zu shadow rays per frame ==\n",
             sc->ncyl, sc->w, sc->h, sc->primary, sc->shadow);
-    fprintf(f, "%-14s %10s %10s %12s %9s %14s\n", "path", "ms/frame", "M rays/s",
-            "M tests/s", "xscalar", "pixels != plain");
+    fprintf(f, "%-14s %10s %10s %12s %9s %14s\n", "path", "ms/frame", "M rays/s", "M tests/s",
+            "xscalar", "pixels != plain");
     for (size_t i = 0; i < l->n; i++) {
         const result *r = &l->r[i];
         if (strcmp(r->scenario, "scene"))
@@ -479,8 +487,9 @@ void report_tables(FILE *f, const result_list *l, const scene_report *sc, const 
 {
     print_group(f, l, "main", "main scenarios: packets of 4, 8, 16 and the stream API");
     print_group(f, l, "skips", "skips: the same work with less to do");
-    print_group(f, l, "stress", "stress categories of tests/ref/gen.h (16 rays per cylinder; "
-                                "textbook: the textbook formulas in plain float)");
+    print_group(f, l, "stress",
+                "stress categories of tests/ref/gen.h (16 rays per cylinder; "
+                "textbook: the textbook formulas in plain float)");
     print_rates(f, l);
     print_peer(f, l);
     print_skips(f, l);

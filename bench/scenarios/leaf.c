@@ -87,8 +87,9 @@ static int molecule(cylray_cylinder *out, int n, const double base[3], rng *g)
                     e[dir] += a;
                     for (int q = 0; q < 3; q++)
                         e[q] += urand(g, -0.15, 0.15) * a;
-                    double len = sqrt((e[0] - p[0]) * (e[0] - p[0]) +
-                                      (e[1] - p[1]) * (e[1] - p[1]) + (e[2] - p[2]) * (e[2] - p[2]));
+                    double len =
+                        sqrt((e[0] - p[0]) * (e[0] - p[0]) + (e[1] - p[1]) * (e[1] - p[1]) +
+                             (e[2] - p[2]) * (e[2] - p[2]));
                     out[k++] = segment(p, e, urand(g, 0.1, 0.2) * len, CYLRAY_CAPPED);
                 }
             }
@@ -150,8 +151,8 @@ static int morton_sort(cylray_cylinder *c, int n)
         uint32_t q[3];
         for (int k = 0; k < 3; k++)
             q[k] = (uint32_t)(1023.0f * (c[i].center[k] - lo[k]) / fmaxf(hi[k] - lo[k], 1e-6f));
-        kv[i].key = morton_spread3(q[0]) | morton_spread3(q[1]) << 1 |
-                    morton_spread3(q[2]) << 2;
+        kv[i].key =
+            morton_spread3(q[0]) | morton_spread3(q[1]) << 1 | morton_spread3(q[2]) << 2;
         kv[i].idx = i;
     }
     qsort(kv, (size_t)n, sizeof *kv, by_key);
@@ -194,7 +195,8 @@ static void aim_rays(leaf_scene *s, rng *g)
     const int nrun = s->ncyl / LEAF_RUN;
     for (int j = 0; j < LEAF_RAYS; j++) {
         int run = (int)(rng_unit(g) * nrun);
-        double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+        double lo[3] = {INFINITY, INFINITY, INFINITY},
+               hi[3] = {-INFINITY, -INFINITY, -INFINITY};
         for (int i = run * LEAF_RUN; i < (run + 1) * LEAF_RUN; i++) {
             const cylray_cylinder *c = &s->cyl[i];
             double al = sqrt((double)c->axis[0] * c->axis[0] + (double)c->axis[1] * c->axis[1] +
@@ -205,8 +207,9 @@ static void aim_rays(leaf_scene *s, rng *g)
                 hi[k] = fmax(hi[k], c->center[k] + ext);
             }
         }
-        double diag = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
-                           (hi[2] - lo[2]) * (hi[2] - lo[2]));
+        double diag =
+            sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                 (hi[2] - lo[2]) * (hi[2] - lo[2]));
         double target[3], u[3], ul = 0;
         for (int k = 0; k < 3; k++) {
             target[k] = urand(g, lo[k], hi[k]);
@@ -267,29 +270,29 @@ static int scene_build(leaf_scene *s, int ncyl, uint64_t seed)
 
 /* The leaf calls of width M; the hit's id + 1 (or 1 for occluded) goes into the sum, so
  * nothing can be dropped. */
-#define PASS_LEAF(M)                                                                     \
-    static uint64_t pass_leaf##M(const leaf_scene *s, const leaf_cfg *c, uint32_t *out)  \
-    {                                                                                    \
-        uint64_t acc = 0;                                                                \
-        const unsigned fl = bench_op_flags[c->op];                                       \
-        for (int j = 0; j < LEAF_RAYS; j++) {                                            \
-            cylray_ray1 r = s->ray[j];                                                   \
-            const cylray_leaf##M *L = s->l##M + s->run[j] * (LEAF_RUN / M);              \
-            uint32_t res = 0;                                                            \
-            if (c->op == OP_OCC) {                                                       \
-                for (int k = 0; k < LEAF_RUN / M && !res; k++)                           \
-                    res = (uint32_t)c->k->leaf_occluded##M(L + k, &r, fl);              \
-            } else {                                                                     \
-                cylray_hit1 h;                                                           \
-                for (int k = 0; k < LEAF_RUN / M; k++)                                   \
-                    if (c->k->leaf_intersect##M(L + k, &r, &h, fl))                      \
-                        res = h.id + 1;                                                  \
-            }                                                                            \
-            acc += res;                                                                  \
-            if (out)                                                                     \
-                out[j] = res;                                                            \
-        }                                                                                \
-        return acc;                                                                      \
+#define PASS_LEAF(M)                                                                           \
+    static uint64_t pass_leaf##M(const leaf_scene *s, const leaf_cfg *c, uint32_t *out)        \
+    {                                                                                          \
+        uint64_t acc = 0;                                                                      \
+        const unsigned fl = bench_op_flags[c->op];                                             \
+        for (int j = 0; j < LEAF_RAYS; j++) {                                                  \
+            cylray_ray1 r = s->ray[j];                                                         \
+            const cylray_leaf##M *L = s->l##M + s->run[j] * (LEAF_RUN / M);                    \
+            uint32_t res = 0;                                                                  \
+            if (c->op == OP_OCC) {                                                             \
+                for (int k = 0; k < LEAF_RUN / M && !res; k++)                                 \
+                    res = (uint32_t)c->k->leaf_occluded##M(L + k, &r, fl);                     \
+            } else {                                                                           \
+                cylray_hit1 h;                                                                 \
+                for (int k = 0; k < LEAF_RUN / M; k++)                                         \
+                    if (c->k->leaf_intersect##M(L + k, &r, &h, fl))                            \
+                        res = h.id + 1;                                                        \
+            }                                                                                  \
+            acc += res;                                                                        \
+            if (out)                                                                           \
+                out[j] = res;                                                                  \
+        }                                                                                      \
+        return acc;                                                                            \
     }
 PASS_LEAF(4)
 PASS_LEAF(8)
@@ -297,34 +300,34 @@ PASS_LEAF(16)
 
 /* The same work one cylinder at a time through a packet call with one active lane:
  * the scalar path's 4-wide packet (the scalar loop) or the best path's 8-wide one. */
-#define PASS_LANE(N)                                                                     \
-    static uint64_t pass_lane##N(const leaf_scene *s, const leaf_cfg *c, uint32_t *out)  \
-    {                                                                                    \
-        uint64_t acc = 0;                                                                \
-        const unsigned fl = bench_op_flags[c->op];                                       \
-        cylray_ray##N pk;                                                                \
-        cylray_hit##N h;                                                                 \
-        memset(&pk, 0, sizeof pk);                                                       \
-        for (int j = 0; j < LEAF_RAYS; j++) {                                            \
-            const cylray_ray1 *r = &s->ray[j];                                           \
-            pk.ox[0] = r->o[0], pk.oy[0] = r->o[1], pk.oz[0] = r->o[2];                  \
-            pk.dx[0] = r->d[0], pk.dy[0] = r->d[1], pk.dz[0] = r->d[2];                  \
-            pk.tmin[0] = r->tmin, pk.tmax[0] = r->tmax;                                  \
-            const cylray_prepared *P = s->prep + s->run[j] * LEAF_RUN;                   \
-            uint32_t res = 0;                                                            \
-            if (c->op == OP_OCC) {                                                       \
-                for (int k = 0; k < LEAF_RUN && !res; k++)                               \
-                    res = c->k->occluded##N(P + k, &pk, 1u, fl);                         \
-            } else {                                                                     \
-                for (int k = 0; k < LEAF_RUN; k++)                                       \
-                    if (c->k->intersect##N(P + k, &pk, &h, 1u, fl))                      \
-                        res = s->run[j] * LEAF_RUN + (uint32_t)k + 1;                    \
-            }                                                                            \
-            acc += res;                                                                  \
-            if (out)                                                                     \
-                out[j] = res;                                                            \
-        }                                                                                \
-        return acc;                                                                      \
+#define PASS_LANE(N)                                                                           \
+    static uint64_t pass_lane##N(const leaf_scene *s, const leaf_cfg *c, uint32_t *out)        \
+    {                                                                                          \
+        uint64_t acc = 0;                                                                      \
+        const unsigned fl = bench_op_flags[c->op];                                             \
+        cylray_ray##N pk;                                                                      \
+        cylray_hit##N h;                                                                       \
+        memset(&pk, 0, sizeof pk);                                                             \
+        for (int j = 0; j < LEAF_RAYS; j++) {                                                  \
+            const cylray_ray1 *r = &s->ray[j];                                                 \
+            pk.ox[0] = r->o[0], pk.oy[0] = r->o[1], pk.oz[0] = r->o[2];                        \
+            pk.dx[0] = r->d[0], pk.dy[0] = r->d[1], pk.dz[0] = r->d[2];                        \
+            pk.tmin[0] = r->tmin, pk.tmax[0] = r->tmax;                                        \
+            const cylray_prepared *P = s->prep + s->run[j] * LEAF_RUN;                         \
+            uint32_t res = 0;                                                                  \
+            if (c->op == OP_OCC) {                                                             \
+                for (int k = 0; k < LEAF_RUN && !res; k++)                                     \
+                    res = c->k->occluded##N(P + k, &pk, 1u, fl);                               \
+            } else {                                                                           \
+                for (int k = 0; k < LEAF_RUN; k++)                                             \
+                    if (c->k->intersect##N(P + k, &pk, &h, 1u, fl))                            \
+                        res = s->run[j] * LEAF_RUN + (uint32_t)k + 1;                          \
+            }                                                                                  \
+            acc += res;                                                                        \
+            if (out)                                                                           \
+                out[j] = res;                                                                  \
+        }                                                                                      \
+        return acc;                                                                            \
     }
 PASS_LANE(4)
 PASS_LANE(8)
@@ -335,8 +338,9 @@ static uint64_t run_pass(const leaf_scene *s, const leaf_cfg *c, uint32_t *out)
         return pass_lane4(s, c, out);
     if (c->kind == LK_LANE)
         return pass_lane8(s, c, out);
-    return c->m == 4 ? pass_leaf4(s, c, out) : c->m == 8 ? pass_leaf8(s, c, out)
-                                                          : pass_leaf16(s, c, out);
+    return c->m == 4   ? pass_leaf4(s, c, out)
+           : c->m == 8 ? pass_leaf8(s, c, out)
+                       : pass_leaf16(s, c, out);
 }
 
 /* One round's sample of a configuration, as timing.c takes them: warm-up (which sizes
@@ -424,8 +428,9 @@ void leaf_run(const options *opt, result_list *results, leaf_report *rep)
                 for (int m = 4; m <= 16; m *= 2)
                     cfg[nc++] = (leaf_cfg){LK_LEAF, isa, m, ops[o], k, 0};
             }
-            cfg[nc++] = (leaf_cfg){LK_LOOP, CYLRAY_ISA_SCALAR, 1, ops[o],
-                                   cylray_kernels_for(CYLRAY_ISA_SCALAR), 0};
+            cfg[nc++] = (leaf_cfg){
+                LK_LOOP, CYLRAY_ISA_SCALAR, 1, ops[o], cylray_kernels_for(CYLRAY_ISA_SCALAR),
+                0};
             cfg[nc++] = (leaf_cfg){LK_LANE, best->isa, 1, ops[o], best, 0};
         }
         for (int i = 0; i < nc; i++) {
@@ -468,8 +473,9 @@ void leaf_run(const options *opt, result_list *results, leaf_report *rep)
             bench_summarize(&none, r, opt->reps);
             if (!ref || !got)
                 continue;
-            leaf_cfg loop = {LK_LOOP, CYLRAY_ISA_SCALAR, 1, cfg[i].op,
-                             cylray_kernels_for(CYLRAY_ISA_SCALAR), 0};
+            leaf_cfg loop = {
+                LK_LOOP, CYLRAY_ISA_SCALAR, 1, cfg[i].op, cylray_kernels_for(CYLRAY_ISA_SCALAR),
+                0};
             run_pass(&s, &loop, ref);
             run_pass(&s, &cfg[i], got);
             size_t hits = 0, diff = 0;
@@ -484,4 +490,3 @@ void leaf_run(const options *opt, result_list *results, leaf_report *rep)
         scene_free(&s);
     }
 }
-

@@ -8,12 +8,12 @@
 #include "workloads.h"
 
 typedef struct leaf_report {
-    int have;               /* the scenario ran */
-    int run;                /* cylinders each ray meets */
-    int ncyl[2];            /* cylinders in the scene: data in L1, in L2 */
-    int bytes_per_cyl[3];   /* a leaf of 4, 8, 16: its bytes over its cylinders */
-    char best[16];          /* the path of the one-lane packet calls */
-    size_t diff[2];         /* answers that differ from the scalar loop's, all configs */
+    int have;             /* the scenario ran */
+    int run;              /* cylinders each ray meets */
+    int ncyl[2];          /* cylinders in the scene: data in L1, in L2 */
+    int bytes_per_cyl[3]; /* a leaf of 4, 8, 16: its bytes over its cylinders */
+    char best[16];        /* the path of the one-lane packet calls */
+    size_t diff[2];       /* answers that differ from the scalar loop's, all configs */
 } leaf_report;
 
 /* 1 when this build of the harness and the library have the leaf kernels. */

@@ -157,8 +157,8 @@ static void aimed_ray(const frame *f, rng *g, double dist, double o[3], double d
     to_world(f, dl, d, 0);
 }
 
-int rays_classify(const cylray_cylinder *cy, const double o[3], const double d[3],
-                  double tmin, double tmax)
+int rays_classify(const cylray_cylinder *cy, const double o[3], const double d[3], double tmin,
+                  double tmax)
 {
     frame f;
     frame_of(&f, cy);
@@ -283,8 +283,10 @@ void rays_generate(raysoa *r, ray_kind kind, const cylray_cylinder *cy, double e
     case RK_HIT_MIX:
     case RK_ALL_MISS:
     case RK_ALL_HIT: {
-        double p_hit = kind == RK_MISS_MIX ? 0.1 : kind == RK_HIT_MIX ? 0.9
-                       : kind == RK_ALL_HIT ? 1.0 : 0.0;
+        double p_hit = kind == RK_MISS_MIX  ? 0.1
+                       : kind == RK_HIT_MIX ? 0.9
+                       : kind == RK_ALL_HIT ? 1.0
+                                            : 0.0;
         for (size_t i = 0; i < r->n; i++) {
             unsigned want = rng_unit(g) < p_hit ? 4u : kind == RK_ALL_MISS ? 1u : 3u;
             class_ray(cy, &f, g, want, o, d);
@@ -310,8 +312,11 @@ void rays_generate(raysoa *r, ray_kind kind, const cylray_cylinder *cy, double e
 
 cylray_cylinder cyl_general(int kind)
 {
-    cylray_cylinder c = {{0.3f, -1.7f, 2.2f}, {0.31f, 0.87f, -0.42f}, 0.75f,
-                         kind == 0 ? INFINITY : 1.5f, kind == 2 ? CYLRAY_CAPPED : 0u};
+    cylray_cylinder c = {{0.3f, -1.7f, 2.2f},
+                         {0.31f, 0.87f, -0.42f},
+                         0.75f,
+                         kind == 0 ? INFINITY : 1.5f,
+                         kind == 2 ? CYLRAY_CAPPED : 0u};
     return c;
 }
 

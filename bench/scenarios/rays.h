@@ -25,7 +25,7 @@ void bench_free(void *p);
 typedef struct rng {
     uint64_t s;
 } rng;
-double rng_unit(rng *g);                  /* uniform in [0, 1) */
+double rng_unit(rng *g); /* uniform in [0, 1) */
 double rng_range(rng *g, double a, double b);
 
 /* How a ray set is drawn. Each is described where it is generated (rays.c). */
@@ -63,7 +63,7 @@ void cyl_cluster(cylray_cylinder *out, int n, double extent, rng *g);
 /* Classifies a ray against a cylinder in double precision; only for drawing scenario
  * mixes (the error side uses the exact reference). 0: misses even the infinite
  * cylinder, 1: misses the finite one, 2: hits. */
-int rays_classify(const cylray_cylinder *c, const double o[3], const double d[3],
-                  double tmin, double tmax);
+int rays_classify(const cylray_cylinder *c, const double o[3], const double d[3], double tmin,
+                  double tmax);
 
 #endif

@@ -50,8 +50,8 @@ static void add_cyl(scene *s, const double c[3], const double a[3], double R, do
 }
 
 /* A capped cylinder from p to q. */
-static void add_seg(scene *s, const double p[3], const double q[3], double R, const float rgb[3],
-                    int mat)
+static void add_seg(scene *s, const double p[3], const double q[3], double R,
+                    const float rgb[3], int mat)
 {
     double c[3], a[3];
     for (int k = 0; k < 3; k++)
@@ -85,7 +85,7 @@ static void build(scene *s)
 
     /* A pipe run on the right: straight pieces with flanges at every joint. */
     const double run[][3] = {{1.2, 0.35, 2.2}, {3.2, 0.35, 2.2}, {4.6, 0.35, 2.2},
-                             {4.6, 1.6, 2.2},  {4.6, 1.6, 0.0}, {4.6, 1.6, -2.0}};
+                             {4.6, 1.6, 2.2},  {4.6, 1.6, 0.0},  {4.6, 1.6, -2.0}};
     for (int p = 0; p < 2; p++) {
         double dz = p ? -0.55 : 0, dx = p ? 0.55 : 0;
         for (size_t i = 0; i + 1 < sizeof run / sizeof run[0]; i++) {
@@ -98,8 +98,8 @@ static void build(scene *s)
     }
     /* Supports under the lower pipes. */
     for (int k = 0; k < 3; k++)
-        add_cyl(s, (double[]){1.6 + 1.3 * k, 0.1, 1.95}, (double[]){0, 1, 0}, 0.06, 0.1,
-                flange, MAT_MATTE);
+        add_cyl(s, (double[]){1.6 + 1.3 * k, 0.1, 1.95}, (double[]){0, 1, 0}, 0.06, 0.1, flange,
+                MAT_MATTE);
 
     /* Benzene, ball-and-stick with drums for atoms, tilted, hovering at the front left. */
     double cen[3] = {-1.2, 1.75, 1.7}, u[3] = {1, 0.2, 0}, v[3] = {0, 0.85, 0.5};
@@ -243,7 +243,8 @@ static size_t render(const scene *s, const kern16 *k, int W, int H, uint8_t *rgb
                     double spec = 0;
                     if (s->mat[c] == MAT_SHINY && lit > 0) {
                         /* Blinn: the half vector between the light and the eye */
-                        double hv[3] = {ld[0] - ray.dx[l], ld[1] - ray.dy[l], ld[2] - ray.dz[l]};
+                        double hv[3] = {ld[0] - ray.dx[l], ld[1] - ray.dy[l],
+                                        ld[2] - ray.dz[l]};
                         normalize3(hv);
                         double nh = n[0] * hv[0] + n[1] * hv[1] + n[2] * hv[2];
                         spec = nh > 0 ? 0.45 * pow(nh, 48) : 0;

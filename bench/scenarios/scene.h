@@ -8,10 +8,10 @@
 
 typedef struct scene_report {
     int have, w, h, ncyl;
-    char image[600];               /* path of the PNG, or "" if it could not be written */
-    char plain_isa[16];            /* the path the plain entry points took */
-    size_t primary, shadow;        /* rays per frame */
-    long pix_diff[BENCH_NISA];     /* pixels that differ from the plain render, per ISA */
+    char image[600];           /* path of the PNG, or "" if it could not be written */
+    char plain_isa[16];        /* the path the plain entry points took */
+    size_t primary, shadow;    /* rays per frame */
+    long pix_diff[BENCH_NISA]; /* pixels that differ from the plain render, per ISA */
     int timed[BENCH_NISA];
 } scene_report;
 

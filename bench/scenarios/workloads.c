@@ -24,10 +24,10 @@ enum { FILL_NONE, FILL_ZERO, FILL_SUBNORMAL };
 
 typedef struct scen_def {
     const char *name, *group, *what;
-    int build;        /* S_*: how the cylinders and rays are made */
+    int build; /* S_*: how the cylinders and rays are made */
     ray_kind rays;
-    int cyl_kind;     /* 0 infinite, 1 open, 2 capped */
-    int ops;          /* OP_* bits, or -1 for the default of the group */
+    int cyl_kind; /* 0 infinite, 1 open, 2 capped */
+    int ops;      /* OP_* bits, or -1 for the default of the group */
     unsigned widths;
     int textbook, big;
     int gen_category; /* S_GEN: the cylgen category */
@@ -46,8 +46,9 @@ static void init_table(void)
         return;
     const unsigned occn = (1u << OP_NORMAL) | (1u << OP_OCC);
     const scen_def fixed[] = {
-        {"coherent", "main", "camera rays in 4x4 pixel tiles at a capped cylinder, general axis",
-         S_PLAIN, RK_CAMERA, 2, ALL_OPS, ALL_WIDTHS, 1, 0, 0, 0},
+        {"coherent", "main",
+         "camera rays in 4x4 pixel tiles at a capped cylinder, general axis", S_PLAIN,
+         RK_CAMERA, 2, ALL_OPS, ALL_WIDTHS, 1, 0, 0, 0},
         {"incoherent", "main",
          "ordinary rays: random origins 3-6 sizes away at a capped cylinder, general axis",
          S_PLAIN, RK_INCOHERENT, 2, ALL_OPS, ALL_WIDTHS, 1, 0, 0, 0},
@@ -57,10 +58,10 @@ static void init_table(void)
          "one packet against 32 capped cylinders (a BVH leaf, all in L1), closest hit; "
          "ns per ray and cylinder",
          S_CLUSTER, RK_CLUSTER, 2, (1u << OP_T) | occn, ALL_WIDTHS, 0, 0, 0, 0},
-        {"miss-mix", "main", "90% misses and 10% hits, mixed across lanes (capped)",
-         S_PLAIN, RK_MISS_MIX, 2, (int)occn, ALL_WIDTHS, 0, 0, 0, 0},
-        {"hit-mix", "main", "90% hits and 10% misses, mixed across lanes (capped)",
-         S_PLAIN, RK_HIT_MIX, 2, (int)occn, ALL_WIDTHS, 0, 0, 0, 0},
+        {"miss-mix", "main", "90% misses and 10% hits, mixed across lanes (capped)", S_PLAIN,
+         RK_MISS_MIX, 2, (int)occn, ALL_WIDTHS, 0, 0, 0, 0},
+        {"hit-mix", "main", "90% hits and 10% misses, mixed across lanes (capped)", S_PLAIN,
+         RK_HIT_MIX, 2, (int)occn, ALL_WIDTHS, 0, 0, 0, 0},
         {"big-stream", "stream",
          "a stream far larger than the caches (incoherent rays, capped); bytes of rays per "
          "second against memcpy",
@@ -69,19 +70,19 @@ static void init_table(void)
          S_ALIGNED, RK_INCOHERENT, 2, 1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0, 0},
         {"general", "skips", "the same rays and cylinder rotated to a general axis (capped)",
          S_GENERAL, RK_INCOHERENT, 2, 1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0, 0},
-        {"open", "skips", "the `general` rays against the open tube (no caps)",
-         S_GENERAL, RK_INCOHERENT, 1, 1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0, 0},
-        {"infinite", "skips", "the `general` rays against the infinite cylinder",
-         S_GENERAL, RK_INCOHERENT, 0, 1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0, 0},
-        {"open-coherent", "skips", "the `coherent` camera rays against the open tube",
-         S_PLAIN, RK_CAMERA, 1, 1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0, 0},
+        {"open", "skips", "the `general` rays against the open tube (no caps)", S_GENERAL,
+         RK_INCOHERENT, 1, 1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0, 0},
+        {"infinite", "skips", "the `general` rays against the infinite cylinder", S_GENERAL,
+         RK_INCOHERENT, 0, 1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0, 0},
+        {"open-coherent", "skips", "the `coherent` camera rays against the open tube", S_PLAIN,
+         RK_CAMERA, 1, 1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0, 0},
         {"infinite-coherent", "skips",
          "the `coherent` camera rays against the infinite cylinder", S_PLAIN, RK_CAMERA, 0,
          1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0, 0},
-        {"all-miss", "skips", "every ray misses even the infinite cylinder (capped)",
-         S_PLAIN, RK_ALL_MISS, 2, 1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0, 0},
-        {"all-hit", "skips", "every ray hits (capped)", S_PLAIN, RK_ALL_HIT, 2,
-         1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0, 0},
+        {"all-miss", "skips", "every ray misses even the infinite cylinder (capped)", S_PLAIN,
+         RK_ALL_MISS, 2, 1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0, 0},
+        {"all-hit", "skips", "every ray hits (capped)", S_PLAIN, RK_ALL_HIT, 2, 1u << OP_NORMAL,
+         ALL_WIDTHS, 0, 0, 0, 0},
         {"half-zero", "lanes",
          "incoherent rays in every other lane, the others inactive and all zeros (capped)",
          S_PLAIN, RK_INCOHERENT, 2, 1u << OP_NORMAL, (1u << BW_8) | (1u << BW_16), 0, 0, 0,
@@ -96,10 +97,18 @@ static void init_table(void)
         table[ntable++] = fixed[i];
     for (int c = 0; c < cylgen_category_count() && ntable < MAX_SCEN; c++) {
         snprintf(gen_names[c], sizeof gen_names[c], "stress-%s", cylgen_category_name(c));
-        scen_def s = {gen_names[c], "stress", cylgen_category_description(c), S_GEN,
-                      RK_INCOHERENT, 2,
+        scen_def s = {gen_names[c],
+                      "stress",
+                      cylgen_category_description(c),
+                      S_GEN,
+                      RK_INCOHERENT,
+                      2,
                       (1 << OP_NORMAL) | (1 << OP_REFINE) | (1 << OP_FAST),
-                      1u << BW_16, 1, 0, c, 0};
+                      1u << BW_16,
+                      1,
+                      0,
+                      c,
+                      0};
         table[ntable++] = s;
     }
 }

@@ -55,10 +55,11 @@ int main(int argc, char **argv)
     for (int i = 0; i < CYLRAY_ISA_COUNT; i++)
         isa_names[i] = cylray_isa_name((cylray_isa)i);
     /* the textbook peer's builds, by the cylray path whose instructions they may use */
-    static const int tb_of[CYLRAY_ISA_COUNT] = {
-        [CYLRAY_ISA_SCALAR] = TB_SCALAR, [CYLRAY_ISA_SSE41] = TB_SSE41,
-        [CYLRAY_ISA_AVX2] = TB_AVX2,     [CYLRAY_ISA_AVX512] = TB_AVX512,
-        [CYLRAY_ISA_NEON] = TB_NEON};
+    static const int tb_of[CYLRAY_ISA_COUNT] = {[CYLRAY_ISA_SCALAR] = TB_SCALAR,
+                                                [CYLRAY_ISA_SSE41] = TB_SSE41,
+                                                [CYLRAY_ISA_AVX2] = TB_AVX2,
+                                                [CYLRAY_ISA_AVX512] = TB_AVX512,
+                                                [CYLRAY_ISA_NEON] = TB_NEON};
     int isa = -1, width = -1, textbook = 0, op = -1, scen = -1, batch = -1;
     long passes = -1;
     for (int i = 1; i < argc; i++) {
@@ -82,8 +83,12 @@ int main(int argc, char **argv)
             return 1;
         }
     }
-    const char *bad = isa < 0 ? "--isa" : width < 0 ? "--driver" : op < 0 ? "--flags"
-                      : scen < 0 ? "--scenario" : passes < 1 ? "--passes" : NULL;
+    const char *bad = isa < 0      ? "--isa"
+                      : width < 0  ? "--driver"
+                      : op < 0     ? "--flags"
+                      : scen < 0   ? "--scenario"
+                      : passes < 1 ? "--passes"
+                                   : NULL;
     if (bad) {
         fprintf(stderr, "cylicount: %s missing or not known\n", bad);
         usage();
@@ -129,8 +134,7 @@ int main(int argc, char **argv)
     printf("%s %s %s %s: %ld passes, %zu rays, %zu tests a ray, %llu hits\n",
            workloads_name(scen), isa_names[isa],
            textbook ? "textbook" : bench_width_name[width], bench_op_name[op], passes,
-           (size_t)passes * w.batch, (size_t)bench_tests_per_ray(&w),
-           (unsigned long long)hits);
+           (size_t)passes * w.batch, (size_t)bench_tests_per_ray(&w), (unsigned long long)hits);
     runner_free(&x);
     workloads_free(&w);
     return 0;

@@ -79,13 +79,16 @@ static void random_ray(const cylray_cylinder *c, float o[3], float d[3], float *
     const uint32_t r = rnd();
     switch (r % 16) {
     case 0: /* tiny direction */
-        for (int j = 0; j < 3; j++) d[j] *= 0x1p-50f;
+        for (int j = 0; j < 3; j++)
+            d[j] *= 0x1p-50f;
         break;
     case 1: /* huge direction */
-        for (int j = 0; j < 3; j++) d[j] *= 0x1p50f;
+        for (int j = 0; j < 3; j++)
+            d[j] *= 0x1p50f;
         break;
     case 2: /* along the axis */
-        for (int j = 0; j < 3; j++) d[j] = c->axis[j] * ((r & 256) ? 1.0f : -1.0f);
+        for (int j = 0; j < 3; j++)
+            d[j] = c->axis[j] * ((r & 256) ? 1.0f : -1.0f);
         break;
     case 3:
         d[r / 16 % 3] = NAN;
@@ -100,7 +103,8 @@ static void random_ray(const cylray_cylinder *c, float o[3], float d[3], float *
         *tmax = NAN;
         break;
     case 7: /* a far origin */
-        for (int j = 0; j < 3; j++) o[j] *= 0x1p20f;
+        for (int j = 0; j < 3; j++)
+            o[j] *= 0x1p20f;
         break;
     case 8:
         d[0] = d[1] = d[2] = 0.0f;
@@ -129,21 +133,21 @@ static void fill(soa *s, const cylray_cylinder *c, size_t n)
     }
 }
 
-#define PACKET(n)                                                                       \
-    static void packet##n(const cylray_kernels *k, const cylray_prepared *p, const soa *s, \
-                          uint32_t active, unsigned flags)                              \
-    {                                                                                   \
-        cylray_ray##n ray;                                                              \
-        cylray_hit##n hit;                                                              \
-        memcpy(ray.ox, s->ox, sizeof ray.ox), memcpy(ray.oy, s->oy, sizeof ray.oy);     \
-        memcpy(ray.oz, s->oz, sizeof ray.oz), memcpy(ray.dx, s->dx, sizeof ray.dx);     \
-        memcpy(ray.dy, s->dy, sizeof ray.dy), memcpy(ray.dz, s->dz, sizeof ray.dz);     \
-        memcpy(ray.tmin, s->tmin, sizeof ray.tmin);                                     \
-        memcpy(ray.tmax, s->tmax, sizeof ray.tmax);                                     \
-        hash_u(k->occluded##n(p, &ray, active, flags));                                 \
-        memset(&hit, 0x5a, sizeof hit);                                                 \
-        hash_u(k->intersect##n(p, &ray, &hit, active, flags));                          \
-        hash(&ray, sizeof ray), hash(&hit, sizeof hit);                                 \
+#define PACKET(n)                                                                              \
+    static void packet##n(const cylray_kernels *k, const cylray_prepared *p, const soa *s,     \
+                          uint32_t active, unsigned flags)                                     \
+    {                                                                                          \
+        cylray_ray##n ray;                                                                     \
+        cylray_hit##n hit;                                                                     \
+        memcpy(ray.ox, s->ox, sizeof ray.ox), memcpy(ray.oy, s->oy, sizeof ray.oy);            \
+        memcpy(ray.oz, s->oz, sizeof ray.oz), memcpy(ray.dx, s->dx, sizeof ray.dx);            \
+        memcpy(ray.dy, s->dy, sizeof ray.dy), memcpy(ray.dz, s->dz, sizeof ray.dz);            \
+        memcpy(ray.tmin, s->tmin, sizeof ray.tmin);                                            \
+        memcpy(ray.tmax, s->tmax, sizeof ray.tmax);                                            \
+        hash_u(k->occluded##n(p, &ray, active, flags));                                        \
+        memset(&hit, 0x5a, sizeof hit);                                                        \
+        hash_u(k->intersect##n(p, &ray, &hit, active, flags));                                 \
+        hash(&ray, sizeof ray), hash(&hit, sizeof hit);                                        \
     }
 PACKET(4)
 PACKET(8)
@@ -167,27 +171,29 @@ static void stream(const cylray_kernels *k, const cylray_prepared *p, const soa 
     hash(nz, sizeof nz), hash(part, sizeof part), hash(occ, sizeof occ);
 }
 
-#define LEAF(m)                                                                         \
-    static void leaf##m(const cylray_kernels *k, const cylray_cylinder *cyl, size_t count, \
-                        const soa *s, unsigned flags)                                   \
-    {                                                                                   \
-        cylray_leaf##m leaf;                                                            \
-        uint32_t ids[m];                                                                \
-        for (uint32_t j = 0; j < m; j++)                                                \
-            ids[j] = 100u + j;                                                          \
-        if (cylray_leaf_prepare##m(&leaf, cyl, ids, count) != CYLRAY_OK) {              \
-            hash_u(0xbad);                                                              \
-            return;                                                                     \
-        }                                                                               \
-        for (size_t i = 0; i < 8; i++) {                                                \
-            cylray_ray1 ray = {{s->ox[i], s->oy[i], s->oz[i]},                          \
-                               {s->dx[i], s->dy[i], s->dz[i]}, s->tmin[i], s->tmax[i]}; \
-            cylray_hit1 hit;                                                            \
-            memset(&hit, 0x5a, sizeof hit);                                             \
-            hash_u((uint64_t)k->leaf_occluded##m(&leaf, &ray, flags));                  \
-            hash_u((uint64_t)k->leaf_intersect##m(&leaf, &ray, &hit, flags));           \
-            hash(&ray, sizeof ray), hash(&hit, sizeof hit);                             \
-        }                                                                               \
+#define LEAF(m)                                                                                \
+    static void leaf##m(const cylray_kernels *k, const cylray_cylinder *cyl, size_t count,     \
+                        const soa *s, unsigned flags)                                          \
+    {                                                                                          \
+        cylray_leaf##m leaf;                                                                   \
+        uint32_t ids[m];                                                                       \
+        for (uint32_t j = 0; j < m; j++)                                                       \
+            ids[j] = 100u + j;                                                                 \
+        if (cylray_leaf_prepare##m(&leaf, cyl, ids, count) != CYLRAY_OK) {                     \
+            hash_u(0xbad);                                                                     \
+            return;                                                                            \
+        }                                                                                      \
+        for (size_t i = 0; i < 8; i++) {                                                       \
+            cylray_ray1 ray = {{s->ox[i], s->oy[i], s->oz[i]},                                 \
+                               {s->dx[i], s->dy[i], s->dz[i]},                                 \
+                               s->tmin[i],                                                     \
+                               s->tmax[i]};                                                    \
+            cylray_hit1 hit;                                                                   \
+            memset(&hit, 0x5a, sizeof hit);                                                    \
+            hash_u((uint64_t)k->leaf_occluded##m(&leaf, &ray, flags));                         \
+            hash_u((uint64_t)k->leaf_intersect##m(&leaf, &ray, &hit, flags));                  \
+            hash(&ray, sizeof ray), hash(&hit, sizeof hit);                                    \
+        }                                                                                      \
     }
 LEAF(4)
 LEAF(8)

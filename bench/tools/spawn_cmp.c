@@ -346,8 +346,8 @@ int main(int argc, char **argv)
            "| point + origin, ns/ray |\n|---|---|---|---|---|---|---|\n");
     for (int s = 0; s < S_COUNT; s++)
         printf("| %s | %.3g %% | %.3g %% | %.3g | %.3g | %.3g | %.1f |\n", scheme_name[s],
-               100 * row_self[s], 100 * row_nested[s], row_ratio[s], row_ulps[s],
-               row_mits[s], row_ns[s]);
+               100 * row_self[s], 100 * row_nested[s], row_ratio[s], row_ulps[s], row_mits[s],
+               row_ns[s]);
     free(H);
     free(C);
     free(W);

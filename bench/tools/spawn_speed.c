@@ -48,10 +48,10 @@ typedef struct stream {
     size_t n;
     float *ox, *oy, *oz, *dx, *dy, *dz, *tmin, *tmax, *t;
     int32_t *part;
-    float *wx, *wy, *wz, *wmax;      /* new directions, and tmax for them */
-    float *px, *py, *pz, *err;       /* the hit points */
-    float *x0, *y0, *z0;             /* the origins */
-    const cylray_leaf8 **leaves;     /* leaves in bulk: the same leaf for every hit */
+    float *wx, *wy, *wz, *wmax;  /* new directions, and tmax for them */
+    float *px, *py, *pz, *err;   /* the hit points */
+    float *x0, *y0, *z0;         /* the origins */
+    const cylray_leaf8 **leaves; /* leaves in bulk: the same leaf for every hit */
     cylray_ray1 *r1;
     cylray_hit1 *h1;
 } stream;
@@ -96,7 +96,8 @@ static inline float next_float_down(float f)
 #if defined(__GNUC__) && !defined(__clang__)
 __attribute__((optimize("no-tree-vectorize")))
 #endif
-static void pbrt_stream(const stream *s)
+static void
+pbrt_stream(const stream *s)
 {
     const cylray_prepared *P = &s->P;
     const float cx = P->c[0], cy = P->c[1], cz = P->c[2];
@@ -108,14 +109,16 @@ static void pbrt_stream(const stream *s)
 #endif
     for (size_t i = 0; i < s->n; i++) {
         const float t = s->t[i];
-        float p[3] = {s->ox[i] + t * s->dx[i], s->oy[i] + t * s->dy[i], s->oz[i] + t * s->dz[i]};
+        float p[3] = {s->ox[i] + t * s->dx[i], s->oy[i] + t * s->dy[i],
+                      s->oz[i] + t * s->dz[i]};
         const float qx = p[0] - cx, qy = p[1] - cy, qz = p[2] - cz;
         const float z = qx * ax + qy * ay + qz * az;
         const float rx = qx - z * ax, ry = qy - z * ay, rz = qz - z * az;
         float n[3];
         if ((s->part[i] & CYLRAY_PART_MASK) == CYLRAY_SIDE) {
             const float l = sqrtf(rx * rx + ry * ry + rz * rz), il = 1.0f / l, g = R * il;
-            p[0] = cx + z * ax + rx * g, p[1] = cy + z * ay + ry * g, p[2] = cz + z * az + rz * g;
+            p[0] = cx + z * ax + rx * g, p[1] = cy + z * ay + ry * g,
+            p[2] = cz + z * az + rz * g;
             n[0] = rx * il, n[1] = ry * il, n[2] = rz * il;
         } else {
             const float sg = (s->part[i] & CYLRAY_PART_MASK) == CYLRAY_CAP_HI ? 1.0f : -1.0f;
@@ -165,7 +168,8 @@ static void cylray_leaves(const cylray_kernels *K, const stream *s)
 static void cylray_single(const stream *s)
 {
     for (size_t i = 0; i < s->n; i++) {
-        const float o[3] = {s->ox[i], s->oy[i], s->oz[i]}, d[3] = {s->dx[i], s->dy[i], s->dz[i]};
+        const float o[3] = {s->ox[i], s->oy[i], s->oz[i]},
+                    d[3] = {s->dx[i], s->dy[i], s->dz[i]};
         const float w[3] = {s->wx[i], s->wy[i], s->wz[i]};
         float p[3], err, x[3];
         cylray_hit_point(&s->P, o, d, s->t[i], s->part[i], p, &err);
@@ -177,8 +181,13 @@ static void cylray_single(const stream *s)
 
 /* ---- rows ---------------------------------------------------------------------- */
 
-enum { ROW_PBRT, ROW_STREAM0, ROW_LEAF0 = ROW_STREAM0 + CYLRAY_ISA_COUNT,
-       ROW_SINGLE = ROW_LEAF0 + CYLRAY_ISA_COUNT, ROW_COUNT };
+enum {
+    ROW_PBRT,
+    ROW_STREAM0,
+    ROW_LEAF0 = ROW_STREAM0 + CYLRAY_ISA_COUNT,
+    ROW_SINGLE = ROW_LEAF0 + CYLRAY_ISA_COUNT,
+    ROW_COUNT
+};
 
 static const cylray_kernels *row_isa(int row)
 {
@@ -338,7 +347,8 @@ int main(int argc, char **argv)
             continue;
         /* the new directions, about the exact normal at the hit point */
         for (size_t i = 0; i < n; i++) {
-            const float o[3] = {s->ox[i], s->oy[i], s->oz[i]}, d[3] = {s->dx[i], s->dy[i], s->dz[i]};
+            const float o[3] = {s->ox[i], s->oy[i], s->oz[i]},
+                        d[3] = {s->dx[i], s->dy[i], s->dz[i]};
             float p[3], err, w[3];
             double nn[3];
             cylray_hit_point(&s->P, o, d, s->t[i], s->part[i], p, &err);
@@ -369,8 +379,10 @@ int main(int argc, char **argv)
         }
         for (size_t i = 0; i < n; i++) {
             s->leaves[i] = s->leaf;
-            cylray_ray1 r = {{s->ox[i], s->oy[i], s->oz[i]}, {s->dx[i], s->dy[i], s->dz[i]},
-                             s->tmin[i], s->t[i]};
+            cylray_ray1 r = {{s->ox[i], s->oy[i], s->oz[i]},
+                             {s->dx[i], s->dy[i], s->dz[i]},
+                             s->tmin[i],
+                             s->t[i]};
             cylray_hit1 h = {s->t[i], {0, 0, 0}, s->part[i], 0, 0};
             s->r1[i] = r, s->h1[i] = h;
         }
@@ -426,7 +438,8 @@ int main(int argc, char **argv)
     }
 
     printf("cylspawnspeed: %zu hits on %zu cylinders (one per category), point + origin "
-           "per hit; %ld rounds of %d passes, median\n", total, ns, reps, passes);
+           "per hit; %ld rounds of %d passes, median\n",
+           total, ns, reps, passes);
     printf("machine: %s (%s), %d cores%s, %s, %s; %s\n", mi.cpu, mi.cpuid, mi.cores,
            mi.hypervisor ? " under a hypervisor" : "", mi.compiler, mi.buildtype, pin);
     printf("\n| scheme | ns/ray (median) | min - max | / pbrt-v4 | self-intersections |\n"
@@ -450,10 +463,11 @@ int main(int argc, char **argv)
     printf("\n(checksum %016llx)\n", (unsigned long long)sink);
     free(samples);
     for (size_t j = 0; j < ns; j++) {
-        float *f[21] = {S[j].ox, S[j].oy, S[j].oz, S[j].dx, S[j].dy, S[j].dz, S[j].tmin,
-                        S[j].tmax, S[j].t, (float *)(void *)S[j].part, S[j].wx, S[j].wy,
-                        S[j].wz, S[j].wmax, S[j].px, S[j].py, S[j].pz, S[j].err, S[j].x0,
-                        S[j].y0, S[j].z0};
+        float *f[21] = {S[j].ox, S[j].oy,   S[j].oz,   S[j].dx,   S[j].dy,
+                        S[j].dz, S[j].tmin, S[j].tmax, S[j].t,    (float *)(void *)S[j].part,
+                        S[j].wx, S[j].wy,   S[j].wz,   S[j].wmax, S[j].px,
+                        S[j].py, S[j].pz,   S[j].err,  S[j].x0,   S[j].y0,
+                        S[j].z0};
         for (int k = 0; k < 21; k++)
             free(f[k]);
         free(S[j].leaf);

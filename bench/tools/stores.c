@@ -35,17 +35,17 @@
 
 /* One instantiation of the header per width and policy: the store stage of a hit
  * vector with normals, as the kernel runs it (vstore_hits). */
-#define RUN_(name)                                                                     \
-    static void name(float *const *f, int32_t *part, const uint32_t *m, size_t nv)    \
-    {                                                                                  \
-        for (size_t v = 0; v < nv; v++) {                                              \
-            const vm mk = mfrom_bits(m[v]);                                            \
-            const vf x = vset1((float)v);                                              \
-            const size_t o = (v & 63u) * VW;                                           \
-            vstore_hits(mk, 1, f[0] + o, f[1] + o, part + o, f[2] + o, f[3] + o,        \
-                        f[4] + o, x, vadd(x, vset1(1.0f)), vadd(x, vset1(2.0f)),         \
-                        vadd(x, vset1(3.0f)), vadd(x, vset1(4.0f)));                     \
-        }                                                                              \
+#define RUN_(name)                                                                             \
+    static void name(float *const *f, int32_t *part, const uint32_t *m, size_t nv)             \
+    {                                                                                          \
+        for (size_t v = 0; v < nv; v++) {                                                      \
+            const vm mk = mfrom_bits(m[v]);                                                    \
+            const vf x = vset1((float)v);                                                      \
+            const size_t o = (v & 63u) * VW;                                                   \
+            vstore_hits(mk, 1, f[0] + o, f[1] + o, part + o, f[2] + o, f[3] + o, f[4] + o, x,  \
+                        vadd(x, vset1(1.0f)), vadd(x, vset1(2.0f)), vadd(x, vset1(3.0f)),      \
+                        vadd(x, vset1(4.0f)));                                                 \
+        }                                                                                      \
     }
 #define VW 8
 #define X86_STORES_BY_LANE 0
@@ -125,8 +125,7 @@ int main(int argc, char **argv)
     const struct {
         const char *name;
         int p16; /* per-lane hit probability in 16ths; 16 every lane, 0 one lane */
-    } mix[] = {{"all lanes", 16}, {"one lane", 0}, {"p=1/2", 8}, {"p=3/4", 12},
-               {"p=7/8", 14}};
+    } mix[] = {{"all lanes", 16}, {"one lane", 0}, {"p=1/2", 8}, {"p=3/4", 12}, {"p=7/8", 14}};
     printf("%-12s %5s", "policy", "lanes");
     for (size_t x = 0; x < sizeof mix / sizeof mix[0]; x++)
         printf(" %17s", mix[x].name);

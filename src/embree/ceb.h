@@ -21,7 +21,7 @@ typedef struct frame {
     float inv_aa;      /* 1 / |a|^2 */
     float n[3];        /* the unit axis */
     float b1[3], b2[3];
-    uint32_t pieces;   /* split boxes along the axis (1: one box) */
+    uint32_t pieces; /* split boxes along the axis (1: one box) */
 } frame;
 
 typedef struct ceb {
@@ -56,10 +56,8 @@ void *ceb_alloc_aligned(size_t bytes);
 int ceb_group_leaves(ceb *g, RTCDevice dev, const cylray_cylinder *cyl);
 
 /* filter.c: a hit offered to the filter functions */
-int ceb_filter_hit(const struct RTCIntersectFunctionNArguments *a, unsigned i,
-                   const hitrec *h);
-int ceb_filter_occ(const struct RTCOccludedFunctionNArguments *a, unsigned i,
-                   const hitrec *h);
+int ceb_filter_hit(const struct RTCIntersectFunctionNArguments *a, unsigned i, const hitrec *h);
+int ceb_filter_occ(const struct RTCOccludedFunctionNArguments *a, unsigned i, const hitrec *h);
 
 /* single.c, leaves.c: the intersect and occluded callbacks */
 void ceb_single_intersect(const struct RTCIntersectFunctionNArguments *a);

@@ -28,16 +28,18 @@ static float offer(unsigned N, unsigned i, const hitrec *h, unsigned geomID,
 
 /* Offers hit h of lane i to the filter functions: 1 when accepted (the hit is then in
  * the record), 0 when rejected (tfar back). */
-int ceb_filter_hit(const struct RTCIntersectFunctionNArguments *a, unsigned i,
-                      const hitrec *h)
+int ceb_filter_hit(const struct RTCIntersectFunctionNArguments *a, unsigned i, const hitrec *h)
 {
     const unsigned N = a->N;
     float hb[H_NFIELDS * 16];
     int valid[16];
     const float old = offer(N, i, h, a->geomID, a->context, a->rayhit, valid, hb);
-    struct RTCFilterFunctionNArguments f = {valid, a->geometryUserPtr, a->context,
+    struct RTCFilterFunctionNArguments f = {valid,
+                                            a->geometryUserPtr,
+                                            a->context,
                                             (struct RTCRayN *)a->rayhit,
-                                            (struct RTCHitN *)hb, N};
+                                            (struct RTCHitN *)hb,
+                                            N};
     ceb_filter_intersection(a, &f);
     if (!valid[i]) {
         RF(a->rayhit, N, R_TFAR, i) = old;
@@ -47,14 +49,13 @@ int ceb_filter_hit(const struct RTCIntersectFunctionNArguments *a, unsigned i,
     return 1;
 }
 
-int ceb_filter_occ(const struct RTCOccludedFunctionNArguments *a, unsigned i,
-                      const hitrec *h)
+int ceb_filter_occ(const struct RTCOccludedFunctionNArguments *a, unsigned i, const hitrec *h)
 {
     const unsigned N = a->N;
     float hb[H_NFIELDS * 16];
     int valid[16];
     const float old = offer(N, i, h, a->geomID, a->context, a->ray, valid, hb);
-    struct RTCFilterFunctionNArguments f = {valid, a->geometryUserPtr, a->context,
+    struct RTCFilterFunctionNArguments f = {valid,  a->geometryUserPtr,   a->context,
                                             a->ray, (struct RTCHitN *)hb, N};
     ceb_filter_occlusion(a, &f);
     if (!valid[i]) {

@@ -52,22 +52,22 @@ static void box_union(struct RTCBounds *u, const struct RTCBounds *b)
     u->lower_z = fminf(u->lower_z, b->lower_z), u->upper_z = fmaxf(u->upper_z, b->upper_z);
 }
 
-#define CEB_LEAF_BUILD(M)                                                                  \
-    static int build_leaves##M(ceb *g, const cylray_cylinder *cyl, const sah_ctx *c)       \
-    {                                                                                      \
+#define CEB_LEAF_BUILD(M)                                                                      \
+    static int build_leaves##M(ceb *g, const cylray_cylinder *cyl, const sah_ctx *c)           \
+    {                                                                                          \
         cylray_leaf##M *lv = ceb_alloc_aligned(g->nprim * sizeof *lv);                         \
-        if (!lv)                                                                           \
-            return -1;                                                                     \
-        g->leaves = lv;                                                                    \
-        for (size_t l = 0; l < g->nprim; l++) {                                            \
-            const uint32_t *ids = c->order + c->first[l];                                  \
-            cylray_cylinder cc[M];                                                         \
-            for (size_t j = 0; j < c->count[l]; j++)                                       \
-                cc[j] = cyl[ids[j]];                                                       \
-            if (cylray_leaf_prepare##M(&lv[l], cc, ids, c->count[l]) != CYLRAY_OK)         \
-                return -1;                                                                 \
-        }                                                                                  \
-        return 0;                                                                          \
+        if (!lv)                                                                               \
+            return -1;                                                                         \
+        g->leaves = lv;                                                                        \
+        for (size_t l = 0; l < g->nprim; l++) {                                                \
+            const uint32_t *ids = c->order + c->first[l];                                      \
+            cylray_cylinder cc[M];                                                             \
+            for (size_t j = 0; j < c->count[l]; j++)                                           \
+                cc[j] = cyl[ids[j]];                                                           \
+            if (cylray_leaf_prepare##M(&lv[l], cc, ids, c->count[l]) != CYLRAY_OK)             \
+                return -1;                                                                     \
+        }                                                                                      \
+        return 0;                                                                              \
     }
 CEB_LEAF_BUILD(4)
 CEB_LEAF_BUILD(8)
@@ -110,8 +110,9 @@ int ceb_group_leaves(ceb *g, RTCDevice dev, const cylray_cylinder *cyl)
             rtcReleaseBVH(bvh);
         g->nprim = atomic_load(&c.leaves);
         if (root && atomic_load(&c.used) == n && (g->box = malloc(g->nprim * sizeof *g->box)))
-            bad = M == 4 ? build_leaves4(g, cyl, &c) : M == 8 ? build_leaves8(g, cyl, &c)
-                                                             : build_leaves16(g, cyl, &c);
+            bad = M == 4   ? build_leaves4(g, cyl, &c)
+                  : M == 8 ? build_leaves8(g, cyl, &c)
+                           : build_leaves16(g, cyl, &c);
         for (size_t l = 0; !bad && l < g->nprim; l++) {
             const uint32_t *ids = c.order + c.first[l];
             /* the builder reorders prims in place: the boxes are made again */

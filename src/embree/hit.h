@@ -35,10 +35,11 @@ static inline float turns(float y, float x)
     if (mx == 0)
         return 0.0f;
     float a = mn / mx, s = a * a;
-    float r = a * (0.99997726f +
-                   s * (-0.33262347f +
-                        s * (0.19354346f + s * (-0.11643287f + s * (0.05265332f +
-                                                                    s * -0.01172120f)))));
+    float r =
+        a *
+        (0.99997726f +
+         s * (-0.33262347f +
+              s * (0.19354346f + s * (-0.11643287f + s * (0.05265332f + s * -0.01172120f)))));
     const float half_pi = 1.57079632679489662f, pi = 3.14159265358979324f;
     if (ay > ax)
         r = half_pi - r;
@@ -63,7 +64,7 @@ static inline float azimuth_v(const frame *f, const float r[3])
 /* u and v of a hit: on the side the outward normal is the radial direction; on a disc
  * the radial vector comes from the hit point. */
 static inline void hit_uv(const frame *f, const float o[3], const float d[3], float t, int part,
-                   const float n[3], float *u, float *v)
+                          const float n[3], float *u, float *v)
 {
     *u = axial_u(f, o, d, t, part);
     if ((part & CYLRAY_PART_MASK) == CYLRAY_SIDE) {

@@ -32,8 +32,17 @@
  * Ng x y z, u, v, primID, geomID, instID[levels]. Each is an array of N. The C++
  * accessors of rtcore_ray.h (RTCRayN_org_x, ...) compute the same offsets. */
 enum { R_OX, R_OY, R_OZ, R_TNEAR, R_DX, R_DY, R_DZ, R_TIME, R_TFAR, R_NFIELDS = 12 };
-enum { H_NGX, H_NGY, H_NGZ, H_U, H_V, H_PRIM, H_GEOM, H_INST,
-       H_NFIELDS = H_INST + RTC_MAX_INSTANCE_LEVEL_COUNT };
+enum {
+    H_NGX,
+    H_NGY,
+    H_NGZ,
+    H_U,
+    H_V,
+    H_PRIM,
+    H_GEOM,
+    H_INST,
+    H_NFIELDS = H_INST + RTC_MAX_INSTANCE_LEVEL_COUNT
+};
 #define RF(base, N, field, i) (((float *)(base))[(size_t)(field) * (N) + (i)])
 #define RU(base, N, field, i) (((unsigned *)(base))[(size_t)(field) * (N) + (i)])
 

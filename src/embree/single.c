@@ -42,7 +42,6 @@ static int owns(const ceb *g, unsigned prim, uint32_t c, float u)
     return piece == g->prim_piece[prim];
 }
 
-
 /* A hit the kernel found for lane i on cylinder c: reported when primitive prim owns
  * it and the filters (when called) accept it; otherwise the next hit of c along the
  * ray is tried, until one is reported or there is none. occ: an occlusion query. */
@@ -113,53 +112,53 @@ static unsigned active_lanes(const int *valid, unsigned N, unsigned lane[16])
 
 /* The valid lanes packed into the narrowest cylray packet that holds them; unused
  * lanes repeat the first ray. */
-#define CEB_GATHER(pk, base, N, lane, n, W)                                                \
-    do {                                                                                   \
-        for (unsigned j = 0; j < (W); j++) {                                               \
-            unsigned i_ = (lane)[j < (n) ? j : 0];                                         \
-            (pk).ox[j] = RF(base, N, R_OX, i_), (pk).oy[j] = RF(base, N, R_OY, i_);        \
-            (pk).oz[j] = RF(base, N, R_OZ, i_), (pk).dx[j] = RF(base, N, R_DX, i_);        \
-            (pk).dy[j] = RF(base, N, R_DY, i_), (pk).dz[j] = RF(base, N, R_DZ, i_);        \
-            (pk).tmin[j] = RF(base, N, R_TNEAR, i_);                                       \
-            (pk).tmax[j] = RF(base, N, R_TFAR, i_);                                        \
-        }                                                                                  \
+#define CEB_GATHER(pk, base, N, lane, n, W)                                                    \
+    do {                                                                                       \
+        for (unsigned j = 0; j < (W); j++) {                                                   \
+            unsigned i_ = (lane)[j < (n) ? j : 0];                                             \
+            (pk).ox[j] = RF(base, N, R_OX, i_), (pk).oy[j] = RF(base, N, R_OY, i_);            \
+            (pk).oz[j] = RF(base, N, R_OZ, i_), (pk).dx[j] = RF(base, N, R_DX, i_);            \
+            (pk).dy[j] = RF(base, N, R_DY, i_), (pk).dz[j] = RF(base, N, R_DZ, i_);            \
+            (pk).tmin[j] = RF(base, N, R_TNEAR, i_);                                           \
+            (pk).tmax[j] = RF(base, N, R_TFAR, i_);                                            \
+        }                                                                                      \
     } while (0)
 
-#define CEB_SINGLE(W)                                                                      \
-    static void isect##W(const struct RTCIntersectFunctionNArguments *a, const ceb *g,     \
-                         uint32_t c, const unsigned *lane, unsigned n, int filt)           \
-    {                                                                                      \
-        cylray_ray##W ray;                                                                 \
-        cylray_hit##W hit;                                                                 \
-        CEB_GATHER(ray, a->rayhit, a->N, lane, n, W);                                      \
-        uint32_t m = g->k->intersect##W(&g->prep[c], &ray, &hit,                           \
-                                        (uint32_t)((1ull << n) - 1), g->iflags);           \
-        for (unsigned j = 0; m; j++, m >>= 1)                                              \
-            if (m & 1) {                                                                   \
-                float nn[3] = {hit.nx[j], hit.ny[j], hit.nz[j]};                           \
-                resolve(g, a, 0, filt, lane[j], c, hit.t[j], nn, hit.part[j]);             \
-            }                                                                              \
-    }                                                                                      \
-    static void occ##W(const struct RTCOccludedFunctionNArguments *a, const ceb *g,        \
-                       uint32_t c, const unsigned *lane, unsigned n, int filt)             \
-    {                                                                                      \
-        cylray_ray##W ray;                                                                 \
-        CEB_GATHER(ray, a->ray, a->N, lane, n, W);                                         \
-        uint32_t act = (uint32_t)((1ull << n) - 1);                                        \
-        if (!filt) {                                                                       \
-            uint32_t m = g->k->occluded##W(&g->prep[c], &ray, act, g->oflags);             \
-            for (unsigned j = 0; m; j++, m >>= 1)                                          \
-                if (m & 1)                                                                 \
-                    RF(a->ray, a->N, R_TFAR, lane[j]) = -INFINITY;                         \
-            return;                                                                        \
-        }                                                                                  \
-        cylray_hit##W hit;                                                                 \
-        uint32_t m = g->k->intersect##W(&g->prep[c], &ray, &hit, act, g->iflags);          \
-        for (unsigned j = 0; m; j++, m >>= 1)                                              \
-            if (m & 1) {                                                                   \
-                float nn[3] = {hit.nx[j], hit.ny[j], hit.nz[j]};                           \
-                resolve(g, a, 1, filt, lane[j], c, hit.t[j], nn, hit.part[j]);             \
-            }                                                                              \
+#define CEB_SINGLE(W)                                                                          \
+    static void isect##W(const struct RTCIntersectFunctionNArguments *a, const ceb *g,         \
+                         uint32_t c, const unsigned *lane, unsigned n, int filt)               \
+    {                                                                                          \
+        cylray_ray##W ray;                                                                     \
+        cylray_hit##W hit;                                                                     \
+        CEB_GATHER(ray, a->rayhit, a->N, lane, n, W);                                          \
+        uint32_t m = g->k->intersect##W(&g->prep[c], &ray, &hit, (uint32_t)((1ull << n) - 1),  \
+                                        g->iflags);                                            \
+        for (unsigned j = 0; m; j++, m >>= 1)                                                  \
+            if (m & 1) {                                                                       \
+                float nn[3] = {hit.nx[j], hit.ny[j], hit.nz[j]};                               \
+                resolve(g, a, 0, filt, lane[j], c, hit.t[j], nn, hit.part[j]);                 \
+            }                                                                                  \
+    }                                                                                          \
+    static void occ##W(const struct RTCOccludedFunctionNArguments *a, const ceb *g,            \
+                       uint32_t c, const unsigned *lane, unsigned n, int filt)                 \
+    {                                                                                          \
+        cylray_ray##W ray;                                                                     \
+        CEB_GATHER(ray, a->ray, a->N, lane, n, W);                                             \
+        uint32_t act = (uint32_t)((1ull << n) - 1);                                            \
+        if (!filt) {                                                                           \
+            uint32_t m = g->k->occluded##W(&g->prep[c], &ray, act, g->oflags);                 \
+            for (unsigned j = 0; m; j++, m >>= 1)                                              \
+                if (m & 1)                                                                     \
+                    RF(a->ray, a->N, R_TFAR, lane[j]) = -INFINITY;                             \
+            return;                                                                            \
+        }                                                                                      \
+        cylray_hit##W hit;                                                                     \
+        uint32_t m = g->k->intersect##W(&g->prep[c], &ray, &hit, act, g->iflags);              \
+        for (unsigned j = 0; m; j++, m >>= 1)                                                  \
+            if (m & 1) {                                                                       \
+                float nn[3] = {hit.nx[j], hit.ny[j], hit.nz[j]};                               \
+                resolve(g, a, 1, filt, lane[j], c, hit.t[j], nn, hit.part[j]);                 \
+            }                                                                                  \
     }
 CEB_SINGLE(4)
 CEB_SINGLE(8)
@@ -178,8 +177,8 @@ static void isect1(const struct RTCIntersectFunctionNArguments *a, const ceb *g,
     float o[3], d[3], t, n[3];
     int32_t part;
     ray_of(a->rayhit, a->N, i, o, d);
-    if (one_ray(g, c, o, d, RF(a->rayhit, a->N, R_TNEAR, i), RF(a->rayhit, a->N, R_TFAR, i),
-                &t, n, &part))
+    if (one_ray(g, c, o, d, RF(a->rayhit, a->N, R_TNEAR, i), RF(a->rayhit, a->N, R_TFAR, i), &t,
+                n, &part))
         resolve(g, a, 0, filt, i, c, t, n, part);
 }
 

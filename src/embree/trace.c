@@ -25,8 +25,8 @@ static int coherent(const int *valid, const struct RTCIntersectContext *ctx, con
     for (int j = 0; j < n; j++) {
         if (!valid[j])
             continue;
-        const unsigned oct = (unsigned)(dx[j] < 0) | (unsigned)(dy[j] < 0) << 1 |
-                             (unsigned)(dz[j] < 0) << 2;
+        const unsigned oct =
+            (unsigned)(dx[j] < 0) | (unsigned)(dy[j] < 0) << 1 | (unsigned)(dz[j] < 0) << 2;
         any |= oct, all &= oct, count++;
     }
     return count >= 3 && any == all;
@@ -53,45 +53,45 @@ static void lane_put(void *soa, int n, int j, const void *one, int fields)
 
 enum { RAY_WORDS = R_NFIELDS };
 _Static_assert(sizeof(struct RTCRay) == RAY_WORDS * 4, "RTCRay: 12 words");
-_Static_assert(sizeof(struct RTCHit) >= H_NFIELDS * 4, "RTCHit: Ng, u, v, primID, geomID, instID");
+_Static_assert(sizeof(struct RTCHit) >= H_NFIELDS * 4,
+               "RTCHit: Ng, u, v, primID, geomID, instID");
 
-#define CEB_TRACE(N)                                                                   \
-    void cylray_embree_intersect##N(const int *valid, RTCScene scene,                  \
-                                    struct RTCIntersectContext *context,               \
-                                    struct RTCRayHit##N *rayhit)                       \
-    {                                                                                  \
-        if (coherent(valid, context, rayhit->ray.dir_x, rayhit->ray.dir_y,             \
-                     rayhit->ray.dir_z, N)) {                                          \
-            rtcIntersect##N(valid, scene, context, rayhit);                            \
-            return;                                                                    \
-        }                                                                              \
-        for (int j = 0; j < N; j++) {                                                  \
-            if (!valid[j])                                                             \
-                continue;                                                              \
-            struct RTCRayHit one;                                                      \
-            lane_get(&rayhit->ray, N, j, &one.ray, RAY_WORDS);                         \
-            lane_get(&rayhit->hit, N, j, &one.hit, H_NFIELDS);                         \
-            rtcIntersect1(scene, context, &one);                                       \
-            lane_put(&rayhit->ray, N, j, &one.ray, RAY_WORDS);                         \
-            lane_put(&rayhit->hit, N, j, &one.hit, H_NFIELDS);                         \
-        }                                                                              \
-    }                                                                                  \
-    void cylray_embree_occluded##N(const int *valid, RTCScene scene,                   \
-                                   struct RTCIntersectContext *context,                \
-                                   struct RTCRay##N *ray)                              \
-    {                                                                                  \
-        if (coherent(valid, context, ray->dir_x, ray->dir_y, ray->dir_z, N)) {         \
-            rtcOccluded##N(valid, scene, context, ray);                                \
-            return;                                                                    \
-        }                                                                              \
-        for (int j = 0; j < N; j++) {                                                  \
-            if (!valid[j])                                                             \
-                continue;                                                              \
-            struct RTCRay one;                                                         \
-            lane_get(ray, N, j, &one, RAY_WORDS);                                      \
-            rtcOccluded1(scene, context, &one);                                        \
-            ray->tfar[j] = one.tfar;                                                   \
-        }                                                                              \
+#define CEB_TRACE(N)                                                                           \
+    void cylray_embree_intersect##N(const int *valid, RTCScene scene,                          \
+                                    struct RTCIntersectContext *context,                       \
+                                    struct RTCRayHit##N *rayhit)                               \
+    {                                                                                          \
+        if (coherent(valid, context, rayhit->ray.dir_x, rayhit->ray.dir_y, rayhit->ray.dir_z,  \
+                     N)) {                                                                     \
+            rtcIntersect##N(valid, scene, context, rayhit);                                    \
+            return;                                                                            \
+        }                                                                                      \
+        for (int j = 0; j < N; j++) {                                                          \
+            if (!valid[j])                                                                     \
+                continue;                                                                      \
+            struct RTCRayHit one;                                                              \
+            lane_get(&rayhit->ray, N, j, &one.ray, RAY_WORDS);                                 \
+            lane_get(&rayhit->hit, N, j, &one.hit, H_NFIELDS);                                 \
+            rtcIntersect1(scene, context, &one);                                               \
+            lane_put(&rayhit->ray, N, j, &one.ray, RAY_WORDS);                                 \
+            lane_put(&rayhit->hit, N, j, &one.hit, H_NFIELDS);                                 \
+        }                                                                                      \
+    }                                                                                          \
+    void cylray_embree_occluded##N(const int *valid, RTCScene scene,                           \
+                                   struct RTCIntersectContext *context, struct RTCRay##N *ray) \
+    {                                                                                          \
+        if (coherent(valid, context, ray->dir_x, ray->dir_y, ray->dir_z, N)) {                 \
+            rtcOccluded##N(valid, scene, context, ray);                                        \
+            return;                                                                            \
+        }                                                                                      \
+        for (int j = 0; j < N; j++) {                                                          \
+            if (!valid[j])                                                                     \
+                continue;                                                                      \
+            struct RTCRay one;                                                                 \
+            lane_get(ray, N, j, &one, RAY_WORDS);                                              \
+            rtcOccluded1(scene, context, &one);                                                \
+            ray->tfar[j] = one.tfar;                                                           \
+        }                                                                                      \
     }
 CEB_TRACE(4)
 CEB_TRACE(8)

@@ -21,13 +21,15 @@
 static inline unsigned CYLRAY_POPCOUNT(unsigned x)
 {
     unsigned n = 0;
-    for (; x; x &= x - 1) n++;
+    for (; x; x &= x - 1)
+        n++;
     return n;
 }
 static inline size_t CYLRAY_CTZ(unsigned x)
 {
     size_t n = 0;
-    for (; !(x & 1u); x >>= 1) n++;
+    for (; !(x & 1u); x >>= 1)
+        n++;
     return n;
 }
 #endif

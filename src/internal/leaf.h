@@ -8,8 +8,12 @@
 /* A leaf's fields: geom_[LF_*][lane], the meta_ bits, and its lane count by type. The
  * axis v is the user's scaled by a power of two (exact), as in cylray_prepared. */
 enum {
-    CYLRAY_LF_CX, CYLRAY_LF_CY, CYLRAY_LF_CZ, /* center */
-    CYLRAY_LF_VX, CYLRAY_LF_VY, CYLRAY_LF_VZ, /* axis */
+    CYLRAY_LF_CX,
+    CYLRAY_LF_CY,
+    CYLRAY_LF_CZ, /* center */
+    CYLRAY_LF_VX,
+    CYLRAY_LF_VY,
+    CYLRAY_LF_VZ,     /* axis */
     CYLRAY_LF_R,      /* radius, as given */
     CYLRAY_LF_H,      /* half height, as given (INFINITY: infinite) */
     CYLRAY_LF_RRVV,   /* R^2 v.v */

@@ -32,8 +32,7 @@ static inline float cylray_round_float_(double hi, double lo)
         } else {
             uint64_t q = m >> shift;
             const uint64_t rem = m & ((1ull << shift) - 1), half = 1ull << (shift - 1);
-            if (rem > half ||
-                (rem == half && (lo != 0 ? (lo > 0) == !sign : (q & 1u) != 0)))
+            if (rem > half || (rem == half && (lo != 0 ? (lo > 0) == !sign : (q & 1u) != 0)))
                 q++;
             /* the carry of q into the exponent field is the rounding into the next
              * binade, and into inf above FLT_MAX */

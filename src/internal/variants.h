@@ -22,7 +22,7 @@
 #define CYLRAY_KF_OCCLUDED 0x100u
 #define CYLRAY_KF_ALIGNED 0x200u
 #define CYLRAY_KF_KIND_SHIFT 10
-#define CYLRAY_KF_SCALED 0x1000u /* the rare-lane instance: d scaled to near unit length */
+#define CYLRAY_KF_SCALED 0x1000u  /* the rare-lane instance: d scaled to near unit length */
 #define CYLRAY_KF_ONE_END 0x2000u /* a capped cylinder with one disc only */
 /* The hits go to the driver's own scratch, which reads back the hit lanes alone: the
  * kernel may store whole vectors there (the stream tail; a leaf always does). */

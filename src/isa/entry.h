@@ -11,37 +11,37 @@
 #define KW_(name, w) CYLRAY_CAT(name, CYLRAY_CAT(_, w))
 
 /* The packet structs are read as arrays of n-lane fields (cylray_packet_rays_). */
-#define KPACKET_(n)                                                                    \
-    _Static_assert(offsetof(cylray_ray##n, tmax) == 7 * n * sizeof(float) &&           \
-                       offsetof(cylray_hit##n, part) == 4 * n * sizeof(float),         \
-                   "packet fields are n-lane arrays, back to back");                   \
-    static uint32_t KI_(intersect##n)(const cylray_prepared *P, cylray_ray##n *ray,    \
-                                      cylray_hit##n *hit, uint32_t active, unsigned flags) \
-    {                                                                                  \
-        active &= (uint32_t)((1ull << n) - 1u);                                        \
-        if (!active || !ray || !hit || !cylray_prepared_ok_(P))                        \
-            return 0;                                                                  \
-        if (cylray_generic_(P))                                                \
-            return KW_(packet_generic, KW##n)(P, ray->ox, hit->t, n, active, flags);    \
-        const KW_(packet_fn, KW##n) *t = n == KW_(vw, KW##n) ? KW_(isect1_table, KW##n)   \
-                                                            : KW_(isect_table, KW##n);   \
-        return t[cylray_isect_index_(P->variant, flags)](                     \
-            P, ray->ox, hit->t, n, active, flags & CYLRAY_KF_RUNTIME);                 \
-    }                                                                                  \
-    static uint32_t KI_(occluded##n)(const cylray_prepared *P, const cylray_ray##n *ray, \
-                                     uint32_t active, unsigned flags)                  \
-    {                                                                                  \
-        active &= (uint32_t)((1ull << n) - 1u);                                        \
-        if (!active || !ray || !cylray_prepared_ok_(P))                                \
-            return 0;                                                                  \
-        /* the occluded kernels read tmax and never write through this pointer */      \
-        if (cylray_generic_(P))                                                \
-            return KW_(packet_generic, KW##n)(P, (float *)(uintptr_t)ray->ox, NULL, n,    \
-                                              active, flags);                         \
-        const KW_(packet_fn, KW##n) *t = n == KW_(vw, KW##n) ? KW_(occ1_table, KW##n)     \
-                                                            : KW_(occ_table, KW##n);     \
-        return t[cylray_occ_index_(P->variant, flags)](                       \
-            P, (float *)(uintptr_t)ray->ox, NULL, n, active, flags & CYLRAY_CULL_BACK);  \
+#define KPACKET_(n)                                                                            \
+    _Static_assert(offsetof(cylray_ray##n, tmax) == 7 * n * sizeof(float) &&                   \
+                       offsetof(cylray_hit##n, part) == 4 * n * sizeof(float),                 \
+                   "packet fields are n-lane arrays, back to back");                           \
+    static uint32_t KI_(intersect##n)(const cylray_prepared *P, cylray_ray##n *ray,            \
+                                      cylray_hit##n *hit, uint32_t active, unsigned flags)     \
+    {                                                                                          \
+        active &= (uint32_t)((1ull << n) - 1u);                                                \
+        if (!active || !ray || !hit || !cylray_prepared_ok_(P))                                \
+            return 0;                                                                          \
+        if (cylray_generic_(P))                                                                \
+            return KW_(packet_generic, KW##n)(P, ray->ox, hit->t, n, active, flags);           \
+        const KW_(packet_fn, KW##n) *t =                                                       \
+            n == KW_(vw, KW##n) ? KW_(isect1_table, KW##n) : KW_(isect_table, KW##n);          \
+        return t[cylray_isect_index_(P->variant, flags)](P, ray->ox, hit->t, n, active,        \
+                                                         flags & CYLRAY_KF_RUNTIME);           \
+    }                                                                                          \
+    static uint32_t KI_(occluded##n)(const cylray_prepared *P, const cylray_ray##n *ray,       \
+                                     uint32_t active, unsigned flags)                          \
+    {                                                                                          \
+        active &= (uint32_t)((1ull << n) - 1u);                                                \
+        if (!active || !ray || !cylray_prepared_ok_(P))                                        \
+            return 0;                                                                          \
+        /* the occluded kernels read tmax and never write through this pointer */              \
+        if (cylray_generic_(P))                                                                \
+            return KW_(packet_generic, KW##n)(P, (float *)(uintptr_t)ray->ox, NULL, n, active, \
+                                              flags);                                          \
+        const KW_(packet_fn, KW##n) *t =                                                       \
+            n == KW_(vw, KW##n) ? KW_(occ1_table, KW##n) : KW_(occ_table, KW##n);              \
+        return t[cylray_occ_index_(P->variant, flags)](P, (float *)(uintptr_t)ray->ox, NULL,   \
+                                                       n, active, flags & CYLRAY_CULL_BACK);   \
     }
 KPACKET_(4)
 KPACKET_(8)
@@ -71,40 +71,49 @@ static size_t KI_(occluded_stream)(const cylray_prepared *P, const cylray_rays *
 
 /* Leaves: a leaf of M runs on the instantiation KLm (VW lanes at a time, M / VW times).
  * A leaf is read as its field array: geom_, then meta_ and id_ (cylray_internal.h). */
-#define KLEAF_ENTRY_(m)                                                                  \
-    _Static_assert(offsetof(cylray_leaf##m, meta_) == CYLRAY_LF_COUNT * m * sizeof(float) && \
-                       offsetof(cylray_leaf##m, id_) == (CYLRAY_LF_COUNT + 1) * m * 4,      \
-                   "leaf fields are m-lane arrays, back to back");                      \
-    static int KI_(leaf_intersect##m)(const cylray_leaf##m *leaf, cylray_ray1 *ray,      \
-                                      cylray_hit1 *hit, unsigned flags)                 \
-    {                                                                                    \
-        if (!leaf || !ray || !hit)                                                       \
-            return 0;                                                                    \
-        return KW_(leaf_table, KL##m)[cylray_spec_(flags)](leaf->geom_[0], m, ray, hit,    \
-                                                          flags & CYLRAY_KF_RUNTIME);    \
-    }                                                                                    \
-    static int KI_(leaf_occluded##m)(const cylray_leaf##m *leaf, const cylray_ray1 *ray, \
-                                     unsigned flags)                                    \
-    {                                                                                    \
-        if (!leaf || !ray)                                                               \
-            return 0;                                                                    \
-        /* the occluded kernels read the ray and never write through this pointer */    \
-        cylray_ray1 *r = (cylray_ray1 *)(uintptr_t)ray;                                  \
-        return KW_(leaf_occ_table, KL##m)[cylray_occ_spec_(flags)](leaf->geom_[0], m, r,   \
-                                                                  NULL,                  \
-                                                                  flags & CYLRAY_CULL_BACK); \
+#define KLEAF_ENTRY_(m)                                                                        \
+    _Static_assert(offsetof(cylray_leaf##m, meta_) == CYLRAY_LF_COUNT * m * sizeof(float) &&   \
+                       offsetof(cylray_leaf##m, id_) == (CYLRAY_LF_COUNT + 1) * m * 4,         \
+                   "leaf fields are m-lane arrays, back to back");                             \
+    static int KI_(leaf_intersect##m)(const cylray_leaf##m *leaf, cylray_ray1 *ray,            \
+                                      cylray_hit1 *hit, unsigned flags)                        \
+    {                                                                                          \
+        if (!leaf || !ray || !hit)                                                             \
+            return 0;                                                                          \
+        return KW_(leaf_table, KL##m)[cylray_spec_(flags)](leaf->geom_[0], m, ray, hit,        \
+                                                           flags & CYLRAY_KF_RUNTIME);         \
+    }                                                                                          \
+    static int KI_(leaf_occluded##m)(const cylray_leaf##m *leaf, const cylray_ray1 *ray,       \
+                                     unsigned flags)                                           \
+    {                                                                                          \
+        if (!leaf || !ray)                                                                     \
+            return 0;                                                                          \
+        /* the occluded kernels read the ray and never write through this pointer */           \
+        cylray_ray1 *r = (cylray_ray1 *)(uintptr_t)ray;                                        \
+        return KW_(leaf_occ_table, KL##m)[cylray_occ_spec_(flags)](leaf->geom_[0], m, r, NULL, \
+                                                                   flags & CYLRAY_CULL_BACK);  \
     }
 KLEAF_ENTRY_(4)
 KLEAF_ENTRY_(8)
 KLEAF_ENTRY_(16)
 
 const cylray_kernels CYLRAY_CAT(CYLRAY_CAT(cylray_kernels_, KISA), _) = {
-    KISA_ENUM,          KISA_NAME,
-    KI_(intersect4),    KI_(intersect8),       KI_(intersect16),
-    KI_(occluded4),     KI_(occluded8),        KI_(occluded16),
-    KI_(intersect_stream), KI_(occluded_stream),
-    KI_(leaf_intersect4), KI_(leaf_intersect8), KI_(leaf_intersect16),
-    KI_(leaf_occluded4),  KI_(leaf_occluded8),  KI_(leaf_occluded16),
+    KISA_ENUM,
+    KISA_NAME,
+    KI_(intersect4),
+    KI_(intersect8),
+    KI_(intersect16),
+    KI_(occluded4),
+    KI_(occluded8),
+    KI_(occluded16),
+    KI_(intersect_stream),
+    KI_(occluded_stream),
+    KI_(leaf_intersect4),
+    KI_(leaf_intersect8),
+    KI_(leaf_intersect16),
+    KI_(leaf_occluded4),
+    KI_(leaf_occluded8),
+    KI_(leaf_occluded16),
     KSPAWN_SLOTS, /* spawn/entry.h */
 };
 

@@ -5,7 +5,7 @@
  * run: for one vector (two = 0: b and kb are not read), or for two in flight (two = 1),
  * their stages alternating. The hit lanes go to hit[0] (and hit[1]); store_b = 0 leaves
  * out b's store, for a twin that has nothing new to store. */
-CYLRAY_INLINE void KFN(stages)(KFN(lanes) *a, const cylray_kat_ *ka, KFN(lanes) *b,
+CYLRAY_INLINE void KFN(stages)(KFN(lanes) * a, const cylray_kat_ *ka, KFN(lanes) * b,
                                const cylray_kat_ *kb, const cylray_kflags_ F, const int two,
                                const int store_b, uint32_t hit[2])
 {
@@ -46,8 +46,7 @@ CYLRAY_INLINE void KFN(stages)(KFN(lanes) *a, const cylray_kat_ *ka, KFN(lanes) 
  * 2D quadratic without cross products. */
 CYLRAY_INLINE cylray_kres_ KFN(block)(const cylray_prepared *P, const cylray_rays *R,
                                       const cylray_hits *H, size_t i, uint32_t bits,
-                                      unsigned rt, const unsigned FL, const float *L,
-                                      size_t lm)
+                                      unsigned rt, const unsigned FL, const float *L, size_t lm)
 {
     const cylray_kflags_ F = cylray_kflags_of_(FL, rt);
     const cylray_kat_ at = {P, R, H, L, lm, i, bits, cylray_kcenter_(P, F)};

@@ -99,8 +99,9 @@ CYLRAY_NOINLINE size_t KFN(stream_tail)(const cylray_prepared *P, const cylray_r
     size_t count = 0;
     for (size_t b = 0; b < rest; b += VW) {
         const uint32_t bits = rest - b >= VW ? VFULL : (uint32_t)((1u << (rest - b)) - 1u);
-        uint32_t m = KFN(vector)(P, &lr, &lh, b, bits, rt, FL | CYLRAY_KF_SCRATCH, NULL, 0, 0, NULL,
-                                 NULL, 0).hit[0];
+        uint32_t m = KFN(vector)(P, &lr, &lh, b, bits, rt, FL | CYLRAY_KF_SCRATCH, NULL, 0, 0,
+                                 NULL, NULL, 0)
+                         .hit[0];
         count += CYLRAY_POPCOUNT(m);
         for (; m; m &= m - 1) {
             const size_t j = b + CYLRAY_CTZ(m);

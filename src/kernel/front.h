@@ -5,7 +5,7 @@
 /* Stage 1, the ray: A (aligned), d.d and the lanes in play. An Inf or NaN anywhere but
  * in d turns C or D into NaN later, which takes the lane out there. Returns
  * nonzero for a vector that the rare instance must take, else 0. */
-CYLRAY_INLINE int KFN(load_ray)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
+CYLRAY_INLINE int KFN(load_ray)(KFN(lanes) * st, const cylray_kat_ *k, const cylray_kflags_ F)
 {
     const vf zero = vzero(), one = vset1(1.0f), inf = vset1(INFINITY);
     KLOAD_O_();
@@ -45,7 +45,7 @@ CYLRAY_INLINE int KFN(load_ray)(KFN(lanes) *st, const cylray_kat_ *k, const cylr
 
 /* Stage 2, the cheap rejections: the sphere around a finite cylinder and the tube
  * around the axis, from w = o - c rounded. Returns whether any lane is left. */
-CYLRAY_INLINE int KFN(reject)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
+CYLRAY_INLINE int KFN(reject)(KFN(lanes) * st, const cylray_kat_ *k, const cylray_kflags_ F)
 {
     const vf zero = vzero(), inf = vset1(INFINITY);
     const vf dx = st->dx, dy = st->dy, dz = st->dz, dd = st->dd;
@@ -78,7 +78,8 @@ CYLRAY_INLINE int KFN(reject)(KFN(lanes) *st, const cylray_kat_ *k, const cylray
          * outside it misses. The slack (KM_SPHERE) covers the cancellation of a far
          * origin. */
         vf wd2 = vmul(vmul(wd, wd), rdd); /* wd^2 / dd; wd^2 is formed beside rdd */
-        act = mand(act, vle(vfnma(ww, vset1(KM_SPHERE), vsub(ww, wd2)), KC_(bound2, KL_(BOUND2))));
+        act = mand(act,
+                   vle(vfnma(ww, vset1(KM_SPHERE), vsub(ww, wd2)), KC_(bound2, KL_(BOUND2))));
         /* A shift that brings the origin less than a factor sqrt(2) closer gains less
          * than it costs: a small t would lose its low bits in s + t'. (ww > 2 pp.) */
         s = F.leaf ? vsel(st->fin, vkeep(vgt(vadd(wd2, wd2), ww), s), s)

@@ -36,8 +36,8 @@
 #define KGROUP(F) 2 /* coherent rays come in runs: two that pass say the next pair will */
 #endif
 
-typedef uint32_t (*KFN(packet_fn))(const cylray_prepared *, float *, float *, size_t,
-                                   uint32_t, unsigned);
+typedef uint32_t (*KFN(packet_fn))(const cylray_prepared *, float *, float *, size_t, uint32_t,
+                                   unsigned);
 typedef size_t (*KFN(stream_fn))(const cylray_prepared *, const cylray_rays *,
                                  const cylray_hits *, uint8_t *, size_t, unsigned);
 typedef int (*KFN(leaf_fn))(const float *, size_t, cylray_ray1 *, cylray_hit1 *, unsigned);

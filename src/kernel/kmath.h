@@ -6,9 +6,9 @@
 /* The side's quadratic from the shifted origin p: f = v x p (so that nB = e.f is -B),
  * C = f.f - R^2 v.v and g = e.p, the triple product of Lagrange's form (with an
  * aligned axis g is the caller's, from the unshifted origin). */
-CYLRAY_INLINE void KFN(side_coefs)(vf rr_vv, int aligned, vf dx, vf dy, vf ex,
-                                   vf ey, vf ez, vf vx, vf vy, vf vz, vf px, vf py, vf pz,
-                                   vf *fx, vf *fy, vf *fz, vf *nB, vf *C, vf *g)
+CYLRAY_INLINE void KFN(side_coefs)(vf rr_vv, int aligned, vf dx, vf dy, vf ex, vf ey, vf ez,
+                                   vf vx, vf vy, vf vz, vf px, vf py, vf pz, vf *fx, vf *fy,
+                                   vf *fz, vf *nB, vf *C, vf *g)
 {
     const vf zero = vzero();
     if (aligned) {
@@ -29,9 +29,9 @@ CYLRAY_INLINE void KFN(side_coefs)(vf rr_vv, int aligned, vf dx, vf dy, vf ex,
  * root r, where C is tiny and the small root C / q2 is a correction of a few ulps; the
  * result is then limited by the rounding of q, not by the distance of the shifted
  * origin. Returns the polished root where that helps, r elsewhere. */
-CYLRAY_INLINE vf KFN(polish)(vf rr_vv, vf rr, int aligned, vm side, vf r, vf A, vf dx,
-                             vf dy, vf dz, vf ex, vf ey, vf ez, vf vx, vf vy, vf vz, vf px,
-                             vf py, vf pz)
+CYLRAY_INLINE vf KFN(polish)(vf rr_vv, vf rr, int aligned, vm side, vf r, vf A, vf dx, vf dy,
+                             vf dz, vf ex, vf ey, vf ez, vf vx, vf vy, vf vz, vf px, vf py,
+                             vf pz)
 {
     const vf zero = vzero();
     vf qx = vfma_x(r, dx, px), qy = vfma_x(r, dy, py), qz = vfma_x(r, dz, pz);

@@ -40,10 +40,10 @@ typedef struct {
  * drops, a line 2^40 from the origin. */
 #define KSANE_(f, dead) st->f = vsel(mfrom_bits(k->bits), st->f, dead)
 #define KPARTIAL_ (!F.leaf && k->bits != VFULL)
-#define KLOAD_O_()                                                                     \
-    do {                                                                               \
-        st->ox = KR_(ox), st->oy = KR_(oy), st->oz = KR_(oz);                          \
-        if (KPARTIAL_)                                                                 \
-            KSANE_(ox, vset1(0x1p40f)), KSANE_(oy, vzero()), KSANE_(oz, vzero());       \
-        st->cx = KCEN_(0, CX), st->cy = KCEN_(1, CY), st->cz = KCEN_(2, CZ);            \
+#define KLOAD_O_()                                                                             \
+    do {                                                                                       \
+        st->ox = KR_(ox), st->oy = KR_(oy), st->oz = KR_(oz);                                  \
+        if (KPARTIAL_)                                                                         \
+            KSANE_(ox, vset1(0x1p40f)), KSANE_(oy, vzero()), KSANE_(oz, vzero());              \
+        st->cx = KCEN_(0, CX), st->cy = KCEN_(1, CY), st->cz = KCEN_(2, CZ);                   \
     } while (0)

@@ -6,7 +6,7 @@
  * with the product s d exact. The inputs are read again rather than kept across the
  * rejection (the caller's CYLRAY_REREAD): a rejected vector then spills nothing, and
  * the rest loses nothing (it would reload them from the stack instead). */
-CYLRAY_INLINE void KFN(shift)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
+CYLRAY_INLINE void KFN(shift)(KFN(lanes) * st, const cylray_kat_ *k, const cylray_kflags_ F)
 {
     KLOAD_O_();
     vf bx = vsub(st->whx, st->ox), by = vsub(st->why, st->oy), bz = vsub(st->whz, st->oz);
@@ -24,7 +24,7 @@ CYLRAY_INLINE void KFN(shift)(KFN(lanes) *st, const cylray_kat_ *k, const cylray
  * c, an origin near the surface far along the axis wants c slid to the origin's
  * level. |C / B| estimates the near root's distance; each lane keeps the shift that
  * makes it smaller. */
-CYLRAY_INLINE void KFN(slide)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
+CYLRAY_INLINE void KFN(slide)(KFN(lanes) * st, const cylray_kat_ *k, const cylray_kflags_ F)
 {
     const vf vx = st->vx, vy = st->vy, vz = st->vz, dx = st->dx, dy = st->dy, dz = st->dz;
     /* u need not be accurate (the slide is exact for any u): a leaf takes an estimate
@@ -38,8 +38,9 @@ CYLRAY_INLINE void KFN(slide)(KFN(lanes) *st, const cylray_kat_ *k, const cylray
     vf qy = vfma_x2(s2, dy, hy, st->wly);
     vf qz = vfma_x2(s2, dz, hz, st->wlz);
     vf nB2, C2, g2 = st->g, fx2, fy2, fz2;
-    KFN(side_coefs)(st->rr_vv, F.aligned, dx, dy, st->ex, st->ey, st->ez, vx, vy, vz, qx, qy,
-                    qz, &fx2, &fy2, &fz2, &nB2, &C2, &g2);
+    KFN(side_coefs)
+    (st->rr_vv, F.aligned, dx, dy, st->ex, st->ey, st->ez, vx, vy, vz, qx, qy, qz, &fx2, &fy2,
+     &fz2, &nB2, &C2, &g2);
     vm slide = vlt(vabs(vmul(C2, st->nB)), vabs(vmul(st->C, nB2)));
     if (F.leaf)
         slide = mand(slide, st->infl);
@@ -54,7 +55,7 @@ CYLRAY_INLINE void KFN(slide)(KFN(lanes) *st, const cylray_kat_ *k, const cylray
 
 /* Stage 4, the side's quadratic and its discriminant, in Lagrange's form. Returns
  * whether any lane can still hit. */
-CYLRAY_INLINE int KFN(side)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
+CYLRAY_INLINE int KFN(side)(KFN(lanes) * st, const cylray_kat_ *k, const cylray_kflags_ F)
 {
     const vf zero = vzero(), dx = st->dx, dy = st->dy;
     st->g = zero;
@@ -65,9 +66,9 @@ CYLRAY_INLINE int KFN(side)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_k
          * for the shift. */
         st->g = vadd(vdop_x(st->whx, dy, st->why, dx), vfms(st->wlx, dy, vmul(st->wly, dx)));
     }
-    KFN(side_coefs)(st->rr_vv, F.aligned, dx, dy, st->ex, st->ey, st->ez, st->vx, st->vy,
-                    st->vz, st->px, st->py, st->pz, &st->fx, &st->fy, &st->fz, &st->nB, &st->C,
-                    &st->g);
+    KFN(side_coefs)
+    (st->rr_vv, F.aligned, dx, dy, st->ex, st->ey, st->ez, st->vx, st->vy, st->vz, st->px,
+     st->py, st->pz, &st->fx, &st->fy, &st->fz, &st->nB, &st->C, &st->g);
     if (!F.finite || (F.leaf && many(st->infl)))
         KFN(slide)(st, k, F);
 
@@ -98,7 +99,7 @@ CYLRAY_INLINE int KFN(side)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_k
 }
 
 /* Stage 5, the side's roots tn <= tf (relative to p), polished with CYLRAY_REFINE. */
-CYLRAY_INLINE void KFN(roots)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
+CYLRAY_INLINE void KFN(roots)(KFN(lanes) * st, const cylray_kat_ *k, const cylray_kflags_ F)
 {
     const vm side = st->side;
     const vf A = st->A, C = st->C, D = st->D, nB = st->nB;
@@ -144,11 +145,11 @@ CYLRAY_INLINE void KFN(roots)(KFN(lanes) *st, const cylray_kat_ *k, const cylray
         /* Both roots are polished before anything is decided from them, so that the
          * entry test, the clip and the range test all see the t that is reported: a
          * call with tmax set to a reported t then reports it again. */
-        st->tn = KFN(polish)(st->rr_vv, st->rr, F.aligned, side, st->tn, A, st->dx, st->dy,
-                             st->dz, st->ex, st->ey, st->ez, st->vx, st->vy, st->vz, st->px,
-                             st->py, st->pz);
-        st->tf = KFN(polish)(st->rr_vv, st->rr, F.aligned, side, st->tf, A, st->dx, st->dy,
-                             st->dz, st->ex, st->ey, st->ez, st->vx, st->vy, st->vz, st->px,
-                             st->py, st->pz);
+        st->tn =
+            KFN(polish)(st->rr_vv, st->rr, F.aligned, side, st->tn, A, st->dx, st->dy, st->dz,
+                        st->ex, st->ey, st->ez, st->vx, st->vy, st->vz, st->px, st->py, st->pz);
+        st->tf =
+            KFN(polish)(st->rr_vv, st->rr, F.aligned, side, st->tf, A, st->dx, st->dy, st->dz,
+                        st->ex, st->ey, st->ez, st->vx, st->vy, st->vz, st->px, st->py, st->pz);
     }
 }

@@ -4,7 +4,7 @@
 /* A hit point that rounding moved well off the surface (a radius far below the
  * coordinates' ulp) gets a true normalisation, divided by its largest component
  * first, so that a length whose square underflows or overflows still normalises. */
-CYLRAY_INLINE void KFN(renormalize)(const KFN(lanes) *st, const cylray_kflags_ F, vm off,
+CYLRAY_INLINE void KFN(renormalize)(const KFN(lanes) * st, const cylray_kflags_ F, vm off,
                                     vf *nx, vf *ny, vf *nz, vf *corr)
 {
     const vf zero = vzero(), inf = vset1(INFINITY);
@@ -38,23 +38,23 @@ CYLRAY_INLINE void KFN(renormalize)(const KFN(lanes) *st, const cylray_kflags_ F
 #ifndef vstore_hits
 /* The fields of a hit vector, each stored at the hit lanes (the ISA header may store
  * them together instead). */
-#define vstore_hits(m, normal, pt, ptmax, ppart, pnx, pny, pnz, t, part, nx, ny, nz)      \
-    do {                                                                               \
-        vstore_m(pt, m, t);                                                            \
-        vstore_m(ptmax, m, t);                                                         \
-        vstore_part_m(ppart, m, part);                                                 \
-        if (normal) {                                                                  \
-            vstore_m(pnx, m, nx);                                                      \
-            vstore_m(pny, m, ny);                                                      \
-            vstore_m(pnz, m, nz);                                                      \
-        }                                                                              \
+#define vstore_hits(m, normal, pt, ptmax, ppart, pnx, pny, pnz, t, part, nx, ny, nz)           \
+    do {                                                                                       \
+        vstore_m(pt, m, t);                                                                    \
+        vstore_m(ptmax, m, t);                                                                 \
+        vstore_part_m(ppart, m, part);                                                         \
+        if (normal) {                                                                          \
+            vstore_m(pnx, m, nx);                                                              \
+            vstore_m(pny, m, ny);                                                              \
+            vstore_m(pnz, m, nz);                                                              \
+        }                                                                                      \
     } while (0)
 #endif
 
 /* Stage 8b, the unit normal at the hit lanes. */
-CYLRAY_INLINE void KFN(normals)(const KFN(lanes) *st, const cylray_kat_ *k,
-                                const cylray_kflags_ F, vm on_side, vm cap_hi, vf *onx,
-                                vf *ony, vf *onz)
+CYLRAY_INLINE void KFN(normals)(const KFN(lanes) * st, const cylray_kat_ *k,
+                                const cylray_kflags_ F, vm on_side, vm cap_hi, vf *onx, vf *ony,
+                                vf *onz)
 {
     const vf zero = vzero(), one = vset1(1.0f), tr = st->tr;
     const vm hit = st->hit;
@@ -101,7 +101,8 @@ CYLRAY_INLINE void KFN(normals)(const KFN(lanes) *st, const cylray_kat_ *k,
  * lanes. On a capped cylinder, the chosen t is the side's or a cap's; which cap
  * follows from the direction: entering upwards (or leaving downwards) is the low one.
  * An aligned axis pointing down the third coordinate swaps the names (P->cap_up). */
-CYLRAY_INLINE void KFN(store)(const KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
+CYLRAY_INLINE void KFN(store)(const KFN(lanes) * st, const cylray_kat_ *k,
+                              const cylray_kflags_ F)
 {
     const vf one = vset1(1.0f);
     const vm hit = st->hit;
@@ -131,7 +132,8 @@ CYLRAY_INLINE void KFN(store)(const KFN(lanes) *st, const cylray_kat_ *k, const 
             vstoreu(k->H->nx + i, nx), vstoreu(k->H->ny + i, ny), vstoreu(k->H->nz + i, nz);
         return;
     }
-    float *const pnx = F.normal ? k->H->nx + i : NULL, *const pny = F.normal ? k->H->ny + i : NULL,
+    float *const pnx = F.normal ? k->H->nx + i : NULL,
+                 *const pny = F.normal ? k->H->ny + i : NULL,
                  *const pnz = F.normal ? k->H->nz + i : NULL;
     vstore_hits(hit, F.normal, k->H->t + i, k->R->tmax + i, k->H->part + i, pnx, pny, pnz, T,
                 part, nx, ny, nz);

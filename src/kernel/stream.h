@@ -23,11 +23,11 @@ CYLRAY_INLINE size_t KFN(stream)(const cylray_prepared *P, const cylray_rays *R0
     const int pairs = KPAIRS(cylray_kflags_of_(FL, rt));
     /* The occluded bytes without a branch per hit lane: a loop over the set bits
      * mispredicts on a mix of hits and misses. A lane that missed keeps its byte. */
-#define KOCC_MARK_(i, m)                                                               \
-    do {                                                                               \
-        if (occ && (m))                                                                \
-            for (size_t j_ = 0; j_ < VW; j_++)                                         \
-                occluded[(i) + j_] = ((m) >> j_) & 1u ? (uint8_t)1 : occluded[(i) + j_]; \
+#define KOCC_MARK_(i, m)                                                                       \
+    do {                                                                                       \
+        if (occ && (m))                                                                        \
+            for (size_t j_ = 0; j_ < VW; j_++)                                                 \
+                occluded[(i) + j_] = ((m) >> j_) & 1u ? (uint8_t)1 : occluded[(i) + j_];       \
     } while (0)
     for (size_t i = 0; i < whole;) {
         /* Each phase is a loop of its own: in one loop body with a branch between
@@ -43,8 +43,8 @@ CYLRAY_INLINE size_t KFN(stream)(const cylray_prepared *P, const cylray_rays *R0
         }
         /* ...then one at a time until KGROUP_ in a row pass the rejection (or one is
          * left over); without pairs, to the end. */
-        for (int passed = 0;
-             i < whole && (!pairs || passed < KGROUP_ || i + 2 * VW > whole); i += VW) {
+        for (int passed = 0; i < whole && (!pairs || passed < KGROUP_ || i + 2 * VW > whole);
+             i += VW) {
             const cylray_kres_ v =
                 KFN(vector)(P, R, H, i, VFULL, rt, FL, NULL, 0, 0, NULL, NULL, 0);
             count += CYLRAY_POPCOUNT(v.hit[0]);

@@ -9,7 +9,8 @@ static unsigned KFN(generic_fl)(const cylray_prepared *P, unsigned flags, int oc
 {
     return P->kind << CYLRAY_KF_KIND_SHIFT | (occ ? CYLRAY_KF_OCCLUDED : 0u) |
            (flags & ((occ ? 0u : CYLRAY_NORMAL) | CYLRAY_REFINE | CYLRAY_FAST)) |
-           (P->kind == CYLRAY_KIND_CAPPED && P->caps != CYLRAY_CAPPED ? CYLRAY_KF_ONE_END : 0u) |
+           (P->kind == CYLRAY_KIND_CAPPED && P->caps != CYLRAY_CAPPED ? CYLRAY_KF_ONE_END
+                                                                      : 0u) |
            CYLRAY_KF_SCALED;
 }
 
@@ -23,8 +24,8 @@ CYLRAY_MAYBE_UNUSED CYLRAY_NOINLINE size_t KFN(stream_any)(const cylray_prepared
     return KFN(stream)(P, R, H, occluded, n, rt, FL);
 }
 
-CYLRAY_MAYBE_UNUSED CYLRAY_NOINLINE uint32_t KFN(packet_any)(const cylray_prepared *P, float *ray,
-                                                             float *hit, size_t n,
+CYLRAY_MAYBE_UNUSED CYLRAY_NOINLINE uint32_t KFN(packet_any)(const cylray_prepared *P,
+                                                             float *ray, float *hit, size_t n,
                                                              uint32_t active, unsigned rt,
                                                              unsigned FL)
 {
@@ -32,8 +33,9 @@ CYLRAY_MAYBE_UNUSED CYLRAY_NOINLINE uint32_t KFN(packet_any)(const cylray_prepar
                    : KFN(packet)(P, ray, hit, n, active, rt, FL);
 }
 
-CYLRAY_MAYBE_UNUSED CYLRAY_NOINLINE int KFN(leaf_any)(const float *L, size_t lm, cylray_ray1 *ray,
-                                                      cylray_hit1 *hit, unsigned rt, unsigned FL)
+CYLRAY_MAYBE_UNUSED CYLRAY_NOINLINE int KFN(leaf_any)(const float *L, size_t lm,
+                                                      cylray_ray1 *ray, cylray_hit1 *hit,
+                                                      unsigned rt, unsigned FL)
 {
     return KFN(leaf)(L, lm, ray, hit, rt, FL);
 }
@@ -84,8 +86,7 @@ CYLRAY_INLINE uint32_t KFN(by_stream_)(const cylray_prepared *P, float *ray, flo
     return hits;
 }
 static uint32_t KFN(packet_by_stream)(const cylray_prepared *P, float *ray, float *hit,
-                                      size_t n, uint32_t active, unsigned rt,
-                                      KFN(stream_fn) st)
+                                      size_t n, uint32_t active, unsigned rt, KFN(stream_fn) st)
 {
     return KFN(by_stream_)(P, ray, hit, n, active, rt, st, 0u);
 }
@@ -105,8 +106,9 @@ CYLRAY_MAYBE_UNUSED static uint32_t KFN(packet_generic)(const cylray_prepared *P
 }
 
 CYLRAY_MAYBE_UNUSED static size_t KFN(stream_generic)(const cylray_prepared *P,
-                                                      const cylray_rays *R, const cylray_hits *H,
-                                                      uint8_t *occluded, size_t n, unsigned flags)
+                                                      const cylray_rays *R,
+                                                      const cylray_hits *H, uint8_t *occluded,
+                                                      size_t n, unsigned flags)
 {
     return KFN(stream_any)(P, R, H, occluded, n, flags & CYLRAY_KF_RUNTIME,
                            KFN(generic_fl)(P, flags, occluded != NULL));
@@ -121,55 +123,54 @@ CYLRAY_MAYBE_UNUSED static size_t KFN(stream_generic)(const cylray_prepared *P,
  * kernel (a select each). b is cylray_spec_'s encoding (cylray_internal.h); the tables
  * are indexed by cylray_isect_index_ / cylray_occ_index_. Half the specialisations of
  * every combination, in build time and size, for the same speed where it counts. */
-#define KSPECFL_(b)                                                                    \
-    (((b) & 1 ? CYLRAY_NORMAL : 0u) | ((b) & 2 ? CYLRAY_FAST : 0u) |                       \
-     ((b) & 4 ? CYLRAY_REFINE : 0u))
-#define KFL_(kind, b, extra)                                                           \
-    (((kind) % 3u) << CYLRAY_KF_KIND_SHIFT | ((kind) >= 3 ? CYLRAY_KF_ALIGNED : 0u) |     \
+#define KSPECFL_(b)                                                                            \
+    (((b)&1 ? CYLRAY_NORMAL : 0u) | ((b)&2 ? CYLRAY_FAST : 0u) | ((b)&4 ? CYLRAY_REFINE : 0u))
+#define KFL_(kind, b, extra)                                                                   \
+    (((kind) % 3u) << CYLRAY_KF_KIND_SHIFT | ((kind) >= 3 ? CYLRAY_KF_ALIGNED : 0u) |          \
      KSPECFL_(b) | (extra))
 #define KLFL_(b, extra) (CYLRAY_KIND_LEAF << CYLRAY_KF_KIND_SHIFT | KSPECFL_(b) | (extra))
 /* The three drivers of one table slot; the calls are given, as they differ between the
  * specialised drivers and the run-time ones. */
-#define KSLOT_(kind, b, pk1_call, pk_body, st_call)                                    \
-    static size_t KFN(st_##kind##_##b)(const cylray_prepared *P, const cylray_rays *R,  \
-                                       const cylray_hits *H, uint8_t *o, size_t n,       \
-                                       unsigned rt)                                     \
-    {                                                                                  \
-        return st_call;                                                                \
-    }                                                                                  \
-    static uint32_t KFN(pk1_##kind##_##b)(const cylray_prepared *P, float *R, float *H,  \
-                                          size_t n, uint32_t a, unsigned rt)            \
-    {                                                                                  \
-        (void)n;                                                                       \
-        return pk1_call;                                                               \
-    }                                                                                  \
-    static uint32_t KFN(pk_##kind##_##b)(const cylray_prepared *P, float *R, float *H,   \
-                                         size_t n, uint32_t a, unsigned rt)             \
-    {                                                                                  \
-        pk_body;                                                                       \
+#define KSLOT_(kind, b, pk1_call, pk_body, st_call)                                            \
+    static size_t KFN(st_##kind##_##b)(const cylray_prepared *P, const cylray_rays *R,         \
+                                       const cylray_hits *H, uint8_t *o, size_t n,             \
+                                       unsigned rt)                                            \
+    {                                                                                          \
+        return st_call;                                                                        \
+    }                                                                                          \
+    static uint32_t KFN(pk1_##kind##_##b)(const cylray_prepared *P, float *R, float *H,        \
+                                          size_t n, uint32_t a, unsigned rt)                   \
+    {                                                                                          \
+        (void)n;                                                                               \
+        return pk1_call;                                                                       \
+    }                                                                                          \
+    static uint32_t KFN(pk_##kind##_##b)(const cylray_prepared *P, float *R, float *H,         \
+                                         size_t n, uint32_t a, unsigned rt)                    \
+    {                                                                                          \
+        pk_body;                                                                               \
     }
 #if VW == 1
-#define KPACKET_SEVERAL_(kind, b, fl, drv)                                             \
+#define KPACKET_SEVERAL_(kind, b, fl, drv)                                                     \
     return KFN(packet_by_stream)(P, R, H, n, a, rt, KFN(st_##kind##_##b))
 #else
 /* A packet of several vectors, one vector at a time (KFN(packet)). */
 #define KPACKET_SEVERAL_(kind, b, fl, drv) return KFN(drv)(P, R, H, n, a, rt, fl)
 #endif
-#define KSPEC_(kind, b, fl)                                                            \
-    KSLOT_(kind, b, KFN(packet1)(P, R, H, a, rt, fl), KPACKET_SEVERAL_(kind, b, fl, packet), \
+#define KSPEC_(kind, b, fl)                                                                    \
+    KSLOT_(kind, b, KFN(packet1)(P, R, H, a, rt, fl), KPACKET_SEVERAL_(kind, b, fl, packet),   \
            KFN(stream)(P, R, H, o, n, rt, fl))
-#define KANY_(kind, b, fl)                                                             \
-    KSLOT_(kind, b, KFN(packet_any)(P, R, H, n, a, rt, fl),                             \
+#define KANY_(kind, b, fl)                                                                     \
+    KSLOT_(kind, b, KFN(packet_any)(P, R, H, n, a, rt, fl),                                    \
            KPACKET_SEVERAL_(kind, b, fl, packet_any), KFN(stream_any)(P, R, H, o, n, rt, fl))
 #define KISECT_(kind, b) KSPEC_(kind, b, KFL_(kind, b, 0u))
 #define KOCC_(kind, b) KSPEC_(kind, o##b, KFL_(kind, (b) << 1, CYLRAY_KF_OCCLUDED))
 #define KISECTANY_(kind, b) KANY_(kind, b, KFL_(kind, b, 0u))
 #define KOCCANY_(kind, b) KANY_(kind, o##b, KFL_(kind, (b) << 1, CYLRAY_KF_OCCLUDED))
-#define KLEAFDRV_(name, drv, fl)                                                       \
-    static int KFN(name)(const float *L, size_t lm, cylray_ray1 *r, cylray_hit1 *h,     \
-                         unsigned rt)                                                  \
-    {                                                                                  \
-        return KFN(drv)(L, lm, r, h, rt, fl);                                          \
+#define KLEAFDRV_(name, drv, fl)                                                               \
+    static int KFN(name)(const float *L, size_t lm, cylray_ray1 *r, cylray_hit1 *h,            \
+                         unsigned rt)                                                          \
+    {                                                                                          \
+        return KFN(drv)(L, lm, r, h, rt, fl);                                                  \
     }
 #define KLEAF_(b) KLEAFDRV_(lf_##b, leaf, KLFL_(b, 0u))
 #define KLEAFOCC_(b) KLEAFDRV_(lo_##b, leaf, KLFL_((b) << 1, CYLRAY_KF_OCCLUDED))
@@ -181,12 +182,14 @@ CYLRAY_MAYBE_UNUSED static size_t KFN(stream_generic)(const cylray_prepared *P,
 #define KALL4_(X) K4_(X, 0) K4_(X, 1) K4_(X, 2) K4_(X, 3) K4_(X, 4) K4_(X, 5)
 
 /* b = 6, 7 (occluded: 3) are FAST with REFINE. */
-#define KKIND_(k)                                                                      \
-    KISECT_(k, 0) KISECT_(k, 1) KISECT_(k, 2) KISECT_(k, 3) KISECT_(k, 4) KISECT_(k, 5)    \
-    KISECTANY_(k, 6) KISECTANY_(k, 7) KOCC_(k, 0) KOCC_(k, 1) KOCC_(k, 2) KOCCANY_(k, 3)
-KKIND_(0) KKIND_(1) KKIND_(2) KKIND_(3) KKIND_(4) KKIND_(5)
-KLEAF_(0) KLEAF_(1) KLEAF_(2) KLEAF_(3) KLEAF_(4) KLEAF_(5) KLEAFANY_(6) KLEAFANY_(7)
-KLEAFOCC_(0) KLEAFOCC_(1) KLEAFOCC_(2) KLEAFOCCANY_(3)
+#define KKIND_(k)                                                                              \
+    KISECT_(k, 0)                                                                              \
+    KISECT_(k, 1) KISECT_(k, 2) KISECT_(k, 3) KISECT_(k, 4) KISECT_(k, 5) KISECTANY_(k, 6)     \
+        KISECTANY_(k, 7) KOCC_(k, 0) KOCC_(k, 1) KOCC_(k, 2) KOCCANY_(k, 3)
+KKIND_(0)
+KKIND_(1) KKIND_(2) KKIND_(3) KKIND_(4) KKIND_(5) KLEAF_(0) KLEAF_(1) KLEAF_(2) KLEAF_(3)
+    KLEAF_(4) KLEAF_(5) KLEAFANY_(6) KLEAFANY_(7) KLEAFOCC_(0) KLEAFOCC_(1) KLEAFOCC_(2)
+        KLEAFOCCANY_(3)
 
 #define KREF_PK1_(k, b) KFN(pk1_##k##_##b),
 #define KREF_PK_(k, b) KFN(pk_##k##_##b),
@@ -194,9 +197,11 @@ KLEAFOCC_(0) KLEAFOCC_(1) KLEAFOCC_(2) KLEAFOCCANY_(3)
 #define KREF_PO1_(k, b) KFN(pk1_##k##_o##b),
 #define KREF_PO_(k, b) KFN(pk_##k##_o##b),
 #define KREF_SO_(k, b) KFN(st_##k##_o##b),
-/* The packet tables for one vector (isect1, occ1) and for several (isect, occ); an
+    /* The packet tables for one vector (isect1, occ1) and for several (isect, occ); an
  * ISA's entry points take the ones their widths need, the compiler drops the rest. */
-enum { KFN(vw) = VW };
+    enum {
+        KFN(vw) = VW
+    };
 CYLRAY_MAYBE_UNUSED static const KFN(packet_fn) KFN(isect1_table)[] = {KALL8_(KREF_PK1_)};
 CYLRAY_MAYBE_UNUSED static const KFN(packet_fn) KFN(isect_table)[] = {KALL8_(KREF_PK_)};
 CYLRAY_MAYBE_UNUSED static const KFN(stream_fn) KFN(isect_stream_table)[] = {KALL8_(KREF_ST_)};
@@ -205,18 +210,18 @@ CYLRAY_MAYBE_UNUSED static const KFN(packet_fn) KFN(occ_table)[] = {KALL4_(KREF_
 CYLRAY_MAYBE_UNUSED static const KFN(stream_fn) KFN(occ_stream_table)[] = {KALL4_(KREF_SO_)};
 CYLRAY_MAYBE_UNUSED static const KFN(leaf_fn) KFN(leaf_table)[] = {
     KFN(lf_0), KFN(lf_1), KFN(lf_2), KFN(lf_3), KFN(lf_4), KFN(lf_5), KFN(lf_6), KFN(lf_7)};
-CYLRAY_MAYBE_UNUSED static const KFN(leaf_fn) KFN(leaf_occ_table)[] = {
-    KFN(lo_0), KFN(lo_1), KFN(lo_2), KFN(lo_3)};
+CYLRAY_MAYBE_UNUSED static const KFN(leaf_fn)
+    KFN(leaf_occ_table)[] = {KFN(lo_0), KFN(lo_1), KFN(lo_2), KFN(lo_3)};
 /* Every table holds exactly what its index reaches (cylray_isect_index_,
  * cylray_occ_index_, cylray_spec_, cylray_occ_spec_): one entry per specialised variant
  * and flag encoding. */
 #define KTABLE_SIZE_(t, n) _Static_assert(sizeof KFN(t) / sizeof KFN(t)[0] == (n), #t " size")
-KTABLE_SIZE_(isect1_table, CYLRAY_VARIANT_GENERIC * CYLRAY_SPECS);
-KTABLE_SIZE_(isect_table, CYLRAY_VARIANT_GENERIC * CYLRAY_SPECS);
-KTABLE_SIZE_(isect_stream_table, CYLRAY_VARIANT_GENERIC * CYLRAY_SPECS);
-KTABLE_SIZE_(occ1_table, CYLRAY_VARIANT_GENERIC * CYLRAY_OCC_SPECS);
-KTABLE_SIZE_(occ_table, CYLRAY_VARIANT_GENERIC * CYLRAY_OCC_SPECS);
-KTABLE_SIZE_(occ_stream_table, CYLRAY_VARIANT_GENERIC * CYLRAY_OCC_SPECS);
+KTABLE_SIZE_(isect1_table, CYLRAY_VARIANT_GENERIC *CYLRAY_SPECS);
+KTABLE_SIZE_(isect_table, CYLRAY_VARIANT_GENERIC *CYLRAY_SPECS);
+KTABLE_SIZE_(isect_stream_table, CYLRAY_VARIANT_GENERIC *CYLRAY_SPECS);
+KTABLE_SIZE_(occ1_table, CYLRAY_VARIANT_GENERIC *CYLRAY_OCC_SPECS);
+KTABLE_SIZE_(occ_table, CYLRAY_VARIANT_GENERIC *CYLRAY_OCC_SPECS);
+KTABLE_SIZE_(occ_stream_table, CYLRAY_VARIANT_GENERIC *CYLRAY_OCC_SPECS);
 KTABLE_SIZE_(leaf_table, CYLRAY_SPECS);
 KTABLE_SIZE_(leaf_occ_table, CYLRAY_OCC_SPECS);
 

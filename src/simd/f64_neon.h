@@ -27,13 +27,13 @@
 #define dmor(a, b) vorrq_u64(a, b)
 #define dmandn(a, b) vbicq_u64(a, b)
 #define dmnot(a) veorq_u64(a, vdupq_n_u64(~0ull))
-#define dmbits(m) ((uint32_t)(vgetq_lane_u64(m, 0) & 1u) | (uint32_t)(vgetq_lane_u64(m, 1) & 2u))
+#define dmbits(m)                                                                              \
+    ((uint32_t)(vgetq_lane_u64(m, 0) & 1u) | (uint32_t)(vgetq_lane_u64(m, 1) & 2u))
 #define dsel(m, a, b) vbslq_f64(m, a, b)
 #define dround_f(x) vcvt_f64_f32(vcvt_f32_f64(x))
-#define dexpo(x)                                                                        \
-    vreinterpretq_f64_u64(vandq_u64(vreinterpretq_u64_f64(x),                          \
-                                    vdupq_n_u64(0x7ff0000000000000ull)))
+#define dexpo(x)                                                                               \
+    vreinterpretq_f64_u64(                                                                     \
+        vandq_u64(vreinterpretq_u64_f64(x), vdupq_n_u64(0x7ff0000000000000ull)))
 #define dloadu_f(p) vcvt_f64_f32(vld1_f32(p))
 #define dstoreu_f(p, x) vst1_f32(p, vcvt_f32_f64(x))
-#define dload_bits(p, m)                                                                   \
-    vcvtq_f64_s64(vmovl_s32(vand_s32(vld1_s32(p), vdup_n_s32(m))))
+#define dload_bits(p, m) vcvtq_f64_s64(vmovl_s32(vand_s32(vld1_s32(p), vdup_n_s32(m))))

@@ -9,12 +9,14 @@
 #define vd __m128d
 #define vdm __m128d
 #define DX(n) _mm_##n
-#define dloadu_f(p) _mm_cvtps_pd(_mm_castsi128_ps(_mm_loadl_epi64((const __m128i *)(const void *)(p))))
-#define dstoreu_f(p, x) _mm_storel_epi64((__m128i *)(void *)(p), _mm_castps_si128(_mm_cvtpd_ps(x)))
+#define dloadu_f(p)                                                                            \
+    _mm_cvtps_pd(_mm_castsi128_ps(_mm_loadl_epi64((const __m128i *)(const void *)(p))))
+#define dstoreu_f(p, x)                                                                        \
+    _mm_storel_epi64((__m128i *)(void *)(p), _mm_castps_si128(_mm_cvtpd_ps(x)))
 #define dround_f(x) _mm_cvtps_pd(_mm_cvtpd_ps(x))
-#define dload_bits(p, m)                                                                   \
-    _mm_cvtepi32_pd(_mm_and_si128(_mm_loadl_epi64((const __m128i *)(const void *)(p)),  \
-                                  _mm_set1_epi32(m)))
+#define dload_bits(p, m)                                                                       \
+    _mm_cvtepi32_pd(                                                                           \
+        _mm_and_si128(_mm_loadl_epi64((const __m128i *)(const void *)(p)), _mm_set1_epi32(m)))
 #define dlt(a, b) _mm_cmplt_pd(a, b)
 #define dle(a, b) _mm_cmple_pd(a, b)
 #define dgt(a, b) _mm_cmpgt_pd(a, b)
@@ -27,9 +29,9 @@
 #define dloadu_f(p) _mm256_cvtps_pd(_mm_loadu_ps(p))
 #define dstoreu_f(p, x) _mm_storeu_ps(p, _mm256_cvtpd_ps(x))
 #define dround_f(x) _mm256_cvtps_pd(_mm256_cvtpd_ps(x))
-#define dload_bits(p, m)                                                                    \
-    _mm256_cvtepi32_pd(_mm_and_si128(_mm_loadu_si128((const __m128i *)(const void *)(p)), \
-                                     _mm_set1_epi32(m)))
+#define dload_bits(p, m)                                                                       \
+    _mm256_cvtepi32_pd(                                                                        \
+        _mm_and_si128(_mm_loadu_si128((const __m128i *)(const void *)(p)), _mm_set1_epi32(m)))
 #define dlt(a, b) _mm256_cmp_pd(a, b, _CMP_LT_OQ)
 #define dle(a, b) _mm256_cmp_pd(a, b, _CMP_LE_OQ)
 #define dgt(a, b) _mm256_cmp_pd(a, b, _CMP_GT_OQ)
@@ -42,10 +44,9 @@
 #define dloadu_f(p) _mm512_cvtps_pd(_mm256_loadu_ps(p))
 #define dstoreu_f(p, x) _mm256_storeu_ps(p, _mm512_cvtpd_ps(x))
 #define dround_f(x) _mm512_cvtps_pd(_mm512_cvtpd_ps(x))
-#define dload_bits(p, m)                                                                   \
-    _mm512_cvtepi32_pd(_mm256_and_si256(                                                \
-        _mm256_loadu_si256((const __m256i *)(const void *)(p)),                          \
-        _mm256_set1_epi32(m)))
+#define dload_bits(p, m)                                                                       \
+    _mm512_cvtepi32_pd(_mm256_and_si256(                                                       \
+        _mm256_loadu_si256((const __m256i *)(const void *)(p)), _mm256_set1_epi32(m)))
 #define dlt(a, b) _mm512_cmp_pd_mask(a, b, _CMP_LT_OQ)
 #define dle(a, b) _mm512_cmp_pd_mask(a, b, _CMP_LE_OQ)
 #define dgt(a, b) _mm512_cmp_pd_mask(a, b, _CMP_GT_OQ)

@@ -23,9 +23,10 @@
 #define vabs(a) vabsq_f32(a)
 #define vneg(a) vnegq_f32(a)
 #define vcopysign(mag, sgn) vbslq_f32(vdupq_n_u32(0x80000000u), sgn, mag)
-#define vxorsign(a, b) \
-    vreinterpretq_f32_u32(veorq_u32(vreinterpretq_u32_f32(a), \
-                                    vandq_u32(vreinterpretq_u32_f32(b), vdupq_n_u32(0x80000000u))))
+#define vxorsign(a, b)                                                                         \
+    vreinterpretq_f32_u32(                                                                     \
+        veorq_u32(vreinterpretq_u32_f32(a),                                                    \
+                  vandq_u32(vreinterpretq_u32_f32(b), vdupq_n_u32(0x80000000u))))
 
 #define vfma(a, b, c) vfmaq_f32(c, a, b)
 #define vfms(a, b, c) vnegq_f32(vfmsq_f32(c, a, b))
@@ -86,10 +87,14 @@ static inline void KFN(store_m)(float *p, vm m, vf x)
     if (b == 0xfu) {
         vst1q_f32(p, x);
     } else {
-        if (b & 1u) vst1q_lane_f32(p + 0, x, 0);
-        if (b & 2u) vst1q_lane_f32(p + 1, x, 1);
-        if (b & 4u) vst1q_lane_f32(p + 2, x, 2);
-        if (b & 8u) vst1q_lane_f32(p + 3, x, 3);
+        if (b & 1u)
+            vst1q_lane_f32(p + 0, x, 0);
+        if (b & 2u)
+            vst1q_lane_f32(p + 1, x, 1);
+        if (b & 4u)
+            vst1q_lane_f32(p + 2, x, 2);
+        if (b & 8u)
+            vst1q_lane_f32(p + 3, x, 3);
     }
 }
 static inline void KFN(store_part_m)(int32_t *p, vm m, vf x)
@@ -99,10 +104,14 @@ static inline void KFN(store_part_m)(int32_t *p, vm m, vf x)
     if (b == 0xfu) {
         vst1q_s32(p, xi);
     } else {
-        if (b & 1u) vst1q_lane_s32(p + 0, xi, 0);
-        if (b & 2u) vst1q_lane_s32(p + 1, xi, 1);
-        if (b & 4u) vst1q_lane_s32(p + 2, xi, 2);
-        if (b & 8u) vst1q_lane_s32(p + 3, xi, 3);
+        if (b & 1u)
+            vst1q_lane_s32(p + 0, xi, 0);
+        if (b & 2u)
+            vst1q_lane_s32(p + 1, xi, 1);
+        if (b & 4u)
+            vst1q_lane_s32(p + 2, xi, 2);
+        if (b & 8u)
+            vst1q_lane_s32(p + 3, xi, 3);
     }
 }
 #define vstore_m(p, m, x) KFN(store_m)(p, m, x)

@@ -56,10 +56,10 @@ static inline float KFN(dop_x)(float a, float b, float c, float d)
 #define vfms(a, b, c) ((float)((double)(a) * (double)(b) - (double)(c)))
 #define vfnma(a, b, c) ((float)((double)(c) - (double)(a) * (double)(b)))
 #define vfma_x(a, b, c) vfma(a, b, c)
-#define vfma_x2(a, b, ch, cl) \
+#define vfma_x2(a, b, ch, cl)                                                                  \
     ((float)((double)(a) * (double)(b) + ((double)(ch) + (double)(cl))))
-#define vsumsq_x(a, b, c, k)                                                              \
-    ((float)((double)(a) * (double)(a) + (double)(b) * (double)(b) +                    \
+#define vsumsq_x(a, b, c, k)                                                                   \
+    ((float)((double)(a) * (double)(a) + (double)(b) * (double)(b) +                           \
              (double)(c) * (double)(c) - (double)(k)))
 static inline float KFN(dop_x)(float a, float b, float c, float d)
 {
@@ -80,11 +80,19 @@ static inline float KFN(dop_x)(float a, float b, float c, float d)
 #define mandn(a, b) ((a) & !(b))
 #define many(m) (m)
 #define mbits(m) ((uint32_t)(m))
-#define mfrom_bits(b) ((int)((b) & 1u))
+#define mfrom_bits(b) ((int)((b)&1u))
 #define vsel(m, a, b) ((m) ? (a) : (b))
 #define vkeep(m, a) ((m) ? (a) : 0.0f)
 #define mxor(a, b) ((a) ^ (b))
-#define vstore_m(p, m, x) do { if (m) *(p) = (x); } while (0)
+#define vstore_m(p, m, x)                                                                      \
+    do {                                                                                       \
+        if (m)                                                                                 \
+            *(p) = (x);                                                                        \
+    } while (0)
 #define vstoreu(p, x) (*(p) = (x))
 #define vstoreu_part(p, x) (*(p) = (int32_t)(x))
-#define vstore_part_m(p, m, x) do { if (m) *(p) = (int32_t)(x); } while (0)
+#define vstore_part_m(p, m, x)                                                                 \
+    do {                                                                                       \
+        if (m)                                                                                 \
+            *(p) = (int32_t)(x);                                                               \
+    } while (0)

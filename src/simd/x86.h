@@ -53,7 +53,7 @@
 #define vsignbit_() VX(set1_ps)(-0.0f)
 #define vabs(a) VX(andnot_ps)(vsignbit_(), a)
 #define vneg(a) VX(xor_ps)(a, vsignbit_())
-#define vcopysign(mag, sgn) \
+#define vcopysign(mag, sgn)                                                                    \
     VX(or_ps)(VX(andnot_ps)(vsignbit_(), mag), VX(and_ps)(vsignbit_(), sgn))
 #define vxorsign(a, b) VX(xor_ps)(a, VX(and_ps)(b, vsignbit_()))
 
@@ -100,9 +100,9 @@ static inline __m128 KFN(fma_x2)(__m128 a, __m128 b, __m128 ch, __m128 cl)
  * difference of two near numbers that only an exact sum of squares keeps. */
 static inline __m128 KFN(sumsq_x)(__m128 a, __m128 b, __m128 c, __m128 k)
 {
-#define E_(H)                                                                            \
-    _mm_sub_pd(_mm_add_pd(_mm_add_pd(_mm_mul_pd(H(a), H(a)), _mm_mul_pd(H(b), H(b))),      \
-                          _mm_mul_pd(H(c), H(c))),                                       \
+#define E_(H)                                                                                  \
+    _mm_sub_pd(_mm_add_pd(_mm_add_pd(_mm_mul_pd(H(a), H(a)), _mm_mul_pd(H(b), H(b))),          \
+                          _mm_mul_pd(H(c), H(c))),                                             \
                H(k))
     return VIN_DOUBLE_(E_);
 #undef E_
@@ -168,7 +168,7 @@ static inline vf KFN(rsqrt_fast)(vf x)
 #define mandn(a, b) ((vm)((a) & ~(b)))
 #define many(m) ((m) != 0)
 #define mbits(m) ((uint32_t)(m))
-#define mfrom_bits(b) ((vm)((b) & VFULL))
+#define mfrom_bits(b) ((vm)((b)&VFULL))
 #define vsel(m, a, b) VX(mask_blend_ps)(m, b, a)
 #define vkeep(m, a) VX(maskz_mov_ps)(m, a)
 #define mxor(a, b) ((vm)((a) ^ (b)))
@@ -204,8 +204,8 @@ static inline vf KFN(rsqrt_fast)(vf x)
 #define vlanebits_() _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128)
 #define vcmpeq_i_(a, b) _mm256_cmpeq_epi32(a, b)
 #endif
-#define mfrom_bits(b) \
-    VCASTF(vcmpeq_i_(VXI(and)(VX(set1_epi32)((int)(b)), vlanebits_()), vlanebits_()))
+#define mfrom_bits(b)                                                                          \
+    VCASTF(vcmpeq_i_(VXI (and)(VX(set1_epi32)((int)(b)), vlanebits_()), vlanebits_()))
 /* The stores of the hit lanes (docs/performance.md, "Stores by vendor"). A lane that
  * did not hit is never written, so nothing may be read back and blended in. AVX has
  * a masked store, two uops on Intel cores but microcoded on AMD Zen 1 to 3 (42 uops
@@ -221,9 +221,9 @@ static inline vf KFN(rsqrt_fast)(vf x)
 #define vstore_m(p, m, x) KFN(store_m)(p, m, x)
 #define vstore_part_m(p, m, x) KFN(store_part_m)(p, m, x)
 /* A partly hit vector, a lane at a time: every field of a lane, then the next. */
-static inline __attribute__((always_inline)) void KFN(store_lanes)(
-    uint32_t b, int normal, float *pt, float *ptmax, int32_t *ppart, float *pnx, float *pny,
-    float *pnz, vf t, vi_ ip, vf nx, vf ny, vf nz)
+static inline __attribute__((always_inline)) void
+KFN(store_lanes)(uint32_t b, int normal, float *pt, float *ptmax, int32_t *ppart, float *pnx,
+                 float *pny, float *pnz, vf t, vi_ ip, vf nx, vf ny, vf nz)
 {
     if (b == VFULL) {
         VX(storeu_ps)(pt, t);
@@ -257,9 +257,9 @@ static inline __attribute__((always_inline)) void KFN(store_lanes)(
         }
     }
 }
-static inline __attribute__((always_inline)) void KFN(store_hits)(
-    vm m, int normal, float *pt, float *ptmax, int32_t *ppart, float *pnx, float *pny,
-    float *pnz, vf t, vf part, vf nx, vf ny, vf nz)
+static inline __attribute__((always_inline)) void
+KFN(store_hits)(vm m, int normal, float *pt, float *ptmax, int32_t *ppart, float *pnx,
+                float *pny, float *pnz, vf t, vf part, vf nx, vf ny, vf nz)
 {
     const vi_ ip = VX(cvttps_epi32)(part);
 #if X86_FMA
@@ -318,6 +318,6 @@ static inline __attribute__((always_inline)) void KFN(store_part_m)(int32_t *p, 
     for (uint32_t r = b; r; r &= r - 1u)
         p[__builtin_ctz(r)] = l[__builtin_ctz(r)];
 }
-#define vstore_hits(m, normal, pt, ptmax, ppart, pnx, pny, pnz, t, part, nx, ny, nz)      \
+#define vstore_hits(m, normal, pt, ptmax, ppart, pnx, pny, pnz, t, part, nx, ny, nz)           \
     KFN(store_hits)(m, normal, pt, ptmax, ppart, pnx, pny, pnz, t, part, nx, ny, nz)
 #endif

@@ -18,9 +18,8 @@ CYLRAY_MAYBE_UNUSED static void DFN(hit_points_packet)(const cylray_prepared *P,
         if (!bits)
             continue;
         const float *const in[10] = {
-            ray + b,         ray + n + b,     ray + 2 * n + b,
-            ray + 3 * n + b, ray + 4 * n + b, ray + 5 * n + b,
-            hit + b,         normals ? hit + n + b : NULL,
+            ray + b,         ray + n + b,     ray + 2 * n + b, ray + 3 * n + b,
+            ray + 4 * n + b, ray + 5 * n + b, hit + b,         normals ? hit + n + b : NULL,
             hit + 2 * n + b, hit + 3 * n + b};
         float *const out[4] = {pts + b, pts + n + b, pts + 2 * n + b, pts + 3 * n + b};
         DFN(hp_lanes)(&g, in, part + b, out, bits);
@@ -49,8 +48,8 @@ CYLRAY_MAYBE_UNUSED static void DFN(spawn_rays_packet)(const cylray_prepared *P,
             continue;
         if (outward)
             DFN(sides_bits)(side, *outward >> b);
-        const float *const in[10] = {pts + b,         pts + n + b,     pts + 2 * n + b,
-                                     pts + 3 * n + b, ray + 3 * n + b, ray + 4 * n + b,
+        const float *const in[10] = {pts + b,         pts + n + b,          pts + 2 * n + b,
+                                     pts + 3 * n + b, ray + 3 * n + b,      ray + 4 * n + b,
                                      ray + 5 * n + b, outward ? side : NULL};
         float *const out[3] = {ray + b, ray + n + b, ray + 2 * n + b};
         DFN(sp_lanes)(&g, in, part + b, out, bits);
@@ -64,19 +63,22 @@ static inline uint32_t DFN(hit_bits)(const int32_t *part)
     return dmbits(dgt(dload_bits(part, CYLRAY_PART_MASK), dset1(0.0)));
 }
 
-CYLRAY_MAYBE_UNUSED static size_t DFN(hit_points_stream)(const cylray_prepared *P,
-                                                         const cylray_rays *rays,
-                                                         const cylray_hits *hits,
-                                                         const cylray_points *pts, size_t n,
-                                                         int normals)
+CYLRAY_MAYBE_UNUSED static size_t
+DFN(hit_points_stream)(const cylray_prepared *P, const cylray_rays *rays,
+                       const cylray_hits *hits, const cylray_points *pts, size_t n, int normals)
 {
     DFN(geo) g;
     DFN(geo_prepared)(&g, P);
     size_t count = 0;
     for (size_t b = 0; b < n; b += DW) {
-        const float *const in[10] = {rays->ox + b, rays->oy + b, rays->oz + b,
-                                     rays->dx + b, rays->dy + b, rays->dz + b,
-                                     hits->t + b,  normals ? hits->nx + b : NULL,
+        const float *const in[10] = {rays->ox + b,
+                                     rays->oy + b,
+                                     rays->oz + b,
+                                     rays->dx + b,
+                                     rays->dy + b,
+                                     rays->dz + b,
+                                     hits->t + b,
+                                     normals ? hits->nx + b : NULL,
                                      normals ? hits->ny + b : NULL,
                                      normals ? hits->nz + b : NULL};
         float *const out[4] = {pts->x + b, pts->y + b, pts->z + b,
@@ -102,8 +104,7 @@ CYLRAY_MAYBE_UNUSED static size_t DFN(hit_points_stream)(const cylray_prepared *
 
 /* outward: NULL (w's side), or a byte a ray (nonzero: the part's outward side). */
 CYLRAY_MAYBE_UNUSED static void DFN(spawn_stream)(const cylray_prepared *P,
-                                                  const cylray_points *pts,
-                                                  const int32_t *part,
+                                                  const cylray_points *pts, const int32_t *part,
                                                   const uint8_t *outward,
                                                   const cylray_points *dirs,
                                                   const cylray_points *origins, size_t n)
@@ -116,10 +117,9 @@ CYLRAY_MAYBE_UNUSED static void DFN(spawn_stream)(const cylray_prepared *P,
         if (outward)
             for (size_t i = 0; i < DW; i++)
                 side[i] = outward[b + (i < cnt ? i : 0)] ? 1.0f : -1.0f;
-        const float *const in[10] = {pts->x + b,  pts->y + b,  pts->z + b,
-                                     pts->err ? pts->err + b : NULL,
-                                     dirs->x + b, dirs->y + b, dirs->z + b,
-                                     outward ? side : NULL};
+        const float *const in[10] = {
+            pts->x + b,  pts->y + b,  pts->z + b,  pts->err ? pts->err + b : NULL,
+            dirs->x + b, dirs->y + b, dirs->z + b, outward ? side : NULL};
         float *const out[3] = {origins->x + b, origins->y + b, origins->z + b};
         if (cnt < DW) {
             uint32_t bits = 0;
@@ -137,8 +137,8 @@ CYLRAY_MAYBE_UNUSED static void DFN(spawn_stream)(const cylray_prepared *P,
 
 /* Leaves in bulk: hit i of a query of leaf[i] (its geom_ array, m lanes a field). The
  * lanes' cylinders are gathered into vectors; so are the AoS rays and hits. */
-CYLRAY_MAYBE_UNUSED static void DFN(leaf_geo)(DFN(geo) *g, const float *const *leaf, const cylray_hit1 *hit,
-                          size_t m, size_t cnt)
+CYLRAY_MAYBE_UNUSED static void DFN(leaf_geo)(DFN(geo) * g, const float *const *leaf,
+                                              const cylray_hit1 *hit, size_t m, size_t cnt)
 {
     float f[8][DW], lo[DW], hi[DW];
     static const int fields[8] = {CYLRAY_LF_CX, CYLRAY_LF_CY, CYLRAY_LF_CZ, CYLRAY_LF_VX,
@@ -149,9 +149,8 @@ CYLRAY_MAYBE_UNUSED static void DFN(leaf_geo)(DFN(geo) *g, const float *const *l
         const size_t lane = hit[j].lane % m;
         for (int k = 0; k < 8; k++)
             f[k][i] = geom[(size_t)fields[k] * m + lane];
-        const unsigned caps = cylray_leaf_caps_((const uint32_t *)(const void *)(
-                                                    geom + CYLRAY_LF_COUNT * m),
-                                                (unsigned)lane);
+        const unsigned caps = cylray_leaf_caps_(
+            (const uint32_t *)(const void *)(geom + CYLRAY_LF_COUNT * m), (unsigned)lane);
         lo[i] = caps & CYLRAY_CAPPED_LO ? 1.0f : 0.0f;
         hi[i] = caps & CYLRAY_CAPPED_HI ? 1.0f : 0.0f;
     }
@@ -161,15 +160,13 @@ CYLRAY_MAYBE_UNUSED static void DFN(leaf_geo)(DFN(geo) *g, const float *const *l
         v[k] = dloadu_f(f[3 + k]);
     }
     const vd zero = dset1(0.0);
-    DFN(geo_make)(g, c, v, dloadu_f(f[6]), dloadu_f(f[7]), dgt(dloadu_f(lo), zero),
-                  dgt(dloadu_f(hi), zero));
+    DFN(geo_make)
+    (g, c, v, dloadu_f(f[6]), dloadu_f(f[7]), dgt(dloadu_f(lo), zero), dgt(dloadu_f(hi), zero));
 }
 
-CYLRAY_MAYBE_UNUSED static void DFN(leaf_hit_points)(const float *const *leaf, size_t m,
-                                                     const cylray_ray1 *ray,
-                                                     const cylray_hit1 *hit,
-                                                     const cylray_points *pts, size_t n,
-                                                     int normals)
+CYLRAY_MAYBE_UNUSED static void
+DFN(leaf_hit_points)(const float *const *leaf, size_t m, const cylray_ray1 *ray,
+                     const cylray_hit1 *hit, const cylray_points *pts, size_t n, int normals)
 {
     for (size_t b = 0; b < n; b += DW) {
         const size_t cnt = n - b < DW ? n - b : DW;
@@ -187,8 +184,9 @@ CYLRAY_MAYBE_UNUSED static void DFN(leaf_hit_points)(const float *const *leaf, s
             ib[6][i] = hit[j].t;
             pb[i] = hit[j].part;
         }
-        const float *const in[10] = {ib[0], ib[1], ib[2], ib[3], ib[4], ib[5], ib[6],
-                                     normals ? ib[7] : NULL, ib[8], ib[9]};
+        const float *const in[10] = {ib[0], ib[1], ib[2], ib[3],
+                                     ib[4], ib[5], ib[6], normals ? ib[7] : NULL,
+                                     ib[8], ib[9]};
         float *const out[4] = {ob[0], ob[1], ob[2], ob[3]};
         DFN(hp_lanes)(&g, in, pb, out, DFULL);
         for (size_t i = 0; i < cnt; i++) {
@@ -201,13 +199,10 @@ CYLRAY_MAYBE_UNUSED static void DFN(leaf_hit_points)(const float *const *leaf, s
     }
 }
 
-CYLRAY_MAYBE_UNUSED static void DFN(leaf_spawn_origins)(const float *const *leaf, size_t m,
-                                                        const cylray_hit1 *hit,
-                                                        const cylray_points *pts,
-                                                        const uint8_t *outward,
-                                                        const cylray_points *dirs,
-                                                        const cylray_points *origins,
-                                                        size_t n)
+CYLRAY_MAYBE_UNUSED static void
+DFN(leaf_spawn_origins)(const float *const *leaf, size_t m, const cylray_hit1 *hit,
+                        const cylray_points *pts, const uint8_t *outward,
+                        const cylray_points *dirs, const cylray_points *origins, size_t n)
 {
     float side[DW];
     for (size_t b = 0; b < n; b += DW) {
@@ -217,10 +212,9 @@ CYLRAY_MAYBE_UNUSED static void DFN(leaf_spawn_origins)(const float *const *leaf
         if (outward)
             for (size_t i = 0; i < DW; i++)
                 side[i] = outward[b + (i < cnt ? i : 0)] ? 1.0f : -1.0f;
-        const float *const in[10] = {pts->x + b,  pts->y + b,  pts->z + b,
-                                     pts->err ? pts->err + b : NULL,
-                                     dirs->x + b, dirs->y + b, dirs->z + b,
-                                     outward ? side : NULL};
+        const float *const in[10] = {
+            pts->x + b,  pts->y + b,  pts->z + b,  pts->err ? pts->err + b : NULL,
+            dirs->x + b, dirs->y + b, dirs->z + b, outward ? side : NULL};
         float *const out[3] = {origins->x + b, origins->y + b, origins->z + b};
         int32_t pb[DW];
         for (size_t i = 0; i < DW; i++)
@@ -234,23 +228,31 @@ CYLRAY_MAYBE_UNUSED static void DFN(leaf_spawn_origins)(const float *const *leaf
 
 #if DW == 1
 /* The scalar entry points: one lane; n, the kernel's normal or NULL; side as in spawn. */
-CYLRAY_MAYBE_UNUSED static void DFN(hit_point1)(const DFN(geo) *g, const float o[3],
+CYLRAY_MAYBE_UNUSED static void DFN(hit_point1)(const DFN(geo) * g, const float o[3],
                                                 const float d[3], float t, int32_t part,
                                                 const float *n, float p[3], float *err)
 {
-    const float *const in[10] = {&o[0], &o[1], &o[2], &d[0], &d[1], &d[2], &t,
-                                 n ? &n[0] : NULL, n ? &n[1] : NULL, n ? &n[2] : NULL};
+    const float *const in[10] = {&o[0],
+                                 &o[1],
+                                 &o[2],
+                                 &d[0],
+                                 &d[1],
+                                 &d[2],
+                                 &t,
+                                 n ? &n[0] : NULL,
+                                 n ? &n[1] : NULL,
+                                 n ? &n[2] : NULL};
     float *const out[4] = {&p[0], &p[1], &p[2], err};
     DFN(hp_lanes)(g, in, &part, out, 1u);
 }
 
-CYLRAY_MAYBE_UNUSED static void DFN(spawn1)(const DFN(geo) *g, const float p[3], float err,
+CYLRAY_MAYBE_UNUSED static void DFN(spawn1)(const DFN(geo) * g, const float p[3], float err,
                                             int32_t part, int side, const float w[3],
                                             float out[3])
 {
     const float sd = (float)side;
-    const float *const in[10] = {&p[0], &p[1], &p[2], &err, &w[0], &w[1], &w[2],
-                                 side ? &sd : NULL};
+    const float *const in[10] = {&p[0], &p[1], &p[2], &err,
+                                 &w[0], &w[1], &w[2], side ? &sd : NULL};
     float *const o[3] = {&out[0], &out[1], &out[2]};
     DFN(sp_lanes)(g, in, &part, o, 1u);
 }

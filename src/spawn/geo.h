@@ -26,10 +26,9 @@ static inline vd DFN(ulp_f)(vd x)
 static inline vd DFN(next_f)(vd f, vdm up)
 {
     const vd u = DFN(ulp_f)(f), af = dabs(f);
-    const vdm toward0 = dmor(dmand(up, dlt(f, dset1(0.0))),
-                             dmandn(dgt(f, dset1(0.0)), up));
-    const vdm half = dmand(toward0, dmand(deq(af, dmul(u, dset1(0x1p23))),
-                                          dgt(af, dset1(0x1p-126))));
+    const vdm toward0 = dmor(dmand(up, dlt(f, dset1(0.0))), dmandn(dgt(f, dset1(0.0)), up));
+    const vdm half =
+        dmand(toward0, dmand(deq(af, dmul(u, dset1(0x1p23))), dgt(af, dset1(0x1p-126))));
     const vd step = dsel(half, dmul(u, dset1(0.5)), u);
     return dsel(up, dadd(f, step), dsub(f, step));
 }
@@ -50,8 +49,8 @@ static inline vd DFN(l1)(const vd a[3])
 }
 
 /* The cylinders' derived values, from their floats (c, v, R, H and the discs). */
-CYLRAY_INLINE void DFN(geo_make)(DFN(geo) *g, const vd c[3], const vd v[3], vd R, vd H,
-                                 vdm lo, vdm hi)
+CYLRAY_INLINE void DFN(geo_make)(DFN(geo) * g, const vd c[3], const vd v[3], vd R, vd H, vdm lo,
+                                 vdm hi)
 {
     const vd one = dset1(1.0), zero = dset1(0.0);
     for (int k = 0; k < 3; k++) {
@@ -71,8 +70,7 @@ CYLRAY_INLINE void DFN(geo_make)(DFN(geo) *g, const vd c[3], const vd v[3], vd R
     g->lo = dmand(lo, finite);
     g->hi = dmand(hi, finite);
     const vd a0 = dabs(v[0]), a1 = dabs(v[1]), a2 = dabs(v[2]);
-    g->tilt = dmul(dmul(dset1(2 * CYLRAY_SQRT3), DFN(ulp_f)(DFN(max3)(a0, a1, a2))),
-                   g->inv_sv);
+    g->tilt = dmul(dmul(dset1(2 * CYLRAY_SQRT3), DFN(ulp_f)(DFN(max3)(a0, a1, a2))), g->inv_sv);
     g->uR2 = dmul(dset1(2.0), DFN(ulp_f)(R));
     g->uH2 = dmul(dset1(2.0), DFN(ulp_f)(H));
     /* v x e_k, with e_k the coordinate axis along which v is shortest (ties: the first
@@ -91,7 +89,7 @@ CYLRAY_INLINE void DFN(geo_make)(DFN(geo) *g, const vd c[3], const vd v[3], vd R
 }
 
 /* A prepared cylinder in every lane. */
-static inline void DFN(geo_prepared)(DFN(geo) *g, const cylray_prepared *P)
+static inline void DFN(geo_prepared)(DFN(geo) * g, const cylray_prepared *P)
 {
     vd c[3], v[3];
     for (int k = 0; k < 3; k++) {
@@ -99,8 +97,9 @@ static inline void DFN(geo_prepared)(DFN(geo) *g, const cylray_prepared *P)
         v[k] = dset1((double)P->v[k]);
     }
     const vd yes = dset1(1.0), zero = dset1(0.0);
-    DFN(geo_make)(g, c, v, dset1((double)P->radius), dset1((double)P->half_height),
-                  dgt(dset1((P->caps & CYLRAY_CAPPED_LO) ? 1.0 : 0.0), zero),
-                  dgt(dset1((P->caps & CYLRAY_CAPPED_HI) ? 1.0 : 0.0), zero));
+    DFN(geo_make)
+    (g, c, v, dset1((double)P->radius), dset1((double)P->half_height),
+     dgt(dset1((P->caps & CYLRAY_CAPPED_LO) ? 1.0 : 0.0), zero),
+     dgt(dset1((P->caps & CYLRAY_CAPPED_HI) ? 1.0 : 0.0), zero));
     (void)yes;
 }

@@ -14,8 +14,8 @@ typedef struct DFN(surf) {
  * w: out, doubles of floats. side: +1 or -1 puts the origin on that side of the part's
  * own surface (+1: where its outward normal points), 0 on w's side; any other surface
  * it must clear is cleared to w's side. */
-CYLRAY_INLINE void DFN(spawn)(const DFN(geo) *g, const vd p[3], vd err, vd part,
-                              vd side, const vd w[3], vd out[3])
+CYLRAY_INLINE void DFN(spawn)(const DFN(geo) * g, const vd p[3], vd err, vd part, vd side,
+                              const vd w[3], vd out[3])
 {
     const vd zero = dset1(0.0), one = dset1(1.0);
     vd q[3], r[3];
@@ -62,11 +62,10 @@ CYLRAY_INLINE void DFN(spawn)(const DFN(geo) *g, const vd p[3], vd err, vd part,
     for (int i = 0; i < 3; i++) {
         DFN(surf) *x = &S[i];
         x->l1 = DFN(l1)(x->n);
-        const vd m = dmul(dset1(CYLRAY_SPAWN_SAFETY),
-                          dadd(dadd(dmul(u2, x->l1), dmul(i == 0 ? az : rho, g->tilt)),
-                               i == 0 ? uRt : uHt));
-        x->in = dmand(exists[i],
-                      dmor(here[i], dle(dabs(x->sigma), dadd(dadd(err, m), e_d))));
+        const vd m = dmul(
+            dset1(CYLRAY_SPAWN_SAFETY),
+            dadd(dadd(dmul(u2, x->l1), dmul(i == 0 ? az : rho, g->tilt)), i == 0 ? uRt : uHt));
+        x->in = dmand(exists[i], dmor(here[i], dle(dabs(x->sigma), dadd(dadd(err, m), e_d))));
         x->any = dmbits(x->in) != 0;
         x->pos = x->in;
         x->sgn = one;
@@ -75,8 +74,8 @@ CYLRAY_INLINE void DFN(spawn)(const DFN(geo) *g, const vd p[3], vd err, vd part,
             continue;
         /* to w's side; the part's own surface to the side asked for, where one is */
         const vdm chosen = dmand(here[i], dmnot(deq(side, zero)));
-        x->pos = dmor(dmand(chosen, dgt(side, zero)),
-                      dmandn(dgt(DFN(dot3)(x->n, w), zero), chosen));
+        x->pos =
+            dmor(dmand(chosen, dgt(side, zero)), dmandn(dgt(DFN(dot3)(x->n, w), zero), chosen));
         x->sgn = dsel(x->pos, one, dset1(-1.0));
         /* max(0, -sign sigma): how far p lies on the wrong side */
         x->base = dmax(zero, dsel(x->pos, dsub(zero, x->sigma), x->sigma));

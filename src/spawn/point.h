@@ -3,7 +3,7 @@
 
 /* THE HIT POINT of the rays o + t d at t on `part` (as doubles of its low bits): the
  * point p (doubles of floats) and the bound err (likewise). */
-CYLRAY_INLINE void DFN(hit_point)(const DFN(geo) *g, const vd o[3], const vd d[3], vd t,
+CYLRAY_INLINE void DFN(hit_point)(const DFN(geo) * g, const vd o[3], const vd d[3], vd t,
                                   vd part, const vd *nk, vd back, vd p[3], vd *err)
 {
     const vd zero = dset1(0.0), one = dset1(1.0);
@@ -30,8 +30,8 @@ CYLRAY_INLINE void DFN(hit_point)(const DFN(geo) *g, const vd o[3], const vd d[3
         const vd rl = dsqrt(DFN(dot3)(rn, rn)), nl = dsqrt(DFN(dot3)(nk, nk));
         const vd dn = DFN(dot3)(d, nk);
         /* not a side normal (or not finite): q stays */
-        const vdm valid = dmand(dmand(side, dgt(rl, dmul(dset1(0x1p-10), nl))),
-                                dlt(rl, dset1(INFINITY)));
+        const vdm valid =
+            dmand(dmand(side, dgt(rl, dmul(dset1(0x1p-10), nl))), dlt(rl, dset1(INFINITY)));
         const vdm clear = dgt(dabs(dn), dmul(dmul(dset1(0x1p-7), dsqrt(DFN(dot3)(d, d))), nl));
         const vdm dpos = dgt(dn, zero), bk = dgt(back, zero);
         const vdm flip = dmor(dmand(clear, dmor(dmandn(dpos, bk), dmandn(bk, dpos))),
@@ -68,9 +68,9 @@ CYLRAY_INLINE void DFN(hit_point)(const DFN(geo) *g, const vd o[3], const vd d[3
     const vd Pn = DFN(l1)(Pd);
     const vd side_gain = dsel(side, gain, zero);
     const vd a = dmul(dmul(dset1(0x1p-49), qn), inv_L);
-    const vd env = dadd(dmul(dmul(dset1(0x1p-47), dadd(dadd(dadd(g->R, g->Hf), qn), Pn)),
-                             dadd(one, side_gain)),
-                        dsel(side, dmul(dmul(g->R, a), a), zero));
+    const vd env = dadd(
+        dmul(dmul(dset1(0x1p-47), dadd(dadd(dadd(g->R, g->Hf), qn), Pn)), dadd(one, side_gain)),
+        dsel(side, dmul(dmul(g->R, a), a), zero));
 
     /* e = P - P' exactly (Sterbenz); n, the normal at P' */
     vd e[3], n[3];
@@ -81,8 +81,8 @@ CYLRAY_INLINE void DFN(hit_point)(const DFN(geo) *g, const vd o[3], const vd d[3
     }
     const vd en = dabs(DFN(dot3)(e, n)), ee = DFN(dot3)(e, e), el = dsqrt(ee);
     const vd z = dmul(dabs(s), g->sv);
-    const vdm c_side = dmand(side, dmand(dle(el, dmul(dset1(0.5), g->R)),
-                                         dle(dadd(z, el), g->H)));
+    const vdm c_side =
+        dmand(side, dmand(dle(el, dmul(dset1(0.5), g->R)), dle(dadd(z, el), g->H)));
     const vdm c_cap = dmandn(dle(dadd(rad, el), g->R), side);
     const vd dist = dsel(c_side, dadd(en, dmul(ee, g->inv_R)), dsel(c_cap, en, el));
     /* (1 + 2^-40) covers the few roundings of dist itself */

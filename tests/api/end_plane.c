@@ -17,8 +17,8 @@
 
 static long checks, failures;
 
-static void fail(const char *what, const cylray_cylinder *c, const float o[3],
-                 const float d[3], const char *isa, float t, int part)
+static void fail(const char *what, const cylray_cylinder *c, const float o[3], const float d[3],
+                 const char *isa, float t, int part)
 {
     if (failures++ < 20)
         fprintf(stderr,
@@ -42,8 +42,8 @@ static void check_path(const cylray_kernels *k, const cylray_cylinder *cyl, cons
     float t[3 + 1 + 3];
     int32_t part[3 + 1 + 3];
     int ok[3 + 1 + 3] = {0}, occ[3 + 1 + 3] = {0};
-    const char *names[] = {"packet4", "packet8", "packet16", "stream", "leaf4", "leaf8",
-                           "leaf16"};
+    const char *names[] = {"packet4", "packet8", "packet16", "stream",
+                           "leaf4",   "leaf8",   "leaf16"};
     for (int wi = 0; wi < 3; wi++) {
         const int w = 4 << wi;
         /* the ray in every lane: all must agree */
@@ -59,10 +59,12 @@ static void check_path(const cylray_kernels *k, const cylray_cylinder *cyl, cons
         cylray_ray16 r2 = r;
         uint32_t m, mo;
         if (w == 4) {
-            m = k->intersect4(&P, (cylray_ray4 *)(void *)&r, (cylray_hit4 *)(void *)&h, all, flags);
+            m = k->intersect4(&P, (cylray_ray4 *)(void *)&r, (cylray_hit4 *)(void *)&h, all,
+                              flags);
             mo = k->occluded4(&P, (cylray_ray4 *)(void *)&r2, all, flags);
         } else if (w == 8) {
-            m = k->intersect8(&P, (cylray_ray8 *)(void *)&r, (cylray_hit8 *)(void *)&h, all, flags);
+            m = k->intersect8(&P, (cylray_ray8 *)(void *)&r, (cylray_hit8 *)(void *)&h, all,
+                              flags);
             mo = k->occluded8(&P, (cylray_ray8 *)(void *)&r2, all, flags);
         } else {
             m = k->intersect16(&P, &r, &h, all, flags);
@@ -164,7 +166,10 @@ int main(void)
                     for (size_t fi = 0; fi < 4; fi++) {
                         const float R = radii[ci], H = ci == 0 ? 0.5f : 0.75f;
                         cylray_cylinder cyl = {{centers[ci][0], centers[ci][1], centers[ci][2]},
-                                               {0, 0, 0}, R, H, cyl_flags[fi]};
+                                               {0, 0, 0},
+                                               R,
+                                               H,
+                                               cyl_flags[fi]};
                         cyl.axis[ax] = (float)asg * (ci == 2 ? 4.0f : 1.0f);
                         /* across the plane of that end, along the next coordinate */
                         const int across = (ax + 1) % 3;

@@ -98,8 +98,7 @@ int main(void)
             if (bad_h++ < 10)
                 fprintf(stderr,
                         "FAIL half height: p0 (%a %a %a) p1 (%a %a %a): %a, exact %.17g\n",
-                        p0[0], p0[1], p0[2], p1[0], p1[1], p1[2], c.half_height,
-                        (double)S);
+                        p0[0], p0[1], p0[2], p1[0], p1[1], p1[2], c.half_height, (double)S);
         }
     }
     printf("endpoints: %ld pairs (%ld with exponents far apart), %ld refused; not rounded "

@@ -19,23 +19,23 @@
 #endif
 
 enum fault {
-    F_NONE,            /* faithful: no violation may be reported */
-    F_INACTIVE_WRITE,  /* writes t of an inactive lane */
-    F_INACTIVE_BIT,    /* reports an inactive lane as hit */
-    F_MISS_WRITE,      /* writes part of an active lane that missed */
-    F_TMAX,            /* tmax one ulp off t */
-    F_NORMAL,          /* writes a normal without CYLRAY_NORMAL */
-    F_INPUT,           /* changes an input field */
-    F_T_RANGE,         /* reports t below tmin */
-    F_PART,            /* reports part 0 for a hit */
-    F_COUNT,           /* stream: returns one hit too many */
-    F_CANARY,          /* writes one float past the end (skipped under ASan, which
+    F_NONE,           /* faithful: no violation may be reported */
+    F_INACTIVE_WRITE, /* writes t of an inactive lane */
+    F_INACTIVE_BIT,   /* reports an inactive lane as hit */
+    F_MISS_WRITE,     /* writes part of an active lane that missed */
+    F_TMAX,           /* tmax one ulp off t */
+    F_NORMAL,         /* writes a normal without CYLRAY_NORMAL */
+    F_INPUT,          /* changes an input field */
+    F_T_RANGE,        /* reports t below tmin */
+    F_PART,           /* reports part 0 for a hit */
+    F_COUNT,          /* stream: returns one hit too many */
+    F_CANARY,         /* writes one float past the end (skipped under ASan, which
                           would stop the process at the write itself) */
     F_NFAULT
 };
 static const char *const fault_name[F_NFAULT] = {
-    "none", "inactive write", "inactive bit", "miss write", "tmax", "normal", "input",
-    "t range", "part", "count", "canary"};
+    "none",  "inactive write", "inactive bit", "miss write", "tmax",  "normal",
+    "input", "t range",        "part",         "count",      "canary"};
 
 static enum fault fault;
 static const cylray_kernels *real;
@@ -45,16 +45,35 @@ static uint32_t fake4(const cylray_prepared *P, cylray_ray4 *r, cylray_hit4 *h, 
 {
     uint32_t m = real->intersect4(P, r, h, a, fl);
     switch (fault) {
-    case F_INACTIVE_WRITE: h->t[2] = 1; break;
-    case F_INACTIVE_BIT: m |= 4u; break;
-    case F_MISS_WRITE: h->part[1] = CYLRAY_SIDE; break;
-    case F_TMAX: r->tmax[0] = nextafterf(r->tmax[0], INFINITY); break;
-    case F_NORMAL: h->nx[0] = 0; break;
-    case F_INPUT: r->oy[3] += 1; break;
-    case F_T_RANGE: h->t[0] = r->tmax[0] = r->tmin[0] - 1; break;
-    case F_PART: h->part[0] = 0; break;
-    case F_CANARY: ((float *)(void *)h)[5 * 4] = 0; break;
-    default: break;
+    case F_INACTIVE_WRITE:
+        h->t[2] = 1;
+        break;
+    case F_INACTIVE_BIT:
+        m |= 4u;
+        break;
+    case F_MISS_WRITE:
+        h->part[1] = CYLRAY_SIDE;
+        break;
+    case F_TMAX:
+        r->tmax[0] = nextafterf(r->tmax[0], INFINITY);
+        break;
+    case F_NORMAL:
+        h->nx[0] = 0;
+        break;
+    case F_INPUT:
+        r->oy[3] += 1;
+        break;
+    case F_T_RANGE:
+        h->t[0] = r->tmax[0] = r->tmin[0] - 1;
+        break;
+    case F_PART:
+        h->part[0] = 0;
+        break;
+    case F_CANARY:
+        ((float *)(void *)h)[5 * 4] = 0;
+        break;
+    default:
+        break;
     }
     return m;
 }
@@ -64,12 +83,23 @@ static size_t fake_stream(const cylray_prepared *P, const cylray_rays *r, const 
 {
     size_t c = real->intersect_stream(P, r, h, n, fl);
     switch (fault) {
-    case F_MISS_WRITE: h->part[1] = CYLRAY_SIDE; break;
-    case F_TMAX: r->tmax[0] = nextafterf(r->tmax[0], INFINITY); break;
-    case F_INPUT: ((float *)(uintptr_t)r->oy)[3] += 1; break;
-    case F_COUNT: c++; break;
-    case F_CANARY: h->t[n] = 0; break;
-    default: break;
+    case F_MISS_WRITE:
+        h->part[1] = CYLRAY_SIDE;
+        break;
+    case F_TMAX:
+        r->tmax[0] = nextafterf(r->tmax[0], INFINITY);
+        break;
+    case F_INPUT:
+        ((float *)(uintptr_t)r->oy)[3] += 1;
+        break;
+    case F_COUNT:
+        c++;
+        break;
+    case F_CANARY:
+        h->t[n] = 0;
+        break;
+    default:
+        break;
     }
     return c;
 }
@@ -117,8 +147,8 @@ int main(void)
         /* The packet faults must show in the packet run; the stream ones in the stream
          * run (inactive lanes do not exist there). */
         const int packet_fault = fault != F_COUNT;
-        const int stream_fault = fault == F_MISS_WRITE || fault == F_TMAX ||
-                                 fault == F_INPUT || fault == F_COUNT || fault == F_CANARY;
+        const int stream_fault = fault == F_MISS_WRITE || fault == F_TMAX || fault == F_INPUT ||
+                                 fault == F_COUNT || fault == F_CANARY;
         CHECK(!packet_fault || vp > 0, "packet fault \"%s\" went unnoticed", fault_name[f]);
         CHECK(!stream_fault || vs > 0, "stream fault \"%s\" went unnoticed", fault_name[f]);
         CHECK(caught == vp + vs, "fault \"%s\": %ld failures counted for %d violations",

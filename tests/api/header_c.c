@@ -5,18 +5,18 @@
 #include "cylray.h"
 #include "cylray.h" /* the include guard holds */
 
-#define LAYOUT_(n, al)                                                                 \
-    _Static_assert(_Alignof(cylray_ray##n) == al && _Alignof(cylray_hit##n) == al,     \
-                   "packet " #n " alignment");                                         \
-    _Static_assert(sizeof(cylray_ray##n) == 8 * n * sizeof(float), "ray" #n " size");  \
-    _Static_assert(offsetof(cylray_ray##n, oy) == 1 * n * sizeof(float) &&             \
-                       offsetof(cylray_ray##n, dx) == 3 * n * sizeof(float) &&         \
-                       offsetof(cylray_ray##n, tmin) == 6 * n * sizeof(float) &&       \
-                       offsetof(cylray_ray##n, tmax) == 7 * n * sizeof(float),         \
-                   "ray" #n " fields");                                                \
-    _Static_assert(sizeof(cylray_hit##n) == 5 * n * sizeof(float) &&                  \
-                       offsetof(cylray_hit##n, nz) == 3 * n * sizeof(float) &&         \
-                       offsetof(cylray_hit##n, part) == 4 * n * sizeof(float),         \
+#define LAYOUT_(n, al)                                                                         \
+    _Static_assert(_Alignof(cylray_ray##n) == al && _Alignof(cylray_hit##n) == al,             \
+                   "packet " #n " alignment");                                                 \
+    _Static_assert(sizeof(cylray_ray##n) == 8 * n * sizeof(float), "ray" #n " size");          \
+    _Static_assert(offsetof(cylray_ray##n, oy) == 1 * n * sizeof(float) &&                     \
+                       offsetof(cylray_ray##n, dx) == 3 * n * sizeof(float) &&                 \
+                       offsetof(cylray_ray##n, tmin) == 6 * n * sizeof(float) &&               \
+                       offsetof(cylray_ray##n, tmax) == 7 * n * sizeof(float),                 \
+                   "ray" #n " fields");                                                        \
+    _Static_assert(sizeof(cylray_hit##n) == 5 * n * sizeof(float) &&                           \
+                       offsetof(cylray_hit##n, nz) == 3 * n * sizeof(float) &&                 \
+                       offsetof(cylray_hit##n, part) == 4 * n * sizeof(float),                 \
                    "hit" #n " layout");
 LAYOUT_(4, 16)
 LAYOUT_(8, 32)
@@ -50,8 +50,8 @@ int main(void)
     const cylray_kernels *(*const kf)(cylray_isa) = cylray_kernels_for;
     const cylray_kernels *(*const kb)(void) = cylray_kernels_best;
     const char *(*const nm)(cylray_isa) = cylray_isa_name;
-    int linked = i4 && i8 && i16 && o4 && o8 && o16 && is && os && prep && err && kf && kb &&
-                 nm;
+    int linked =
+        i4 && i8 && i16 && o4 && o8 && o16 && is && os && prep && err && kf && kb && nm;
     const char *s = cylray_isa_name(CYLRAY_ISA_SCALAR);
     int named = s && s[0] == 's' && s[1] == 'c' && s[6] == '\0';
     return linked && named ? 0 : 1;

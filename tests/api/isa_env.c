@@ -111,8 +111,8 @@ int main(void)
           cylray_isa_name((cylray_isa)best));
     CHECK(err[0] == '\0', "CYLRAY_ISA unset: stderr says \"%s\"", err);
 
-    const char *const values[] = {"scalar", "sse41", "avx2", "avx512", "neon", "bogus",
-                                  "AVX2", "scalar "};
+    const char *const values[] = {"scalar", "sse41", "avx2", "avx512",
+                                  "neon",   "bogus", "AVX2", "scalar "};
     for (size_t v = 0; v < sizeof values / sizeof values[0]; v++) {
         int isa = -1;
         for (int i = 0; i < CYLRAY_ISA_COUNT; i++)
@@ -132,12 +132,14 @@ int main(void)
                   "CYLRAY_ISA=%s: expected one warning line, stderr has %d lines: \"%s\"",
                   values[v], lines(err), err);
             CHECK(strstr(err, values[v]) != NULL,
-                  "CYLRAY_ISA=%s: the warning does not name the request: \"%s\"", values[v], err);
+                  "CYLRAY_ISA=%s: the warning does not name the request: \"%s\"", values[v],
+                  err);
             /* A known name is unavailable here; any other is unknown, and the warning
              * lists the names that would do. */
             const char *says = isa >= 0 ? "not available" : "unknown";
             CHECK(strstr(err, says) != NULL,
-                  "CYLRAY_ISA=%s: the warning does not say \"%s\": \"%s\"", values[v], says, err);
+                  "CYLRAY_ISA=%s: the warning does not say \"%s\": \"%s\"", values[v], says,
+                  err);
             for (int i = 0; i < CYLRAY_ISA_COUNT && isa < 0; i++)
                 CHECK(strstr(err, cylray_isa_name((cylray_isa)i)) != NULL,
                       "CYLRAY_ISA=%s: the warning does not list %s: \"%s\"", values[v],

@@ -53,7 +53,7 @@ static int cpu_runs(cylray_isa isa)
 int main(void)
 {
     static const char *const names[CYLRAY_ISA_COUNT] = {"scalar", "sse41", "avx2", "avx512",
-                                                         "neon"};
+                                                        "neon"};
     /* The choice below must be the automatic one. */
     unsetenv("CYLRAY_ISA");
 

@@ -11,8 +11,8 @@
 #include "guarded.h"
 #include "tcheck.h"
 
-static const cylray_cylinder good = {{1.0f, -2.0f, 3.0f}, {0.0f, 1.0f, 1.0f}, 0.5f, 2.0f,
-                                     CYLRAY_CAPPED};
+static const cylray_cylinder good = {
+    {1.0f, -2.0f, 3.0f}, {0.0f, 1.0f, 1.0f}, 0.5f, 2.0f, CYLRAY_CAPPED};
 
 /* Runs prepare on a heap copy (so AddressSanitizer sees any read past the struct) into
  * a prepared struct filled with a byte pattern, and checks the verdict; a refusal must
@@ -62,8 +62,13 @@ int main(void)
 
     /* Zero and subnormal axes: no direction, or one whose bits are mostly gone. */
     const float zero_axes[][3] = {
-        {0, 0, 0}, {-0.0f, 0, -0.0f}, {FLT_TRUE_MIN, 0, 0}, {0, -FLT_TRUE_MIN, 0},
-        {1e-40f, 1e-40f, 1e-40f}, {0, 0, FLT_MIN / 2}, {-1e-39f, 0, 1e-42f},
+        {0, 0, 0},
+        {-0.0f, 0, -0.0f},
+        {FLT_TRUE_MIN, 0, 0},
+        {0, -FLT_TRUE_MIN, 0},
+        {1e-40f, 1e-40f, 1e-40f},
+        {0, 0, FLT_MIN / 2},
+        {-1e-39f, 0, 1e-42f},
     };
     for (size_t i = 0; i < sizeof zero_axes / sizeof zero_axes[0]; i++) {
         cylray_cylinder c = good;

@@ -18,7 +18,6 @@
 #include "scene.h"
 #include "tcheck.h"
 
-
 /* Rays [first, first + w) of `all` as lanes [0, w). */
 static void slice(const gbatch *all, size_t first, size_t w, gbatch *out)
 {
@@ -58,9 +57,9 @@ static void widths_agree(const cylray_kernels *k, const cylray_prepared *P, cons
                 /* occluded: exactly the lanes intersect hits */
                 gresult o;
                 g_occluded(k, (int)w, P, &b, w, masks[mi], flags, 0, &o);
-                CHECK(o.hit == r.hit, "%s %s flags=%#x: occluded%zu mask %#llx, intersect %#llx",
-                      k->name, cname, flags, w, (unsigned long long)o.hit,
-                      (unsigned long long)r.hit);
+                CHECK(o.hit == r.hit,
+                      "%s %s flags=%#x: occluded%zu mask %#llx, intersect %#llx", k->name,
+                      cname, flags, w, (unsigned long long)o.hit, (unsigned long long)r.hit);
             }
         }
     }
@@ -141,11 +140,11 @@ static void long_stream_agrees(const cylray_kernels *k, const cylray_prepared *P
     memcpy(tmax, ls_in[G_TMAX], sizeof tmax);
     memset(ls_part, 0x5a, sizeof ls_part);
     memset(ls_occ, 0, sizeof ls_occ);
-    const cylray_rays rays = {ls_in[G_OX], ls_in[G_OY], ls_in[G_OZ], ls_in[G_DX],
+    const cylray_rays rays = {ls_in[G_OX], ls_in[G_OY], ls_in[G_OZ],   ls_in[G_DX],
                               ls_in[G_DY], ls_in[G_DZ], ls_in[G_TMIN], tmax};
     const cylray_hits hits = {ls_t, ls_n[0], ls_n[1], ls_n[2], ls_part};
     const size_t count = k->intersect_stream(P, &rays, &hits, LS_N, flags);
-    const cylray_rays orays = {ls_in[G_OX], ls_in[G_OY], ls_in[G_OZ], ls_in[G_DX],
+    const cylray_rays orays = {ls_in[G_OX], ls_in[G_OY], ls_in[G_OZ],   ls_in[G_DX],
                                ls_in[G_DY], ls_in[G_DZ], ls_in[G_TMIN], ls_in[G_TMAX]};
     const size_t ocount = k->occluded_stream(P, &orays, ls_occ, LS_N, flags);
     size_t hits_seen = 0;

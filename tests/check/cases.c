@@ -46,4 +46,3 @@ ref_case *make_cases(int cat, uint64_t seed, size_t n_packet, const size_t *leng
     *total = n;
     return rc;
 }
-

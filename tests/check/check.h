@@ -40,7 +40,9 @@ int cat_find(const char *name); /* -1 when unknown */
 enum { MODE_PLAIN, MODE_REFINE, MODE_FAST, MODE_COUNT };
 static inline int mode_of(unsigned flags)
 {
-    return (flags & CYLRAY_FAST) ? MODE_FAST : (flags & CYLRAY_REFINE) ? MODE_REFINE : MODE_PLAIN;
+    return (flags & CYLRAY_FAST)     ? MODE_FAST
+           : (flags & CYLRAY_REFINE) ? MODE_REFINE
+                                     : MODE_PLAIN;
 }
 
 /* ---- cases ---------------------------------------------------------------------- */
@@ -62,11 +64,11 @@ typedef struct lane_out {
 
 typedef struct options {
     uint64_t seed;
-    int isa;          /* -1: every ISA the CPU has */
-    int category;     /* -1: all */
-    int only_case;    /* -1: all */
-    int flags_only;   /* -1: all 32 combinations */
-    size_t n;         /* packet cases per category (multiple of 16) */
+    int isa;        /* -1: every ISA the CPU has */
+    int category;   /* -1: all */
+    int only_case;  /* -1: all */
+    int flags_only; /* -1: all 32 combinations */
+    size_t n;       /* packet cases per category (multiple of 16) */
     int quick, report, verbose;
     int max_print;    /* failures printed in full */
     int headline;     /* assert the headline numbers */
@@ -82,15 +84,15 @@ typedef struct stat_cell {
     double *ulps; /* t error vs exact, hits with the exact part */
     size_t n_ulps, cap_ulps;
     long lanes, exact_hits, kernel_hits;
-    long hm_excused, hm_unexcused;     /* hit/miss disagreements with the exact answer */
-    long part_excused, part_unexcused; /* part disagreements */
-    long t_beyond;                     /* t outside the band by more than the tolerance */
-    double max_beyond;                 /* ulps beyond the band, worst */
-    double max_angle, max_angle_excess; /* normal angle error; beyond n_spread */
-    double max_len;                    /* ||n| - 1| */
-    long vs_scalar, same_as_scalar;    /* lanes compared with scalar, bitwise equal */
-    long scalar_hm;                    /* hit/miss or part differs from scalar */
-    double max_vs_scalar;              /* t ulps between the two (same part) */
+    long hm_excused, hm_unexcused;        /* hit/miss disagreements with the exact answer */
+    long part_excused, part_unexcused;    /* part disagreements */
+    long t_beyond;                        /* t outside the band by more than the tolerance */
+    double max_beyond;                    /* ulps beyond the band, worst */
+    double max_angle, max_angle_excess;   /* normal angle error; beyond n_spread */
+    double max_len;                       /* ||n| - 1| */
+    long vs_scalar, same_as_scalar;       /* lanes compared with scalar, bitwise equal */
+    long scalar_hm;                       /* hit/miss or part differs from scalar */
+    double max_vs_scalar;                 /* t ulps between the two (same part) */
     long rim_rays, rim_missed, rim_later; /* rim category: exact hit at the rim */
 } stat_cell;
 
@@ -149,7 +151,8 @@ void drive_packets(const cylray_kernels *k, unsigned flags, int category, const 
 /* Streams of the given lengths over consecutive cases (each segment one cylinder),
  * misaligned, with guard zones. */
 void drive_streams(const cylray_kernels *k, unsigned flags, int category, const ref_case *cases,
-                   const size_t *lengths, size_t n_lengths, const lane_out *scalar, uint64_t seed);
+                   const size_t *lengths, size_t n_lengths, const lane_out *scalar,
+                   uint64_t seed);
 /* The scalar path's answers for cases[0..n), one call per cylinder-sharing segment. */
 void scalar_answers(const cylray_kernels *scalar, unsigned flags, const ref_case *cases,
                     const size_t *segments, size_t n_segments, lane_out *out);

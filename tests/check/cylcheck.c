@@ -19,16 +19,15 @@
 #include <string.h>
 #include <time.h>
 
-
-static const size_t stream_full[] = {1, 2, 3, 5, 7, 8, 9, 13, 15, 16, 17, 23, 31, 33, 47, 64, 65, 100, 257, 700};
+static const size_t stream_full[] = {1,  2,  3,  5,  7,  8,  9,  13,  15,  16,
+                                     17, 23, 31, 33, 47, 64, 65, 100, 257, 700};
 static const size_t stream_quick[] = {1, 3, 5, 7, 13, 17, 31, 129};
 
 static void usage(FILE *f)
 {
-    fprintf(f,
-            "usage: cylcheck [options]\n"
-            "  --isa=NAME       only this path (scalar, sse41, avx2, avx512, neon)\n"
-            "  --category=NAME  only this category of rays:");
+    fprintf(f, "usage: cylcheck [options]\n"
+               "  --isa=NAME       only this path (scalar, sse41, avx2, avx512, neon)\n"
+               "  --category=NAME  only this category of rays:");
     for (int c = 0; c < CAT_COUNT; c++)
         fprintf(f, " %s", cat_name(c));
     fprintf(f, "\n"
@@ -174,7 +173,8 @@ int main(int argc, char **argv)
                 const cylray_kernels *k = isas[i];
                 const lane_out *cmp = scalar && k != scalar ? sc : NULL;
                 drive_packets(k, flags, cat, rc, npk, cmp, opt.seed);
-                drive_streams(k, flags, cat, rc + npk, ls, nl, cmp ? cmp + npk : NULL, opt.seed);
+                drive_streams(k, flags, cat, rc + npk, ls, nl, cmp ? cmp + npk : NULL,
+                              opt.seed);
             }
         }
         long lanes = 0;
@@ -193,7 +193,8 @@ int main(int argc, char **argv)
     if (opt.report)
         stats_report();
     int headline_bad = 0;
-    if (opt.headline && opt.only_case < 0 && (opt.flags_only < 0 || mode_of((unsigned)opt.flags_only) == MODE_PLAIN)) {
+    if (opt.headline && opt.only_case < 0 &&
+        (opt.flags_only < 0 || mode_of((unsigned)opt.flags_only) == MODE_PLAIN)) {
         printf("\n");
         for (int i = 0; i < n_isas; i++)
             headline_bad += stats_headline(isas[i]->isa);

@@ -36,7 +36,9 @@ static uint32_t pick_active(cylgen_rng *r, int width)
     uint64_t u = cylgen_next(r);
     uint32_t a;
     switch (u % 10) {
-    case 0: case 1: case 2:
+    case 0:
+    case 1:
+    case 2:
         a = (uint32_t)(u >> 32) & full;
         break;
     case 3:
@@ -57,14 +59,14 @@ static uint32_t pick_active(cylgen_rng *r, int width)
 /* Checks lane j of a packet after the call. The packet's fields are passed as arrays
  * so that one function serves every width. */
 typedef struct packet_view {
-    const float *in[7];  /* ox oy oz dx dy dz tmin, after the call */
-    const float *tmax;   /* after */
+    const float *in[7]; /* ox oy oz dx dy dz tmin, after the call */
+    const float *tmax;  /* after */
     const float *t, *nx, *ny, *nz;
     const int32_t *part;
 } packet_view;
 
-static void check_packet_lane(const lane_ctx *lc, const ref_case *rc, const packet_view *v, int j,
-                              int active, int hit, const lane_out *scalar)
+static void check_packet_lane(const lane_ctx *lc, const ref_case *rc, const packet_view *v,
+                              int j, int active, int hit, const lane_out *scalar)
 {
     const cylgen_case *c = &rc->c;
     const float want_in[7] = {c->o[0], c->o[1], c->o[2], c->d[0], c->d[1], c->d[2], c->tmin};
@@ -78,7 +80,8 @@ static void check_packet_lane(const lane_ctx *lc, const ref_case *rc, const pack
         if (bits_of(&v->t[j]) != POISON || bits_of(&v->part[j]) != POISON ||
             bits_of(&v->nx[j]) != POISON || bits_of(&v->ny[j]) != POISON ||
             bits_of(&v->nz[j]) != POISON)
-            fail_memory(lc, rc, "hit output written on a %s lane", active ? "missed" : "inactive");
+            fail_memory(lc, rc, "hit output written on a %s lane",
+                        active ? "missed" : "inactive");
         if (!active)
             return;
     } else {
@@ -98,42 +101,46 @@ static void check_packet_lane(const lane_ctx *lc, const ref_case *rc, const pack
     check_lane(lc, rc, &got, scalar);
 }
 
-#define DEFINE_PACKET(W)                                                                   \
-    static void run_packet##W(const cylray_kernels *k, const cylray_prepared *p,            \
-                              lane_ctx *lc, const ref_case *rc, const lane_out *scalar,     \
-                              uint32_t active)                                              \
-    {                                                                                       \
-        cylray_ray##W ray, occ_ray;                                                         \
-        cylray_hit##W hit;                                                                  \
-        for (int j = 0; j < W; j++) {                                                       \
-            const cylgen_case *c = &rc[j].c;                                                \
-            ray.ox[j] = c->o[0], ray.oy[j] = c->o[1], ray.oz[j] = c->o[2];                  \
-            ray.dx[j] = c->d[0], ray.dy[j] = c->d[1], ray.dz[j] = c->d[2];                  \
-            ray.tmin[j] = c->tmin, ray.tmax[j] = c->tmax;                                   \
-        }                                                                                   \
-        occ_ray = ray;                                                                      \
-        poison(&hit, sizeof hit);                                                           \
-        uint32_t m = k->intersect##W(p, &ray, &hit, active, lc->flags);                     \
-        uint32_t o = k->occluded##W(p, &occ_ray, active, lc->flags);                        \
-        uint32_t mine = W == 32 ? 0xffffffffu : (1u << W) - 1u;                             \
-        if (m & ~(active & mine))                                                           \
-            fail_memory(lc, rc, "intersect%d returned %#x for active %#x", W, m, active);   \
-        if (o != m)                                                                         \
-            fail_memory(lc, rc, "occluded%d returned %#x, intersect%d %#x (active %#x)", W, \
-                        o, W, m, active);                                                   \
-        packet_view v = {{ray.ox, ray.oy, ray.oz, ray.dx, ray.dy, ray.dz, ray.tmin},        \
-                         ray.tmax, hit.t, hit.nx, hit.ny, hit.nz, hit.part};                \
-        for (int j = 0; j < W; j++) {                                                       \
-            lc->lane = j;                                                                   \
-            if (opt.only_case >= 0 && rc[j].index != opt.only_case)                         \
-                continue;                                                                   \
-            check_packet_lane(lc, &rc[j], &v, j, (int)(active >> j & 1),                   \
-                              (int)(m >> j & 1), scalar ? &scalar[j] : NULL);               \
-            const cylgen_case *c = &rc[j].c;                                                \
-            if (bits_of(&occ_ray.tmax[j]) != bits_of(&c->tmax) ||                           \
-                bits_of(&occ_ray.ox[j]) != bits_of(&c->o[0]))                               \
-                fail_memory(lc, &rc[j], "occluded%d wrote its ray", W);                     \
-        }                                                                                   \
+#define DEFINE_PACKET(W)                                                                       \
+    static void run_packet##W(const cylray_kernels *k, const cylray_prepared *p, lane_ctx *lc, \
+                              const ref_case *rc, const lane_out *scalar, uint32_t active)     \
+    {                                                                                          \
+        cylray_ray##W ray, occ_ray;                                                            \
+        cylray_hit##W hit;                                                                     \
+        for (int j = 0; j < W; j++) {                                                          \
+            const cylgen_case *c = &rc[j].c;                                                   \
+            ray.ox[j] = c->o[0], ray.oy[j] = c->o[1], ray.oz[j] = c->o[2];                     \
+            ray.dx[j] = c->d[0], ray.dy[j] = c->d[1], ray.dz[j] = c->d[2];                     \
+            ray.tmin[j] = c->tmin, ray.tmax[j] = c->tmax;                                      \
+        }                                                                                      \
+        occ_ray = ray;                                                                         \
+        poison(&hit, sizeof hit);                                                              \
+        uint32_t m = k->intersect##W(p, &ray, &hit, active, lc->flags);                        \
+        uint32_t o = k->occluded##W(p, &occ_ray, active, lc->flags);                           \
+        uint32_t mine = W == 32 ? 0xffffffffu : (1u << W) - 1u;                                \
+        if (m & ~(active & mine))                                                              \
+            fail_memory(lc, rc, "intersect%d returned %#x for active %#x", W, m, active);      \
+        if (o != m)                                                                            \
+            fail_memory(lc, rc, "occluded%d returned %#x, intersect%d %#x (active %#x)", W, o, \
+                        W, m, active);                                                         \
+        packet_view v = {{ray.ox, ray.oy, ray.oz, ray.dx, ray.dy, ray.dz, ray.tmin},           \
+                         ray.tmax,                                                             \
+                         hit.t,                                                                \
+                         hit.nx,                                                               \
+                         hit.ny,                                                               \
+                         hit.nz,                                                               \
+                         hit.part};                                                            \
+        for (int j = 0; j < W; j++) {                                                          \
+            lc->lane = j;                                                                      \
+            if (opt.only_case >= 0 && rc[j].index != opt.only_case)                            \
+                continue;                                                                      \
+            check_packet_lane(lc, &rc[j], &v, j, (int)(active >> j & 1), (int)(m >> j & 1),    \
+                              scalar ? &scalar[j] : NULL);                                     \
+            const cylgen_case *c = &rc[j].c;                                                   \
+            if (bits_of(&occ_ray.tmax[j]) != bits_of(&c->tmax) ||                              \
+                bits_of(&occ_ray.ox[j]) != bits_of(&c->o[0]))                                  \
+                fail_memory(lc, &rc[j], "occluded%d wrote its ray", W);                        \
+        }                                                                                      \
     }
 DEFINE_PACKET(4)
 DEFINE_PACKET(8)
@@ -200,8 +207,8 @@ static void stream_load(stream_buf *s, const ref_case *rc, size_t n)
     s->part = (int32_t *)(void *)(s->block + 12 * stride + GUARD + 1);
     for (size_t i = 0; i < n; i++) {
         const cylgen_case *c = &rc[i].c;
-        const float in[8] = {c->o[0], c->o[1], c->o[2], c->d[0], c->d[1], c->d[2], c->tmin,
-                             c->tmax};
+        const float in[8] = {c->o[0], c->o[1], c->o[2], c->d[0],
+                             c->d[1], c->d[2], c->tmin, c->tmax};
         for (int f = 0; f < 8; f++)
             s->a[f][i] = in[f];
     }
@@ -226,7 +233,8 @@ static int guards_ok(const stream_buf *s)
 }
 
 void drive_streams(const cylray_kernels *k, unsigned flags, int category, const ref_case *cases,
-                   const size_t *lengths, size_t n_lengths, const lane_out *scalar, uint64_t seed)
+                   const size_t *lengths, size_t n_lengths, const lane_out *scalar,
+                   uint64_t seed)
 {
     (void)seed;
     lane_ctx lc = {k, flags, category, "stream", 0};
@@ -262,8 +270,13 @@ void drive_streams(const cylray_kernels *k, unsigned flags, int category, const 
         size_t occ_count = k->occluded_stream(&p, &rays, s.occ + GUARD, n, flags);
 
         size_t hits_seen = 0;
-        packet_view v = {{s.a[0], s.a[1], s.a[2], s.a[3], s.a[4], s.a[5], s.a[6]}, tmax_hit,
-                         s.a[8], s.a[9], s.a[10], s.a[11], s.part};
+        packet_view v = {{s.a[0], s.a[1], s.a[2], s.a[3], s.a[4], s.a[5], s.a[6]},
+                         tmax_hit,
+                         s.a[8],
+                         s.a[9],
+                         s.a[10],
+                         s.a[11],
+                         s.part};
         for (size_t i = 0; i < n; i++) {
             lc.lane = (int)i;
             int hit = bits_of(&s.a[8][i]) != POISON;
@@ -274,7 +287,8 @@ void drive_streams(const cylray_kernels *k, unsigned flags, int category, const 
                             hit ? "hit" : "miss");
             if (opt.only_case >= 0 && rc[i].index != opt.only_case)
                 continue;
-            check_packet_lane(&lc, &rc[i], &v, (int)i, 1, hit, scalar ? &scalar[first + i] : NULL);
+            check_packet_lane(&lc, &rc[i], &v, (int)i, 1, hit,
+                              scalar ? &scalar[first + i] : NULL);
         }
         if (count != hits_seen)
             fail_memory(&lc, rc, "intersect_stream returned %zu, wrote %zu hits (n %zu)", count,

@@ -105,7 +105,8 @@ static void print_leaf(const leaf_case *lc)
 }
 
 /* One call of intersect and occluded on the leaf held in `leaf` (of lc->m lanes). */
-static void judge(const cylray_kernels *k, const leaf_case *lc, const void *leaf, unsigned flags)
+static void judge(const cylray_kernels *k, const leaf_case *lc, const void *leaf,
+                  unsigned flags)
 {
     const int cull = (flags & CYLRAY_CULL_BACK) != 0, normal = (flags & CYLRAY_NORMAL) != 0;
     const double tol = (flags & CYLRAY_FAST) ? TOL_ULPS_FAST : TOL_ULPS;
@@ -170,12 +171,15 @@ static void judge(const cylray_kernels *k, const leaf_case *lc, const void *leaf
             const cylref_band *b = &lc->lane[L].band[cull];
             double ub = 0;
             int verdict = cylref_judge(b, 1, h->part, h->t, &ub);
-            CHECK(verdict == 0 && ub <= tol,
-                  "%s leaf%d flags %#x: lane %d t %a part %d: %s (exact %s t %.9g part %d, %.2f "
-                  "ulps beyond)",
-                  k->name, lc->m, flags, L, (double)h->t, h->part,
-                  verdict == 1 ? "no hit allowed" : verdict == 2 ? "wrong part" : "t off",
-                  b->exact.hit ? "hit" : "miss", b->exact.t, b->exact.part, ub);
+            CHECK(
+                verdict == 0 && ub <= tol,
+                "%s leaf%d flags %#x: lane %d t %a part %d: %s (exact %s t %.9g part %d, %.2f "
+                "ulps beyond)",
+                k->name, lc->m, flags, L, (double)h->t, h->part,
+                verdict == 1   ? "no hit allowed"
+                : verdict == 2 ? "wrong part"
+                               : "t off",
+                b->exact.hit ? "hit" : "miss", b->exact.t, b->exact.part, ub);
             CHECK(h->id == lc->id[L], "%s leaf%d: id %#x for lane %d (%#x)", k->name, lc->m,
                   h->id, L, lc->id[L]);
             CHECK(memcmp(&io.ray.tmax, &h->t, 4) == 0, "%s leaf%d: tmax %a, t %a", k->name,
@@ -194,8 +198,10 @@ static void judge(const cylray_kernels *k, const leaf_case *lc, const void *leaf
                 const double len = sqrt((double)h->n[0] * h->n[0] + (double)h->n[1] * h->n[1] +
                                         (double)h->n[2] * h->n[2]);
                 /* The bands are made without face-forward: it flips a back face. */
-                const double sg = (flags & CYLRAY_FACE_FORWARD) && (h->part & CYLRAY_BACKFACE) ? -1 : 1;
-                const double en[3] = {sg * b->exact.n[0], sg * b->exact.n[1], sg * b->exact.n[2]};
+                const double sg =
+                    (flags & CYLRAY_FACE_FORWARD) && (h->part & CYLRAY_BACKFACE) ? -1 : 1;
+                const double en[3] = {sg * b->exact.n[0], sg * b->exact.n[1],
+                                      sg * b->exact.n[2]};
                 const double ang = cylref_angle(h->n, en);
                 CHECK(fabs(len - 1) <= 1e-5 && ang <= TOL_ANGLE + b->n_spread,
                       "%s leaf%d flags %#x: lane %d normal off by %.3g rad (|n| %.9f)", k->name,
@@ -234,14 +240,20 @@ static void bad_input(const cylray_kernels *k, const cylray_cylinder *good)
     for (int f = 0; f < 8; f++)
         for (size_t v = 0; v < sizeof bad / sizeof bad[0]; v++) {
             cylray_ray1 ray = {{good->center[0] - 5, good->center[1], good->center[2]},
-                               {1, 0.01f, 0.02f}, 0, INFINITY};
-            float *fld = f < 3 ? &ray.o[f] : f < 6 ? &ray.d[f - 3] : f == 6 ? &ray.tmin : &ray.tmax;
+                               {1, 0.01f, 0.02f},
+                               0,
+                               INFINITY};
+            float *fld = f < 3    ? &ray.o[f]
+                         : f < 6  ? &ray.d[f - 3]
+                         : f == 6 ? &ray.tmin
+                                  : &ray.tmax;
             if ((f == 6 && bad[v] == -INFINITY) || (f == 7 && bad[v] == INFINITY))
                 continue; /* legal bounds */
             *fld = bad[v];
             cylray_hit1 h;
             for (unsigned fl = 0; fl <= CYLRAY_FLAGS_ALL; fl++)
-                CHECK(!k->leaf_intersect8(&leaf, &ray, &h, fl) && !k->leaf_occluded8(&leaf, &ray, fl),
+                CHECK(!k->leaf_intersect8(&leaf, &ray, &h, fl) &&
+                          !k->leaf_occluded8(&leaf, &ray, fl),
                       "%s: a ray with field %d = %a hits", k->name, f, (double)bad[v]);
         }
 }
@@ -293,9 +305,10 @@ int main(int argc, char **argv)
                 cylray_leaf8 l8;
                 cylray_leaf16 l16;
             } leaf;
-            cylray_status st = m == 4   ? cylray_leaf_prepare4(&leaf.l4, cyl, lc.id, (size_t)lc.n)
-                               : m == 8 ? cylray_leaf_prepare8(&leaf.l8, cyl, lc.id, (size_t)lc.n)
-                                        : cylray_leaf_prepare16(&leaf.l16, cyl, lc.id, (size_t)lc.n);
+            cylray_status st = m == 4 ? cylray_leaf_prepare4(&leaf.l4, cyl, lc.id, (size_t)lc.n)
+                               : m == 8
+                                   ? cylray_leaf_prepare8(&leaf.l8, cyl, lc.id, (size_t)lc.n)
+                                   : cylray_leaf_prepare16(&leaf.l16, cyl, lc.id, (size_t)lc.n);
             CHECK(st == CYLRAY_OK, "leaf of %d refused", lc.n);
             if (st != CYLRAY_OK)
                 continue;

@@ -12,29 +12,41 @@
 
 enum {
     MUT_NONE,
-    MUT_T_FAR,        /* t off by 1e-4 relative: outside any ordinary band */
-    MUT_T_3ULPS,      /* t off by 3 ulps: inside the band, caught by the headline p99 */
-    MUT_DROP,         /* every 7th hit reported as a miss */
-    MUT_RIM_DROP,     /* misses a ray whose hit is within 1e-3 of a cap plane */
-    MUT_BACKFACE,     /* front hits reported as back faces */
-    MUT_PART,         /* side and caps swapped around */
-    MUT_CULL_IGNORED, /* CYLRAY_CULL_BACK ignored */
+    MUT_T_FAR,          /* t off by 1e-4 relative: outside any ordinary band */
+    MUT_T_3ULPS,        /* t off by 3 ulps: inside the band, caught by the headline p99 */
+    MUT_DROP,           /* every 7th hit reported as a miss */
+    MUT_RIM_DROP,       /* misses a ray whose hit is within 1e-3 of a cap plane */
+    MUT_BACKFACE,       /* front hits reported as back faces */
+    MUT_PART,           /* side and caps swapped around */
+    MUT_CULL_IGNORED,   /* CYLRAY_CULL_BACK ignored */
     MUT_WRITE_INACTIVE, /* writes t of an inactive lane */
-    MUT_NO_TMAX,      /* leaves tmax alone on a hit */
-    MUT_NORMAL_LEN,   /* normal 1.0001 long */
-    MUT_NORMAL_TILT,  /* normal turned by about 3e-5 rad */
-    MUT_NO_FF,        /* CYLRAY_FACE_FORWARD ignored */
-    MUT_NORMAL_ALWAYS, /* writes normals without CYLRAY_NORMAL */
-    MUT_OCCLUDED,     /* occluded disagrees with intersect in lane 0 */
-    MUT_OVERRUN,      /* stream writes one t past its end */
+    MUT_NO_TMAX,        /* leaves tmax alone on a hit */
+    MUT_NORMAL_LEN,     /* normal 1.0001 long */
+    MUT_NORMAL_TILT,    /* normal turned by about 3e-5 rad */
+    MUT_NO_FF,          /* CYLRAY_FACE_FORWARD ignored */
+    MUT_NORMAL_ALWAYS,  /* writes normals without CYLRAY_NORMAL */
+    MUT_OCCLUDED,       /* occluded disagrees with intersect in lane 0 */
+    MUT_OVERRUN,        /* stream writes one t past its end */
     MUT_COUNT
 };
 
 static const char *const mut_names[MUT_COUNT] = {
-    "none", "t 1e-4 off", "t 3 ulps off", "every 7th hit dropped", "hits near a cap plane dropped",
-    "front hit as back face", "parts rotated", "cull ignored", "inactive lane written",
-    "tmax not set", "normal too long", "normal tilted", "face-forward ignored",
-    "normal written without NORMAL", "occluded differs", "stream overrun",
+    "none",
+    "t 1e-4 off",
+    "t 3 ulps off",
+    "every 7th hit dropped",
+    "hits near a cap plane dropped",
+    "front hit as back face",
+    "parts rotated",
+    "cull ignored",
+    "inactive lane written",
+    "tmax not set",
+    "normal too long",
+    "normal tilted",
+    "face-forward ignored",
+    "normal written without NORMAL",
+    "occluded differs",
+    "stream overrun",
 };
 
 static int mutation;
@@ -143,25 +155,25 @@ static unsigned real_flags(unsigned flags)
     return flags;
 }
 
-#define WRAP(W)                                                                          \
-    static uint32_t mut_isect##W(const cylray_prepared *p, cylray_ray##W *r,             \
-                                 cylray_hit##W *h, uint32_t a, unsigned f)              \
-    {                                                                                    \
-        float bt[W], btmax[W];                                                           \
-        memcpy(bt, h->t, sizeof bt);                                                     \
-        memcpy(btmax, r->tmax, sizeof btmax);                                            \
-        cylray_hit##W keep = *h;                                                         \
-        uint32_t m = real->intersect##W(p, r, h, a, real_flags(f));                       \
-        if (mutation == MUT_NORMAL_ALWAYS && !(f & CYLRAY_NORMAL))                       \
-            memcpy(h->nx, keep.nx, sizeof h->nx); /* only one stray write: nx[0] below */ \
-        return mutate(m, a, W, f, r->tmax, btmax, h->t, bt, h->nx, h->ny, h->nz,        \
-                      h->part, NULL, p);                                                \
-    }                                                                                    \
-    static uint32_t mut_occ##W(const cylray_prepared *p, const cylray_ray##W *r,         \
-                               uint32_t a, unsigned f)                                  \
-    {                                                                                    \
-        uint32_t m = real->occluded##W(p, r, a, real_flags(f) & ~CYLRAY_NORMAL);         \
-        return mutation == MUT_OCCLUDED ? m ^ (a & 1u) : m;                              \
+#define WRAP(W)                                                                                \
+    static uint32_t mut_isect##W(const cylray_prepared *p, cylray_ray##W *r, cylray_hit##W *h, \
+                                 uint32_t a, unsigned f)                                       \
+    {                                                                                          \
+        float bt[W], btmax[W];                                                                 \
+        memcpy(bt, h->t, sizeof bt);                                                           \
+        memcpy(btmax, r->tmax, sizeof btmax);                                                  \
+        cylray_hit##W keep = *h;                                                               \
+        uint32_t m = real->intersect##W(p, r, h, a, real_flags(f));                            \
+        if (mutation == MUT_NORMAL_ALWAYS && !(f & CYLRAY_NORMAL))                             \
+            memcpy(h->nx, keep.nx, sizeof h->nx); /* only one stray write: nx[0] below */      \
+        return mutate(m, a, W, f, r->tmax, btmax, h->t, bt, h->nx, h->ny, h->nz, h->part,      \
+                      NULL, p);                                                                \
+    }                                                                                          \
+    static uint32_t mut_occ##W(const cylray_prepared *p, const cylray_ray##W *r, uint32_t a,   \
+                               unsigned f)                                                     \
+    {                                                                                          \
+        uint32_t m = real->occluded##W(p, r, a, real_flags(f) & ~CYLRAY_NORMAL);               \
+        return mutation == MUT_OCCLUDED ? m ^ (a & 1u) : m;                                    \
     }
 WRAP(4)
 WRAP(8)
@@ -210,19 +222,58 @@ static size_t mut_stream(const cylray_prepared *p, const cylray_rays *r, const c
     return total;
 }
 
-static size_t mut_occ_stream(const cylray_prepared *p, const cylray_rays *r, uint8_t *o, size_t n,
-                             unsigned f)
+static size_t mut_occ_stream(const cylray_prepared *p, const cylray_rays *r, uint8_t *o,
+                             size_t n, unsigned f)
 {
     return real->occluded_stream(p, r, o, n, real_flags(f) & ~CYLRAY_NORMAL);
 }
 
 static const cylray_kernels mutant = {
-    CYLRAY_ISA_SCALAR, "mutant", mut_isect4, mut_isect8, mut_isect16, mut_occ4, mut_occ8,
-    mut_occ16, mut_stream, mut_occ_stream,
-    NULL, NULL, NULL, NULL, NULL, NULL, /* cylcheck drives no leaves */
+    CYLRAY_ISA_SCALAR,
+    "mutant",
+    mut_isect4,
+    mut_isect8,
+    mut_isect16,
+    mut_occ4,
+    mut_occ8,
+    mut_occ16,
+    mut_stream,
+    mut_occ_stream,
+    NULL,
+    NULL,
+    NULL,
+    NULL,
+    NULL,
+    NULL, /* cylcheck drives no leaves */
     /* nor secondary rays */
-    NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL,
-    NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL,
+    NULL,
+    NULL,
+    NULL,
+    NULL,
+    NULL,
+    NULL,
+    NULL,
+    NULL,
+    NULL,
+    NULL,
+    NULL,
+    NULL,
+    NULL,
+    NULL,
+    NULL,
+    NULL,
+    NULL,
+    NULL,
+    NULL,
+    NULL,
+    NULL,
+    NULL,
+    NULL,
+    NULL,
+    NULL,
+    NULL,
+    NULL,
+    NULL,
 };
 
 int main(void)

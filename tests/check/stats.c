@@ -93,7 +93,8 @@ void stats_report(void)
                 print_ulps(s->max_beyond);
                 printf(" %8.1e %8.1e", s->max_angle, s->max_len);
                 if (s->vs_scalar)
-                    printf(" %6.1f%%", 100.0 * (double)s->same_as_scalar / (double)s->vs_scalar);
+                    printf(" %6.1f%%",
+                           100.0 * (double)s->same_as_scalar / (double)s->vs_scalar);
                 else
                     printf(" %7s", "-");
                 printf("\n");
@@ -152,7 +153,9 @@ int stats_headline(int isa)
         if (far)
             printf(", max %.3g ulps (<= %g)", mx, HEADLINE_FAR_MAX_ULPS);
         printf(" over %zu hits %s\n", s->n_ulps,
-               !ok ? "FAILED" : p99_ok ? "ok" : "(over, quick run)");
+               !ok      ? "FAILED"
+               : p99_ok ? "ok"
+                        : "(over, quick run)");
         bad += !ok;
     }
     return bad;

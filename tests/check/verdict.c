@@ -41,9 +41,9 @@ void print_case(const ref_case *rc, unsigned flags)
     const cylgen_case *c = &rc->c;
     const cylray_cylinder *y = &c->cyl;
     printf("    cylinder: center {%a, %a, %a} axis {%a, %a, %a} radius %a half_height %a %s\n",
-           (double)y->center[0], (double)y->center[1], (double)y->center[2],
-           (double)y->axis[0], (double)y->axis[1], (double)y->axis[2], (double)y->radius,
-           (double)y->half_height, (y->flags & CYLRAY_CAPPED) ? "CAPPED" : "open");
+           (double)y->center[0], (double)y->center[1], (double)y->center[2], (double)y->axis[0],
+           (double)y->axis[1], (double)y->axis[2], (double)y->radius, (double)y->half_height,
+           (y->flags & CYLRAY_CAPPED) ? "CAPPED" : "open");
     printf("    ray: o {%a, %a, %a} d {%a, %a, %a} tmin %a tmax %a\n", (double)c->o[0],
            (double)c->o[1], (double)c->o[2], (double)c->d[0], (double)c->d[1], (double)c->d[2],
            (double)c->tmin, (double)c->tmax);
@@ -86,8 +86,8 @@ static void fail_header(const lane_ctx *lc, const ref_case *rc)
 static void print_repro(const lane_ctx *lc, const ref_case *rc)
 {
     printf("    repro: cylcheck --isa=%s --category=%s --seed=%llu --case=%d --flags=%u%s\n",
-           lc->k->name, cat_name(lc->category), (unsigned long long)opt.seed,
-           rc->index, lc->flags, opt.quick ? " --quick" : "");
+           lc->k->name, cat_name(lc->category), (unsigned long long)opt.seed, rc->index,
+           lc->flags, opt.quick ? " --quick" : "");
 }
 
 void fail_memory(const lane_ctx *lc, const ref_case *rc, const char *fmt, ...)
@@ -120,7 +120,9 @@ static double normal_of(const ref_case *rc, const lane_out *o, int ff, double n[
     }
     int part = o->part & CYLRAY_PART_MASK;
     for (int k = 0; k < 3; k++) {
-        n[k] = part == CYLRAY_SIDE ? p[k] - pv / vv * v[k] : part == CYLRAY_CAP_LO ? -v[k] : v[k];
+        n[k] = part == CYLRAY_SIDE     ? p[k] - pv / vv * v[k]
+               : part == CYLRAY_CAP_LO ? -v[k]
+                                       : v[k];
         len += n[k] * n[k];
     }
     len = sqrt(len);
@@ -172,15 +174,15 @@ void check_lane(const lane_ctx *lc, const ref_case *rc, const lane_out *got,
         if (v) {
             s->hm_unexcused++;
             add_reason(why, sizeof why, "%s where the exact answer is a stable %s",
-                     got->hit ? "hit" : "miss", got->hit ? "miss" : "hit");
+                       got->hit ? "hit" : "miss", got->hit ? "miss" : "hit");
         } else {
             s->hm_excused++;
         }
     } else if (got->hit && got->part != b->exact.part) {
         if (v) {
             s->part_unexcused++;
-            add_reason(why, sizeof why, "part %s where only %s is possible", part_name(got->part),
-                     part_name(b->exact.part));
+            add_reason(why, sizeof why, "part %s where only %s is possible",
+                       part_name(got->part), part_name(b->exact.part));
         } else {
             s->part_excused++;
         }
@@ -198,8 +200,9 @@ void check_lane(const lane_ctx *lc, const ref_case *rc, const lane_out *got,
         stat_add_ulps(s, u);
         if (opt.show_ulps > 0 && u > opt.show_ulps) {
             printf("NOTE %s w=%s lane %d flags %s category %s case #%d: t %.3g ulps from exact "
-                   "(%.3g beyond the band)\n", lc->k->name, lc->width, lc->lane, flags_name(flags),
-                   cat_name(lc->category), rc->index, u, ub);
+                   "(%.3g beyond the band)\n",
+                   lc->k->name, lc->width, lc->lane, flags_name(flags), cat_name(lc->category),
+                   rc->index, u, ub);
             print_case(rc, flags);
             print_out("kernel:", got, flags);
         }
@@ -212,7 +215,8 @@ void check_lane(const lane_ctx *lc, const ref_case *rc, const lane_out *got,
         if (!(lerr <= s->max_len))
             s->max_len = lerr == lerr ? lerr : INFINITY;
         if (!(lerr <= TOL_NORMAL_LEN))
-            add_reason(why, sizeof why, "|n| - 1 = %.3g (tolerance %g)", len - 1, TOL_NORMAL_LEN);
+            add_reason(why, sizeof why, "|n| - 1 = %.3g (tolerance %g)", len - 1,
+                       TOL_NORMAL_LEN);
         double e[3], spread = b->n_spread;
         int ff = (flags & CYLRAY_FACE_FORWARD) != 0;
         if (got->part == b->exact.part) {
@@ -245,9 +249,9 @@ void check_lane(const lane_ctx *lc, const ref_case *rc, const lane_out *got,
     if (scalar) {
         s->vs_scalar++;
         if (scalar->hit == got->hit &&
-            (!got->hit || (memcmp(&scalar->t, &got->t, sizeof got->t) == 0 &&
-                           scalar->part == got->part &&
-                           memcmp(scalar->n, got->n, sizeof got->n) == 0)))
+            (!got->hit ||
+             (memcmp(&scalar->t, &got->t, sizeof got->t) == 0 && scalar->part == got->part &&
+              memcmp(scalar->n, got->n, sizeof got->n) == 0)))
             s->same_as_scalar++;
         if (scalar->hit != got->hit || (got->hit && scalar->part != got->part))
             s->scalar_hm++;

@@ -100,7 +100,8 @@ static int uv_ok(uint32_t prim, const float o[3], const float d[3], float t, con
         return 0;
     /* the radial distance: |dpdv| / 2pi on a disc, R on the side */
     double rho = sqrt((double)dpdv[0] * dpdv[0] + (double)dpdv[1] * dpdv[1] +
-                      (double)dpdv[2] * dpdv[2]) / (2 * 3.14159265358979323846);
+                      (double)dpdv[2] * dpdv[2]) /
+                 (2 * 3.14159265358979323846);
     if (rho < 1e-3 * S->radius)
         return 1;
     double dv = fabs((double)v - uv[1]);
@@ -122,7 +123,8 @@ static int check(const char *what, const eb_rays *r, const float *tfar0, const u
         uint32_t want = brute(o, d, r->tnear[i], tfar0[i], filtered, &t, n);
         if (occ) {
             int got = r->tfar[i] == -INFINITY;
-            if ((got != (want != RTC_INVALID_GEOMETRY_ID) || (!got && r->tfar[i] != tfar0[i])) &&
+            if ((got != (want != RTC_INVALID_GEOMETRY_ID) ||
+                 (!got && r->tfar[i] != tfar0[i])) &&
                 bad++ < 5)
                 printf("  %s ray %zu: occluded %d, cylray says %d\n", what, i, got,
                        want != RTC_INVALID_GEOMETRY_ID);
@@ -361,12 +363,12 @@ int main(void)
     static float tfar0[W * H];
     static uint8_t valid0[W * H];
     int passed = 0, failed = 0;
-#define REPORT(bad, ...)                                                                   \
-    do {                                                                                   \
-        char what_[128];                                                                   \
-        snprintf(what_, sizeof what_, __VA_ARGS__);                                        \
-        printf("%s %s (%d disagreements)\n", (bad) ? "FAIL" : "ok  ", what_, (bad));       \
-        (bad) ? failed++ : passed++;                                                       \
+#define REPORT(bad, ...)                                                                       \
+    do {                                                                                       \
+        char what_[128];                                                                       \
+        snprintf(what_, sizeof what_, __VA_ARGS__);                                            \
+        printf("%s %s (%d disagreements)\n", (bad) ? "FAIL" : "ok  ", what_, (bad));           \
+        (bad) ? failed++ : passed++;                                                           \
     } while (0)
 
     for (int v = EB_SINGLE; v < EB_NVARIANTS; v++) {
@@ -387,8 +389,8 @@ int main(void)
         eb_geom_free(&g);
 
         /* the same geometry with filters */
-        cylray_embree_desc d = eb_scene_desc(&s, eb_variant_options((eb_variant)v) |
-                                                     CYLRAY_EMBREE_FILTER, K);
+        cylray_embree_desc d =
+            eb_scene_desc(&s, eb_variant_options((eb_variant)v) | CYLRAY_EMBREE_FILTER, K);
         RTCGeometry geo = cylray_embree_new_geometry(dev, &d, NULL);
         if (!geo) {
             REPORT(1, "%s: build with filters", vn);
@@ -438,13 +440,14 @@ int main(void)
         d = eb_scene_desc(&s, 0, K);
         RTCGeometry geo = cylray_embree_new_geometry(dev, &d, &st);
         float z[3] = {0, 0, 0}, one[3] = {1, 0, 0}, out[3];
-        bad += !geo || st != CYLRAY_OK || !cylray_embree_is_cylinders(geo) ||
-               cylray_embree_primitives(geo) != s.ns ||
-               cylray_embree_cylinder(geo, (unsigned)s.ns) != NULL ||
-               cylray_embree_cylinder(geo, 0) == NULL ||
-               cylray_embree_spawn_origin(geo, (unsigned)s.ns, z, one, 1, one, one, out) != -1 ||
-               cylray_embree_spawn_origin(geo, 0, z, one, 1, z, one, out) != -1 ||
-               cylray_embree_spawn_origin_side(geo, 0, z, one, 1, z, 1, one, out) != -1;
+        bad +=
+            !geo || st != CYLRAY_OK || !cylray_embree_is_cylinders(geo) ||
+            cylray_embree_primitives(geo) != s.ns ||
+            cylray_embree_cylinder(geo, (unsigned)s.ns) != NULL ||
+            cylray_embree_cylinder(geo, 0) == NULL ||
+            cylray_embree_spawn_origin(geo, (unsigned)s.ns, z, one, 1, one, one, out) != -1 ||
+            cylray_embree_spawn_origin(geo, 0, z, one, 1, z, one, out) != -1 ||
+            cylray_embree_spawn_origin_side(geo, 0, z, one, 1, z, 1, one, out) != -1;
         cylray_embree_release_geometry(geo);
         cylray_embree_release_geometry(NULL);
         REPORT(bad, "refused input, and the accessors");

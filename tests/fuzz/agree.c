@@ -34,10 +34,11 @@ static double dot3(const double a[3], const double b[3])
 }
 
 /* Is the hit at t near a boundary? (hc_cyl geometry, w = o - c, d in double) */
-static int near_hit_boundary(const hc_cyl *g, const double w[3], const double d[3],
-                             double dl, float t, const float ray[G_NFIELD], double band)
+static int near_hit_boundary(const hc_cyl *g, const double w[3], const double d[3], double dl,
+                             float t, const float ray[G_NFIELD], double band)
 {
-    if (fabs((double)t - ray[G_TMIN]) * dl <= band || fabs((double)t - ray[G_TMAX]) * dl <= band)
+    if (fabs((double)t - ray[G_TMIN]) * dl <= band ||
+        fabs((double)t - ray[G_TMAX]) * dl <= band)
         return 1;
     double x[3], p[3];
     for (int k = 0; k < 3; k++)
@@ -129,9 +130,11 @@ int fz_agree(const cylray_cylinder *c, const float ray[G_NFIELD], unsigned flags
              (unsigned)b->part, bd.exact.hit ? "hit" : "miss", bd.exact.t,
              (unsigned)bd.exact.part, va, vb, ua, ub);
 #else
-    snprintf(why, whylen, "answers (%s t=%a part=%#x) and (%s t=%a part=%#x) away from any "
-             "decision boundary", a->hit ? "hit" : "miss", a->t, (unsigned)a->part,
-             b->hit ? "hit" : "miss", b->t, (unsigned)b->part);
+    snprintf(why, whylen,
+             "answers (%s t=%a part=%#x) and (%s t=%a part=%#x) away from any "
+             "decision boundary",
+             a->hit ? "hit" : "miss", a->t, (unsigned)a->part, b->hit ? "hit" : "miss", b->t,
+             (unsigned)b->part);
 #endif
     return 1;
 }

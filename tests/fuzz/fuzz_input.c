@@ -24,10 +24,11 @@ static uint8_t byte(reader *r)
 static float value(reader *r)
 {
     static const float special[32] = {
-        0.0f, -0.0f, 1.0f, -1.0f, 0.5f, 2.0f, 3.0f, -2.0f,
-        NAN, -NAN, INFINITY, -INFINITY, FLT_MAX, -FLT_MAX, FLT_MIN, -FLT_MIN,
-        FLT_TRUE_MIN, -FLT_TRUE_MIN, 1e-40f, 1e30f, -1e30f, 1e-30f, 0x1p62f, 0x1p-62f,
-        1e10f, -1e10f, 1e-10f, 1e6f, -1e6f, 1e-6f, 0x1.fffffep-1f, 0x1.000002p+0f};
+        0.0f,    -0.0f,    1.0f,           -1.0f,         0.5f,      2.0f,    3.0f,
+        -2.0f,   NAN,      -NAN,           INFINITY,      -INFINITY, FLT_MAX, -FLT_MAX,
+        FLT_MIN, -FLT_MIN, FLT_TRUE_MIN,   -FLT_TRUE_MIN, 1e-40f,    1e30f,   -1e30f,
+        1e-30f,  0x1p62f,  0x1p-62f,       1e10f,         -1e10f,    1e-10f,  1e6f,
+        -1e6f,   1e-6f,    0x1.fffffep-1f, 0x1.000002p+0f};
     const uint8_t tag = byte(r);
     if (tag < 32)
         return special[tag];

@@ -41,11 +41,15 @@ static void report(void)
     for (int i = 0; i < CYLRAY_ISA_COUNT; i++)
         if (cylray_kernels_for((cylray_isa)i))
             fprintf(stderr, " %s=%lu", cylray_isa_name((cylray_isa)i), runs[i]);
-    fprintf(stderr, "; SIMD/scalar differences excused near a boundary: %lu, by the exact "
-            "reference: %lu\n", fz_excused_geometric, fz_excused_exact);
+    fprintf(stderr,
+            "; SIMD/scalar differences excused near a boundary: %lu, by the exact "
+            "reference: %lu\n",
+            fz_excused_geometric, fz_excused_exact);
 #ifdef HAVE_SPAWN
-    fprintf(stderr, "cylray-fuzz: spawn: %lu hits through hit point and origin, %lu spawned "
-            "rays traced on every ISA\n", fz_spawn_hits, fz_spawn_traced);
+    fprintf(stderr,
+            "cylray-fuzz: spawn: %lu hits through hit point and origin, %lu spawned "
+            "rays traced on every ISA\n",
+            fz_spawn_hits, fz_spawn_traced);
 #endif
 }
 
@@ -60,20 +64,21 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
 static void dump(const fz_case *c, const char *what)
 {
     char s[512];
-    fprintf(stderr, "cylray-fuzz: %s\n  %s\n  width %s n %zu active %#x misalign %u flags %#x\n",
-            what, g_cyl_str(&c->cyl, s, sizeof s), g_width_name(c->width), c->n, c->active,
+    fprintf(stderr,
+            "cylray-fuzz: %s\n  %s\n  width %s n %zu active %#x misalign %u flags %#x\n", what,
+            g_cyl_str(&c->cyl, s, sizeof s), g_width_name(c->width), c->n, c->active,
             c->misalign, c->flags);
     for (size_t i = 0; i < c->n; i++)
         if (c->width == G_STREAM || ((c->active >> i) & 1u))
             fprintf(stderr, "  ray %zu: %s\n", i, g_ray_str(&c->rays, i, s, sizeof s));
 }
 
-#define FAIL_(...)                                                     \
-    do {                                                               \
-        char msg_[1024];                                               \
-        snprintf(msg_, sizeof msg_, __VA_ARGS__);                      \
-        dump(&c, msg_);                                                \
-        abort();                                                       \
+#define FAIL_(...)                                                                             \
+    do {                                                                                       \
+        char msg_[1024];                                                                       \
+        snprintf(msg_, sizeof msg_, __VA_ARGS__);                                              \
+        dump(&c, msg_);                                                                        \
+        abort();                                                                               \
     } while (0)
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
@@ -122,8 +127,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             if (c.width != G_STREAM && !((c.active >> i) & 1u))
                 continue;
             const fz_answer a = {(int)((res[0].hit >> i) & 1u), res[0].t[i], res[0].part[i]};
-            const fz_answer b = {(int)((res[ii].hit >> i) & 1u), res[ii].t[i],
-                                 res[ii].part[i]};
+            const fz_answer b = {(int)((res[ii].hit >> i) & 1u), res[ii].t[i], res[ii].part[i]};
             float ray[G_NFIELD];
             for (int f = 0; f < G_NFIELD; f++)
                 ray[f] = c.rays.f[f][i];

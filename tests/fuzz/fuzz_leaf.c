@@ -25,8 +25,8 @@ static int leaf_call(const cylray_kernels *k, const cylray_leaf8 *leaf, const fl
         uint32_t guard[4];
     } io;
     memset(&io, 0xa5, sizeof io);
-    cylray_ray1 ray = {{r[G_OX], r[G_OY], r[G_OZ]}, {r[G_DX], r[G_DY], r[G_DZ]}, r[G_TMIN],
-                       r[G_TMAX]};
+    cylray_ray1 ray = {
+        {r[G_OX], r[G_OY], r[G_OZ]}, {r[G_DX], r[G_DY], r[G_DZ]}, r[G_TMIN], r[G_TMAX]};
     const cylray_ray1 orig = ray;
     int got = k->leaf_intersect8(leaf, &ray, &io.h, flags);
     int occ = k->leaf_occluded8(leaf, &orig, flags);
@@ -37,7 +37,8 @@ static int leaf_call(const cylray_kernels *k, const cylray_leaf8 *leaf, const fl
         return snprintf(why, whylen, "%s: occluded %d, intersect %d", k->name, occ, got), -1;
     if (got && memcmp(&ray.tmax, &io.h.t, 4) != 0)
         return snprintf(why, whylen, "%s: tmax %a, t %a", k->name, (double)ray.tmax,
-                        (double)io.h.t), -1;
+                        (double)io.h.t),
+               -1;
     if (!got && memcmp(&ray, &orig, sizeof ray) != 0)
         return snprintf(why, whylen, "%s: a miss wrote the ray", k->name), -1;
     *hit = io.h;
@@ -103,17 +104,18 @@ int fz_leaf(const fz_case *c, const cylray_kernels *const *isas, int nisa, char 
                 char w2[512];
                 if (fz_agree(&cyl[j], r, c->flags, &a, &b, w2, sizeof w2))
                     return snprintf(why, whylen, "%s ray %zu lane %zu: leaf and packet: %s",
-                                    k->name, i, j, w2), 1;
+                                    k->name, i, j, w2),
+                           1;
             }
-            if (got != (best >= 0) ||
-                (got && (h.lane != (uint32_t)best || memcmp(&h.t, &bt, 4) != 0 ||
-                         h.id != ids[best])))
-                return snprintf(why, whylen,
-                                "%s ray %zu: leaf of %zu gives %s t %a lane %u, the lanes alone "
-                                "give %s t %a lane %d",
-                                k->name, i, n, got ? "hit" : "miss", got ? (double)h.t : 0.0,
-                                got ? h.lane : 0u, best >= 0 ? "hit" : "miss", (double)bt,
-                                best), 1;
+            if (got != (best >= 0) || (got && (h.lane != (uint32_t)best ||
+                                               memcmp(&h.t, &bt, 4) != 0 || h.id != ids[best])))
+                return snprintf(
+                           why, whylen,
+                           "%s ray %zu: leaf of %zu gives %s t %a lane %u, the lanes alone "
+                           "give %s t %a lane %d",
+                           k->name, i, n, got ? "hit" : "miss", got ? (double)h.t : 0.0,
+                           got ? h.lane : 0u, best >= 0 ? "hit" : "miss", (double)bt, best),
+                       1;
         }
     }
     return 0;

@@ -59,8 +59,10 @@ int fz_spawn(const fz_case *c, const cylray_prepared *P, const gresult *res,
         fz_spawn_hits++;
         const double dist = sref_dist_part(cyl, p, pm);
         if (!(dist <= err)) {
-            snprintf(why, whylen, "ray %zu: hit point %.9g %.9g %.9g is %.3g from part %d, "
-                     "beyond its bound %.3g", i, p[0], p[1], p[2], dist, pm, (double)err);
+            snprintf(why, whylen,
+                     "ray %zu: hit point %.9g %.9g %.9g is %.3g from part %d, "
+                     "beyond its bound %.3g",
+                     i, p[0], p[1], p[2], dist, pm, (double)err);
             return 1;
         }
         /* back along the ray (the incident side) and on through the surface */
@@ -105,8 +107,10 @@ int fz_spawn(const fz_case *c, const cylray_prepared *P, const gresult *res,
                 const float s3[3] = {sx, sy, sz}, o3[3] = {ox, oy, oz};
                 if (!same3(qp, p) || q.err[L] != err || !same3(qx, x0) || !same3(qs, xs) ||
                     !same3(s3, p) || se != err || !same3(o3, x0)) {
-                    snprintf(why, whylen, "ray %zu: %s's batched hit point or origin differs "
-                             "from the scalar form's", i, K->name);
+                    snprintf(why, whylen,
+                             "ray %zu: %s's batched hit point or origin differs "
+                             "from the scalar form's",
+                             i, K->name);
                     return 1;
                 }
             }
@@ -114,15 +118,17 @@ int fz_spawn(const fz_case *c, const cylray_prepared *P, const gresult *res,
             double mv = 0;
             for (int k = 0; k < 3; k++)
                 mv += ((double)x0[k] - p[k]) * ((double)x0[k] - p[k]);
-            const double wl = sqrt((double)w[0] * w[0] + (double)w[1] * w[1] + (double)w[2] * w[2]);
+            const double wl =
+                sqrt((double)w[0] * w[0] + (double)w[1] * w[1] + (double)w[2] * w[2]);
             if (!(sqrt(mv) <= 0.25 * fmin(cyl->radius, cyl->half_height)) ||
                 fabs(wn) <= 1e-6 * wl)
                 continue;
             const double sig = sref_sigma(cyl, x0, pm);
             if ((wn > 0) != (sig > 0) || sig == 0) {
-                snprintf(why, whylen, "ray %zu: the origin %.9g %.9g %.9g is not strictly on "
-                         "w's side of part %d (signed distance %.3g)", i, x0[0], x0[1], x0[2],
-                         pm, sig);
+                snprintf(why, whylen,
+                         "ray %zu: the origin %.9g %.9g %.9g is not strictly on "
+                         "w's side of part %d (signed distance %.3g)",
+                         i, x0[0], x0[1], x0[2], pm, sig);
                 return 1;
             }
             fz_spawn_traced++;
@@ -131,9 +137,10 @@ int fz_spawn(const fz_case *c, const cylray_prepared *P, const gresult *res,
                 int32_t ph;
                 if (trace(isas[k], P, x0, w, &th, &ph) &&
                     sref_self_hit(cyl, x0, w, part, ph, th)) {
-                    snprintf(why, whylen, "ray %zu: %s meets the surface it leaves (part %d "
-                             "at t %a) from the origin %a %a %a along %a %a %a", i,
-                             isas[k]->name, ph, (double)th, x0[0], x0[1], x0[2], w[0], w[1],
+                    snprintf(why, whylen,
+                             "ray %zu: %s meets the surface it leaves (part %d "
+                             "at t %a) from the origin %a %a %a along %a %a %a",
+                             i, isas[k]->name, ph, (double)th, x0[0], x0[1], x0[2], w[0], w[1],
                              w[2]);
                     return 1;
                 }

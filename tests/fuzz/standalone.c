@@ -28,8 +28,8 @@ int main(int argc, char **argv)
     for (int a = 1; a < argc; a++) {
         if (strcmp(argv[a], "--random") == 0 && a + 1 < argc) {
             unsigned long n = strtoul(argv[++a], NULL, 10);
-            uint64_t seed = a + 1 < argc && argv[a + 1][0] != '-' ? strtoull(argv[++a], NULL, 10)
-                                                                  : 1;
+            uint64_t seed =
+                a + 1 < argc && argv[a + 1][0] != '-' ? strtoull(argv[++a], NULL, 10) : 1;
             if (tc_quick())
                 n /= 8;
             uint8_t buf[512];

@@ -40,7 +40,8 @@ int main(void)
         bad_lanes += fabsf(h.t[i] - 4.0f) > 1e-5f || h.part[i] != CYLRAY_SIDE ||
                      fabsf(h.nx[i] + 1.0f) > 1e-5f || r.tmax[i] != h.t[i];
     if (bad_lanes) {
-        fprintf(stderr, "consumer: hit mask %#x, expected 0xe, or a wrong hit\n", (unsigned)hits);
+        fprintf(stderr, "consumer: hit mask %#x, expected 0xe, or a wrong hit\n",
+                (unsigned)hits);
         return 1;
     }
     printf("consumer: cylray %d.%d.%d, %s path: 3 hits and 1 miss, as expected\n",

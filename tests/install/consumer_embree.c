@@ -24,10 +24,14 @@ int main(void)
                          {{3, 0, -2}, {3, 0, 2}, 1.0f, CYLRAY_CAPPED, 8}};
     RTCDevice dev = rtcNewDevice(NULL);
     cylray_embree_desc d = {.count = 2,
-                            .p0 = rods[0].a, .p0_stride = sizeof(rod),
-                            .p1 = rods[0].b, .p1_stride = sizeof(rod),
-                            .radius = &rods[0].radius, .radius_stride = sizeof(rod),
-                            .caps = &rods[0].caps, .caps_stride = sizeof(rod),
+                            .p0 = rods[0].a,
+                            .p0_stride = sizeof(rod),
+                            .p1 = rods[0].b,
+                            .p1_stride = sizeof(rod),
+                            .radius = &rods[0].radius,
+                            .radius_stride = sizeof(rod),
+                            .caps = &rods[0].caps,
+                            .caps_stride = sizeof(rod),
                             .options = CYLRAY_EMBREE_SPLIT};
     RTCGeometry geom = cylray_embree_new_geometry(dev, &d, NULL);
     if (!dev || !geom) {
@@ -43,15 +47,16 @@ int main(void)
      * u = 3/4 (z = 1 of -2..2). */
     struct RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
-    struct RTCRayHit rh = {{10, 0, 1, 0, -1, 0, 0, 0, INFINITY, ~0u, 0, 0},
-                           {0, 0, 0, 0, 0, RTC_INVALID_GEOMETRY_ID, RTC_INVALID_GEOMETRY_ID, {0}}};
+    struct RTCRayHit rh = {
+        {10, 0, 1, 0, -1, 0, 0, 0, INFINITY, ~0u, 0, 0},
+        {0, 0, 0, 0, 0, RTC_INVALID_GEOMETRY_ID, RTC_INVALID_GEOMETRY_ID, {0}}};
     rtcIntersect1(scene, &ctx, &rh);
     int bad = rh.hit.geomID != id || rh.hit.primID != 1 || fabsf(rh.ray.tfar - 6) > 1e-5f ||
               fabsf(rh.hit.Ng_x - 1) > 1e-6f || fabsf(rh.hit.u - 0.75f) > 1e-6f ||
               !(rh.hit.v >= 0 && rh.hit.v < 1);
     if (bad) {
-        fprintf(stderr, "consumer_embree: hit prim %u t %g Ng_x %g u %g v %g\n",
-                rh.hit.primID, rh.ray.tfar, rh.hit.Ng_x, rh.hit.u, rh.hit.v);
+        fprintf(stderr, "consumer_embree: hit prim %u t %g Ng_x %g u %g v %g\n", rh.hit.primID,
+                rh.ray.tfar, rh.hit.Ng_x, rh.hit.u, rh.hit.v);
         return 1;
     }
     float o[3] = {rh.ray.org_x, rh.ray.org_y, rh.ray.org_z};
@@ -62,8 +67,9 @@ int main(void)
         return 1;
     }
     /* leaving rod 1 inward, through it: the next hit is its far side at x = 2 */
-    struct RTCRayHit s = {{org[0], org[1], org[2], 0, w[0], w[1], w[2], 0, INFINITY, ~0u, 0, 0},
-                          {0, 0, 0, 0, 0, RTC_INVALID_GEOMETRY_ID, RTC_INVALID_GEOMETRY_ID, {0}}};
+    struct RTCRayHit s = {
+        {org[0], org[1], org[2], 0, w[0], w[1], w[2], 0, INFINITY, ~0u, 0, 0},
+        {0, 0, 0, 0, 0, RTC_INVALID_GEOMETRY_ID, RTC_INVALID_GEOMETRY_ID, {0}}};
     rtcIntersect1(scene, &ctx, &s);
     struct RTCRay occ = {org[0], org[1], org[2], 0, w[0], w[1], w[2], 0, INFINITY, ~0u, 0, 0};
     rtcOccluded1(scene, &ctx, &occ);
@@ -78,6 +84,7 @@ int main(void)
     rtcReleaseDevice(dev);
     printf("consumer_embree: cylray %d.%d.%d with Embree %s: hit, record and spawned ray "
            "as expected\n",
-           CYLRAY_VERSION_MAJOR, CYLRAY_VERSION_MINOR, CYLRAY_VERSION_PATCH, RTC_VERSION_STRING);
+           CYLRAY_VERSION_MAJOR, CYLRAY_VERSION_MINOR, CYLRAY_VERSION_PATCH,
+           RTC_VERSION_STRING);
     return 0;
 }

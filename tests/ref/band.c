@@ -172,8 +172,7 @@ void cylref_band_eval(const cylray_cylinder *cyl, const float o[3], const float 
     outcome_set set = {0};
     add_outcome(&set, x0, out->exact.t, out->exact.t);
 
-    double sum_m[M_COUNT] = {0}, sum_t[P_COUNT] = {0}, dt[IN_COUNT] = {0}, nsum = 0,
-           nmax = 0;
+    double sum_m[M_COUNT] = {0}, sum_t[P_COUNT] = {0}, dt[IN_COUNT] = {0}, nsum = 0, nmax = 0;
     qrec r;
     unsigned char b[M_COUNT];
 

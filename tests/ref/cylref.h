@@ -35,13 +35,13 @@ typedef struct cylref_hit {
  * NaN/Inf components or a zero direction misses. flags: CYLRAY_CULL_BACK and
  * CYLRAY_FACE_FORWARD act; NORMAL, REFINE, FAST change nothing in exact arithmetic
  * (the normal is always returned). */
-int cylref_intersect(const cylray_cylinder *cyl, const float o[3], const float d[3],
-                     float tmin, float tmax, unsigned flags, cylref_hit *out);
+int cylref_intersect(const cylray_cylinder *cyl, const float o[3], const float d[3], float tmin,
+                     float tmax, unsigned flags, cylref_hit *out);
 
 /* A result that is legitimately possible for a float kernel, beside the exact one. */
 typedef struct cylref_alt {
-    int part;            /* CYLRAY_SIDE..CAP_HI | BACKFACE */
-    double t_lo, t_hi;   /* where its t may lie */
+    int part;          /* CYLRAY_SIDE..CAP_HI | BACKFACE */
+    double t_lo, t_hi; /* where its t may lie */
 } cylref_alt;
 
 #define CYLREF_MAX_ALT 6

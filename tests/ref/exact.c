@@ -55,7 +55,7 @@ int qin_from_float(qin *q, const cylray_cylinder *cyl, const float o[3], const f
     q->R = cyl->radius;
     q->H = cyl->half_height;
     q->caps = cyl->flags & CYLRAY_CAPPED;
-    q->kind = !isfinite(cyl->half_height) ? QK_INFINITE
+    q->kind = !isfinite(cyl->half_height)    ? QK_INFINITE
               : (cyl->flags & CYLRAY_CAPPED) ? QK_CAPPED
                                              : QK_OPEN;
     return 1;
@@ -152,8 +152,10 @@ void q_eval(const qin *q, cylq tmin, cylq tmax, qrec *r)
         }
         set_margin(r, M_SLABOK, Hv - q_abs(z0), q_max(Hv, q_abs(z0)), dv == 0);
         const cylq *t = r->tp;
-        set_margin(r, M_INSIDE, t[P_SLO] - t[P_BLO], q_max(q_abs(t[P_SLO]), q_abs(t[P_BLO])), 1);
-        set_margin(r, M_OUTSIDE, t[P_BHI] - t[P_SHI], q_max(q_abs(t[P_BHI]), q_abs(t[P_SHI])), 1);
+        set_margin(r, M_INSIDE, t[P_SLO] - t[P_BLO], q_max(q_abs(t[P_SLO]), q_abs(t[P_BLO])),
+                   1);
+        set_margin(r, M_OUTSIDE, t[P_BHI] - t[P_SHI], q_max(q_abs(t[P_BHI]), q_abs(t[P_SHI])),
+                   1);
         set_margin(r, M_X1, t[P_BHI] - t[P_SLO], q_max(q_abs(t[P_BHI]), q_abs(t[P_SLO])), 1);
         set_margin(r, M_X2, t[P_SHI] - t[P_BLO], q_max(q_abs(t[P_SHI]), q_abs(t[P_BLO])), 1);
     }
@@ -214,11 +216,13 @@ qout q_decide(const qrec *r, const unsigned char b[M_COUNT], int cull)
         ok_in = ok_out = nonempty;
         /* A bound made by a disc that is not part of the surface is no hit: the ray
          * passes through that open end (the solid still decides entry and exit). */
-        if (pin != P_SLO && !(r->caps & (slab_part(r, pin) == CYLRAY_CAP_LO ? CYLRAY_CAPPED_LO
-                                                                            : CYLRAY_CAPPED_HI)))
+        if (pin != P_SLO &&
+            !(r->caps &
+              (slab_part(r, pin) == CYLRAY_CAP_LO ? CYLRAY_CAPPED_LO : CYLRAY_CAPPED_HI)))
             ok_in = 0;
-        if (pout != P_SHI && !(r->caps & (slab_part(r, pout) == CYLRAY_CAP_LO ? CYLRAY_CAPPED_LO
-                                                                              : CYLRAY_CAPPED_HI)))
+        if (pout != P_SHI &&
+            !(r->caps &
+              (slab_part(r, pout) == CYLRAY_CAP_LO ? CYLRAY_CAPPED_LO : CYLRAY_CAPPED_HI)))
             ok_out = 0;
     } else {
         pin = P_SLO;
@@ -265,15 +269,14 @@ void q_normal(const qrec *r, qout o, int ff, double n[3])
         n[k] = (double)(m[k] * s);
 }
 
-int cylref_intersect(const cylray_cylinder *cyl, const float o[3], const float d[3],
-                     float tmin, float tmax, unsigned flags, cylref_hit *out)
+int cylref_intersect(const cylray_cylinder *cyl, const float o[3], const float d[3], float tmin,
+                     float tmax, unsigned flags, cylref_hit *out)
 {
     memset(out, 0, sizeof *out);
     qin q;
     if (!cyl || !qin_from_float(&q, cyl, o, d)) {
         int bad_cyl = !cyl || !f_finite3(cyl->center) || !f_finite3(cyl->axis) ||
-                      !(cyl->radius > 0) || !isfinite(cyl->radius) ||
-                      !(cyl->half_height > 0) ||
+                      !(cyl->radius > 0) || !isfinite(cyl->radius) || !(cyl->half_height > 0) ||
                       (cyl->axis[0] == 0 && cyl->axis[1] == 0 && cyl->axis[2] == 0);
         return bad_cyl ? -1 : 0;
     }

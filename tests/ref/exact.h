@@ -13,7 +13,7 @@
 /* The inputs in binary128; perturbations move them off the float grid. */
 typedef struct qin {
     cylq o[3], d[3], c[3], v[3], R, H;
-    int kind; /* QK_* */
+    int kind;      /* QK_* */
     unsigned caps; /* QK_CAPPED: CYLRAY_CAPPED_LO | CYLRAY_CAPPED_HI */
 } qin;
 
@@ -41,12 +41,12 @@ enum {
 };
 
 typedef struct qrec {
-    int valid;     /* inputs describe a solid and a ray */
+    int valid; /* inputs describe a solid and a ray */
     int kind;
-    unsigned caps; /* the discs that are part of the surface */
-    int par_exact; /* A == 0 exactly: the side roots do not exist at all */
-    int dv_zero;   /* d.v == 0 exactly: the slab is all or nothing */
-    int dv_pos;    /* d.v > 0: the slab is entered at -H (CAP_LO) */
+    unsigned caps;     /* the discs that are part of the surface */
+    int par_exact;     /* A == 0 exactly: the side roots do not exist at all */
+    int dv_zero;       /* d.v == 0 exactly: the slab is all or nothing */
+    int dv_pos;        /* d.v > 0: the slab is entered at -H (CAP_LO) */
     cylq tp[P_COUNT];  /* +-INFINITY where unbounded */
     cylq m[M_COUNT];   /* the margins */
     cylq mw[M_COUNT];  /* how close to 0 a float kernel may legitimately get it wrong */

@@ -166,7 +166,7 @@ static frame frame_of(const cylray_cylinder *cyl)
     f.c = from_f(cyl->center);
     f.a = unit(from_f(cyl->axis));
     int k = fabs(f.a.x[0]) < fabs(f.a.x[1]) ? (fabs(f.a.x[0]) < fabs(f.a.x[2]) ? 0 : 2)
-                                           : (fabs(f.a.x[1]) < fabs(f.a.x[2]) ? 1 : 2);
+                                            : (fabs(f.a.x[1]) < fabs(f.a.x[2]) ? 1 : 2);
     v3 e = mk(0, 0, 0);
     e.x[k] = 1;
     f.p = unit(cross(f.a, e));
@@ -198,8 +198,8 @@ static double zspan(const frame *f)
 enum { KIND_ANY, KIND_CAPPED, KIND_OPEN, KIND_INFINITE };
 
 typedef struct {
-    double c_lo, c_hi;  /* |center component| range (random sign) */
-    double r_lo, r_hi;  /* radius, log-uniform */
+    double c_lo, c_hi; /* |center component| range (random sign) */
+    double r_lo, r_hi; /* radius, log-uniform */
     int kind;
 } cyl_spec;
 
@@ -306,7 +306,8 @@ static void set_ray(cylgen_case *c, v3 o, v3 d)
 }
 
 /* From `dist` away along a random direction towards a point near the solid. */
-static void ray_towards(cylgen_rng *r, const frame *f, double dist, double slack, cylgen_case *c)
+static void ray_towards(cylgen_rng *r, const frame *f, double dist, double slack,
+                        cylgen_case *c)
 {
     v3 target = point_in(r, f, slack);
     v3 d = rand_dir(r);
@@ -492,8 +493,8 @@ static void gen_case(int cat, cylgen_rng *r, cylgen_case *c)
 /* ---- the catalogue -------------------------------------------------------------- */
 
 static const char *const names[CYLGEN_COUNT] = {
-    "ordinary", "far", "parallel", "grazing", "surface", "inside",
-    "rim", "tiny", "huge", "unnormalized", "infinite", "scaled", "onecap",
+    "ordinary", "far",  "parallel",     "grazing",  "surface", "inside", "rim",
+    "tiny",     "huge", "unnormalized", "infinite", "scaled",  "onecap",
 };
 static const char *const descriptions[CYLGEN_COUNT] = {
     "random cylinder, origin 2-20 R away, aimed near the solid",

@@ -45,8 +45,8 @@ typedef struct bad {
 } bad;
 
 #define MAX_BAD 128
-static const char *const field_name[G_NFIELD] = {"ox", "oy", "oz", "dx", "dy", "dz",
-                                                  "tmin", "tmax"};
+static const char *const field_name[G_NFIELD] = {"ox", "oy", "oz",   "dx",
+                                                 "dy", "dz", "tmin", "tmax"};
 
 static int add(bad *out, int n, const char *name, const float ray[G_NFIELD], enum expect e,
                const float *alt)
@@ -65,10 +65,10 @@ static int add(bad *out, int n, const char *name, const float ray[G_NFIELD], enu
 static int make_bad(const float v[G_NFIELD], bad *out)
 {
     const float snan = g_bits(0x7f800001u), nsnan = g_bits(0xffc00001u);
-    const float values[] = {NAN, -NAN, 0, INFINITY, -INFINITY, 1e30f, -1e30f, FLT_MAX,
-                            1e-40f, -FLT_TRUE_MIN, -0.0f};
-    const char *const vname[] = {"NaN", "-NaN", "sNaN", "+Inf", "-Inf", "1e30", "-1e30",
-                                 "FLT_MAX", "1e-40", "-denorm_min", "-0"};
+    const float values[] = {NAN,    -NAN,    0,      INFINITY,      -INFINITY, 1e30f,
+                            -1e30f, FLT_MAX, 1e-40f, -FLT_TRUE_MIN, -0.0f};
+    const char *const vname[] = {"NaN",   "-NaN",    "sNaN",  "+Inf",        "-Inf", "1e30",
+                                 "-1e30", "FLT_MAX", "1e-40", "-denorm_min", "-0"};
     int n = 0;
     char name[64];
     for (int f = 0; f < G_NFIELD; f++)
@@ -95,7 +95,7 @@ static int make_bad(const float v[G_NFIELD], bad *out)
     /* Damage to the ray as a whole. */
     const struct {
         const char *name;
-        int fields;  /* bit f: replace field f */
+        int fields; /* bit f: replace field f */
         float val[G_NFIELD];
         enum expect e;
     } whole[] = {
@@ -127,7 +127,6 @@ static int make_bad(const float v[G_NFIELD], bad *out)
     }
     return n;
 }
-
 
 static void put(gbatch *b, size_t i, const float r[G_NFIELD])
 {
@@ -185,8 +184,9 @@ static void judge_bad(const cylray_cylinder *cyl, const bad *d, const gresult *r
             verdict = 0;
         CHECK(verdict == 0,
               "%s lane %zu [%s]: %s (t %a part %#x), exact: %s at %.17g part %#x (%s)", ctx, j,
-              d->name, verdict == 1 ? (hit ? "false hit" : "missed hit")
-                                    : "part differs from the exact answer",
+              d->name,
+              verdict == 1 ? (hit ? "false hit" : "missed hit")
+                           : "part differs from the exact answer",
               r->t[j], (unsigned)r->part[j], b->exact.hit ? "hit" : "miss", b->exact.t,
               (unsigned)b->exact.part, rs);
         const double tol = (flags & CYLRAY_FAST) ? 256 : 16;
@@ -285,8 +285,8 @@ int main(void)
                                 /* packets: the damaged lane inactive */
                                 if (w != G_STREAM && !quick) {
                                     put(&b, j, d->ray);
-                                    g_intersect(isas[ii], w, &P, &b, n, all & ~(1u << j),
-                                                flags, 0, &r);
+                                    g_intersect(isas[ii], w, &P, &b, n, all & ~(1u << j), flags,
+                                                0, &r);
                                     for (size_t i = 0; i < n; i++)
                                         if (i != j)
                                             CHECK(g_same_lane(&r, i, &r0, i,

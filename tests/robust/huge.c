@@ -116,16 +116,18 @@ static void run_cylinder(const cylray_cylinder *c, const char *what)
                         const float d[3] = {s.f[G_DX][j], s.f[G_DY][j], s.f[G_DZ][j]};
                         const int hit = (int)((r.hit >> j) & 1u);
                         if (i >= 8 && coarse * 16 < c->radius)
-                            CHECK(!hit, "%s %s w=%s flags=%#x ray %zu: false hit at t %a on a "
+                            CHECK(!hit,
+                                  "%s %s w=%s flags=%#x ray %zu: false hit at t %a on a "
                                   "ray built to miss (%s)",
                                   what, isas[ii]->name, g_width_name(w), flags, i, r.t[j], cs);
                         if (hit) {
                             const float n3[3] = {r.nx[j], r.ny[j], r.nz[j]};
-                            int v = hc_verify(c, o, d, 0, INFINITY, r.t[j], r.part[j], n3,
-                                              flags, flags & CYLRAY_FAST ? 16 : 1, why,
-                                              sizeof why);
-                            CHECK(v == 0, "%s %s w=%s flags=%#x ray %zu: impossible hit: %s (%s)",
-                                  what, isas[ii]->name, g_width_name(w), flags, i, why, cs);
+                            int v =
+                                hc_verify(c, o, d, 0, INFINITY, r.t[j], r.part[j], n3, flags,
+                                          flags & CYLRAY_FAST ? 16 : 1, why, sizeof why);
+                            CHECK(v == 0,
+                                  "%s %s w=%s flags=%#x ray %zu: impossible hit: %s (%s)", what,
+                                  isas[ii]->name, g_width_name(w), flags, i, why, cs);
                         }
 #ifdef HAVE_CYLREF
                         {
@@ -168,8 +170,8 @@ static void axis_scale(void)
             c.axis[k] = ldexpf(unit.axis[k], exps[ei]);
         cylray_prepared P;
         if (cylray_prepare(&P, &c) != CYLRAY_OK) {
-            CHECK(exps[ei] > 62 || exps[ei] < -125,
-                  "an axis scaled by 2^%d was refused", exps[ei]);
+            CHECK(exps[ei] > 62 || exps[ei] < -125, "an axis scaled by 2^%d was refused",
+                  exps[ei]);
             continue;
         }
         for (int ii = 0; ii < nisa; ii++) {
@@ -185,8 +187,8 @@ static void axis_scale(void)
 
 int main(void)
 {
-    const float mags[] = {1e10f, 1e15f, 1e18f, 0x1p62f, 1e19f, 1e20f, 1e25f, 1e30f, 1e38f,
-                          FLT_MAX};
+    const float mags[] = {1e10f, 1e15f, 1e18f, 0x1p62f, 1e19f,
+                          1e20f, 1e25f, 1e30f, 1e38f,   FLT_MAX};
     char what[96];
     int accepted = 0;
     for (size_t mi = 0; mi < sizeof mags / sizeof mags[0]; mi++) {
@@ -195,7 +197,8 @@ int main(void)
         cylray_status s;
         cylray_prepared P;
         /* a huge center, the cylinder a quarter of its size */
-        c = (cylray_cylinder){{m, -m / 2, m / 4}, {0.3f, 0.4f, -1}, m / 4, m / 4, CYLRAY_CAPPED};
+        c = (cylray_cylinder){
+            {m, -m / 2, m / 4}, {0.3f, 0.4f, -1}, m / 4, m / 4, CYLRAY_CAPPED};
         snprintf(what, sizeof what, "center %g, R = H = %g", m, m / 4);
         s = cylray_prepare(&P, &c);
         accepted += s == CYLRAY_OK;

@@ -19,7 +19,6 @@
 #include "scene.h"
 #include "tcheck.h"
 
-
 /* What an inactive lane may hold: kind 0 keeps the lane's own (often hitting) ray. */
 #define NPOISON 4
 static void poison_lane(gbatch *b, size_t i, int kind)
@@ -67,8 +66,10 @@ static void masks(const cylray_kernels *k, const cylray_prepared *P, const gbatc
                           k->name, w, flags, m, kind, i, r.t[i], all.t[i]);
             gresult o;
             g_occluded(k, w, P, &b, (size_t)w, m, flags, 0, &o);
-            CHECK(o.hit == (all.hit & m), "%s occluded%d flags=%#x mask %#x poison %d: %#llx, "
-                  "expected %#llx", k->name, w, flags, m, kind, (unsigned long long)o.hit,
+            CHECK(o.hit == (all.hit & m),
+                  "%s occluded%d flags=%#x mask %#x poison %d: %#llx, "
+                  "expected %#llx",
+                  k->name, w, flags, m, kind, (unsigned long long)o.hit,
                   (unsigned long long)(all.hit & m));
         }
     }
@@ -145,11 +146,9 @@ static void refusals(const cylray_kernels *k, const cylray_prepared *good, const
     const cylray_hits nh = {NULL, NULL, NULL, NULL, NULL};
     CHECK(k->intersect_stream(good, &nr, &nh, 0, CYLRAY_NORMAL) == 0,
           "%s: empty stream of NULL arrays", k->name);
-    CHECK(k->occluded_stream(good, &nr, NULL, 0, 0) == 0, "%s: empty occluded stream",
-          k->name);
+    CHECK(k->occluded_stream(good, &nr, NULL, 0, 0) == 0, "%s: empty occluded stream", k->name);
     CHECK(k->intersect_stream(good, NULL, &nh, 5, 0) == 0, "%s: NULL rays stream", k->name);
-    CHECK(k->intersect_stream(NULL, &nr, &nh, 5, 0) == 0, "%s: NULL cylinder stream",
-          k->name);
+    CHECK(k->intersect_stream(NULL, &nr, &nh, 5, 0) == 0, "%s: NULL cylinder stream", k->name);
 }
 
 int main(void)

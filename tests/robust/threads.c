@@ -66,9 +66,8 @@ static void round_trip(work *w, unsigned flags)
     memset(w->snz, 0, sizeof w->snz);
     memset(w->spart, 0, sizeof w->spart);
     memset(w->occ, 0, sizeof w->occ);
-    const cylray_rays R = {w->rays.f[G_OX], w->rays.f[G_OY], w->rays.f[G_OZ],
-                           w->rays.f[G_DX], w->rays.f[G_DY], w->rays.f[G_DZ],
-                           w->rays.f[G_TMIN], w->stmax};
+    const cylray_rays R = {w->rays.f[G_OX], w->rays.f[G_OY], w->rays.f[G_OZ],   w->rays.f[G_DX],
+                           w->rays.f[G_DY], w->rays.f[G_DZ], w->rays.f[G_TMIN], w->stmax};
     const cylray_hits H = {w->st, w->snx, w->sny, w->snz, w->spart};
     w->on = cylray_occluded_stream(w->P, &R, w->occ, G_MAX - 3, flags);
     w->sn = cylray_intersect_stream(w->P, &R, &H, G_MAX - 3, flags);

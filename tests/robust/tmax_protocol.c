@@ -116,8 +116,8 @@ static void closed_interval(const cylray_kernels *k, int w, const cylray_cylinde
         int hit_below = (int)((r_below.hit >> i) & 1u);
         /* The same root must not come back below tmax; another part or face,
          * genuinely earlier, may. */
-        int ok_below = !hit_below || (r_below.part[i] != first.part[i] &&
-                                      r_below.t[i] < first.t[i]);
+        int ok_below =
+            !hit_below || (r_below.part[i] != first.part[i] && r_below.t[i] < first.t[i]);
         CHECK(ok_at && ok_pin && ok_below,
               "%s width %s flags %#x lane %zu: hit t %a part %d; with tmax = t: %s; with "
               "tmin = tmax = t: %s; with tmax one below: %s %a",
@@ -173,10 +173,12 @@ static void walk(const cylray_kernels *k, int w, const cylray_cylinder *cyl, int
             /* The record is the last cylinder's that hit, which alone gives it too. */
             if (ok && hits)
                 ok = g_same_lane(&rec, i, &alone[last[i]], i, normal);
-            CHECK(ok, "%s width %s flags %#x lane %zu, %s walk: %s t %a, separate calls: %s "
-                  "minimum %a", k->name, g_width_name(w), flags, i,
-                  dir ? "backward" : "forward", got ? "hit" : "miss", got ? (double)rec.t[i] : 0.0,
-                  hits ? "hit" : "miss", (double)best);
+            CHECK(ok,
+                  "%s width %s flags %#x lane %zu, %s walk: %s t %a, separate calls: %s "
+                  "minimum %a",
+                  k->name, g_width_name(w), flags, i, dir ? "backward" : "forward",
+                  got ? "hit" : "miss", got ? (double)rec.t[i] : 0.0, hits ? "hit" : "miss",
+                  (double)best);
             if (!ok) {
                 describe(&cyl[0], b, i);
                 for (int j = 0; j < nc; j++)
@@ -195,10 +197,12 @@ static void known_case(const cylray_kernels *k)
 {
     const cylray_cylinder c = {{0x1.00af06p+11f, -0x1.3c79a4p+9f, 0x1.da4aep+8f},
                                {0x1.0e37ccp-2f, -0x1.7b8c7ap+0f, 0x1.0c3a88p+0f},
-                               0x1.8d2c7ap-1f, INFINITY, 0};
-    const float ray[G_NFIELD] = {0x1.008bc6p+11f, -0x1.3bf5aap+9f, 0x1.d9c5bcp+8f,
-                                 0x1.947abp+0f,   0x1.d9182ap-3f,  0x1.67af4ap-2f,
-                                 0.0f,            INFINITY};
+                               0x1.8d2c7ap-1f,
+                               INFINITY,
+                               0};
+    const float ray[G_NFIELD] = {
+        0x1.008bc6p+11f, -0x1.3bf5aap+9f, 0x1.d9c5bcp+8f, 0x1.947abp+0f,
+        0x1.d9182ap-3f,  0x1.67af4ap-2f,  0.0f,           INFINITY};
     cylray_prepared P;
     CHECK(cylray_prepare(&P, &c) == CYLRAY_OK, "prepare");
     gbatch b;

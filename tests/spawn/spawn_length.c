@@ -32,10 +32,12 @@ static void fail(const cylray_cylinder *cyl, const float p[3], const float w[3],
                  const char *what)
 {
     if (failures++ < 20)
-        fprintf(stderr, "FAIL: cyl c=(%a %a %a) v=(%a %a %a) R=%a H=%a flags=%u p=(%a %a %a) "
-                "w=(%a %a %a): %s\n", cyl->center[0], cyl->center[1], cyl->center[2],
-                cyl->axis[0], cyl->axis[1], cyl->axis[2], cyl->radius, cyl->half_height,
-                cyl->flags, p[0], p[1], p[2], w[0], w[1], w[2], what);
+        fprintf(stderr,
+                "FAIL: cyl c=(%a %a %a) v=(%a %a %a) R=%a H=%a flags=%u p=(%a %a %a) "
+                "w=(%a %a %a): %s\n",
+                cyl->center[0], cyl->center[1], cyl->center[2], cyl->axis[0], cyl->axis[1],
+                cyl->axis[2], cyl->radius, cyl->half_height, cyl->flags, p[0], p[1], p[2], w[0],
+                w[1], w[2], what);
 }
 
 static int same3(const float a[3], const float b[3])
@@ -143,13 +145,25 @@ static int hit_of(const cylray_prepared *P, const float o[3], const float d[3], 
 static const struct {
     float c[3], v[3], p[3], err, d[3];
 } fuzz_cases[] = {
-    {{0x1.340668p-75f, TEN, TEN}, {TEN, TEN, 0x1p+62f}, {TEN, TEN, TEN}, 0x1.011448p-74f,
+    {{0x1.340668p-75f, TEN, TEN},
+     {TEN, TEN, 0x1p+62f},
+     {TEN, TEN, TEN},
+     0x1.011448p-74f,
      {FLT_MAX, TEN, TEN}},
-    {{0x1.340668p-75f, TEN, TEN}, {TEN, 0x1.fffffep-1f, 0x1p+62f}, {TEN, TEN, TEN},
-     0x1.011448p-74f, {FLT_MAX, TEN, TEN}},
-    {{TEN, TEN, TEN}, {TEN, TEN, TEN}, {0x1.d8c0aap-34f, 0x1.d8c0aap-34f, -0x1.079566p-36f},
-     0x1.87a71p-60f, {FLT_MAX, 0x1.3p-12f, 0}},
-    {{TEN, TEN, TEN}, {0x1p-62f, TEN, TEN}, {0x1p-86f, TEN, TEN}, 0x1.49da8p-76f,
+    {{0x1.340668p-75f, TEN, TEN},
+     {TEN, 0x1.fffffep-1f, 0x1p+62f},
+     {TEN, TEN, TEN},
+     0x1.011448p-74f,
+     {FLT_MAX, TEN, TEN}},
+    {{TEN, TEN, TEN},
+     {TEN, TEN, TEN},
+     {0x1.d8c0aap-34f, 0x1.d8c0aap-34f, -0x1.079566p-36f},
+     0x1.87a71p-60f,
+     {FLT_MAX, 0x1.3p-12f, 0}},
+    {{TEN, TEN, TEN},
+     {0x1p-62f, TEN, TEN},
+     {0x1p-86f, TEN, TEN},
+     0x1.49da8p-76f,
      {FLT_MAX, TEN, TEN}},
 };
 
@@ -222,10 +236,10 @@ static int run_sweep(int quick)
                     if (j == 3)
                         sref_unit(&rng, u);
                     for (int k = 0; k < 3; k++)
-                        u[k] = j == 0 ? c[i].d[k] - 2 * dn * n[k]
-                             : j == 1 ? c[i].d[k]
-                             : j == 2 ? -c[i].d[k]
-                                      : u[k];
+                        u[k] = j == 0   ? c[i].d[k] - 2 * dn * n[k]
+                               : j == 1 ? c[i].d[k]
+                               : j == 2 ? -c[i].d[k]
+                                        : u[k];
                     const double ul = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
                     const int e = (int)(cylgen_next(&rng) % NLEN);
                     const double s = lengths[e] == 128 ? FLT_MAX : ldexp(1.0, lengths[e]);
@@ -240,8 +254,8 @@ static int run_sweep(int quick)
     long traced_long = 0;
     for (int e = 0; e < NLEN; e++) {
         printf("sweep: length 2^%d: %ld origins spawned, %ld rays traced on %d ISAs, %ld "
-               "meeting their surface\n", lengths[e], st[e].spawned, st[e].traced, nisa,
-               st[e].selfhits);
+               "meeting their surface\n",
+               lengths[e], st[e].spawned, st[e].traced, nisa, st[e].selfhits);
         if (lengths[e] >= 126)
             traced_long += st[e].traced;
     }

@@ -47,8 +47,8 @@ static void fail(const char *what, const cylgen_case *c, const char *detail)
                 "FAIL %s: cyl c=(%a %a %a) v=(%a %a %a) R=%a H=%a flags=%u o=(%a %a %a) "
                 "d=(%a %a %a): %s\n",
                 what, c->cyl.center[0], c->cyl.center[1], c->cyl.center[2], c->cyl.axis[0],
-                c->cyl.axis[1], c->cyl.axis[2], c->cyl.radius, c->cyl.half_height,
-                c->cyl.flags, c->o[0], c->o[1], c->o[2], c->d[0], c->d[1], c->d[2], detail);
+                c->cyl.axis[1], c->cyl.axis[2], c->cyl.radius, c->cyl.half_height, c->cyl.flags,
+                c->o[0], c->o[1], c->o[2], c->d[0], c->d[1], c->d[2], detail);
 }
 
 /* The hits of one ISA's 16-wide kernel on a group of cases; returns the hit mask. */
@@ -126,12 +126,12 @@ static long groups_for(long full)
     return quick ? full / 100 + 1 : full;
 }
 
-
 /* ISA k's stream form of the hit points of the lanes set in m (the others are passed as
  * CYLRAY_MISS and must stay unwritten), checked against the scalar pair bit for bit.
  * Returns the number of lanes that differ. */
-static long isa_points(const cylray_kernels *k, const cylray_prepared *P, const cylray_ray16 *ray,
-                       const cylray_hit16 *hit, uint32_t m, float p[16][3], float err[16])
+static long isa_points(const cylray_kernels *k, const cylray_prepared *P,
+                       const cylray_ray16 *ray, const cylray_hit16 *hit, uint32_t m,
+                       float p[16][3], float err[16])
 {
     float x[16], y[16], z[16], e[16];
     int32_t part[16];
@@ -139,8 +139,8 @@ static long isa_points(const cylray_kernels *k, const cylray_prepared *P, const 
         part[i] = m >> i & 1u ? hit->part[i] : CYLRAY_MISS;
         x[i] = y[i] = z[i] = e[i] = -7.0f;
     }
-    cylray_rays rs = {ray->ox, ray->oy, ray->oz, ray->dx, ray->dy, ray->dz, ray->tmin,
-                      (float *)(uintptr_t)ray->tmax};
+    cylray_rays rs = {ray->ox, ray->oy, ray->oz,   ray->dx,
+                      ray->dy, ray->dz, ray->tmin, (float *)(uintptr_t)ray->tmax};
     cylray_hits hs = {(float *)(uintptr_t)hit->t, NULL, NULL, NULL, part};
     cylray_points pts = {x, y, z, e};
     long bad = k->hit_points_stream(P, &rs, &hs, &pts, 16) != (size_t)popcount(m);
@@ -160,9 +160,9 @@ static long isa_points(const cylray_kernels *k, const cylray_prepared *P, const 
 }
 
 /* ISA k's stream form of the origins of the lanes set in m, against the scalar pair. */
-static long isa_origins(const cylray_kernels *k, const cylray_prepared *P, const cylray_hit16 *hit,
-                        uint32_t m, const float p[16][3], const float err[16],
-                        const float w[16][3], float x0[16][3])
+static long isa_origins(const cylray_kernels *k, const cylray_prepared *P,
+                        const cylray_hit16 *hit, uint32_t m, const float p[16][3],
+                        const float err[16], const float w[16][3], float x0[16][3])
 {
     float px[16], py[16], pz[16], pe[16], wx[16], wy[16], wz[16];
     int32_t part[16];
@@ -194,8 +194,8 @@ static int run_bounds(void)
 {
     long hits = 0, viol = 0, disagree = 0;
     const long G = groups_for(2000);
-    printf("%-13s %9s %10s %12s %12s %12s\n", "category", "hits", "violations",
-           "err/ulp p50", "err/ulp max", "err/exact p50");
+    printf("%-13s %9s %10s %12s %12s %12s\n", "category", "hits", "violations", "err/ulp p50",
+           "err/ulp max", "err/exact p50");
     for (int cat = 0; cat < SREF_COUNT; cat++) {
         long ch = 0, cv = 0;
         static double rel[2000 * 16 * CYLRAY_ISA_COUNT], ulps[2000 * 16 * CYLRAY_ISA_COUNT];
@@ -265,7 +265,8 @@ static unsigned near_surfaces(const cylray_cylinder *cyl, const float p[3], floa
     if (P != CYLRAY_SIDE && sref_dist_part(cyl, p, CYLRAY_SIDE) <= err)
         s |= 1u << CYLRAY_SIDE;
     for (int c = CYLRAY_CAP_LO; c <= CYLRAY_CAP_HI; c++)
-        if (P != c && (cyl->flags & (c == CYLRAY_CAP_LO ? CYLRAY_CAPPED_LO : CYLRAY_CAPPED_HI)) &&
+        if (P != c &&
+            (cyl->flags & (c == CYLRAY_CAP_LO ? CYLRAY_CAPPED_LO : CYLRAY_CAPPED_HI)) &&
             sref_dist_part(cyl, p, c) <= err)
             s |= 1u << c;
     return s;
@@ -346,8 +347,8 @@ static int run_self(void)
                 }
                 use |= 1u << i;
             }
-            if (isa_origins(ks, &P, &hit, use, (const float(*)[3])p, err,
-                            (const float(*)[3])w, x0)) {
+            if (isa_origins(ks, &P, &hit, use, (const float(*)[3])p, err, (const float(*)[3])w,
+                            x0)) {
                 disagree++;
                 fail("self", &c[0], "the stream form differs from cylray_spawn_origin");
             }
@@ -404,10 +405,11 @@ static int run_self(void)
                                  "%s width %d%s: part %d left at (%a %a %a) err %a, "
                                  "spawned (%a %a %a) w (%a %a %a), hit part %d at t %a",
                                  isas[k]->name, width,
-                                 kernel_fault ? " (an answer outside the kernel's tolerance band)"
-                                              : "", hit.part[i], p[i][0], p[i][1], p[i][2],
-                                 err[i], x0[i][0], x0[i][1], x0[i][2], w[i][0], w[i][1],
-                                 w[i][2], hp[i], t[i]);
+                                 kernel_fault
+                                     ? " (an answer outside the kernel's tolerance band)"
+                                     : "",
+                                 hit.part[i], p[i][0], p[i][1], p[i][2], err[i], x0[i][0],
+                                 x0[i][1], x0[i][2], w[i][0], w[i][1], w[i][2], hp[i], t[i]);
                         fail("self", &c[i], s);
                     }
             }
@@ -415,15 +417,16 @@ static int run_self(void)
     }
     long bad = wrong_side + exact_self + disagree;
     printf("self: points and origins from each ISA's stream forms in turn; %ld groups where "
-           "they differ from the scalar pair\n", disagree);
+           "they differ from the scalar pair\n",
+           disagree);
     printf("self: outside the guarantee by category:");
     for (int c = 0; c < SREF_COUNT; c++)
         if (too_big_cat[c])
             printf(" %s %ld", sref_category_name(c), too_big_cat[c]);
     printf("\n");
     for (int k = 0; k < nisa; k++) {
-        printf("self: %-7s %10ld spawned rays traced, %ld self-intersections\n",
-               isas[k]->name, traced[k], self[k]);
+        printf("self: %-7s %10ld spawned rays traced, %ld self-intersections\n", isas[k]->name,
+               traced[k], self[k]);
         bad += self[k];
     }
     printf("self: %ld spawns, %ld not strictly on their side, %ld exact self-intersections "
@@ -494,7 +497,8 @@ static int run_nested(void)
     }
     long bad = inside_inner;
     printf("nested: %ld transmitted rays, %ld origins inside the inner cylinder, %ld with an "
-           "exact hit on it", tried, inside_inner, exact_hits);
+           "exact hit on it",
+           tried, inside_inner, exact_hits);
     for (int k = 0; k < nisa; k++) {
         printf(", %s missed %ld", isas[k]->name, missed[k]);
         bad += missed[k];
@@ -537,7 +541,8 @@ static long batched_isa(const cylray_kernels *K, const cylray_prepared *P, const
         for (int i = 0; i < 16; i++) {
             q16.x[i] = px[i] = p[i][0], q16.y[i] = py[i] = p[i][1], q16.z[i] = pz[i] = p[i][2];
             q16.err[i] = pe[i] = err[i];
-            o16.dx[i] = wx[i] = w[i][0], o16.dy[i] = wy[i] = w[i][1], o16.dz[i] = wz[i] = w[i][2];
+            o16.dx[i] = wx[i] = w[i][0], o16.dy[i] = wy[i] = w[i][1],
+            o16.dz[i] = wz[i] = w[i][2];
             ox[i] = oy[i] = oz[i] = -3.0f;
             part[i] = m >> i & 1u ? hit->part[i] : CYLRAY_MISS;
             outb[i] = (uint8_t)(outward >> i & 1u);
@@ -593,8 +598,8 @@ static long batched_isa(const cylray_kernels *K, const cylray_prepared *P, const
             const float a[3] = {o16.ox[i], o16.oy[i], o16.oz[i]}, b[3] = {ox[i], oy[i], oz[i]};
             const float l[3] = {cwx[j], cwy[j], cwz[j]};
             j++;
-            int bad = !same3(a, xs[i]) || o16.tmin[i] != 0.0f || !same3(b, xs[i]) ||
-                      !same3(l, xs[i]);
+            int bad =
+                !same3(a, xs[i]) || o16.tmin[i] != 0.0f || !same3(b, xs[i]) || !same3(l, xs[i]);
             if (i < 8) {
                 const float a8[3] = {o8.ox[i], o8.oy[i], o8.oz[i]};
                 bad |= !same3(a8, xs[i]);
@@ -656,11 +661,13 @@ static long batched_isa(const cylray_kernels *K, const cylray_prepared *P, const
         float sx[16], sy[16], sz[16], se[16], ox[16], oy[16], oz[16];
         for (int i = 0; i < 16; i++)
             sx[i] = sy[i] = sz[i] = se[i] = ox[i] = oy[i] = oz[i] = -5.0f;
-        cylray_rays rs = {ray->ox + b, ray->oy + b, ray->oz + b, ray->dx + b, ray->dy + b,
-                          ray->dz + b, ray->tmin + b, (float *)(uintptr_t)ray->tmax + b};
+        cylray_rays rs = {
+            ray->ox + b, ray->oy + b, ray->oz + b,   ray->dx + b,
+            ray->dy + b, ray->dz + b, ray->tmin + b, (float *)(uintptr_t)ray->tmax + b};
         cylray_hits hs = {(float *)(uintptr_t)hit->t + b, NULL, NULL, NULL, spart + b};
         cylray_points sp = {sx + b, sy + b, sz + b, se + b};
-        cylray_points dirs = {wx + b, wy + b, wz + b, NULL}, org = {ox + b, oy + b, oz + b, NULL};
+        cylray_points dirs = {wx + b, wy + b, wz + b, NULL},
+                      org = {ox + b, oy + b, oz + b, NULL};
         size_t ns = K->hit_points_stream(P, &rs, &hs, &sp, (size_t)len);
         K->spawn_stream(P, &sp, spart + b, &dirs, &org, (size_t)len);
         if (ns != (size_t)popcount(m >> b)) {
@@ -672,12 +679,13 @@ static long batched_isa(const cylray_kernels *K, const cylray_prepared *P, const
             const float s1[3] = {sx[i], sy[i], sz[i]}, s2[3] = {ox[i], oy[i], oz[i]};
             const int bad = hitlane ? !same3(s1, p[i]) || se[i] != err[i] || !same3(s2, x[i])
                                     : sx[i] != -5.0f || sy[i] != -5.0f || sz[i] != -5.0f ||
-                                          se[i] != -5.0f || ox[i] != -5.0f ||
-                                          oy[i] != -5.0f || oz[i] != -5.0f;
+                                          se[i] != -5.0f || ox[i] != -5.0f || oy[i] != -5.0f ||
+                                          oz[i] != -5.0f;
             if (bad) {
                 diff++;
-                fail("batched", &c[i], hitlane ? "a stream differs from the scalar pair"
-                                               : "a stream wrote a lane it does not own");
+                fail("batched", &c[i],
+                     hitlane ? "a stream differs from the scalar pair"
+                             : "a stream wrote a lane it does not own");
             }
         }
     }
@@ -691,8 +699,10 @@ static long batched_isa(const cylray_kernels *K, const cylray_prepared *P, const
         if (!(m >> i & 1u))
             continue;
         lv[nl] = leaf;
-        cylray_ray1 r = {{c[i].o[0], c[i].o[1], c[i].o[2]}, {c[i].d[0], c[i].d[1], c[i].d[2]},
-                         c[i].tmin, hit->t[i]};
+        cylray_ray1 r = {{c[i].o[0], c[i].o[1], c[i].o[2]},
+                         {c[i].d[0], c[i].d[1], c[i].d[2]},
+                         c[i].tmin,
+                         hit->t[i]};
         cylray_hit1 h = {hit->t[i], {0, 0, 0}, hit->part[i], 7, lane};
         r1[nl] = r, h1[nl] = h;
         lwx[nl] = w[i][0], lwy[nl] = w[i][1], lwz[nl] = w[i][2];
@@ -707,8 +717,8 @@ static long batched_isa(const cylray_kernels *K, const cylray_prepared *P, const
         (*lanes)++;
         const float a[3] = {pts.x[i], pts.y[i], pts.z[i]};
         const float bb[3] = {out.ox[i], out.oy[i], out.oz[i]};
-        int bad = !same3(a, p[i]) || pts.err[i] != err[i] || !same3(bb, x[i]) ||
-                  out.tmin[i] != 0.0f;
+        int bad =
+            !same3(a, p[i]) || pts.err[i] != err[i] || !same3(bb, x[i]) || out.tmin[i] != 0.0f;
         if (i < 8) {
             const float a8[3] = {p8.x[i], p8.y[i], p8.z[i]};
             const float b8[3] = {r8.ox[i], r8.oy[i], r8.oz[i]};
@@ -758,8 +768,8 @@ static int run_batched(void)
             if (m >> i & 1u) {
                 cylray_hit_point(&P, c[i].o, c[i].d, hit.t[i], hit.part[i], p[i], &err[i]);
                 cylray_spawn_origin(&P, p[i], err[i], hit.part[i], w[i], x[i]);
-                cylray_spawn_origin_side(&P, p[i], err[i], hit.part[i], outward >> i & 1u,
-                                         w[i], xs[i]);
+                cylray_spawn_origin_side(&P, p[i], err[i], hit.part[i], outward >> i & 1u, w[i],
+                                         xs[i]);
             }
         }
         /* the plain entry points (the path in use): packets of 16, and of 8 and 4 (their
@@ -812,7 +822,8 @@ static int run_batched(void)
             spart[i] = m >> i & 1u ? hit.part[i] : CYLRAY_MISS;
         cylray_rays rs = {ray.ox, ray.oy, ray.oz, ray.dx, ray.dy, ray.dz, ray.tmin, ray.tmax};
         cylray_hits hs = {hit.t, NULL, NULL, NULL, spart};
-        cylray_points sp = {sx, sy, sz, se}, dirs = {wx, wy, wz, NULL}, org = {ox, oy, oz, NULL};
+        cylray_points sp = {sx, sy, sz, se}, dirs = {wx, wy, wz, NULL},
+                      org = {ox, oy, oz, NULL};
         size_t ns = cylray_hit_points_stream(&P, &rs, &hs, &sp, 16);
         cylray_spawn_stream(&P, &sp, spart, &dirs, &org, 16);
         float qx[16], qy[16], qz[16];
@@ -843,8 +854,10 @@ static int run_batched(void)
         for (int i = 0; i < 16; i++) {
             if (!(m >> i & 1u))
                 continue;
-            cylray_ray1 r1 = {{c[i].o[0], c[i].o[1], c[i].o[2]}, {c[i].d[0], c[i].d[1], c[i].d[2]},
-                              c[i].tmin, hit.t[i]};
+            cylray_ray1 r1 = {{c[i].o[0], c[i].o[1], c[i].o[2]},
+                              {c[i].d[0], c[i].d[1], c[i].d[2]},
+                              c[i].tmin,
+                              hit.t[i]};
             cylray_hit1 h1 = {hit.t[i], {0, 0, 0}, hit.part[i], 7, lane};
             float lp[3], le, lx[3];
             cylray_leaf_hit_point16(&leaf, &r1, &h1, lp, &le);
@@ -887,15 +900,17 @@ static int run_batched(void)
             double ne[3];
             sref_normal(&c[i].cyl, p[i], hit.part[i] & CYLRAY_PART_MASK, ne);
             const double wn = ne[0] * w[i][0] + ne[1] * w[i][1] + ne[2] * w[i][2];
-            if (fabs(wn) > 1e-6 && err[i] < 0x1p-10 * fmin(c[i].cyl.radius, c[i].cyl.half_height)) {
+            if (fabs(wn) > 1e-6 &&
+                err[i] < 0x1p-10 * fmin(c[i].cyl.radius, c[i].cyl.half_height)) {
                 float xw[3];
                 cylray_spawn_origin_side(&P, p[i], err[i], hit.part[i], wn > 0, w[i], xw);
                 bad |= !same3(xw, x[i]);
             }
             if (bad) {
                 diff++;
-                fail("batched", &c[i], "a plain entry point or a leaf's scalar form differs "
-                                       "from the scalar pair");
+                fail("batched", &c[i],
+                     "a plain entry point or a leaf's scalar form differs "
+                     "from the scalar pair");
             }
         }
         /* every ISA's table, and the plain entry points (the path in use) */
@@ -935,8 +950,8 @@ static int run_batched(void)
             ray.tmin[i] = c[i].tmin, ray.tmax[i] = c[i].tmax;
         }
         const cylray_ray16 ray0 = ray;
-        const uint32_t m = isas[g % nisa]->intersect16(&P, &ray, &hit, 0xffffu,
-                                                        CYLRAY_NORMAL | (g & 1 ? CYLRAY_FACE_FORWARD : 0));
+        const uint32_t m = isas[g % nisa]->intersect16(
+            &P, &ray, &hit, 0xffffu, CYLRAY_NORMAL | (g & 1 ? CYLRAY_FACE_FORWARD : 0));
         cylray_points16 p16;
         cylray_points8 p8;
         cylray_points4 p4;
@@ -1014,14 +1029,16 @@ static int run_batched(void)
             }
             if (bad) {
                 diff++;
-                fail("batched", &c[i], "a normal form differs from the scalar one, or its bound");
+                fail("batched", &c[i],
+                     "a normal form differs from the scalar one, or its bound");
             }
         }
     }
     printf("batched: %ld lanes of the normal forms compared (and their bounds)\n", nlanes);
     printf("batched: %ld lanes compared over %d ISAs (packets 4/8/16, streams of every "
            "length, leaves one by one and in bulk; plain, side and normal forms), %ld "
-           "differ\n", lanes, nisa, diff);
+           "differ\n",
+           lanes, nisa, diff);
     return diff == 0 && lanes > 0;
 }
 
@@ -1030,8 +1047,8 @@ static int run_batched(void)
  * and the reflected ray's origin stays near the axis on the ray's side. */
 static int run_axis(void)
 {
-    static const float axes[][3] = {{0, 0, 1}, {0, -3, 0}, {1, 0, 0}, {0.3f, -0.5f, 0.8f},
-                                    {-1e-3f, 2e-3f, 5e-4f}};
+    static const float axes[][3] = {
+        {0, 0, 1}, {0, -3, 0}, {1, 0, 0}, {0.3f, -0.5f, 0.8f}, {-1e-3f, 2e-3f, 5e-4f}};
     static const float centers[][3] = {{0, 0, 0}, {1.5f, -2, 7}, {1e4f, -3e4f, 2e3f}};
     static const float radii[] = {1e-2f, 1, 250};
     long bad = 0, n = 0;
@@ -1041,8 +1058,8 @@ static int run_axis(void)
                 for (int end = 0; end < 2; end++) {
                     const float *a = axes[ai], *c0 = centers[ci];
                     const float R = radii[ri], H = 2 * R;
-                    cylray_cylinder cyl = {{c0[0], c0[1], c0[2]}, {a[0], a[1], a[2]}, R, H,
-                                           CYLRAY_CAPPED};
+                    cylray_cylinder cyl = {
+                        {c0[0], c0[1], c0[2]}, {a[0], a[1], a[2]}, R, H, CYLRAY_CAPPED};
                     cylray_prepared P;
                     if (cylray_prepare(&P, &cyl) != CYLRAY_OK)
                         continue;
@@ -1050,8 +1067,8 @@ static int run_axis(void)
                     const double cmax = fmax(fabs(c0[0]), fmax(fabs(c0[1]), fabs(c0[2])));
                     if (256 * cmax * 0x1p-24 > R)
                         continue;
-                    const double al = sqrt((double)a[0] * a[0] + (double)a[1] * a[1] +
-                                           (double)a[2] * a[2]);
+                    const double al =
+                        sqrt((double)a[0] * a[0] + (double)a[1] * a[1] + (double)a[2] * a[2]);
                     const double sg = end ? 1 : -1; /* the ray comes from beyond that end */
                     float o[3], d[3];
                     for (int k = 0; k < 3; k++) {
@@ -1202,12 +1219,16 @@ static long side_far_rods(long *spawned, long *too_big)
         float c[3], a[3], R, H, o[3], d[3], w[3];
     } rods[2] = {
         {{0x1.3875fp+13f, 0x1.3889cp+13f, 0x1.387cfap+13f},
-         {0x1.84198p+7f, 0x1.d021cp+9f, -0x1.3d4ap+8f}, 0x1.99999ap-5f, 0x1.f40012p+8f,
+         {0x1.84198p+7f, 0x1.d021cp+9f, -0x1.3d4ap+8f},
+         0x1.99999ap-5f,
+         0x1.f40012p+8f,
          {0x1.3892eap+13f, 0x1.38a57cp+13f, 0x1.38a7d6p+13f},
          {-0x1.00ae34p-1f, -0x1.1a93f2p-1f, -0x1.552ffap-1f},
          {0x1.165p+3f, -0x1.9cp-1f, 0x1.5d28p+3f}},
         {{0x1.38834p+13f, 0x1.3883c4p+13f, 0x1.38798cp+13f},
-         {0x1.e58b2p+9f, 0x1.6767p+6f, -0x1.ba588p+7f}, 0x1.99999ap-5f, 0x1.f40006p+8f,
+         {0x1.e58b2p+9f, 0x1.6767p+6f, -0x1.ba588p+7f},
+         0x1.99999ap-5f,
+         0x1.f40006p+8f,
          {0x1.3892eap+13f, 0x1.38a57cp+13f, 0x1.38a7d6p+13f},
          {-0x1.0ffb68p-1f, -0x1.15e316p-1f, -0x1.4d16e4p-1f},
          {0x1.257p+3f, -0x1.3f8p-1f, 0x1.62e8p+3f}},
@@ -1244,13 +1265,14 @@ static long side_far_rods(long *spawned, long *too_big)
                         ray.dx[i] = c.d[0], ray.dy[i] = c.d[1], ray.dz[i] = c.d[2];
                         ray.tmax[i] = INFINITY;
                     }
-                    got = isas[k]->intersect8(&P, &ray, &hit, 1u << (k % 8), CYLRAY_NORMAL) != 0;
+                    got =
+                        isas[k]->intersect8(&P, &ray, &hit, 1u << (k % 8), CYLRAY_NORMAL) != 0;
                     const int i = k % 8;
                     t = hit.t[i], part = hit.part[i];
                     n[0] = hit.nx[i], n[1] = hit.ny[i], n[2] = hit.nz[i];
                 } else if (form == 1) {
-                    cylray_ray1 r1 = {{c.o[0], c.o[1], c.o[2]}, {c.d[0], c.d[1], c.d[2]}, 0,
-                                      INFINITY};
+                    cylray_ray1 r1 = {
+                        {c.o[0], c.o[1], c.o[2]}, {c.d[0], c.d[1], c.d[2]}, 0, INFINITY};
                     cylray_hit1 h1;
                     got = isas[k]->leaf_intersect8(&leaf, &r1, &h1, CYLRAY_NORMAL);
                     t = h1.t, part = h1.part;
@@ -1258,8 +1280,8 @@ static long side_far_rods(long *spawned, long *too_big)
                 } else {
                     float tmax = INFINITY, tmin = 0, ht = 0, nx = 0, ny = 0, nz = 0;
                     int32_t hpart = 0;
-                    cylray_rays rs = {&c.o[0], &c.o[1], &c.o[2], &c.d[0], &c.d[1], &c.d[2],
-                                      &tmin, &tmax};
+                    cylray_rays rs = {&c.o[0], &c.o[1], &c.o[2], &c.d[0],
+                                      &c.d[1], &c.d[2], &tmin,   &tmax};
                     cylray_hits hs = {&ht, &nx, &ny, &nz, &hpart};
                     got = isas[k]->intersect_stream(&P, &rs, &hs, 1, CYLRAY_NORMAL) == 1;
                     t = ht, part = hpart, n[0] = nx, n[1] = ny, n[2] = nz;
@@ -1286,7 +1308,8 @@ static int run_side(void)
     long spawned = 0, too_big = 0, bad = side_far_rods(&spawned, &too_big);
     const long far_spawned = spawned, far_bad = bad;
     printf("side: far rods: %ld spawns (2 rods x %d ISAs x packet, leaf, stream x tmax 1, "
-           "inf), %ld failures\n", far_spawned, nisa, far_bad);
+           "inf), %ld failures\n",
+           far_spawned, nisa, far_bad);
     const long G = groups_for(20000);
     cylgen_rng rng;
     cylgen_seed(&rng, 31337);
@@ -1318,7 +1341,8 @@ static int run_side(void)
             float w[3];
             sref_direction(&rng, nd, (g + i) & 1 ? 1 : -1, w);
             const double wn = (double)w[0] * n[0] + (double)w[1] * n[1] + (double)w[2] * n[2];
-            const double wl = sqrt((double)w[0] * w[0] + (double)w[1] * w[1] + (double)w[2] * w[2]);
+            const double wl =
+                sqrt((double)w[0] * w[0] + (double)w[1] * w[1] + (double)w[2] * w[2]);
             grazing += fabs(wn) < 1e-2 * wl;
             double ne[3];
             float p[3], err;
@@ -1401,8 +1425,10 @@ static void reintersect_one(const cylray_kernels *k, const cylray_cylinder *cyl,
             *big += far_a[i];
         }
         *spawned += 16;
-        const uint32_t ma = occluded16(k, j / 16, &P, (const float(*)[3])xa, (const float(*)[3])w);
-        const uint32_t mb = occluded16(k, j / 16, &P, (const float(*)[3])xb, (const float(*)[3])w);
+        const uint32_t ma =
+            occluded16(k, j / 16, &P, (const float(*)[3])xa, (const float(*)[3])w);
+        const uint32_t mb =
+            occluded16(k, j / 16, &P, (const float(*)[3])xb, (const float(*)[3])w);
         for (int i = 0; i < 16; i++) {
             if (ma >> i & 1u) {
                 ++*rehit_readme;
@@ -1412,9 +1438,9 @@ static void reintersect_one(const cylray_kernels *k, const cylray_cylinder *cyl,
                     snprintf(s, sizeof s,
                              "%s: hit t %a part %d n (%a %a %a), p (%a %a %a) err %a, "
                              "origin (%a %a %a) w (%a %a %a)%s",
-                             k->name, h.t[0], h.part[0], n[0], n[1], n[2], pn[0], pn[1],
-                             pn[2], en, xa[i][0], xa[i][1], xa[i][2], w[i][0], w[i][1],
-                             w[i][2], far_a[i] ? " (outside the guarantee's condition)" : "");
+                             k->name, h.t[0], h.part[0], n[0], n[1], n[2], pn[0], pn[1], pn[2],
+                             en, xa[i][0], xa[i][1], xa[i][2], w[i][0], w[i][1], w[i][2],
+                             far_a[i] ? " (outside the guarantee's condition)" : "");
                     cylgen_case c;
                     memset(&c, 0, sizeof c);
                     c.cyl = *cyl;
@@ -1470,13 +1496,14 @@ static int run_reintersect(void)
          * tube's bounding box, its direction normalised half the time */
         float o[3], d[3];
         double dd[3], dl = 0;
-        const double al = sqrt((double)cyl.axis[0] * cyl.axis[0] +
-                               (double)cyl.axis[1] * cyl.axis[1] +
-                               (double)cyl.axis[2] * cyl.axis[2]);
+        const double al =
+            sqrt((double)cyl.axis[0] * cyl.axis[0] + (double)cyl.axis[1] * cyl.axis[1] +
+                 (double)cyl.axis[2] * cyl.axis[2]);
         for (int k = 0; k < 3; k++) {
             o[k] = (float)pexp(&rng, 8);
             const double ak = cyl.axis[k] / al;
-            const double ext = fabs(ak) * cyl.half_height + cyl.radius * sqrt(fmax(0, 1 - ak * ak));
+            const double ext =
+                fabs(ak) * cyl.half_height + cyl.radius * sqrt(fmax(0, 1 - ak * ak));
             const double tgt = cyl.center[k] + (2 * cylgen_uniform(&rng) - 1) * ext;
             dd[k] = tgt - o[k];
             dl += dd[k] * dd[k];
@@ -1588,7 +1615,8 @@ int main(int argc, char **argv)
     else if (strcmp(mode, "round") == 0)
         ok = run_round();
     else {
-        fprintf(stderr, "usage: spawn_test bounds|self|nested|batched|axis|side|reintersect|round\n");
+        fprintf(stderr,
+                "usage: spawn_test bounds|self|nested|batched|axis|side|reintersect|round\n");
         return 2;
     }
     printf("%s: %s\n", mode, ok ? "ok" : "FAILED");

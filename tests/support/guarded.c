@@ -10,11 +10,11 @@
 
 /* Packets are handled as flat float arrays: field f of lane i at f * width + i. The
  * header test checks this layout too; here it is what the runner relies on. */
-#define FLAT_OK_(n)                                                                   \
-    _Static_assert(offsetof(cylray_ray##n, tmax) == 7 * n * sizeof(float) &&          \
-                       sizeof(cylray_ray##n) == 8 * n * sizeof(float) &&              \
-                       offsetof(cylray_hit##n, part) == 4 * n * sizeof(float) &&      \
-                       sizeof(cylray_hit##n) == 5 * n * sizeof(float),                \
+#define FLAT_OK_(n)                                                                            \
+    _Static_assert(offsetof(cylray_ray##n, tmax) == 7 * n * sizeof(float) &&                   \
+                       sizeof(cylray_ray##n) == 8 * n * sizeof(float) &&                       \
+                       offsetof(cylray_hit##n, part) == 4 * n * sizeof(float) &&               \
+                       sizeof(cylray_hit##n) == 5 * n * sizeof(float),                         \
                    "packet " #n " is not flat SoA")
 FLAT_OK_(4);
 FLAT_OK_(8);
@@ -186,23 +186,23 @@ static int check_lane(const char *ctx, const gbatch *in, size_t i, int hit, unsi
     char rs[256];
     const float tmin = in->f[G_TMIN][i], tmax = in->f[G_TMAX][i];
     const int normal = (flags & CYLRAY_NORMAL) != 0;
-#define LANE_CHECK_(c, ...)                                                       \
-    do {                                                                          \
-        if (!(c)) {                                                               \
-            bad++;                                                                \
-            CHECK(0, "%s lane %zu (%s): " __VA_ARGS__);                           \
-        } else {                                                                  \
-            tc_checks_++;                                                         \
-        }                                                                         \
+#define LANE_CHECK_(c, ...)                                                                    \
+    do {                                                                                       \
+        if (!(c)) {                                                                            \
+            bad++;                                                                             \
+            CHECK(0, "%s lane %zu (%s): " __VA_ARGS__);                                        \
+        } else {                                                                               \
+            tc_checks_++;                                                                      \
+        }                                                                                      \
     } while (0)
     if (hit) {
         g_ray_str(in, i, rs, sizeof rs);
         LANE_CHECK_(same(r->tmax[i], r->t[i]), "tmax %a is not the hit t %a", ctx, i, rs,
                     r->tmax[i], r->t[i]);
-        LANE_CHECK_(r->t[i] >= tmin && r->t[i] <= tmax, "hit t %a outside [tmin, tmax]", ctx,
-                    i, rs, r->t[i]);
-        LANE_CHECK_(valid_part(r->part[i], flags), "invalid part %#x for flags %#x", ctx, i,
-                    rs, (unsigned)r->part[i], flags);
+        LANE_CHECK_(r->t[i] >= tmin && r->t[i] <= tmax, "hit t %a outside [tmin, tmax]", ctx, i,
+                    rs, r->t[i]);
+        LANE_CHECK_(valid_part(r->part[i], flags), "invalid part %#x for flags %#x", ctx, i, rs,
+                    (unsigned)r->part[i], flags);
         if (normal)
             LANE_CHECK_(!is_poison(r->nx[i]) && !is_poison(r->ny[i]) && !is_poison(r->nz[i]),
                         "hit without a normal under CYLRAY_NORMAL", ctx, i, rs);
@@ -225,8 +225,8 @@ static void context(char *buf, size_t len, const cylray_kernels *k, int width, s
                     uint32_t active, unsigned flags, unsigned misalign, const char *op)
 {
     if (width == G_STREAM)
-        snprintf(buf, len, "%s %s stream n=%zu misalign=%u flags=%#x", k->name, op, n,
-                 misalign, flags);
+        snprintf(buf, len, "%s %s stream n=%zu misalign=%u flags=%#x", k->name, op, n, misalign,
+                 flags);
     else
         snprintf(buf, len, "%s %s%d active=%#x flags=%#x", k->name, op, width, active, flags);
 }
@@ -258,19 +258,25 @@ static int packet_run(const cylray_kernels *k, int w, const cylray_prepared *P,
     uint32_t m = 0;
     if (occluded) {
         switch (w) {
-        case 4: m = k->occluded4(P, (const cylray_ray4 *)(void *)ray, active, flags); break;
-        case 8: m = k->occluded8(P, (const cylray_ray8 *)(void *)ray, active, flags); break;
-        default: m = k->occluded16(P, (const cylray_ray16 *)(void *)ray, active, flags); break;
+        case 4:
+            m = k->occluded4(P, (const cylray_ray4 *)(void *)ray, active, flags);
+            break;
+        case 8:
+            m = k->occluded8(P, (const cylray_ray8 *)(void *)ray, active, flags);
+            break;
+        default:
+            m = k->occluded16(P, (const cylray_ray16 *)(void *)ray, active, flags);
+            break;
         }
     } else {
         switch (w) {
         case 4:
-            m = k->intersect4(P, (cylray_ray4 *)(void *)ray, (cylray_hit4 *)(void *)hit,
-                              active, flags);
+            m = k->intersect4(P, (cylray_ray4 *)(void *)ray, (cylray_hit4 *)(void *)hit, active,
+                              flags);
             break;
         case 8:
-            m = k->intersect8(P, (cylray_ray8 *)(void *)ray, (cylray_hit8 *)(void *)hit,
-                              active, flags);
+            m = k->intersect8(P, (cylray_ray8 *)(void *)ray, (cylray_hit8 *)(void *)hit, active,
+                              flags);
             break;
         default:
             m = k->intersect16(P, (cylray_ray16 *)(void *)ray, (cylray_hit16 *)(void *)hit,
@@ -401,8 +407,8 @@ static int stream_run(const cylray_kernels *k, const cylray_prepared *P, const g
             continue;
         }
         /* A stream has no mask to say which rays hit: a written part says it. */
-        int hit = part[i] != G_POISON_PART || !is_poison(h[0][i]) ||
-                  !same(f[7][i], in->f[G_TMAX][i]);
+        int hit =
+            part[i] != G_POISON_PART || !is_poison(h[0][i]) || !same(f[7][i], in->f[G_TMAX][i]);
         if (hit) {
             out->hit |= 1ull << i;
             written++;
@@ -420,7 +426,8 @@ static int stream_run(const cylray_kernels *k, const cylray_prepared *P, const g
         bad++;
         CHECK(0, "%s: returned %zu hits, wrote %zu", ctx, cnt, written);
     }
-    static const char *const names[G_NFIELD] = {"ox", "oy", "oz", "dx", "dy", "dz", "tmin", "tmax"};
+    static const char *const names[G_NFIELD] = {"ox", "oy", "oz",   "dx",
+                                                "dy", "dz", "tmin", "tmax"};
     static const char *const hnames[5] = {"t", "nx", "ny", "nz", "part"};
     for (int j = 0; j < G_NFIELD; j++)
         bad += garr_close(&ra[j], names[j], ctx);
@@ -448,16 +455,14 @@ static int run(const cylray_kernels *k, int width, const cylray_prepared *P, con
     return packet_run(k, width, P, in, active, flags, occluded, out);
 }
 
-int g_intersect(const cylray_kernels *k, int width, const cylray_prepared *P,
-                const gbatch *in, size_t n, uint32_t active, unsigned flags,
-                unsigned misalign, gresult *out)
+int g_intersect(const cylray_kernels *k, int width, const cylray_prepared *P, const gbatch *in,
+                size_t n, uint32_t active, unsigned flags, unsigned misalign, gresult *out)
 {
     return run(k, width, P, in, n, active, flags, misalign, 0, out);
 }
 
-int g_occluded(const cylray_kernels *k, int width, const cylray_prepared *P,
-               const gbatch *in, size_t n, uint32_t active, unsigned flags,
-               unsigned misalign, gresult *out)
+int g_occluded(const cylray_kernels *k, int width, const cylray_prepared *P, const gbatch *in,
+               size_t n, uint32_t active, unsigned flags, unsigned misalign, gresult *out)
 {
     return run(k, width, P, in, n, active, flags, misalign, 1, out);
 }

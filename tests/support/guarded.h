@@ -22,8 +22,8 @@
 
 #include "cylray.h"
 
-#define G_MAX 64    /* rays in one batch: a 16-packet, or a stream up to 3*16+16 */
-#define G_STREAM 0  /* width value that selects the stream entry points */
+#define G_MAX 64   /* rays in one batch: a 16-packet, or a stream up to 3*16+16 */
+#define G_STREAM 0 /* width value that selects the stream entry points */
 
 enum { G_OX, G_OY, G_OZ, G_DX, G_DY, G_DZ, G_TMIN, G_TMAX, G_NFIELD };
 
@@ -55,14 +55,12 @@ const char *g_width_name(int width);
 /* Runs intersect (width 4, 8, 16: n must equal width; G_STREAM: any n <= G_MAX, with
  * the arrays starting `misalign` floats past a 64-byte boundary, `active` ignored).
  * Returns the number of contract violations found (already reported). */
-int g_intersect(const cylray_kernels *k, int width, const cylray_prepared *P,
-                const gbatch *in, size_t n, uint32_t active, unsigned flags,
-                unsigned misalign, gresult *out);
+int g_intersect(const cylray_kernels *k, int width, const cylray_prepared *P, const gbatch *in,
+                size_t n, uint32_t active, unsigned flags, unsigned misalign, gresult *out);
 
 /* The same for occluded; fills out->hit and out->count only. */
-int g_occluded(const cylray_kernels *k, int width, const cylray_prepared *P,
-               const gbatch *in, size_t n, uint32_t active, unsigned flags,
-               unsigned misalign, gresult *out);
+int g_occluded(const cylray_kernels *k, int width, const cylray_prepared *P, const gbatch *in,
+               size_t n, uint32_t active, unsigned flags, unsigned misalign, gresult *out);
 
 /* Lane i of a and lane j of b, bit for bit: hit, tmax, and on a hit t, part and (if
  * `normal`) the normal. */

@@ -13,8 +13,8 @@ static double dot3(const double a[3], const double b[3])
 void hc_from(hc_cyl *g, const cylray_cylinder *cyl)
 {
     /* An axis of FLT_MIN size would square to nearly nothing; scale it to 1 first. */
-    double m = fmax(fabs((double)cyl->axis[0]), fmax(fabs((double)cyl->axis[1]),
-                                                     fabs((double)cyl->axis[2])));
+    double m = fmax(fabs((double)cyl->axis[0]),
+                    fmax(fabs((double)cyl->axis[1]), fabs((double)cyl->axis[2])));
     double s = m > 0 ? 1.0 / m : 1.0;
     double vv = 0;
     for (int k = 0; k < 3; k++)
@@ -54,8 +54,8 @@ double hc_tolerance(const hc_cyl *g, const float o[3], const float d[3], float t
 #define WHY_(...) (snprintf(why, whylen, __VA_ARGS__), 1)
 
 int hc_verify(const cylray_cylinder *cyl, const float o[3], const float d[3], float tmin,
-              float tmax, float t, int32_t part, const float *n, unsigned flags,
-              double slack, char *why, size_t whylen)
+              float tmax, float t, int32_t part, const float *n, unsigned flags, double slack,
+              char *why, size_t whylen)
 {
     hc_cyl g;
     hc_from(&g, cyl);

@@ -36,7 +36,7 @@ double hc_tolerance(const hc_cyl *g, const float o[3], const float d[3], float t
 /* Returns 0 when the hit is possible; otherwise 1 and a reason in why. n may be NULL
  * (no normal to check). flags: the kernel flags of the call. */
 int hc_verify(const cylray_cylinder *cyl, const float o[3], const float d[3], float tmin,
-              float tmax, float t, int32_t part, const float *n, unsigned flags,
-              double slack, char *why, size_t whylen);
+              float tmax, float t, int32_t part, const float *n, unsigned flags, double slack,
+              char *why, size_t whylen);
 
 #endif

@@ -57,7 +57,8 @@ void scene_rays(uint64_t seed, const cylray_cylinder *c, gbatch *b, size_t first
             unit_random(&s, d);
             break;
         case 3: /* down onto a cap, a little tilted */
-            at(c, u, e1, e2, (cylgen_splitmix64(&s) & 1 ? 1 : -1) * scene_uniform(&s, 1.5, 4) * H,
+            at(c, u, e1, e2,
+               (cylgen_splitmix64(&s) & 1 ? 1 : -1) * scene_uniform(&s, 1.5, 4) * H,
                scene_uniform(&s, 0, 0.95) * R, ang, o);
             at(c, u, e1, e2, 0, scene_uniform(&s, 0, 0.5) * R, -ang, tgt);
             for (int k = 0; k < 3; k++)

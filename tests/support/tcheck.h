@@ -23,11 +23,11 @@ extern int tc_silent_; /* nonzero: count failures without printing (harness self
 void tc_fail_(const char *file, int line, const char *fmt, ...) TC_PRINTF(3, 4);
 
 /* CHECK(condition, printf-format, args...): the message says what was expected. */
-#define CHECK(cond, ...)                                   \
-    do {                                                   \
-        tc_checks_++;                                      \
-        if (!(cond))                                       \
-            tc_fail_(__FILE__, __LINE__, __VA_ARGS__);     \
+#define CHECK(cond, ...)                                                                       \
+    do {                                                                                       \
+        tc_checks_++;                                                                          \
+        if (!(cond))                                                                           \
+            tc_fail_(__FILE__, __LINE__, __VA_ARGS__);                                         \
     } while (0)
 
 /* Prints "<name>: N checks, M failures" and returns the exit status (0 or 1). A test

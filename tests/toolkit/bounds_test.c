@@ -27,17 +27,16 @@ static long failures, checks;
 static void fail(const cylray_cylinder *c, const char *what, int k)
 {
     if (failures++ < 20)
-        fprintf(stderr,
-                "FAIL %s (k=%d): c=(%a %a %a) v=(%a %a %a) R=%a H=%a flags=%u\n", what, k,
-                c->center[0], c->center[1], c->center[2], c->axis[0], c->axis[1], c->axis[2],
+        fprintf(stderr, "FAIL %s (k=%d): c=(%a %a %a) v=(%a %a %a) R=%a H=%a flags=%u\n", what,
+                k, c->center[0], c->center[1], c->center[2], c->axis[0], c->axis[1], c->axis[2],
                 c->radius, c->half_height, c->flags);
 }
 
 /* The naive box a user might write: float arithmetic on the rounded unit axis. */
 static void naive_box(const cylray_cylinder *c, float lo[3], float hi[3])
 {
-    float l = sqrtf(c->axis[0] * c->axis[0] + c->axis[1] * c->axis[1] +
-                    c->axis[2] * c->axis[2]);
+    float l =
+        sqrtf(c->axis[0] * c->axis[0] + c->axis[1] * c->axis[1] + c->axis[2] * c->axis[2]);
     for (int k = 0; k < 3; k++) {
         float n = c->axis[k] / l;
         float e = c->half_height * fabsf(n) + c->radius * sqrtf(fmaxf(0.0f, 1.0f - n * n));
@@ -75,8 +74,9 @@ static long check_box(const cylray_cylinder *c, const float lo[3], const float h
             if (q_abs(F[s]) < cancel)
                 allowed = 1e9; /* the cancellation regime: checked by distance */
             if (n > allowed) {
-                fail(c, aligned ? "face not the nearest float (coordinate axis)"
-                                : "face more than one float beyond the nearest",
+                fail(c,
+                     aligned ? "face not the nearest float (coordinate axis)"
+                             : "face more than one float beyond the nearest",
                      k);
                 bad++;
             }
@@ -177,47 +177,46 @@ static int run_box(long n, int mutant)
     return failures != 0;
 }
 
-#define LEAF_CASE_(m)                                                                    \
-    static void leaf_case##m(cylgen_rng *g)                                              \
-    {                                                                                    \
-        static cylray_leaf##m leaf;                                                      \
-        cylray_cylinder cs[m];                                                           \
-        size_t n = 1 + (size_t)(cylgen_next(g) % m);                                     \
-        for (size_t i = 0; i < n; i++)                                                   \
-            do                                                                           \
-                tk_cylinder(g, (int)(cylgen_next(g) % 10), &cs[i]);                      \
-            while (cylray_prepare(&(cylray_prepared){0}, &cs[i]) != CYLRAY_OK);          \
-        if (cylray_leaf_prepare##m(&leaf, cs, NULL, n) != CYLRAY_OK) {                   \
-            fail(&cs[0], "leaf_prepare", (int)n);                                        \
-            return;                                                                      \
-        }                                                                                \
-        float lo[3], hi[3], el[3] = {INFINITY, INFINITY, INFINITY},                      \
-                            eh[3] = {-INFINITY, -INFINITY, -INFINITY};                   \
-        for (size_t i = 0; i < n; i++) {                                                 \
-            cylray_prepared p;                                                           \
-            float l[3], h[3];                                                            \
-            cylray_prepare(&p, &cs[i]);                                                  \
-            cylray_bounds(&p, l, h);                                                     \
-            for (int k = 0; k < 3; k++)                                                  \
-                el[k] = fminf(el[k], l[k]), eh[k] = fmaxf(eh[k], h[k]);                  \
-        }                                                                                \
-        checks++;                                                                        \
-        if (cylray_leaf_bounds##m(&leaf, lo, hi) != CYLRAY_OK ||                         \
-            memcmp(lo, el, sizeof lo) || memcmp(hi, eh, sizeof hi))                      \
-            fail(&cs[0], "leaf box is not the union of its lanes' boxes", (int)n);      \
-        /* an infinite lane: no box, nothing written */                                  \
-        cs[n - 1].half_height = INFINITY;                                                \
-        float sl[3] = {7, 7, 7}, sh[3] = {7, 7, 7};                                      \
-        checks++;                                                                        \
-        if (cylray_leaf_prepare##m(&leaf, cs, NULL, n) != CYLRAY_OK ||                   \
-            cylray_leaf_bounds##m(&leaf, sl, sh) != CYLRAY_EINVAL || sl[0] != 7 ||       \
-            sh[2] != 7)                                                                  \
-            fail(&cs[0], "leaf with an infinite lane", (int)n);                          \
-        checks++;                                                                        \
-        if (cylray_leaf_prepare##m(&leaf, cs, NULL, 0) != CYLRAY_OK ||                   \
-            cylray_leaf_bounds##m(&leaf, sl, sh) != CYLRAY_EINVAL || sl[1] != 7 ||       \
-            cylray_leaf_bounds##m(NULL, sl, sh) != CYLRAY_EINVAL)                        \
-            fail(&cs[0], "empty leaf or NULL", (int)n);                                  \
+#define LEAF_CASE_(m)                                                                          \
+    static void leaf_case##m(cylgen_rng *g)                                                    \
+    {                                                                                          \
+        static cylray_leaf##m leaf;                                                            \
+        cylray_cylinder cs[m];                                                                 \
+        size_t n = 1 + (size_t)(cylgen_next(g) % m);                                           \
+        for (size_t i = 0; i < n; i++)                                                         \
+            do                                                                                 \
+                tk_cylinder(g, (int)(cylgen_next(g) % 10), &cs[i]);                            \
+            while (cylray_prepare(&(cylray_prepared){0}, &cs[i]) != CYLRAY_OK);                \
+        if (cylray_leaf_prepare##m(&leaf, cs, NULL, n) != CYLRAY_OK) {                         \
+            fail(&cs[0], "leaf_prepare", (int)n);                                              \
+            return;                                                                            \
+        }                                                                                      \
+        float lo[3], hi[3], el[3] = {INFINITY, INFINITY, INFINITY},                            \
+                            eh[3] = {-INFINITY, -INFINITY, -INFINITY};                         \
+        for (size_t i = 0; i < n; i++) {                                                       \
+            cylray_prepared p;                                                                 \
+            float l[3], h[3];                                                                  \
+            cylray_prepare(&p, &cs[i]);                                                        \
+            cylray_bounds(&p, l, h);                                                           \
+            for (int k = 0; k < 3; k++)                                                        \
+                el[k] = fminf(el[k], l[k]), eh[k] = fmaxf(eh[k], h[k]);                        \
+        }                                                                                      \
+        checks++;                                                                              \
+        if (cylray_leaf_bounds##m(&leaf, lo, hi) != CYLRAY_OK || memcmp(lo, el, sizeof lo) ||  \
+            memcmp(hi, eh, sizeof hi))                                                         \
+            fail(&cs[0], "leaf box is not the union of its lanes' boxes", (int)n);             \
+        /* an infinite lane: no box, nothing written */                                        \
+        cs[n - 1].half_height = INFINITY;                                                      \
+        float sl[3] = {7, 7, 7}, sh[3] = {7, 7, 7};                                            \
+        checks++;                                                                              \
+        if (cylray_leaf_prepare##m(&leaf, cs, NULL, n) != CYLRAY_OK ||                         \
+            cylray_leaf_bounds##m(&leaf, sl, sh) != CYLRAY_EINVAL || sl[0] != 7 || sh[2] != 7) \
+            fail(&cs[0], "leaf with an infinite lane", (int)n);                                \
+        checks++;                                                                              \
+        if (cylray_leaf_prepare##m(&leaf, cs, NULL, 0) != CYLRAY_OK ||                         \
+            cylray_leaf_bounds##m(&leaf, sl, sh) != CYLRAY_EINVAL || sl[1] != 7 ||             \
+            cylray_leaf_bounds##m(NULL, sl, sh) != CYLRAY_EINVAL)                              \
+            fail(&cs[0], "empty leaf or NULL", (int)n);                                        \
     }
 LEAF_CASE_(4)
 LEAF_CASE_(8)
@@ -244,7 +243,8 @@ static int run_leaf(long n)
         fail(&c, "unprepared cylinder: EINVAL", -1);
     c.half_height = 1;
     cylray_prepare(&p, &c);
-    if (cylray_bounds(&p, NULL, hi) != CYLRAY_EINVAL || cylray_bounds(NULL, lo, hi) != CYLRAY_EINVAL)
+    if (cylray_bounds(&p, NULL, hi) != CYLRAY_EINVAL ||
+        cylray_bounds(NULL, lo, hi) != CYLRAY_EINVAL)
         fail(&c, "NULL: EINVAL", -1);
     printf("leaf: %ld checks, %ld failures\n", checks, failures);
     return failures != 0;
@@ -308,7 +308,8 @@ static long check_split(const cylray_cylinder *c, const cylray_prepared *P, size
                     if (tk_steps(f[e], e ? F[e] + eps : F[e] - eps) > 1)
                         fail(c, "split face more than one float beyond the nearest", j), bad++;
                 } else if (q_abs((cylq)f[e] - F[e]) > mag[j] * (cylq)0x1p-95) {
-                    fail(c, "split face beyond 2^-95 of its magnitude (cancellation)", j), bad++;
+                    fail(c, "split face beyond 2^-95 of its magnitude (cancellation)", j),
+                        bad++;
                 }
             }
         }
@@ -373,7 +374,8 @@ static int run_split(long n)
         cyls++;
         size_t want = rule_count(&c), ks[4] = {0, 1, 2 + (size_t)(cylgen_next(&g) % 9), 997};
         checks++;
-        if (cylray_split_boxes(&P, 0, NULL, NULL) != want || cylray_split_boxes(&P, 0, lo, NULL) != want)
+        if (cylray_split_boxes(&P, 0, NULL, NULL) != want ||
+            cylray_split_boxes(&P, 0, lo, NULL) != want)
             fail(&c, "the rule's count", (int)want);
         at_max += want == CYLRAY_SPLIT_MAX;
         for (int a = 0; a < (it % 50 == 0 ? 4 : 3); a++) {
@@ -399,7 +401,8 @@ static int run_split(long n)
     free(lo);
     free(hi);
     printf("split: %ld cylinders (%ld at CYLRAY_SPLIT_MAX by the rule), %ld boxes, %ld checks, "
-           "%ld failures\n", cyls, at_max, boxes, checks, failures);
+           "%ld failures\n",
+           cyls, at_max, boxes, checks, failures);
     return failures != 0;
 }
 

@@ -38,8 +38,8 @@ static void fail(const cylray_cylinder *c, const float p[3], int part, const cha
 static void naive_surface(const cylray_cylinder *c, const float p[3], int part, float uv[2],
                           float dpdu[3], float dpdv[3])
 {
-    float l = sqrtf(c->axis[0] * c->axis[0] + c->axis[1] * c->axis[1] +
-                    c->axis[2] * c->axis[2]);
+    float l =
+        sqrtf(c->axis[0] * c->axis[0] + c->axis[1] * c->axis[1] + c->axis[2] * c->axis[2]);
     float n[3] = {c->axis[0] / l, c->axis[1] / l, c->axis[2] / l}, r[3];
     for (int k = 0; k < 3; k++)
         r[k] = p[k] - c->center[k];
@@ -205,12 +205,13 @@ static int run_exact(long n, int mutant)
 static int run_frame(void)
 {
     /* axes with n_z of both signs and both zeros, coordinate axes, tilted ones */
-    const float axes[][3] = {{0, 0, 1},  {0, 0, -1},  {1, 0, 0},   {-1, 0, 0},    {0, 1, 0},
-                             {0, -1, 0}, {1, 0, 0.0f}, {1, 0, -0.0f}, {0.3f, -0.4f, 0.0f},
-                             {0.3f, -0.4f, -0.0f}, {1, 2, 3}, {-1, 2, -3}, {1e-7f, 0, -1}};
+    const float axes[][3] = {
+        {0, 0, 1},  {0, 0, -1},   {1, 0, 0},     {-1, 0, 0},          {0, 1, 0},
+        {0, -1, 0}, {1, 0, 0.0f}, {1, 0, -0.0f}, {0.3f, -0.4f, 0.0f}, {0.3f, -0.4f, -0.0f},
+        {1, 2, 3},  {-1, 2, -3},  {1e-7f, 0, -1}};
     for (size_t a = 0; a < sizeof axes / sizeof axes[0]; a++) {
-        cylray_cylinder c = {{1, 2, 3}, {axes[a][0], axes[a][1], axes[a][2]}, 2, 5,
-                             CYLRAY_CAPPED};
+        cylray_cylinder c = {
+            {1, 2, 3}, {axes[a][0], axes[a][1], axes[a][2]}, 2, 5, CYLRAY_CAPPED};
         cylray_prepared P;
         cylray_prepare(&P, &c);
         tkq q;
@@ -260,7 +261,8 @@ static int run_frame(void)
         checks++;
         if (uv[0] != end || fabs(side_uv[0] - end) > 1e-6 ||
             fabs(du[0] - (p1[0] - p0[0])) > 1e-5 || fabs(du[1] - (p1[1] - p0[1])) > 1e-5)
-            fail(&e, q, end, "endpoint form: u 0 at p0, 1 at p1, dpdu = p1 - p0", side_uv[0], end);
+            fail(&e, q, end, "endpoint form: u 0 at p0, 1 at p1, dpdu = p1 - p0", side_uv[0],
+                 end);
     }
     printf("frame: %ld checks, %ld failures\n", checks, failures);
     return failures != 0;

@@ -31,8 +31,9 @@ static const unsigned tk_flags[4] = {0, CYLRAY_CAPPED_LO, CYLRAY_CAPPED_HI, CYLR
 
 #define TK_KINDS 11
 static const char *const tk_kind_names[TK_KINDS] = {
-    "general", "coordinate-axis", "one-zero", "near-axis-1e-7", "far-center", "tiny-radius",
-    "huge-radius", "endpoints", "generators", "extreme", "touching-zero"};
+    "general",    "coordinate-axis", "one-zero",     "near-axis-1e-7",
+    "far-center", "tiny-radius",     "huge-radius",  "endpoints",
+    "generators", "extreme",         "touching-zero"};
 
 /* Cylinder i of kind `kind` (finite; the generators' infinite ones become finite). */
 static inline void tk_cylinder(cylgen_rng *g, int kind, cylray_cylinder *c)
@@ -108,8 +109,8 @@ static inline void tk_cylinder(cylgen_rng *g, int kind, cylray_cylinder *c)
         if (tk_u(g) < 0.3)
             c->axis[j] = (float)(0x1p-126 * (1 + tk_u(g)));
         break;
-    case 10: /* a tilted cylinder whose face lies within rounding of 0 */
-        break;  /* the caller moves the center, it needs the exact extent */
+    case 10:   /* a tilted cylinder whose face lies within rounding of 0 */
+        break; /* the caller moves the center, it needs the exact extent */
     default:
         break;
     }
@@ -169,10 +170,12 @@ static inline double tk_steps(float f, cylq x)
 {
     double n = 0;
     if ((cylq)f <= x) {
-        for (float g = nextafterf(f, INFINITY); (cylq)g <= x && n < 100; g = nextafterf(g, INFINITY))
+        for (float g = nextafterf(f, INFINITY); (cylq)g <= x && n < 100;
+             g = nextafterf(g, INFINITY))
             n++;
     } else {
-        for (float g = nextafterf(f, -INFINITY); (cylq)g >= x && n < 100; g = nextafterf(g, -INFINITY))
+        for (float g = nextafterf(f, -INFINITY); (cylq)g >= x && n < 100;
+             g = nextafterf(g, -INFINITY))
             n++;
     }
     return n;
