@@ -176,8 +176,10 @@ static long isa_origins(const cylray_kernels *k, const cylray_prepared *P,
     k->spawn_stream(P, &pts, part, &dirs, &dirs, 16);
     long bad = 0;
     for (int i = 0; i < 16; i++) {
-        if (!(m >> i & 1u)) {
-            bad += wx[i] != w[i][0] || wy[i] != w[i][1] || wz[i] != w[i][2];
+        if (!(m >> i & 1u)) { /* untouched, bit for bit: an unused lane may hold a NaN */
+            bad += memcmp(&wx[i], &w[i][0], sizeof wx[i]) != 0 ||
+                   memcmp(&wy[i], &w[i][1], sizeof wy[i]) != 0 ||
+                   memcmp(&wz[i], &w[i][2], sizeof wz[i]) != 0;
             continue;
         }
         float sx[3];
