@@ -18,27 +18,6 @@
 
 unsigned long fz_spawn_hits, fz_spawn_traced;
 
-static int same3(const float a[3], const float b[3])
-{
-    return memcmp(a, b, 3 * sizeof *a) == 0;
-}
-
-/* One ray from x0 along w (tmax inf) by ISA k; returns 1 with t and part on a hit. */
-static int trace(const cylray_kernels *k, const cylray_prepared *P, const float x0[3],
-                 const float w[3], float *t, int32_t *part)
-{
-    cylray_ray4 r;
-    cylray_hit4 h;
-    memset(&r, 0, sizeof r);
-    r.ox[0] = x0[0], r.oy[0] = x0[1], r.oz[0] = x0[2];
-    r.dx[0] = w[0], r.dy[0] = w[1], r.dz[0] = w[2];
-    r.tmax[0] = INFINITY;
-    if (!k->intersect4(P, &r, &h, 1u, 0))
-        return 0;
-    *t = h.t[0], *part = h.part[0];
-    return 1;
-}
-
 int fz_spawn(const fz_case *c, const cylray_prepared *P, const gresult *res,
              const cylray_kernels *const *isas, int nisa, char *why, size_t whylen)
 {
@@ -105,8 +84,9 @@ int fz_spawn(const fz_case *c, const cylray_prepared *P, const gresult *res,
                 K->hit_points_stream(P, &rr, &hh, &sp, 1);
                 K->spawn_stream(P, &sp, &part, &dirs, &org, 1);
                 const float s3[3] = {sx, sy, sz}, o3[3] = {ox, oy, oz};
-                if (!same3(qp, p) || q.err[L] != err || !same3(qx, x0) || !same3(qs, xs) ||
-                    !same3(s3, p) || se != err || !same3(o3, x0)) {
+                if (!sref_same3(qp, p) || q.err[L] != err || !sref_same3(qx, x0) ||
+                    !sref_same3(qs, xs) || !sref_same3(s3, p) || se != err ||
+                    !sref_same3(o3, x0)) {
                     snprintf(why, whylen,
                              "ray %zu: %s's batched hit point or origin differs "
                              "from the scalar form's",
@@ -135,7 +115,7 @@ int fz_spawn(const fz_case *c, const cylray_prepared *P, const gresult *res,
             for (int k = 0; k < nisa; k++) {
                 float th;
                 int32_t ph;
-                if (trace(isas[k], P, x0, w, &th, &ph) &&
+                if (sref_trace1(isas[k], P, x0, w, &th, &ph) &&
                     sref_self_hit(cyl, x0, w, part, ph, th)) {
                     snprintf(why, whylen,
                              "ray %zu: %s meets the surface it leaves (part %d "

@@ -40,27 +40,6 @@ static void fail(const cylray_cylinder *cyl, const float p[3], const float w[3],
                 w[1], w[2], what);
 }
 
-static int same3(const float a[3], const float b[3])
-{
-    return memcmp(a, b, 3 * sizeof *a) == 0;
-}
-
-/* One ray from x along w (tmin 0, tmax inf) by ISA k; 1 with t and part on a hit. */
-static int trace(const cylray_kernels *k, const cylray_prepared *P, const float x[3],
-                 const float w[3], float *t, int32_t *part)
-{
-    cylray_ray4 r;
-    cylray_hit4 h;
-    memset(&r, 0, sizeof r);
-    r.ox[0] = x[0], r.oy[0] = x[1], r.oz[0] = x[2];
-    r.dx[0] = w[0], r.dy[0] = w[1], r.dz[0] = w[2];
-    r.tmax[0] = INFINITY;
-    if (!k->intersect4(P, &r, &h, 1u, 0))
-        return 0;
-    *t = h.t[0], *part = h.part[0];
-    return 1;
-}
-
 typedef struct stats {
     long spawned, traced, selfhits;
 } stats;
@@ -97,7 +76,7 @@ static void check(const cylray_cylinder *cyl, const cylray_prepared *P, const fl
         K->spawn_stream(P, &pts, &part, &dirs, &org, 1);
         const float a[3] = {r.ox[L], r.oy[L], r.oz[L]}, b[3] = {rs.ox[L], rs.oy[L], rs.oz[L]};
         const float c[3] = {ox, oy, oz};
-        if (!same3(a, x0) || !same3(b, xs) || !same3(c, x0)) {
+        if (!sref_same3(a, x0) || !sref_same3(b, xs) || !sref_same3(c, x0)) {
             char why[96];
             snprintf(why, sizeof why, "%s's batched origins differ from the scalar forms'",
                      K->name);
@@ -117,7 +96,8 @@ static void check(const cylray_cylinder *cyl, const cylray_prepared *P, const fl
     for (int k = 0; k < nisa; k++) {
         float th;
         int32_t ph;
-        if (trace(isas[k], P, x0, w, &th, &ph) && sref_self_hit(cyl, x0, w, part, ph, th)) {
+        if (sref_trace1(isas[k], P, x0, w, &th, &ph) &&
+            sref_self_hit(cyl, x0, w, part, ph, th)) {
             st->selfhits++;
             char why[160];
             snprintf(why, sizeof why, "%s meets the surface it leaves at t %a from %a %a %a",
@@ -131,7 +111,7 @@ static void check(const cylray_cylinder *cyl, const cylray_prepared *P, const fl
 static int hit_of(const cylray_prepared *P, const float o[3], const float d[3], float *t,
                   int32_t *part, float p[3], float *err)
 {
-    if (!trace(cylray_kernels_for(CYLRAY_ISA_SCALAR), P, o, d, t, part))
+    if (!sref_trace1(cylray_kernels_for(CYLRAY_ISA_SCALAR), P, o, d, t, part))
         return 0;
     cylray_hit_point(P, o, d, *t, *part, p, err);
     return isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]) && isfinite(*err);

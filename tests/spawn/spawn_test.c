@@ -511,11 +511,6 @@ static int run_nested(void)
 
 /* ---- batched forms -------------------------------------------------------------- */
 
-static int same3(const float a[3], const float b[3])
-{
-    return memcmp(a, b, 3 * sizeof *a) == 0;
-}
-
 /* The batched forms of ISA K (packets 4/8/16, a stream cut at every length, leaves one
  * at a time and in bulk) on the lanes in m, against the scalar pair (p, err, x). */
 static long batched_isa(const cylray_kernels *K, const cylray_prepared *P, const cylgen_case *c,
@@ -600,15 +595,15 @@ static long batched_isa(const cylray_kernels *K, const cylray_prepared *P, const
             const float a[3] = {o16.ox[i], o16.oy[i], o16.oz[i]}, b[3] = {ox[i], oy[i], oz[i]};
             const float l[3] = {cwx[j], cwy[j], cwz[j]};
             j++;
-            int bad =
-                !same3(a, xs[i]) || o16.tmin[i] != 0.0f || !same3(b, xs[i]) || !same3(l, xs[i]);
+            int bad = !sref_same3(a, xs[i]) || o16.tmin[i] != 0.0f || !sref_same3(b, xs[i]) ||
+                      !sref_same3(l, xs[i]);
             if (i < 8) {
                 const float a8[3] = {o8.ox[i], o8.oy[i], o8.oz[i]};
-                bad |= !same3(a8, xs[i]);
+                bad |= !sref_same3(a8, xs[i]);
             }
             if (i < 4) {
                 const float a4[3] = {o4.ox[i], o4.oy[i], o4.oz[i]};
-                bad |= !same3(a4, xs[i]);
+                bad |= !sref_same3(a4, xs[i]);
             }
             if (bad) {
                 diff++;
@@ -679,10 +674,11 @@ static long batched_isa(const cylray_kernels *K, const cylray_prepared *P, const
         for (int i = 0; i < 16; i++) {
             const int hitlane = i >= b && (m >> i & 1u);
             const float s1[3] = {sx[i], sy[i], sz[i]}, s2[3] = {ox[i], oy[i], oz[i]};
-            const int bad = hitlane ? !same3(s1, p[i]) || se[i] != err[i] || !same3(s2, x[i])
-                                    : sx[i] != -5.0f || sy[i] != -5.0f || sz[i] != -5.0f ||
-                                          se[i] != -5.0f || ox[i] != -5.0f || oy[i] != -5.0f ||
-                                          oz[i] != -5.0f;
+            const int bad =
+                hitlane
+                    ? !sref_same3(s1, p[i]) || se[i] != err[i] || !sref_same3(s2, x[i])
+                    : sx[i] != -5.0f || sy[i] != -5.0f || sz[i] != -5.0f || se[i] != -5.0f ||
+                          ox[i] != -5.0f || oy[i] != -5.0f || oz[i] != -5.0f;
             if (bad) {
                 diff++;
                 fail("batched", &c[i],
@@ -719,20 +715,20 @@ static long batched_isa(const cylray_kernels *K, const cylray_prepared *P, const
         (*lanes)++;
         const float a[3] = {pts.x[i], pts.y[i], pts.z[i]};
         const float bb[3] = {out.ox[i], out.oy[i], out.oz[i]};
-        int bad =
-            !same3(a, p[i]) || pts.err[i] != err[i] || !same3(bb, x[i]) || out.tmin[i] != 0.0f;
+        int bad = !sref_same3(a, p[i]) || pts.err[i] != err[i] || !sref_same3(bb, x[i]) ||
+                  out.tmin[i] != 0.0f;
         if (i < 8) {
             const float a8[3] = {p8.x[i], p8.y[i], p8.z[i]};
             const float b8[3] = {r8.ox[i], r8.oy[i], r8.oz[i]};
-            bad |= !same3(a8, p[i]) || p8.err[i] != err[i] || !same3(b8, x[i]);
+            bad |= !sref_same3(a8, p[i]) || p8.err[i] != err[i] || !sref_same3(b8, x[i]);
         }
         if (i < 4) {
             const float a4[3] = {p4.x[i], p4.y[i], p4.z[i]};
             const float b4[3] = {r4.ox[i], r4.oy[i], r4.oz[i]};
-            bad |= !same3(a4, p[i]) || p4.err[i] != err[i] || !same3(b4, x[i]);
+            bad |= !sref_same3(a4, p[i]) || p4.err[i] != err[i] || !sref_same3(b4, x[i]);
         }
         const float q[3] = {lx[j], ly[j], lz[j]}, o[3] = {lwx[j], lwy[j], lwz[j]};
-        bad |= !same3(q, p[i]) || le[j] != err[i] || !same3(o, x[i]);
+        bad |= !sref_same3(q, p[i]) || le[j] != err[i] || !sref_same3(o, x[i]);
         j++;
         if (bad) {
             diff++;
@@ -867,34 +863,34 @@ static int run_batched(void)
             const float a[3] = {pts.x[i], pts.y[i], pts.z[i]};
             const float b[3] = {out.ox[i], out.oy[i], out.oz[i]};
             const float s1[3] = {sx[i], sy[i], sz[i]}, s2[3] = {ox[i], oy[i], oz[i]};
-            int bad = !same3(a, p[i]) || pts.err[i] != err[i] || !same3(b, x[i]) ||
-                      out.tmin[i] != 0.0f || !same3(s1, p[i]) || se[i] != err[i] ||
-                      !same3(s2, x[i]);
+            int bad = !sref_same3(a, p[i]) || pts.err[i] != err[i] || !sref_same3(b, x[i]) ||
+                      out.tmin[i] != 0.0f || !sref_same3(s1, p[i]) || se[i] != err[i] ||
+                      !sref_same3(s2, x[i]);
             if (i < 8) {
                 const float a8[3] = {p8.x[i], p8.y[i], p8.z[i]};
                 const float b8[3] = {r8.ox[i], r8.oy[i], r8.oz[i]};
-                bad |= !same3(a8, p[i]) || p8.err[i] != err[i] || !same3(b8, x[i]);
+                bad |= !sref_same3(a8, p[i]) || p8.err[i] != err[i] || !sref_same3(b8, x[i]);
             }
             if (i < 4) {
                 const float a4[3] = {p4.x[i], p4.y[i], p4.z[i]};
                 const float b4[3] = {r4.ox[i], r4.oy[i], r4.oz[i]};
-                bad |= !same3(a4, p[i]) || p4.err[i] != err[i] || !same3(b4, x[i]);
+                bad |= !sref_same3(a4, p[i]) || p4.err[i] != err[i] || !sref_same3(b4, x[i]);
             }
-            bad |= !same3(lp, p[i]) || le != err[i] || !same3(lx, x[i]);
+            bad |= !sref_same3(lp, p[i]) || le != err[i] || !sref_same3(lx, x[i]);
             /* the side forms */
             float ls[3];
             cylray_leaf_spawn_origin_side16(&leaf, &h1, lp, le, outward >> i & 1u, w[i], ls);
             const float s16[3] = {out_s.ox[i], out_s.oy[i], out_s.oz[i]};
             const float ss[3] = {qx[i], qy[i], qz[i]};
-            bad |= !same3(ls, xs[i]) || !same3(s16, xs[i]) || !same3(ss, xs[i]) ||
-                   out_s.tmin[i] != 0.0f;
+            bad |= !sref_same3(ls, xs[i]) || !sref_same3(s16, xs[i]) ||
+                   !sref_same3(ss, xs[i]) || out_s.tmin[i] != 0.0f;
             if (i < 8) {
                 const float s8[3] = {r8s.ox[i], r8s.oy[i], r8s.oz[i]};
-                bad |= !same3(s8, xs[i]);
+                bad |= !sref_same3(s8, xs[i]);
             }
             if (i < 4) {
                 const float s4[3] = {r4s.ox[i], r4s.oy[i], r4s.oz[i]};
-                bad |= !same3(s4, xs[i]);
+                bad |= !sref_same3(s4, xs[i]);
             }
             /* the side w lies on, by a clear margin: the side form is the plain one
              * (where floats resolve the cylinder at p: a point far off a tiny radius
@@ -906,7 +902,7 @@ static int run_batched(void)
                 err[i] < 0x1p-10 * fmin(c[i].cyl.radius, c[i].cyl.half_height)) {
                 float xw[3];
                 cylray_spawn_origin_side(&P, p[i], err[i], hit.part[i], wn > 0, w[i], xw);
-                bad |= !same3(xw, x[i]);
+                bad |= !sref_same3(xw, x[i]);
             }
             if (bad) {
                 diff++;
@@ -925,7 +921,7 @@ static int run_batched(void)
             cylray_hit_points16(&P, &ray, &hit, m, &pts);
             for (int i = 0; i < 16; i++) {
                 const float a[3] = {pts.x[i], pts.y[i], pts.z[i]};
-                if ((m >> i & 1u) && (!same3(a, p[i]) || pts.err[i] != err[i])) {
+                if ((m >> i & 1u) && (!sref_same3(a, p[i]) || pts.err[i] != err[i])) {
                     diff++;
                     fail("batched", &c[i], "cylray_hit_points16 differs from the scalar pair");
                 }
@@ -1000,15 +996,15 @@ static int run_batched(void)
             cylray_hit1 h1 = {hit.t[i], {n[0], n[1], n[2]}, hit.part[i], 0, 0};
             cylray_leaf_hit_point_normal8(&leaf, &r1, &h1, lp, &le);
             const float a[3] = {p16.x[i], p16.y[i], p16.z[i]}, b[3] = {sx[i], sy[i], sz[i]};
-            int bad = !same3(a, p) || p16.err[i] != err || !same3(b, p) || se[i] != err ||
-                      !same3(lp, p) || le != err;
+            int bad = !sref_same3(a, p) || p16.err[i] != err || !sref_same3(b, p) ||
+                      se[i] != err || !sref_same3(lp, p) || le != err;
             if (i < 8) {
                 const float a8[3] = {p8.x[i], p8.y[i], p8.z[i]};
-                bad |= !same3(a8, p) || p8.err[i] != err;
+                bad |= !sref_same3(a8, p) || p8.err[i] != err;
             }
             if (i < 4) {
                 const float a4[3] = {p4.x[i], p4.y[i], p4.z[i]};
-                bad |= !same3(a4, p) || p4.err[i] != err;
+                bad |= !sref_same3(a4, p) || p4.err[i] != err;
             }
             /* the bound holds for this point too */
             bad |= !(sref_dist_part(&c[i].cyl, p, hit.part[i]) <= err);
@@ -1026,8 +1022,8 @@ static int run_batched(void)
                 cylray_points qb = {&bx, &by, &bz, &be};
                 K->leaf_hit_points_normal8(lv, &r1, &h1, &qb, 1);
                 const float ab[3] = {bx, by, bz};
-                bad |= !same3(a16, p) || q.err[i] != err || !same3(as, p) || qe[i] != err ||
-                       !same3(ab, p) || be != err;
+                bad |= !sref_same3(a16, p) || q.err[i] != err || !sref_same3(as, p) ||
+                       qe[i] != err || !sref_same3(ab, p) || be != err;
             }
             if (bad) {
                 diff++;

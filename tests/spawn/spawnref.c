@@ -299,3 +299,23 @@ int sref_inside_solid(const cylray_cylinder *cyl, const float x[3])
         return 1;
     return sref_sigma(cyl, x, CYLRAY_CAP_LO) < 0 && sref_sigma(cyl, x, CYLRAY_CAP_HI) < 0;
 }
+
+int sref_same3(const float a[3], const float b[3])
+{
+    return memcmp(a, b, 3 * sizeof *a) == 0;
+}
+
+int sref_trace1(const cylray_kernels *k, const cylray_prepared *P, const float x[3],
+                const float w[3], float *t, int32_t *part)
+{
+    cylray_ray4 r;
+    cylray_hit4 h;
+    memset(&r, 0, sizeof r);
+    r.ox[0] = x[0], r.oy[0] = x[1], r.oz[0] = x[2];
+    r.dx[0] = w[0], r.dy[0] = w[1], r.dz[0] = w[2];
+    r.tmax[0] = INFINITY;
+    if (!k->intersect4(P, &r, &h, 1u, 0))
+        return 0;
+    *t = h.t[0], *part = h.part[0];
+    return 1;
+}

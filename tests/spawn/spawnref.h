@@ -56,4 +56,12 @@ void sref_transmitted(cylgen_rng *rng, const double n[3], float w[3]);
 /* x lies inside the solid bounded by the side and both end planes (exact). */
 int sref_inside_solid(const cylray_cylinder *cyl, const float x[3]);
 
+/* a and b hold the same three floats, bit for bit. */
+int sref_same3(const float a[3], const float b[3]);
+
+/* One ray from x along w (tmin 0, tmax inf) by ISA k, no normals: 1 with its t and part
+ * on a hit, 0 on a miss. */
+int sref_trace1(const cylray_kernels *k, const cylray_prepared *P, const float x[3],
+                const float w[3], float *t, int32_t *part);
+
 #endif
