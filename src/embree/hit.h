@@ -31,7 +31,9 @@ static inline float axial_u(const frame *f, const float o[3], const float d[3], 
  * with the octant folded in serves. */
 static inline float turns(float y, float x)
 {
-    float ax = fabsf(x), ay = fabsf(y), mx = fmaxf(ax, ay), mn = fminf(ax, ay);
+    /* Comparisons, not fmaxf / fminf: without -ffast-math those stay calls into libm
+     * (their NaN rules are not one instruction's), two calls a hit. */
+    float ax = fabsf(x), ay = fabsf(y), mx = ax > ay ? ax : ay, mn = ax > ay ? ay : ax;
     if (mx == 0)
         return 0.0f;
     float a = mn / mx, s = a * a;
