@@ -13,6 +13,11 @@
 #define CEB_MAGIC 0x63656232u /* "ceb2" */
 #define CEB_KFLAGS (CYLRAY_CULL_BACK | CYLRAY_FAST | CYLRAY_REFINE)
 #define CEB_OPTIONS (CYLRAY_EMBREE_LEAVES | CYLRAY_EMBREE_SPLIT | CYLRAY_EMBREE_FILTER)
+#if defined(__GNUC__)
+#define CEB_NOINLINE __attribute__((noinline))
+#else
+#define CEB_NOINLINE
+#endif
 
 /* Per cylinder, what a hit record needs beyond the prepared cylinder: the endpoint
  * form for u, the unit axis and the frame of Duff et al. for v. */

@@ -204,38 +204,59 @@ static void occ1(const struct RTCOccludedFunctionNArguments *a, const ceb *g, ui
         resolve(g, a, 1, filt, i, c, t, n, part);
 }
 
+/* Several valid lanes: the narrowest packet that holds them. Out of line, so that a
+ * call for one ray (rtcIntersect1's, N = 1, and most of the hybrid traversal's) does
+ * not set up the packets' frame or build a lane list. */
+static CEB_NOINLINE void isect_n(const struct RTCIntersectFunctionNArguments *a, const ceb *g,
+                                 uint32_t c, int filt)
+{
+    unsigned lane[16], n = active_lanes(a->valid, a->N, lane);
+    if (n == 1)
+        isect1(a, g, c, lane[0], filt);
+    else if (n > 1 && n <= 4)
+        isect4(a, g, c, lane, n, filt);
+    else if (n > 4 && n <= 8)
+        isect8(a, g, c, lane, n, filt);
+    else if (n > 8)
+        isect16(a, g, c, lane, n, filt);
+}
+
+static CEB_NOINLINE void occ_n(const struct RTCOccludedFunctionNArguments *a, const ceb *g,
+                               uint32_t c, int filt)
+{
+    unsigned lane[16], n = active_lanes(a->valid, a->N, lane);
+    if (n == 1)
+        occ1(a, g, c, lane[0], filt);
+    else if (n > 1 && n <= 4)
+        occ4(a, g, c, lane, n, filt);
+    else if (n > 4 && n <= 8)
+        occ8(a, g, c, lane, n, filt);
+    else if (n > 8)
+        occ16(a, g, c, lane, n, filt);
+}
+
 void ceb_single_intersect(const struct RTCIntersectFunctionNArguments *a)
 {
     const ceb *g = a->geometryUserPtr;
-    unsigned lane[16], n = active_lanes(a->valid, a->N, lane);
     int filt = (g->options & CYLRAY_EMBREE_FILTER) || CEB_CONTEXT_FILTER(a);
     uint32_t c = cyl_of(g, a->primID);
-    if (n == 0)
+    if (a->N == 1) {
+        if (a->valid[0])
+            isect1(a, g, c, 0, filt);
         return;
-    if (n == 1)
-        isect1(a, g, c, lane[0], filt);
-    else if (n <= 4)
-        isect4(a, g, c, lane, n, filt);
-    else if (n <= 8)
-        isect8(a, g, c, lane, n, filt);
-    else
-        isect16(a, g, c, lane, n, filt);
+    }
+    isect_n(a, g, c, filt);
 }
 
 void ceb_single_occluded(const struct RTCOccludedFunctionNArguments *a)
 {
     const ceb *g = a->geometryUserPtr;
-    unsigned lane[16], n = active_lanes(a->valid, a->N, lane);
     int filt = (g->options & CYLRAY_EMBREE_FILTER) || CEB_CONTEXT_FILTER(a);
     uint32_t c = cyl_of(g, a->primID);
-    if (n == 0)
+    if (a->N == 1) {
+        if (a->valid[0])
+            occ1(a, g, c, 0, filt);
         return;
-    if (n == 1)
-        occ1(a, g, c, lane[0], filt);
-    else if (n <= 4)
-        occ4(a, g, c, lane, n, filt);
-    else if (n <= 8)
-        occ8(a, g, c, lane, n, filt);
-    else
-        occ16(a, g, c, lane, n, filt);
+    }
+    occ_n(a, g, c, filt);
 }
