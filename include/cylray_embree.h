@@ -53,8 +53,8 @@ extern "C" {
 #endif
 
 /* cylray_embree_desc.options, OR'ed. */
-/* Leaves: the cylinders are grouped by Embree's SAH builder into leaves of 4, 8 or 16
- * (the widest the chosen kernels serve well), one user primitive a leaf, each answered
+/* Leaves: the cylinders are grouped by Embree's SAH builder into leaves of 8 (4 with
+ * the SSE4.1 and scalar kernels), one user primitive a leaf, each answered
  * by one leaf query per ray. Without it, one cylinder is one primitive, answered for
  * every valid ray of Embree's packet at once by cylray's packet kernels. */
 #define CYLRAY_EMBREE_LEAVES 0x1u

@@ -41,7 +41,7 @@ typedef struct ceb {
     uint32_t *prim_piece;             /* split: primitive -> its piece of that cylinder */
     struct RTCBounds *box;            /* one per primitive */
     void *leaves;                     /* leaves: cylray_leafM[nprim] */
-    int m;                            /* 4, 8 or 16 */
+    int m;                            /* leaf width: 4 or 8 */
     RTCGeometry geom;
 } ceb;
 

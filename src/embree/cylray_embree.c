@@ -80,7 +80,11 @@ RTCGeometry cylray_embree_new_geometry(RTCDevice device, const cylray_embree_des
     int leaves = (desc->options & CYLRAY_EMBREE_LEAVES) != 0;
     if (leaves) {
         cylray_isa isa = g->k->isa;
-        g->m = isa == CYLRAY_ISA_AVX512 ? 16 : isa == CYLRAY_ISA_AVX2 ? 8 : 4;
+        /* 8 with AVX-512 too: behind Embree's BVH a leaf of 16 covers about twice
+         * the space of a leaf of 8, is met by more rays, and its wider query does not
+         * gain that back (docs/performance.md: leaves of 8 took 5-12 % less time on
+         * the molecule, the pipes and the lattice) */
+        g->m = isa == CYLRAY_ISA_AVX512 || isa == CYLRAY_ISA_AVX2 ? 8 : 4;
         if (ceb_group_leaves(g, device, cyl))
             goto fail;
     } else {

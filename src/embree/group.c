@@ -71,7 +71,6 @@ static void box_union(struct RTCBounds *u, const struct RTCBounds *b)
     }
 CEB_LEAF_BUILD(4)
 CEB_LEAF_BUILD(8)
-CEB_LEAF_BUILD(16)
 
 int ceb_group_leaves(ceb *g, RTCDevice dev, const cylray_cylinder *cyl)
 {
@@ -110,9 +109,7 @@ int ceb_group_leaves(ceb *g, RTCDevice dev, const cylray_cylinder *cyl)
             rtcReleaseBVH(bvh);
         g->nprim = atomic_load(&c.leaves);
         if (root && atomic_load(&c.used) == n && (g->box = malloc(g->nprim * sizeof *g->box)))
-            bad = M == 4   ? build_leaves4(g, cyl, &c)
-                  : M == 8 ? build_leaves8(g, cyl, &c)
-                           : build_leaves16(g, cyl, &c);
+            bad = M == 4 ? build_leaves4(g, cyl, &c) : build_leaves8(g, cyl, &c);
         for (size_t l = 0; !bad && l < g->nprim; l++) {
             const uint32_t *ids = c.order + c.first[l];
             /* the builder reorders prims in place: the boxes are made again */

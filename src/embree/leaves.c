@@ -76,14 +76,13 @@ static void load_ray1(cylray_ray1 *r, const void *base, unsigned N, unsigned i)
     }
 CEB_LEAF(4)
 CEB_LEAF(8)
-CEB_LEAF(16)
 
 RTCIntersectFunctionN ceb_leaf_intersect(int m)
 {
-    return m == 4 ? leaf_intersect4 : m == 8 ? leaf_intersect8 : leaf_intersect16;
+    return m == 4 ? leaf_intersect4 : leaf_intersect8;
 }
 
 RTCOccludedFunctionN ceb_leaf_occluded(int m)
 {
-    return m == 4 ? leaf_occluded4 : m == 8 ? leaf_occluded8 : leaf_occluded16;
+    return m == 4 ? leaf_occluded4 : leaf_occluded8;
 }
