@@ -56,6 +56,16 @@ _Static_assert(sizeof(struct RTCRay) == RAY_WORDS * 4, "RTCRay: 12 words");
 _Static_assert(sizeof(struct RTCHit) >= H_NFIELDS * 4,
                "RTCHit: Ng, u, v, primID, geomID, instID");
 
+/* Embree writes a single ray's tfar, and its whole hit record when it finds a hit;
+ * the record's input is geomID and instID invalid. So only the ray goes in, and only
+ * what Embree wrote comes back. */
+static void one_hit_init(struct RTCHit *h)
+{
+    h->geomID = RTC_INVALID_GEOMETRY_ID;
+    for (int l = 0; l < RTC_MAX_INSTANCE_LEVEL_COUNT; l++)
+        h->instID[l] = RTC_INVALID_GEOMETRY_ID;
+}
+
 #define CEB_TRACE(N)                                                                           \
     void cylray_embree_intersect##N(const int *valid, RTCScene scene,                          \
                                     struct RTCIntersectContext *context,                       \
@@ -71,10 +81,11 @@ _Static_assert(sizeof(struct RTCHit) >= H_NFIELDS * 4,
                 continue;                                                                      \
             struct RTCRayHit one;                                                              \
             lane_get(&rayhit->ray, N, j, &one.ray, RAY_WORDS);                                 \
-            lane_get(&rayhit->hit, N, j, &one.hit, H_NFIELDS);                                 \
+            one_hit_init(&one.hit);                                                            \
             rtcIntersect1(scene, context, &one);                                               \
-            lane_put(&rayhit->ray, N, j, &one.ray, RAY_WORDS);                                 \
-            lane_put(&rayhit->hit, N, j, &one.hit, H_NFIELDS);                                 \
+            rayhit->ray.tfar[j] = one.ray.tfar;                                                \
+            if (one.hit.geomID != RTC_INVALID_GEOMETRY_ID)                                     \
+                lane_put(&rayhit->hit, N, j, &one.hit, H_NFIELDS);                             \
         }                                                                                      \
     }                                                                                          \
     void cylray_embree_occluded##N(const int *valid, RTCScene scene,                           \
