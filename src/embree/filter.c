@@ -12,15 +12,7 @@ static float offer(unsigned N, unsigned i, const hitrec *h, unsigned geomID,
     for (unsigned j = 0; j < N; j++)
         valid[j] = 0;
     valid[i] = -1;
-    RF(hb, N, H_NGX, i) = h->n[0];
-    RF(hb, N, H_NGY, i) = h->n[1];
-    RF(hb, N, H_NGZ, i) = h->n[2];
-    RF(hb, N, H_U, i) = h->u;
-    RF(hb, N, H_V, i) = h->v;
-    RU(hb, N, H_PRIM, i) = h->prim;
-    RU(hb, N, H_GEOM, i) = geomID;
-    for (unsigned l = 0; l < RTC_MAX_INSTANCE_LEVEL_COUNT; l++)
-        RU(hb, N, H_INST + l, i) = ceb_inst_id(ctx, l);
+    hit_fields(hb, N, i, h, geomID, ctx);
     const float old = RF(ray, N, R_TFAR, i);
     RF(ray, N, R_TFAR, i) = h->t;
     return old;

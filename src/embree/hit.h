@@ -84,23 +84,27 @@ static inline void hit_uv(const frame *f, const float o[3], const float d[3], fl
     *v = azimuth_v(f, r);
 }
 
-/* Hit h written into lane i's ray and hit record. */
-static inline void put_hit(const struct RTCIntersectFunctionNArguments *a, unsigned i,
-                           const hitrec *h)
+/* Hit h written into lane i of the hit record hb (of N lanes). */
+static inline void hit_fields(float *hb, unsigned N, unsigned i, const hitrec *h,
+                              unsigned geomID, const ceb_context *ctx)
 {
-    void *rh = a->rayhit;
-    unsigned N = a->N;
-    float *hb = (float *)rh + R_NFIELDS * N;
-    RF(rh, N, R_TFAR, i) = h->t;
     RF(hb, N, H_NGX, i) = h->n[0];
     RF(hb, N, H_NGY, i) = h->n[1];
     RF(hb, N, H_NGZ, i) = h->n[2];
     RF(hb, N, H_U, i) = h->u;
     RF(hb, N, H_V, i) = h->v;
     RU(hb, N, H_PRIM, i) = h->prim;
-    RU(hb, N, H_GEOM, i) = a->geomID;
+    RU(hb, N, H_GEOM, i) = geomID;
     for (unsigned l = 0; l < RTC_MAX_INSTANCE_LEVEL_COUNT; l++)
-        RU(hb, N, H_INST + l, i) = ceb_inst_id(a->context, l);
+        RU(hb, N, H_INST + l, i) = ceb_inst_id(ctx, l);
+}
+
+/* Hit h written into lane i's ray and hit record. */
+static inline void put_hit(const struct RTCIntersectFunctionNArguments *a, unsigned i,
+                           const hitrec *h)
+{
+    RF(a->rayhit, a->N, R_TFAR, i) = h->t;
+    hit_fields((float *)a->rayhit + R_NFIELDS * a->N, a->N, i, h, a->geomID, a->context);
 }
 
 /* Lane i's ray origin and direction. */

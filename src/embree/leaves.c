@@ -15,64 +15,67 @@ static void load_ray1(cylray_ray1 *r, const void *base, unsigned N, unsigned i)
     r->tmax = RF(base, N, R_TFAR, i);
 }
 
+/* After a rejected hit at t: the rest of the ray, up to its current tfar. */
+static void beyond(cylray_ray1 *r, float t, const void *base, unsigned N, unsigned i)
+{
+    r->tmin = nextafterf(t, INFINITY);
+    r->tmax = RF(base, N, R_TFAR, i);
+}
+
 /* With filters, a rejected hit lets the leaf be asked again beyond it: the next hit
  * of any of its cylinders (of the same cylinder too), so that every hit is offered in
- * order of t. */
+ * order of t. A leaf of M holds at most 2 M hits along a ray. */
 #define CEB_LEAF(M)                                                                            \
-    static void leaf_intersect##M(const struct RTCIntersectFunctionNArguments *a)              \
+    static int next##M(const ceb *g, const cylray_leaf##M *leaf, cylray_ray1 *r, hitrec *hr)   \
     {                                                                                          \
-        const ceb *g = a->geometryUserPtr;                                                     \
-        const cylray_leaf##M *leaf = (const cylray_leaf##M *)g->leaves + a->primID;            \
-        int filt = (g->options & CYLRAY_EMBREE_FILTER) || CEB_CONTEXT_FILTER(a);               \
-        for (unsigned i = 0; i < a->N; i++) {                                                  \
-            if (!a->valid[i])                                                                  \
+        cylray_hit1 h;                                                                         \
+        if (!g->k->leaf_intersect##M(leaf, r, &h, g->iflags))                                  \
+            return 0;                                                                          \
+        *hr = (hitrec){h.t, {h.n[0], h.n[1], h.n[2]}, 0, 0, h.id};                             \
+        hit_uv(&g->fr[h.id], r->o, r->d, h.t, h.part, h.n, &hr->u, &hr->v);                    \
+        return 1;                                                                              \
+    }                                                                                          \
+    /* occ: a_ is an occlusion query's arguments, else an intersection's */                    \
+    static void leaf_query##M(const void *a_, int occ)                                         \
+    {                                                                                          \
+        const struct RTCIntersectFunctionNArguments *ai = a_;                                  \
+        const struct RTCOccludedFunctionNArguments *ao = a_;                                   \
+        const ceb *g = occ ? ao->geometryUserPtr : ai->geometryUserPtr;                        \
+        const unsigned N = occ ? ao->N : ai->N, prim = occ ? ao->primID : ai->primID;          \
+        const int *valid = occ ? ao->valid : ai->valid;                                        \
+        void *base = occ ? (void *)ao->ray : (void *)ai->rayhit;                               \
+        const cylray_leaf##M *leaf = (const cylray_leaf##M *)g->leaves + prim;                 \
+        int filt = (g->options & CYLRAY_EMBREE_FILTER) ||                                      \
+                   (occ ? CEB_CONTEXT_FILTER(ao) : CEB_CONTEXT_FILTER(ai));                    \
+        for (unsigned i = 0; i < N; i++) {                                                     \
+            if (!valid[i])                                                                     \
                 continue;                                                                      \
             cylray_ray1 r;                                                                     \
-            cylray_hit1 h;                                                                     \
-            load_ray1(&r, a->rayhit, a->N, i);                                                 \
-            for (int tries = 0; tries < 2 * (M) + 2; tries++) {                                \
-                if (!g->k->leaf_intersect##M(leaf, &r, &h, g->iflags))                         \
-                    break;                                                                     \
-                hitrec hr = {h.t, {h.n[0], h.n[1], h.n[2]}, 0, 0, h.id};                       \
-                hit_uv(&g->fr[h.id], r.o, r.d, h.t, h.part, h.n, &hr.u, &hr.v);                \
-                if (!filt) {                                                                   \
-                    put_hit(a, i, &hr);                                                        \
+            hitrec hr;                                                                         \
+            load_ray1(&r, base, N, i);                                                         \
+            if (occ && !filt) {                                                                \
+                if (g->k->leaf_occluded##M(leaf, &r, g->oflags))                               \
+                    RF(base, N, R_TFAR, i) = -INFINITY;                                        \
+                continue;                                                                      \
+            }                                                                                  \
+            for (int tries = 0; tries < 2 * (M) + 2 && next##M(g, leaf, &r, &hr); tries++) {   \
+                if (!occ && !filt) {                                                           \
+                    put_hit(ai, i, &hr);                                                       \
                     break;                                                                     \
                 }                                                                              \
-                if (ceb_filter_hit(a, i, &hr))                                                 \
+                if (occ ? ceb_filter_occ(ao, i, &hr) : ceb_filter_hit(ai, i, &hr))             \
                     break;                                                                     \
-                r.tmin = nextafterf(h.t, INFINITY);                                            \
-                r.tmax = RF(a->rayhit, a->N, R_TFAR, i);                                       \
+                beyond(&r, hr.t, base, N, i);                                                  \
             }                                                                                  \
         }                                                                                      \
     }                                                                                          \
+    static void leaf_intersect##M(const struct RTCIntersectFunctionNArguments *a)              \
+    {                                                                                          \
+        leaf_query##M(a, 0);                                                                   \
+    }                                                                                          \
     static void leaf_occluded##M(const struct RTCOccludedFunctionNArguments *a)                \
     {                                                                                          \
-        const ceb *g = a->geometryUserPtr;                                                     \
-        const cylray_leaf##M *leaf = (const cylray_leaf##M *)g->leaves + a->primID;            \
-        int filt = (g->options & CYLRAY_EMBREE_FILTER) || CEB_CONTEXT_FILTER(a);               \
-        for (unsigned i = 0; i < a->N; i++) {                                                  \
-            if (!a->valid[i])                                                                  \
-                continue;                                                                      \
-            cylray_ray1 r;                                                                     \
-            load_ray1(&r, a->ray, a->N, i);                                                    \
-            if (!filt) {                                                                       \
-                if (g->k->leaf_occluded##M(leaf, &r, g->oflags))                               \
-                    RF(a->ray, a->N, R_TFAR, i) = -INFINITY;                                   \
-                continue;                                                                      \
-            }                                                                                  \
-            cylray_hit1 h;                                                                     \
-            for (int tries = 0; tries < 2 * (M) + 2; tries++) {                                \
-                if (!g->k->leaf_intersect##M(leaf, &r, &h, g->iflags))                         \
-                    break;                                                                     \
-                hitrec hr = {h.t, {h.n[0], h.n[1], h.n[2]}, 0, 0, h.id};                       \
-                hit_uv(&g->fr[h.id], r.o, r.d, h.t, h.part, h.n, &hr.u, &hr.v);                \
-                if (ceb_filter_occ(a, i, &hr))                                                 \
-                    break;                                                                     \
-                r.tmin = nextafterf(h.t, INFINITY);                                            \
-                r.tmax = RF(a->ray, a->N, R_TFAR, i);                                          \
-            }                                                                                  \
-        }                                                                                      \
+        leaf_query##M(a, 1);                                                                   \
     }
 CEB_LEAF(4)
 CEB_LEAF(8)
