@@ -92,7 +92,7 @@ CYLRAY_INLINE uint32_t KFN(decide)(KFN(lanes) * st, const cylray_kat_ *k,
     vf tmin = vmax(vset1(-FLT_MAX), KR_(tmin)); /* a NaN bound stays */
     vf tmax = vmin(vset1(FLT_MAX), KR_(tmax));
     /* (min, max and comparisons take subnormals without an assist) */
-    vf T_in = vadd(st->s, st->t_in), T_out = vadd(st->s, st->t_out);
+    vf T_in = vadd(st->s, st->t_in), t_to_test = one;
     /* With a scaled direction the range test is made where no scaling rounds: a
      * shrunk d (m < 1) moves the bounds to t' (exact, or overflowing as it should), a
      * grown one moves T to t (the same): t_to_test takes t' there, t_to_user takes
@@ -103,14 +103,18 @@ CYLRAY_INLINE uint32_t KFN(decide)(KFN(lanes) * st, const cylray_kat_ *k,
         vf rs = vdiv(one, st->tscale);
         tmin = vsel(shrunk, vmul(tmin, rs), tmin);
         tmax = vsel(shrunk, vmul(tmax, rs), tmax);
-        vf t_to_test = vsel(shrunk, one, st->tscale);
+        t_to_test = vsel(shrunk, one, st->tscale);
         st->t_to_user = vsel(shrunk, st->tscale, one);
-        T_in = vmul(T_in, t_to_test), T_out = vmul(T_out, t_to_test);
+        T_in = vmul(T_in, t_to_test);
     }
     vm front = mand(st->ok_in, vge(T_in, tmin));
     vm cand = F.cull ? front : mor(front, st->ok_out);
     st->tr = vsel(front, st->t_in, st->t_out); /* relative to the shifted origin */
-    st->T = vsel(front, T_in, T_out);
+    /* s + tr rounds as the selected one of s + t_in and s + t_out would: one sum
+     * rather than a second one and a select. */
+    st->T = vadd(st->s, st->tr);
+    if (F.scaled)
+        st->T = vmul(st->T, t_to_test);
     vm hit = mand(cand, mand(vge(st->T, tmin), vle(st->T, tmax)));
     if (k->bits != VFULL) /* a whole vector is the common case, and needs no mask */
         hit = mand(hit, mfrom_bits(k->bits));
