@@ -20,6 +20,9 @@ void report_tables(FILE *f, const result_list *l, const scene_report *sc,
                    const leaf_report *lr);
 void report_files(const result_list *l, const machine_info *m, const options *opt,
                   const scene_report *sc, double wall_s);
+/* errors.c: the error table, and cylray against the textbook peer (for report_tables). */
+void report_errors(FILE *f, const result_list *l);
+void report_peer(FILE *f, const result_list *l);
 
 /* svg.c */
 int svg_time_vs_error(const char *path, const result_list *l, const machine_info *m);

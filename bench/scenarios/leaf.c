@@ -14,12 +14,12 @@
 
 #include "clock.h"
 
-#include <stdio.h>
-#include <string.h>
+#include "scenegen.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
-#include "morton.h"
+#include <string.h>
 
 #define LEAF_RUN 32   /* cylinders a ray meets: 8 leaves of 4, 4 of 8, 2 of 16 */
 #define LEAF_RAYS 256 /* rays per pass: 8 KB, beside the leaves in L1 */
@@ -44,124 +44,6 @@ typedef struct leaf_cfg {
 } leaf_cfg;
 
 static volatile uint64_t leaf_sink;
-
-static double urand(rng *g, double a, double b)
-{
-    return rng_range(g, a, b);
-}
-
-/* A cylinder around the segment p0 -> p1 (the endpoint form, built here in double). */
-static cylray_cylinder segment(const double p0[3], const double p1[3], double r, unsigned caps)
-{
-    cylray_cylinder c;
-    double len2 = 0;
-    for (int k = 0; k < 3; k++) {
-        c.center[k] = (float)(0.5 * (p0[k] + p1[k]));
-        c.axis[k] = (float)(p1[k] - p0[k]);
-        len2 += (p1[k] - p0[k]) * (p1[k] - p0[k]);
-    }
-    c.radius = (float)r;
-    c.half_height = (float)(0.5 * sqrt(len2));
-    c.flags = caps;
-    return c;
-}
-
-/* Bonds of a molecule: atoms on a jittered lattice of spacing 1.4, a bond between
- * lattice neighbours kept with probability 1/2 (about three bonds an atom), radius
- * 0.1-0.2 of the bond's length. Fills out[0..n) from the box corner `base`. */
-static int molecule(cylray_cylinder *out, int n, const double base[3], rng *g)
-{
-    const double a = 1.4;
-    const int side = (int)ceil(cbrt(n / 1.5)) + 1;
-    int k = 0;
-    for (int i = 0; i < side && k < n; i++)
-        for (int j = 0; j < side && k < n; j++)
-            for (int l = 0; l < side && k < n; l++) {
-                double p[3] = {base[0] + a * i, base[1] + a * j, base[2] + a * l};
-                for (int q = 0; q < 3; q++)
-                    p[q] += urand(g, -0.15, 0.15) * a;
-                for (int dir = 0; dir < 3 && k < n; dir++) {
-                    if (rng_unit(g) < 0.5)
-                        continue;
-                    double e[3] = {p[0], p[1], p[2]};
-                    e[dir] += a;
-                    for (int q = 0; q < 3; q++)
-                        e[q] += urand(g, -0.15, 0.15) * a;
-                    double len =
-                        sqrt((e[0] - p[0]) * (e[0] - p[0]) + (e[1] - p[1]) * (e[1] - p[1]) +
-                             (e[2] - p[2]) * (e[2] - p[2]));
-                    out[k++] = segment(p, e, urand(g, 0.1, 0.2) * len, CYLRAY_CAPPED);
-                }
-            }
-    return k;
-}
-
-/* Pipes: runs of 4-9 straight segments turning by right angles, capped only at the two
- * ends of a run (the inner joints are open), radius 0.15-0.3. */
-static int pipes(cylray_cylinder *out, int n, const double base[3], double size, rng *g)
-{
-    int k = 0;
-    while (k < n) {
-        double p[3] = {base[0] + urand(g, 0, size), base[1] + urand(g, 0, size),
-                       base[2] + urand(g, 0, size)};
-        const double r = urand(g, 0.15, 0.3);
-        const int segs = 4 + (int)(rng_unit(g) * 6);
-        int axis = (int)(rng_unit(g) * 3);
-        for (int s = 0; s < segs && k < n; s++) {
-            double e[3] = {p[0], p[1], p[2]};
-            double len = urand(g, 1.0, 3.0) * (rng_unit(g) < 0.5 ? -1 : 1);
-            e[axis] += len;
-            unsigned caps = (s == 0 ? CYLRAY_CAPPED_LO : 0u) |
-                            (s == segs - 1 || k == n - 1 ? CYLRAY_CAPPED_HI : 0u);
-            out[k++] = segment(p, e, r, caps);
-            memcpy(p, e, sizeof p);
-            axis = (axis + 1 + (int)(rng_unit(g) * 2)) % 3;
-        }
-    }
-    return k;
-}
-
-typedef struct keyed {
-    uint32_t key;
-    int idx;
-} keyed;
-
-static int by_key(const void *a, const void *b)
-{
-    const keyed *x = a, *y = b;
-    return x->key < y->key ? -1 : x->key > y->key;
-}
-
-/* Sorts the cylinders along a Morton curve of their centers. */
-static int morton_sort(cylray_cylinder *c, int n)
-{
-    float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-    for (int i = 0; i < n; i++)
-        for (int k = 0; k < 3; k++) {
-            lo[k] = fminf(lo[k], c[i].center[k]);
-            hi[k] = fmaxf(hi[k], c[i].center[k]);
-        }
-    keyed *kv = malloc((size_t)n * sizeof *kv);
-    cylray_cylinder *tmp = malloc((size_t)n * sizeof *tmp);
-    if (!kv || !tmp) {
-        free(kv), free(tmp);
-        return -1;
-    }
-    for (int i = 0; i < n; i++) {
-        uint32_t q[3];
-        for (int k = 0; k < 3; k++)
-            q[k] = (uint32_t)(1023.0f * (c[i].center[k] - lo[k]) / fmaxf(hi[k] - lo[k], 1e-6f));
-        kv[i].key =
-            morton_spread3(q[0]) | morton_spread3(q[1]) << 1 | morton_spread3(q[2]) << 2;
-        kv[i].idx = i;
-    }
-    qsort(kv, (size_t)n, sizeof *kv, by_key);
-    for (int i = 0; i < n; i++)
-        tmp[i] = c[kv[i].idx];
-    memcpy(c, tmp, (size_t)n * sizeof *c);
-    free(kv), free(tmp);
-    return 0;
-}
 
 /* A cylinder the library refuses (the one-end cap flags in a build without them) is
  * capped at both ends instead; 0 when every cylinder is accepted so. */
@@ -212,12 +94,12 @@ static void aim_rays(leaf_scene *s, rng *g)
                  (hi[2] - lo[2]) * (hi[2] - lo[2]));
         double target[3], u[3], ul = 0;
         for (int k = 0; k < 3; k++) {
-            target[k] = urand(g, lo[k], hi[k]);
-            u[k] = urand(g, -1, 1);
+            target[k] = rng_range(g, lo[k], hi[k]);
+            u[k] = rng_range(g, -1, 1);
             ul += u[k] * u[k];
         }
         ul = sqrt(ul) > 1e-3 ? sqrt(ul) : 1;
-        double dist = urand(g, 2, 5) * diag;
+        double dist = rng_range(g, 2, 5) * diag;
         cylray_ray1 *r = &s->ray[j];
         for (int k = 0; k < 3; k++) {
             r->o[k] = (float)(target[k] + dist * u[k] / ul);
@@ -258,9 +140,9 @@ static int scene_build(leaf_scene *s, int ncyl, uint64_t seed)
     const int half = ncyl / 2;
     const double size = 1.4 * cbrt(half / 1.5);
     const double mol_base[3] = {0, 0, 0}, pipe_base[3] = {1.1 * size, 0, 0};
-    int k = molecule(s->cyl, half, mol_base, &g);
-    k += pipes(s->cyl + k, ncyl - k, pipe_base, size, &g);
-    if (k != ncyl || morton_sort(s->cyl, ncyl) || prepare_all(s))
+    int k = sg_molecule(s->cyl, half, mol_base, &g);
+    k += sg_pipes(s->cyl + k, ncyl - k, pipe_base, size, &g);
+    if (k != ncyl || sg_morton_sort(s->cyl, ncyl) || prepare_all(s))
         return -1;
     aim_rays(s, &g);
     return 0;

@@ -8,6 +8,7 @@
 
 #include "clock.h"
 #include "png.h"
+#include "scenegen.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -15,8 +16,6 @@
 #include <string.h>
 
 #define SCENE_MAX 256
-
-enum { MAT_MATTE, MAT_FLOOR, MAT_SHINY };
 
 typedef struct scene {
     int n;
@@ -30,118 +29,6 @@ typedef struct kern16 {
     cylray_intersect16_fn isect;
     cylray_occluded16_fn occ;
 } kern16;
-
-static void add_cyl(scene *s, const double c[3], const double a[3], double R, double H,
-                    const float rgb[3], int mat)
-{
-    if (s->n >= SCENE_MAX)
-        return;
-    cylray_cylinder *cy = &s->cyl[s->n];
-    for (int k = 0; k < 3; k++) {
-        cy->center[k] = (float)c[k];
-        cy->axis[k] = (float)a[k];
-        s->albedo[s->n][k] = rgb[k];
-    }
-    cy->radius = (float)R;
-    cy->half_height = (float)H;
-    cy->flags = CYLRAY_CAPPED;
-    s->mat[s->n] = mat;
-    s->n++;
-}
-
-/* A capped cylinder from p to q. */
-static void add_seg(scene *s, const double p[3], const double q[3], double R,
-                    const float rgb[3], int mat)
-{
-    double c[3], a[3];
-    for (int k = 0; k < 3; k++)
-        c[k] = 0.5 * (p[k] + q[k]), a[k] = q[k] - p[k];
-    double len = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
-    add_cyl(s, c, a, R, 0.5 * len, rgb, mat);
-}
-
-static void build(scene *s)
-{
-    static const float floor_c[3] = {0.7f, 0.7f, 0.7f}, wood[3] = {0.55f, 0.36f, 0.2f},
-                       pipe[3] = {0.45f, 0.55f, 0.65f}, flange[3] = {0.7f, 0.45f, 0.15f},
-                       carbon[3] = {0.2f, 0.2f, 0.22f}, hydrogen[3] = {0.92f, 0.92f, 0.92f},
-                       bond[3] = {0.6f, 0.6f, 0.6f}, red[3] = {0.8f, 0.15f, 0.12f},
-                       blue[3] = {0.15f, 0.3f, 0.8f}, yellow[3] = {0.9f, 0.75f, 0.15f};
-    s->n = 0;
-    /* The floor: a wide, thin disc whose top face is y = 0. */
-    add_cyl(s, (double[]){0, -0.05, 0}, (double[]){0, 1, 0}, 30, 0.05, floor_c, MAT_FLOOR);
-
-    /* A fence at the back: 11 posts (axis-aligned) and two rails between each pair. */
-    for (int k = 0; k <= 10; k++) {
-        double x = -6 + 1.2 * k;
-        add_cyl(s, (double[]){x, 0.6, -3}, (double[]){0, 1, 0}, 0.08, 0.6, wood, MAT_MATTE);
-        if (k < 10)
-            for (int r = 0; r < 2; r++) {
-                double y = r ? 0.95 : 0.4;
-                add_seg(s, (double[]){x, y, -3}, (double[]){x + 1.2, y, -3}, 0.045, wood,
-                        MAT_MATTE);
-            }
-    }
-
-    /* A pipe run on the right: straight pieces with flanges at every joint. */
-    const double run[][3] = {{1.2, 0.35, 2.2}, {3.2, 0.35, 2.2}, {4.6, 0.35, 2.2},
-                             {4.6, 1.6, 2.2},  {4.6, 1.6, 0.0},  {4.6, 1.6, -2.0}};
-    for (int p = 0; p < 2; p++) {
-        double dz = p ? -0.55 : 0, dx = p ? 0.55 : 0;
-        for (size_t i = 0; i + 1 < sizeof run / sizeof run[0]; i++) {
-            double a[3] = {run[i][0] + dx, run[i][1], run[i][2] + dz};
-            double b[3] = {run[i + 1][0] + dx, run[i + 1][1], run[i + 1][2] + dz};
-            add_seg(s, a, b, 0.14, pipe, MAT_SHINY);
-            double ax[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-            add_cyl(s, b, ax, 0.2, 0.05, flange, MAT_SHINY);
-        }
-    }
-    /* Supports under the lower pipes. */
-    for (int k = 0; k < 3; k++)
-        add_cyl(s, (double[]){1.6 + 1.3 * k, 0.1, 1.95}, (double[]){0, 1, 0}, 0.06, 0.1, flange,
-                MAT_MATTE);
-
-    /* Benzene, ball-and-stick with drums for atoms, tilted, hovering at the front left. */
-    double cen[3] = {-1.2, 1.75, 1.7}, u[3] = {1, 0.2, 0}, v[3] = {0, 0.85, 0.5};
-    double lu = sqrt(u[0] * u[0] + u[1] * u[1]), lv = sqrt(v[1] * v[1] + v[2] * v[2]);
-    for (int k = 0; k < 3; k++)
-        u[k] /= lu, v[k] /= lv;
-    double nrm[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
-                     u[0] * v[1] - u[1] * v[0]};
-    double C[6][3], Hh[6][3];
-    for (int i = 0; i < 6; i++) {
-        double ang = i * 3.14159265358979 / 3, ca = cos(ang), sa = sin(ang);
-        for (int k = 0; k < 3; k++) {
-            C[i][k] = cen[k] + 0.85 * (ca * u[k] + sa * v[k]);
-            Hh[i][k] = cen[k] + 1.45 * (ca * u[k] + sa * v[k]);
-        }
-    }
-    for (int i = 0; i < 6; i++) {
-        add_seg(s, C[i], C[(i + 1) % 6], 0.05, bond, MAT_SHINY);
-        add_seg(s, C[i], Hh[i], 0.035, bond, MAT_SHINY);
-        add_cyl(s, C[i], nrm, 0.16, 0.09, carbon, MAT_SHINY);
-        add_cyl(s, Hh[i], nrm, 0.11, 0.06, hydrogen, MAT_SHINY);
-    }
-
-    /* A double helix on the left: two backbones of bonds, and rungs between them. */
-    double hx = -4.2, hz = 0.4;
-    double prev[2][3];
-    for (int k = 0; k <= 16; k++) {
-        double y = 0.25 + 0.19 * k, ang = 0.55 * k;
-        double pts[2][3];
-        for (int st = 0; st < 2; st++) {
-            double a = ang + st * 3.14159265358979;
-            pts[st][0] = hx + 0.75 * cos(a);
-            pts[st][1] = y;
-            pts[st][2] = hz + 0.75 * sin(a);
-            if (k > 0)
-                add_seg(s, prev[st], pts[st], 0.06, st ? blue : red, MAT_SHINY);
-        }
-        if (k % 2 == 0)
-            add_seg(s, pts[0], pts[1], 0.035, yellow, MAT_MATTE);
-        memcpy(prev, pts, sizeof prev);
-    }
-}
 
 static void normalize3(double v[3])
 {
@@ -233,7 +120,7 @@ static size_t render(const scene *s, const kern16 *k, int W, int H, uint8_t *rgb
                     double lit = (occ >> l & 1u) ? 0 : 1;
                     ndl = ndl > 0 ? ndl : 0;
                     double alb[3] = {s->albedo[c][0], s->albedo[c][1], s->albedo[c][2]};
-                    if (s->mat[c] == MAT_FLOOR) {
+                    if (s->mat[c] == SG_FLOOR) {
                         double t = hit.t[l];
                         double px = ray.ox[l] + t * ray.dx[l], pz = ray.oz[l] + t * ray.dz[l];
                         int chk = ((int)floor(px) + (int)floor(pz)) & 1;
@@ -241,7 +128,7 @@ static size_t render(const scene *s, const kern16 *k, int W, int H, uint8_t *rgb
                             alb[q] = chk ? 0.5 : 0.78;
                     }
                     double spec = 0;
-                    if (s->mat[c] == MAT_SHINY && lit > 0) {
+                    if (s->mat[c] == SG_SHINY && lit > 0) {
                         /* Blinn: the half vector between the light and the eye */
                         double hv[3] = {ld[0] - ray.dx[l], ld[1] - ray.dy[l],
                                         ld[2] - ray.dz[l]};
@@ -310,7 +197,9 @@ void scene_run(const options *opt, scene_report *sc, result_list *results)
     uint8_t *img = malloc((size_t)W * H * 3), *img2 = malloc((size_t)W * H * 3);
     if (!s || !img || !img2)
         goto done;
-    build(s);
+    sg_painted p = {0, SCENE_MAX, s->cyl, s->albedo, s->mat};
+    sg_fence_scene(&p);
+    s->n = p.n;
     s->prep = bench_alloc((size_t)s->n * sizeof *s->prep);
     if (!s->prep)
         goto done;

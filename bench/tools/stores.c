@@ -2,7 +2,7 @@
 /* stores.c - cylstores: what the store of a vector's hit lanes costs, per policy.
  *
  * The kernel stores six fields of a hit vector (t, tmax, part and the normal's three
- * components) through vstore_hits (src/simd/x86.h), writing the lanes
+ * components) through vstore_hits (src/simd/x86_stores.h), writing the lanes
  * that hit and no other. This times the store stage alone, with the policies that
  * header offers compiled side by side from the header itself (vstore_hits):
  *   masked  the AVX masked store (vmaskmovps / vpmaskmovd) of each field;
@@ -51,6 +51,7 @@
 #define X86_STORES_BY_LANE 0
 #define KFN(n) n##_masked8
 #include "simd/x86.h"
+#include "simd/x86_stores.h"
 RUN_(run_masked8)
 #include "simd/undef.h"
 #undef KFN
@@ -60,6 +61,7 @@ RUN_(run_masked8)
 #define X86_STORES_BY_LANE 1
 #define KFN(n) n##_lanes8
 #include "simd/x86.h"
+#include "simd/x86_stores.h"
 RUN_(run_lanes8)
 #include "simd/undef.h"
 #undef KFN
@@ -69,6 +71,7 @@ RUN_(run_lanes8)
 #define X86_STORES_BY_LANE 0
 #define KFN(n) n##_masked4
 #include "simd/x86.h"
+#include "simd/x86_stores.h"
 RUN_(run_masked4)
 #include "simd/undef.h"
 #undef KFN
@@ -78,6 +81,7 @@ RUN_(run_masked4)
 #define X86_STORES_BY_LANE 1
 #define KFN(n) n##_lanes4
 #include "simd/x86.h"
+#include "simd/x86_stores.h"
 RUN_(run_lanes4)
 #include "simd/undef.h"
 #undef KFN

@@ -17,6 +17,7 @@
 #define KFN(n) CYLRAY_CAT(n, _avx2_8)
 #define KPAIRS(F) 1 /* streams keep two vectors in flight (docs/performance.md) */
 #include "simd/x86.h"
+#include "simd/x86_stores.h"
 #include "kernel/kernel.h"
 #include "simd/undef.h"
 #undef KFN
@@ -25,6 +26,7 @@
 #define VW 4
 #define KFN(n) CYLRAY_CAT(n, _avx2_4)
 #include "simd/x86.h"
+#include "simd/x86_stores.h"
 #include "kernel/kernel.h"
 #include "simd/undef.h"
 #undef KFN

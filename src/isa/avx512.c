@@ -20,6 +20,7 @@
 #define KPAIRS(F) (!(F).aligned)
 #define KGROUP(F) ((F).capped && !(F).fast && !(F).refine ? 8 : 2)
 #include "simd/x86.h"
+#include "simd/x86_stores.h"
 #include "kernel/kernel.h"
 #include "simd/undef.h"
 #undef KFN
@@ -28,6 +29,7 @@
 #define VW 8
 #define KFN(n) CYLRAY_CAT(n, _avx512_8)
 #include "simd/x86.h"
+#include "simd/x86_stores.h"
 #include "kernel/kernel.h"
 #include "simd/undef.h"
 #undef KFN
@@ -35,6 +37,7 @@
 #define VW 4
 #define KFN(n) CYLRAY_CAT(n, _avx512_4)
 #include "simd/x86.h"
+#include "simd/x86_stores.h"
 #include "kernel/kernel.h"
 #include "simd/undef.h"
 #undef KFN

@@ -12,6 +12,7 @@
 #define KFN(n) CYLRAY_CAT(n, _sse41_4)
 #define KPAIRS(F) 1 /* streams keep two vectors in flight (docs/performance.md) */
 #include "simd/x86.h"
+#include "simd/x86_stores.h"
 #include "kernel/kernel.h"
 #include "simd/undef.h"
 #undef KFN

@@ -101,10 +101,3 @@ CYLRAY_INLINE cylray_kres_ KFN(block2)(const cylray_prepared *P, const cylray_ra
     r.hit[0] = la ? r.hit[0] : 0u, r.hit[1] = lb ? r.hit[1] : 0u;
     return r;
 }
-#undef KR_
-#undef KL_
-#undef KC_
-#undef KCEN_
-#undef KSANE_
-#undef KPARTIAL_
-#undef KLOAD_O_

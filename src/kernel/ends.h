@@ -45,7 +45,7 @@ CYLRAY_INLINE void KFN(ends)(KFN(lanes) * st, const cylray_kat_ *k, const cylray
          * entries, min of the exits]. The rim is then shared, not tested twice. A ray
          * parallel to the axis inside the tube is inside the side everywhere. */
         st->side_lo = vsel(st->inpar, vneg(inf), tn), st->side_hi = vsel(st->inpar, inf, tf);
-        const vf hv = KC_(h_v, KL_(HV));
+        const vf hv = KFN(both_in)(k, F, offsetof(cylray_prepared, h_v), CYLRAY_LF_HV);
         /* Two divisions rather than one reciprocal: a cap hit is then as exact as
          * the plane's offset, and dv = 0 gives the infinities the slab wants. */
         vf na = vsub(vneg(hv), z0), nb = vsub(hv, z0);
@@ -89,8 +89,8 @@ CYLRAY_INLINE uint32_t KFN(decide)(KFN(lanes) * st, const cylray_kat_ *k,
                                    const cylray_kflags_ F)
 {
     const vf one = vset1(1.0f);
-    vf tmin = vmax(vset1(-FLT_MAX), KR_(tmin)); /* a NaN bound stays */
-    vf tmax = vmin(vset1(FLT_MAX), KR_(tmax));
+    vf tmin = vmax(vset1(-FLT_MAX), KFN(ray_in)(k, F, k->R->tmin)); /* a NaN bound stays */
+    vf tmax = vmin(vset1(FLT_MAX), KFN(ray_in)(k, F, k->R->tmax));
     /* (min, max and comparisons take subnormals without an assist) */
     vf T_in = vadd(st->s, st->t_in), t_to_test = one;
     /* With a scaled direction the range test is made where no scaling rounds: a

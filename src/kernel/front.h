@@ -8,10 +8,13 @@
 CYLRAY_INLINE int KFN(load_ray)(KFN(lanes) * st, const cylray_kat_ *k, const cylray_kflags_ F)
 {
     const vf zero = vzero(), one = vset1(1.0f), inf = vset1(INFINITY);
-    KLOAD_O_();
-    st->dx = KR_(dx), st->dy = KR_(dy), st->dz = KR_(dz);
-    if (KPARTIAL_)
-        KSANE_(dx, zero), KSANE_(dy, one), KSANE_(dz, zero);
+    KFN(load_o)(st, k, F);
+    st->dx = KFN(ray_in)(k, F, k->R->dx), st->dy = KFN(ray_in)(k, F, k->R->dy);
+    st->dz = KFN(ray_in)(k, F, k->R->dz);
+    if (KFN(partial)(k, F)) {
+        st->dx = KFN(sane)(k, st->dx, zero), st->dy = KFN(sane)(k, st->dy, one);
+        st->dz = KFN(sane)(k, st->dz, zero);
+    }
     vf dx = st->dx, dy = st->dy, dz = st->dz;
     vf A = F.aligned ? vfma(dx, dx, vmul(dy, dy)) : zero; /* the side's |d_perp|^2 */
     vf dd = F.aligned ? vfma(dz, dz, A) : KDOT(dx, dy, dz, dx, dy, dz);
@@ -51,14 +54,17 @@ CYLRAY_INLINE int KFN(reject)(KFN(lanes) * st, const cylray_kat_ *k, const cylra
     const vf dx = st->dx, dy = st->dy, dz = st->dz, dd = st->dd;
     vf vx = zero, vy = zero;
     if (!F.aligned)
-        vx = KC_(v[0], KL_(VX)), vy = KC_(v[1], KL_(VY));
-    const vf vz = F.leaf ? KL_(VZ) : vset1(F.aligned ? k->P->vr : k->P->v[2]);
+        vx = KFN(both_in)(k, F, offsetof(cylray_prepared, v[0]), CYLRAY_LF_VX),
+        vy = KFN(both_in)(k, F, offsetof(cylray_prepared, v[1]), CYLRAY_LF_VY);
+    const vf vz =
+        F.leaf ? KFN(leaf_in)(k, F, CYLRAY_LF_VZ) : vset1(F.aligned ? k->P->vr : k->P->v[2]);
     st->vx = vx, st->vy = vy, st->vz = vz;
     /* A leaf derives what it does not store from what it does (64 bytes a lane). */
-    st->rad = F.leaf ? KL_(R) : zero;
-    st->rr = KC_(rr, vmul(st->rad, st->rad)), st->rr_vv = KC_(rr_vv, KL_(RRVV));
-    st->fin = F.leaf ? vlt(KL_(HV), inf) : vle(zero, zero);
-    st->infl = F.leaf ? vge(KL_(HV), inf) : vlt(vset1(1.0f), zero);
+    st->rad = KFN(leaf_in)(k, F, CYLRAY_LF_R); /* zero elsewhere */
+    st->rr = KFN(cyl_in)(k, F, offsetof(cylray_prepared, rr), vmul(st->rad, st->rad));
+    st->rr_vv = KFN(both_in)(k, F, offsetof(cylray_prepared, rr_vv), CYLRAY_LF_RRVV);
+    st->fin = F.leaf ? vlt(KFN(leaf_in)(k, F, CYLRAY_LF_HV), inf) : vle(zero, zero);
+    st->infl = F.leaf ? vge(KFN(leaf_in)(k, F, CYLRAY_LF_HV), inf) : vlt(vset1(1.0f), zero);
 
     /* w = o - c, rounded here; its rounding error wl is recovered by the shift stage
      * (two-sum), once the cheap whole-vector rejections are behind. */
@@ -78,8 +84,9 @@ CYLRAY_INLINE int KFN(reject)(KFN(lanes) * st, const cylray_kat_ *k, const cylra
          * outside it misses. The slack (KM_SPHERE) covers the cancellation of a far
          * origin. */
         vf wd2 = vmul(vmul(wd, wd), rdd); /* wd^2 / dd; wd^2 is formed beside rdd */
-        act = mand(act,
-                   vle(vfnma(ww, vset1(KM_SPHERE), vsub(ww, wd2)), KC_(bound2, KL_(BOUND2))));
+        act = mand(
+            act, vle(vfnma(ww, vset1(KM_SPHERE), vsub(ww, wd2)),
+                     KFN(both_in)(k, F, offsetof(cylray_prepared, bound2), CYLRAY_LF_BOUND2)));
         /* A shift that brings the origin less than a factor sqrt(2) closer gains less
          * than it costs: a small t would lose its low bits in s + t'. (ww > 2 pp.) */
         s = F.leaf ? vsel(st->fin, vkeep(vgt(vadd(wd2, wd2), ww), s), s)

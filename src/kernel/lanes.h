@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* kernel/lanes.h - the state of one vector's lanes, and how the stages read their
- * inputs (undefined again at the end of kernel/block.h). */
+ * inputs. */
 
 /* The kernel for one vector of rays, in stages. KFN(block) below runs them in order;
  * each stage reads what the ones before it left in the lane state (KFN(lanes)) and
@@ -29,21 +29,58 @@ typedef struct {
     vm hit, front, back;
 } KFN(lanes);
 
-/* Packets read the ray per lane and broadcast the cylinder; a leaf broadcasts its one
- * ray and reads a cylinder per lane (its fields at L[f lm + lane]). */
-#define KR_(f) (F.leaf ? vset1(*k->R->f) : vloadu(k->R->f + k->i))
-#define KL_(f) vloadu(k->L + (size_t)CYLRAY_LF_##f * k->lm + k->i)
-#define KC_(pf, lf) (F.leaf ? (lf) : vset1(k->P->pf))
-#define KCEN_(c, f) (F.leaf ? KL_(f) : vset1(k->c3[c]))
+/* Where the stages read their inputs. Packets read the ray per lane and broadcast the
+ * cylinder; a leaf broadcasts its one ray and reads a cylinder per lane. F folds each
+ * choice, and the side not taken is never read (a packet has no L, a leaf no P). */
+
+/* A ray field f (one of k->R's arrays). */
+CYLRAY_INLINE vf KFN(ray_in)(const cylray_kat_ *k, const cylray_kflags_ F, const float *f)
+{
+    return F.leaf ? vset1(*f) : vloadu(f + k->i);
+}
+/* A leaf's field f (CYLRAY_LF_*) at its lanes, at L[f lm + lane]; zero elsewhere. */
+CYLRAY_INLINE vf KFN(leaf_in)(const cylray_kat_ *k, const cylray_kflags_ F, unsigned f)
+{
+    return F.leaf ? vloadu(k->L + (size_t)f * k->lm + k->i) : vzero();
+}
+/* A cylinder's value: a leaf's per lane, as given (leaf, computed from its fields), or
+ * the prepared cylinder's float at byte offset pf (offsetof(cylray_prepared, ...)). */
+CYLRAY_INLINE vf KFN(cyl_in)(const cylray_kat_ *k, const cylray_kflags_ F, size_t pf, vf leaf)
+{
+    return F.leaf ? leaf : vset1(*(const float *)(const void *)((const char *)k->P + pf));
+}
+/* A value that both store: the prepared cylinder's at pf, a leaf's field lf. */
+CYLRAY_INLINE vf KFN(both_in)(const cylray_kat_ *k, const cylray_kflags_ F, size_t pf,
+                              unsigned lf)
+{
+    return KFN(cyl_in)(k, F, pf, KFN(leaf_in)(k, F, lf));
+}
+/* Coordinate c of the center (with an aligned axis, renamed). */
+CYLRAY_INLINE vf KFN(center_in)(const cylray_kat_ *k, const cylray_kflags_ F, unsigned c)
+{
+    return F.leaf ? KFN(leaf_in)(k, F, CYLRAY_LF_CX + c) : vset1(k->c3[c]);
+}
+/* Whether some lanes of a packet or stream vector are inactive. */
+CYLRAY_INLINE int KFN(partial)(const cylray_kat_ *k, const cylray_kflags_ F)
+{
+    return !F.leaf && k->bits != VFULL;
+}
 /* Inactive lanes may hold anything, and subnormals there would cost microcode assists
  * in every operation (20x on some cores): they take a ray that the packet rejection
- * drops, a line 2^40 from the origin. */
-#define KSANE_(f, dead) st->f = vsel(mfrom_bits(k->bits), st->f, dead)
-#define KPARTIAL_ (!F.leaf && k->bits != VFULL)
-#define KLOAD_O_()                                                                             \
-    do {                                                                                       \
-        st->ox = KR_(ox), st->oy = KR_(oy), st->oz = KR_(oz);                                  \
-        if (KPARTIAL_)                                                                         \
-            KSANE_(ox, vset1(0x1p40f)), KSANE_(oy, vzero()), KSANE_(oz, vzero());              \
-        st->cx = KCEN_(0, CX), st->cy = KCEN_(1, CY), st->cz = KCEN_(2, CZ);                   \
-    } while (0)
+ * drops, a line 2^40 from the origin (x at the active lanes, dead elsewhere). */
+CYLRAY_INLINE vf KFN(sane)(const cylray_kat_ *k, vf x, vf dead)
+{
+    return vsel(mfrom_bits(k->bits), x, dead);
+}
+/* The origin and the center, loaded by the ray's stage and again by the shift's. */
+CYLRAY_INLINE void KFN(load_o)(KFN(lanes) * st, const cylray_kat_ *k, const cylray_kflags_ F)
+{
+    st->ox = KFN(ray_in)(k, F, k->R->ox), st->oy = KFN(ray_in)(k, F, k->R->oy);
+    st->oz = KFN(ray_in)(k, F, k->R->oz);
+    if (KFN(partial)(k, F)) {
+        st->ox = KFN(sane)(k, st->ox, vset1(0x1p40f)), st->oy = KFN(sane)(k, st->oy, vzero());
+        st->oz = KFN(sane)(k, st->oz, vzero());
+    }
+    st->cx = KFN(center_in)(k, F, 0), st->cy = KFN(center_in)(k, F, 1);
+    st->cz = KFN(center_in)(k, F, 2);
+}

@@ -8,7 +8,7 @@
  * the rest loses nothing (it would reload them from the stack instead). */
 CYLRAY_INLINE void KFN(shift)(KFN(lanes) * st, const cylray_kat_ *k, const cylray_kflags_ F)
 {
-    KLOAD_O_();
+    KFN(load_o)(st, k, F);
     vf bx = vsub(st->whx, st->ox), by = vsub(st->why, st->oy), bz = vsub(st->whz, st->oz);
     st->wlx = vsub(vsub(st->ox, vsub(st->whx, bx)), vadd(st->cx, bx));
     st->wly = vsub(vsub(st->oy, vsub(st->why, by)), vadd(st->cy, by));
@@ -30,7 +30,8 @@ CYLRAY_INLINE void KFN(slide)(KFN(lanes) * st, const cylray_kat_ *k, const cylra
     /* u need not be accurate (the slide is exact for any u): a leaf takes an estimate
      * of 1 / v.v. */
     vf u = vmul(KDOT(st->whx, st->why, st->whz, vx, vy, vz),
-                KC_(inv_vv, vrcp_fast(KDOT(vx, vy, vz, vx, vy, vz))));
+                KFN(cyl_in)(k, F, offsetof(cylray_prepared, inv_vv),
+                            vrcp_fast(KDOT(vx, vy, vz, vx, vy, vz))));
     vf hx = vfma_x(vneg(u), vx, st->whx), hy = vfma_x(vneg(u), vy, st->why),
        hz = vfma_x(vneg(u), vz, st->whz);
     vf s2 = vfnma(KDOT(hx, hy, hz, dx, dy, dz), st->rdd, vzero());
@@ -79,9 +80,9 @@ CYLRAY_INLINE int KFN(side)(KFN(lanes) * st, const cylray_kat_ *k, const cylray_
         st->D = vdop_x(A, st->rr, g, g);
         st->AR2 = vmul(A, st->rr);
     } else { /* scaled by 2^-2j (cylray_prepared.rr_d), and sqrt_vv has 2^j */
-        const vf gs = KC_(g_s, KL_(GS));
+        const vf gs = KFN(both_in)(k, F, offsetof(cylray_prepared, g_s), CYLRAY_LF_GS);
         const vf rs = vmul(st->rad, gs); /* a leaf's R 2^-j, exact */
-        const vf rr_d = KC_(rr_d, vmul(rs, rs));
+        const vf rr_d = KFN(cyl_in)(k, F, offsetof(cylray_prepared, rr_d), vmul(rs, rs));
         vf gd = vmul(g, gs);
         st->D = vdop_x(A, rr_d, gd, gd);
         st->AR2 = vmul(A, rr_d);
@@ -90,8 +91,9 @@ CYLRAY_INLINE int KFN(side)(KFN(lanes) * st, const cylray_kat_ *k, const cylray_
 
     /* A ray within about one ulp of the axis direction is parallel: it meets the side
      * nowhere, and no division by its tiny A may make a hit. */
-    const vf par_eps = KC_(par_eps, vmul(KDOT(st->vx, st->vy, st->vz, st->vx, st->vy, st->vz),
-                                         vset1(CYLRAY_PAR_EPS)));
+    const vf par_eps = KFN(cyl_in)(
+        k, F, offsetof(cylray_prepared, par_eps),
+        vmul(KDOT(st->vx, st->vy, st->vz, st->vx, st->vy, st->vz), vset1(CYLRAY_PAR_EPS)));
     vm par = vle(A, vmul(st->dd, par_eps));
     st->side = mand(act, mandn(vge(st->D, zero), par));
     st->inpar = mand(act, mand(par, vle(st->C, zero))); /* parallel and inside the tube */
@@ -116,7 +118,7 @@ CYLRAY_INLINE void KFN(roots)(KFN(lanes) * st, const cylray_kat_ *k, const cylra
         sq = vsqrt(D);
     }
     if (!F.aligned) /* |v| = 1 there, and j = 0 */
-        sq = vmul(sq, F.leaf ? KL_(SQS)
+        sq = vmul(sq, F.leaf ? KFN(leaf_in)(k, F, CYLRAY_LF_SQS)
                              : vset1(F.scaled ? k->P->sqrt_vv / k->P->g_s : k->P->sqrt_vv));
     vf q = vadd(nB, vxorsign(sq, nB)); /* -(B + sign(B) sqrt(disc)); sq >= 0 */
     vf r1 = F.fast ? vmul(q, vrcp_fast(A)) : vdiv(q, A);

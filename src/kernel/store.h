@@ -67,9 +67,10 @@ CYLRAY_INLINE void KFN(normals)(const KFN(lanes) * st, const cylray_kat_ *k,
     } else {
         /* v x (p x v) = v.v p_perp, with p x v = f + t e already perpendicular, so
          * no axial magnitude leaks in; vk = v / (R v.v) makes it unit length. */
-        const vf ns = F.leaf ? KL_(NSCALE) : zero;
-        const vf kx = KC_(vk[0], vmul(st->vx, ns)), ky = KC_(vk[1], vmul(st->vy, ns)),
-                 kz = KC_(vk[2], vmul(st->vz, ns));
+        const vf ns = KFN(leaf_in)(k, F, CYLRAY_LF_NSCALE);
+        const vf kx = KFN(cyl_in)(k, F, offsetof(cylray_prepared, vk[0]), vmul(st->vx, ns)),
+                 ky = KFN(cyl_in)(k, F, offsetof(cylray_prepared, vk[1]), vmul(st->vy, ns)),
+                 kz = KFN(cyl_in)(k, F, offsetof(cylray_prepared, vk[2]), vmul(st->vz, ns));
         vf ux = vfms(tr, st->ex, st->fx), uy = vfms(tr, st->ey, st->fy),
            uz = vfms(tr, st->ez, st->fz);
         nx = vfms(ky, uz, vmul(kz, uy));
@@ -80,10 +81,15 @@ CYLRAY_INLINE void KFN(normals)(const KFN(lanes) * st, const cylray_kat_ *k,
         vm cap = mandn(hit, on_side);
         vf sgn = vsel(cap_hi, one, vset1(-1.0f));
         if (F.leaf) /* 1 / |v| = R |v| / (R v.v) */
-            sgn = vmul(sgn, vmul(vmul(KL_(NSCALE), st->rad), vmul(KL_(SQS), KL_(GS))));
-        nx = vsel(cap, F.aligned ? zero : vmul(sgn, KC_(n[0], st->vx)), nx);
-        ny = vsel(cap, F.aligned ? zero : vmul(sgn, KC_(n[1], st->vy)), ny);
-        nz = vsel(cap, F.aligned ? sgn : vmul(sgn, KC_(n[2], st->vz)), nz);
+            sgn = vmul(sgn, vmul(vmul(KFN(leaf_in)(k, F, CYLRAY_LF_NSCALE), st->rad),
+                                 vmul(KFN(leaf_in)(k, F, CYLRAY_LF_SQS),
+                                      KFN(leaf_in)(k, F, CYLRAY_LF_GS))));
+        const vf n0 = KFN(cyl_in)(k, F, offsetof(cylray_prepared, n[0]), st->vx),
+                 n1 = KFN(cyl_in)(k, F, offsetof(cylray_prepared, n[1]), st->vy),
+                 n2 = KFN(cyl_in)(k, F, offsetof(cylray_prepared, n[2]), st->vz);
+        nx = vsel(cap, F.aligned ? zero : vmul(sgn, n0), nx);
+        ny = vsel(cap, F.aligned ? zero : vmul(sgn, n1), ny);
+        nz = vsel(cap, F.aligned ? sgn : vmul(sgn, n2), nz);
     }
     /* One Newton step of 1/sqrt(n.n) around 1 removes what rounding left of the
      * length error, whatever the hit point's distance from the axis. */

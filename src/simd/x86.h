@@ -6,6 +6,7 @@
  *   X86_FMA    1 when the FMA3 instructions may be used
  *   X86_KMASK  1 for AVX-512: lane masks live in mask registers (needs VL below 16)
  * simd/undef.h takes every name back, so the next width can define them again.
+ * The stores of the hit lanes are simd/x86_stores.h, included after this one.
  *
  * Every operation has one meaning on every ISA (see simd/scalar.h for the plain
  * statement of each); in particular vmin/vmax return the second operand when either
@@ -145,10 +146,6 @@ static inline vf KFN(rsqrt_fast)(vf x)
 #define vrcp_fast(x) KFN(rcp_fast)(x)
 #define vrsqrt_fast(x) KFN(rsqrt_fast)(x)
 
-/* Whole-vector stores, for scratch that the caller reads back at the hit lanes only. */
-#define vstoreu(p, x) VX(storeu_ps)(p, x)
-#define vstoreu_part(p, x) VXI(storeu)((vi_ *)(void *)(p), VX(cvttps_epi32)(x))
-
 /* ---- lane masks ---- */
 #if X86_KMASK
 #if VW == 16
@@ -172,8 +169,6 @@ static inline vf KFN(rsqrt_fast)(vf x)
 #define vsel(m, a, b) VX(mask_blend_ps)(m, b, a)
 #define vkeep(m, a) VX(maskz_mov_ps)(m, a)
 #define mxor(a, b) ((vm)((a) ^ (b)))
-#define vstore_m(p, m, x) VX(mask_storeu_ps)(p, m, x)
-#define vstore_part_m(p, m, x) VX(mask_storeu_epi32)(p, m, VX(cvttps_epi32)(x))
 #else /* vector masks */
 #define vm vf
 #if X86_FMA /* AVX: one compare with a predicate */
@@ -206,118 +201,4 @@ static inline vf KFN(rsqrt_fast)(vf x)
 #endif
 #define mfrom_bits(b)                                                                          \
     VCASTF(vcmpeq_i_(VXI (and)(VX(set1_epi32)((int)(b)), vlanebits_()), vlanebits_()))
-/* The stores of the hit lanes (docs/performance.md, "Stores by vendor"). A lane that
- * did not hit is never written, so nothing may be read back and blended in. AVX has
- * a masked store, two uops on Intel cores but microcoded on AMD Zen 1 to 3 (42 uops
- * and 12 cycles for 256 bits); SSE has none at all. So the hit vector's fields are
- * stored together (vstore_hits): a plain store each when every lane hit, else either
- * the masked stores or one loop over the hit lanes that stores every field of a lane,
- * whose exit is the one branch that a mix of hits and misses mispredicts.
- * X86_STORES_BY_LANE says which on AVX: the choice the dispatch made for this CPU
- * (cylray_stores_by_lane_, cylray_internal.h); a constant where the includer sets it. */
-#if X86_FMA && !defined(X86_STORES_BY_LANE)
-#define X86_STORES_BY_LANE cylray_stores_by_lane_()
-#endif
-#define vstore_m(p, m, x) KFN(store_m)(p, m, x)
-#define vstore_part_m(p, m, x) KFN(store_part_m)(p, m, x)
-/* A partly hit vector, a lane at a time: every field of a lane, then the next. */
-static inline __attribute__((always_inline)) void
-KFN(store_lanes)(uint32_t b, int normal, float *pt, float *ptmax, int32_t *ppart, float *pnx,
-                 float *pny, float *pnz, vf t, vi_ ip, vf nx, vf ny, vf nz)
-{
-    if (b == VFULL) {
-        VX(storeu_ps)(pt, t);
-        VX(storeu_ps)(ptmax, t);
-        VXI(storeu)((vi_ *)(void *)ppart, ip);
-        if (normal) {
-            VX(storeu_ps)(pnx, nx);
-            VX(storeu_ps)(pny, ny);
-            VX(storeu_ps)(pnz, nz);
-        }
-        return;
-    }
-    float lt[VW], lx[VW], ly[VW], lz[VW];
-    int32_t lp[VW];
-    VX(storeu_ps)(lt, t);
-    VXI(storeu)((vi_ *)(void *)lp, ip);
-    if (normal) {
-        VX(storeu_ps)(lx, nx);
-        VX(storeu_ps)(ly, ny);
-        VX(storeu_ps)(lz, nz);
-    }
-    for (uint32_t r = b; r; r &= r - 1u) {
-        const unsigned j = (unsigned)__builtin_ctz(r);
-        pt[j] = lt[j];
-        ptmax[j] = lt[j];
-        ppart[j] = lp[j];
-        if (normal) {
-            pnx[j] = lx[j];
-            pny[j] = ly[j];
-            pnz[j] = lz[j];
-        }
-    }
-}
-static inline __attribute__((always_inline)) void
-KFN(store_hits)(vm m, int normal, float *pt, float *ptmax, int32_t *ppart, float *pnx,
-                float *pny, float *pnz, vf t, vf part, vf nx, vf ny, vf nz)
-{
-    const vi_ ip = VX(cvttps_epi32)(part);
-#if X86_FMA
-    if (__builtin_expect(!X86_STORES_BY_LANE, 1)) {
-        VX(maskstore_ps)(pt, VCASTI(m), t);
-        VX(maskstore_ps)(ptmax, VCASTI(m), t);
-        VX(maskstore_epi32)((int *)ppart, VCASTI(m), ip);
-        if (normal) {
-            VX(maskstore_ps)(pnx, VCASTI(m), nx);
-            VX(maskstore_ps)(pny, VCASTI(m), ny);
-            VX(maskstore_ps)(pnz, VCASTI(m), nz);
-        }
-        return;
-    }
-#endif
-    /* Inline: out of line, with vectors for arguments, gcc 12 left the upper halves of
-     * the ymm registers dirty on return from a one-vector packet, and the caller's SSE
-     * code then ran 4x slower. */
-    KFN(store_lanes)(mbits(m), normal, pt, ptmax, ppart, pnx, pny, pnz, t, ip, nx, ny, nz);
-}
-/* One field alone, as vstore_hits stores it. */
-static inline __attribute__((always_inline)) void KFN(store_m)(float *p, vm m, vf x)
-{
-#if X86_FMA
-    if (!X86_STORES_BY_LANE) {
-        VX(maskstore_ps)(p, VCASTI(m), x);
-        return;
-    }
-#endif
-    const uint32_t b = mbits(m);
-    if (b == VFULL) {
-        VX(storeu_ps)(p, x);
-        return;
-    }
-    float l[VW];
-    VX(storeu_ps)(l, x);
-    for (uint32_t r = b; r; r &= r - 1u)
-        p[__builtin_ctz(r)] = l[__builtin_ctz(r)];
-}
-static inline __attribute__((always_inline)) void KFN(store_part_m)(int32_t *p, vm m, vf x)
-{
-    const vi_ xi = VX(cvttps_epi32)(x);
-#if X86_FMA
-    if (!X86_STORES_BY_LANE) {
-        VX(maskstore_epi32)((int *)p, VCASTI(m), xi);
-        return;
-    }
-#endif
-    const uint32_t b = mbits(m);
-    if (b == VFULL) {
-        VXI(storeu)((vi_ *)(void *)p, xi);
-        return;
-    }
-    int32_t l[VW];
-    VXI(storeu)((vi_ *)(void *)l, xi);
-    for (uint32_t r = b; r; r &= r - 1u)
-        p[__builtin_ctz(r)] = l[__builtin_ctz(r)];
-}
-#define vstore_hits(m, normal, pt, ptmax, ppart, pnx, pny, pnz, t, part, nx, ny, nz)           \
-    KFN(store_hits)(m, normal, pt, ptmax, ppart, pnx, pny, pnz, t, part, nx, ny, nz)
 #endif
