@@ -125,6 +125,6 @@ CYLRAY_INLINE void DFN(spawn)(const DFN(geo) * g, const vd p[3], vd err, vd part
         const vdm up = dmand(dgt(delta[k], zero), dlt(moved, delta[k]));
         const vdm down = dmand(dlt(delta[k], zero), dgt(moved, delta[k]));
         const vdm push = dmor(up, down);
-        out[k] = dmbits(push) ? dsel(push, DFN(next_f)(f, up), f) : f;
+        out[k] = dsel(push, DFN(next_f)(f, up), f);
     }
 }

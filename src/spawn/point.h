@@ -90,5 +90,5 @@ CYLRAY_INLINE void DFN(hit_point)(const DFN(geo) * g, const vd o[3], const vd d[
     /* rounded up: bound >= 0, so the float above f is one spacing up */
     const vd f = dround_f(bound);
     const vdm push = dlt(f, bound);
-    *err = dmbits(push) ? dsel(push, dadd(f, DFN(ulp_float)(f)), f) : f;
+    *err = dsel(push, dadd(f, DFN(ulp_float)(f)), f);
 }
