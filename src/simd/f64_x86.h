@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: MIT */
 /* simd/f64_x86.h - the secondary-ray code's vocabulary of double vectors on x86 (meanings
- * in simd/f64_scalar.h). DW = 2 (SSE4.1, xmm), 4 (AVX2, ymm; also under AVX-512 with
- * vector masks) or 8 (AVX-512 zmm, mask registers). */
+ * in simd/f64_scalar.h). DW = 2 (SSE4.1, or SSE2 alone: the scalar path on x86-64; xmm),
+ * 4 (AVX2, ymm; also under AVX-512 with vector masks) or 8 (AVX-512 zmm, mask
+ * registers). */
 #include <immintrin.h>
 #include <stdint.h>
 
@@ -80,5 +81,10 @@
 #define dmandn(a, b) DX(andnot_pd)(b, a)
 #define dmnot(a) DX(xor_pd)(a, dones_())
 #define dmbits(m) ((uint32_t)DX(movemask_pd)(m))
+#if DW == 2 && !defined(__SSE4_1__)
+/* SSE2 alone (the scalar path's two lanes on x86-64): no blendv */
+#define dsel(m, a, b) _mm_or_pd(_mm_and_pd(m, a), _mm_andnot_pd(m, b))
+#else
 #define dsel(m, a, b) DX(blendv_pd)(b, a, m)
+#endif
 #endif

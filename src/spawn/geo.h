@@ -11,24 +11,32 @@ typedef struct DFN(geo) {
     vd tilt, uR2, uH2;     /* 2 sqrt(3) ulp(max|v_k|)/|v|, 2 ulp(R), 2 ulp(H) */
     vd praw[3], Lp;        /* a vector perpendicular to v, and its length */
     vd pu[3];              /* the same, of unit length */
+    vd nv[3], l1v;         /* v/|v| (the outward normal of the disc at +H), |v/|v||_1 */
     vdm lo, hi;            /* the discs that are part of the surface */
 } DFN(geo);
 
-/* The spacing of floats at |x| or above it (never less): the exponent of x rounded to
- * float, which can only round up into the next binade; 2^-149 below FLT_MIN. */
+/* The spacing of floats at the float f (as a double): its exponent (dexpo drops the
+ * sign), 2^-149 below FLT_MIN. */
+static inline vd DFN(ulp_float)(vd f)
+{
+    return dmax(dmul(dexpo(f), dset1(0x1p-23)), dset1(0x1p-149));
+}
+
+/* The spacing of floats at |x| or above it (never less): that of x rounded to float,
+ * which can only round up into the next binade. */
 static inline vd DFN(ulp_f)(vd x)
 {
-    return dmax(dmul(dexpo(dround_f(dabs(x))), dset1(0x1p-23)), dset1(0x1p-149));
+    return DFN(ulp_float)(dround_f(x));
 }
 
 /* The float next to the float f, above it where up is set, below it elsewhere: one
- * spacing away from zero, half of one toward zero from a power of two above FLT_MIN. */
+ * spacing away from zero, half of one toward zero from a power of two above FLT_MIN
+ * (where f equals its exponent: 2^e = 2^23 ulp_f(f) from FLT_MIN up). */
 static inline vd DFN(next_f)(vd f, vdm up)
 {
-    const vd u = DFN(ulp_f)(f), af = dabs(f);
+    const vd af = dabs(f), ex = dexpo(f), u = DFN(ulp_float)(f);
     const vdm toward0 = dmor(dmand(up, dlt(f, dset1(0.0))), dmandn(dgt(f, dset1(0.0)), up));
-    const vdm half =
-        dmand(toward0, dmand(deq(af, dmul(u, dset1(0x1p23))), dgt(af, dset1(0x1p-126))));
+    const vdm half = dmand(toward0, dmand(deq(af, ex), dgt(af, dset1(0x1p-126))));
     const vd step = dsel(half, dmul(u, dset1(0.5)), u);
     return dsel(up, dadd(f, step), dsub(f, step));
 }
@@ -70,6 +78,9 @@ CYLRAY_INLINE void DFN(geo_make)(DFN(geo) * g, const vd c[3], const vd v[3], vd 
     g->lo = dmand(lo, finite);
     g->hi = dmand(hi, finite);
     const vd a0 = dabs(v[0]), a1 = dabs(v[1]), a2 = dabs(v[2]);
+    for (int k = 0; k < 3; k++)
+        g->nv[k] = dmul(v[k], g->inv_sv);
+    g->l1v = DFN(l1)(g->nv);
     g->tilt = dmul(dmul(dset1(2 * CYLRAY_SQRT3), DFN(ulp_f)(DFN(max3)(a0, a1, a2))), g->inv_sv);
     g->uR2 = dmul(dset1(2.0), DFN(ulp_f)(R));
     g->uH2 = dmul(dset1(2.0), DFN(ulp_f)(H));

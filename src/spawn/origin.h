@@ -1,11 +1,11 @@
 /* SPDX-License-Identifier: MIT */
 /* spawn/origin.h - the spawned origin */
 
-/* One surface to clear: its outward normal n, p's signed distance sigma, l1 = |n|_1,
- * the sign of the move along n, how far p lies on its wrong side (base), and the lanes
+/* One surface to clear: p's signed distance sigma, its margin m at p, the sign of the
+ * move along its outward normal, how far p lies on its wrong side (base), and the lanes
  * that clear it. A surface no lane clears is skipped: it would add zeros only. */
 typedef struct DFN(surf) {
-    vd n[3], sigma, l1, sgn, base;
+    vd sigma, m, sgn, base;
     vdm in, pos;
     int any; /* some lane clears it */
 } DFN(surf);
@@ -43,29 +43,31 @@ CYLRAY_INLINE void DFN(spawn)(const DFN(geo) * g, const vd p[3], vd err, vd part
     const vd tau = dsel(dlt(wl, dset1(INFINITY)), dmul(dset1(0x1p-147), wl), zero);
     const vd uRt = dadd(g->uR2, tau), uHt = dadd(g->uH2, tau);
 
-    /* the side, then the discs at -H and +H */
+    /* the side (outward normal r), then the discs at -H and +H (-nv and nv). The discs'
+     * normals being opposite, their 1-norm, their margins and n.w up to its sign are
+     * one computation for both (a negation is exact; a zero's sign changes no test and
+     * no sum below, whose partial sums start at +0 and so are never -0). */
     DFN(surf) S[3];
-    for (int k = 0; k < 3; k++) {
-        S[0].n[k] = r[k];
-        S[2].n[k] = dmul(g->v[k], g->inv_sv);
-        S[1].n[k] = dsub(zero, S[2].n[k]);
-    }
     S[0].sigma = dsub(rho, g->R);
     S[1].sigma = dsub(dsub(zero, z), g->H);
     S[2].sigma = dsub(z, g->H);
     const vdm here[3] = {deq(part, dset1(CYLRAY_SIDE)), deq(part, dset1(CYLRAY_CAP_LO)),
                          deq(part, dset1(CYLRAY_CAP_HI))};
     const vdm exists[3] = {deq(zero, zero), dmor(here[1], g->lo), dmor(here[2], g->hi)};
+    const vd wv = DFN(dot3)(g->nv, w);
+    const vdm wpos[3] = {dgt(DFN(dot3)(r, w), zero), dlt(wv, zero), dgt(wv, zero)};
     /* the margin at p, for the test of reach; refined below at the origin */
     const vd u2 = dmul(dset1(2.0), DFN(ulp_f)(dmax(qmax, pmax)));
+    const vd l1r = DFN(l1)(r);
+    S[0].m =
+        dmul(dset1(CYLRAY_SPAWN_SAFETY), dadd(dadd(dmul(u2, l1r), dmul(az, g->tilt)), uRt));
+    S[1].m = S[2].m =
+        dmul(dset1(CYLRAY_SPAWN_SAFETY), dadd(dadd(dmul(u2, g->l1v), dmul(rho, g->tilt)), uHt));
     vd move = zero, count = zero;
     for (int i = 0; i < 3; i++) {
         DFN(surf) *x = &S[i];
-        x->l1 = DFN(l1)(x->n);
-        const vd m = dmul(
-            dset1(CYLRAY_SPAWN_SAFETY),
-            dadd(dadd(dmul(u2, x->l1), dmul(i == 0 ? az : rho, g->tilt)), i == 0 ? uRt : uHt));
-        x->in = dmand(exists[i], dmor(here[i], dle(dabs(x->sigma), dadd(dadd(err, m), e_d))));
+        x->in =
+            dmand(exists[i], dmor(here[i], dle(dabs(x->sigma), dadd(dadd(err, x->m), e_d))));
         x->any = dmbits(x->in) != 0;
         x->pos = x->in;
         x->sgn = one;
@@ -74,12 +76,11 @@ CYLRAY_INLINE void DFN(spawn)(const DFN(geo) * g, const vd p[3], vd err, vd part
             continue;
         /* to w's side; the part's own surface to the side asked for, where one is */
         const vdm chosen = dmand(here[i], dmnot(deq(side, zero)));
-        x->pos =
-            dmor(dmand(chosen, dgt(side, zero)), dmandn(dgt(DFN(dot3)(x->n, w), zero), chosen));
+        x->pos = dmor(dmand(chosen, dgt(side, zero)), dmandn(wpos[i], chosen));
         x->sgn = dsel(x->pos, one, dset1(-1.0));
         /* max(0, -sign sigma): how far p lies on the wrong side */
         x->base = dmax(zero, dsel(x->pos, dsub(zero, x->sigma), x->sigma));
-        move = dadd(move, dsel(x->in, dadd(dadd(x->base, e_d), m), zero));
+        move = dadd(move, dsel(x->in, dadd(dadd(x->base, e_d), x->m), zero));
         count = dadd(count, dsel(x->in, one, zero));
     }
 
@@ -92,19 +93,31 @@ CYLRAY_INLINE void DFN(spawn)(const DFN(geo) * g, const vd p[3], vd err, vd part
     const vd v2 = dmul(dset1(2.0), DFN(ulp_f)(dmax(wmax, xmax)));
     const vd rim = dsel(dgt(count, one), rnd, zero);
     vd delta[3] = {zero, zero, zero};
+    const vd m2c = S[1].any | S[2].any
+                       ? dmul(dset1(CYLRAY_SPAWN_SAFETY),
+                              dadd(dadd(dmul(v2, g->l1v), dmul(rmax, g->tilt)), uHt))
+                       : zero;
     for (int i = 0; i < 3; i++) {
         const DFN(surf) *x = &S[i];
         if (!x->any)
             continue;
-        const vd m = dmul(dset1(CYLRAY_SPAWN_SAFETY),
-                          dadd(dadd(dmul(v2, x->l1), dmul(i == 0 ? zmax : rmax, g->tilt)),
-                               i == 0 ? uRt : uHt));
+        const vd m = i == 0 ? dmul(dset1(CYLRAY_SPAWN_SAFETY),
+                                   dadd(dadd(dmul(v2, l1r), dmul(zmax, g->tilt)), uRt))
+                            : m2c;
         vd a = dadd(dadd(dadd(x->base, e_d), m), rim);
         if (i == 0) /* inward from the side: the rounding's tangential part */
             a = dadd(a, dsel(x->pos, zero, dmul(dmul(dmul(dset1(2.0), rnd), rnd), g->inv_R)));
         a = dmul(dmul(a, dset1(1 + 0x1p-20)), x->sgn);
-        for (int k = 0; k < 3; k++)
-            delta[k] = dadd(delta[k], dsel(x->in, dmul(a, x->n[k]), zero));
+        if (i == 0) {
+            /* r may be NaN where p is not finite: the lanes left out add +0 */
+            for (int k = 0; k < 3; k++)
+                delta[k] = dadd(delta[k], dsel(x->in, dmul(a, r[k]), zero));
+        } else {
+            /* along nv, finite: the lanes left out add a zero */
+            a = dsel(x->in, i == 1 ? dsub(zero, a) : a, zero);
+            for (int k = 0; k < 3; k++)
+                delta[k] = dadd(delta[k], dmul(a, g->nv[k]));
+        }
     }
     for (int k = 0; k < 3; k++) {
         const vd f = dround_f(dadd(p[k], delta[k])), moved = dsub(f, p[k]);
@@ -112,6 +125,6 @@ CYLRAY_INLINE void DFN(spawn)(const DFN(geo) * g, const vd p[3], vd err, vd part
         const vdm up = dmand(dgt(delta[k], zero), dlt(moved, delta[k]));
         const vdm down = dmand(dlt(delta[k], zero), dgt(moved, delta[k]));
         const vdm push = dmor(up, down);
-        out[k] = dmbits(push) ? dsel(push, DFN(next_f)(f, up), f) : f;
+        out[k] = dsel(push, DFN(next_f)(f, up), f);
     }
 }

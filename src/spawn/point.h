@@ -72,12 +72,12 @@ CYLRAY_INLINE void DFN(hit_point)(const DFN(geo) * g, const vd o[3], const vd d[
         dmul(dmul(dset1(0x1p-47), dadd(dadd(dadd(g->R, g->Hf), qn), Pn)), dadd(one, side_gain)),
         dsel(side, dmul(dmul(g->R, a), a), zero));
 
-    /* e = P - P' exactly (Sterbenz); n, the normal at P' */
+    /* e = P - P' exactly (Sterbenz); n, the normal at P' up to its sign (|e.n| alone
+     * is read): a disc's is +-nv */
     vd e[3], n[3];
     for (int k = 0; k < 3; k++) {
         e[k] = dsub(p[k], Pd[k]);
-        n[k] = dsel(side, dmul(r[k], inv_L),
-                    dmul(dsel(chi, g->v[k], dsub(zero, g->v[k])), g->inv_sv));
+        n[k] = dsel(side, dmul(r[k], inv_L), g->nv[k]);
     }
     const vd en = dabs(DFN(dot3)(e, n)), ee = DFN(dot3)(e, e), el = dsqrt(ee);
     const vd z = dmul(dabs(s), g->sv);
@@ -87,7 +87,8 @@ CYLRAY_INLINE void DFN(hit_point)(const DFN(geo) * g, const vd o[3], const vd d[
     const vd dist = dsel(c_side, dadd(en, dmul(ee, g->inv_R)), dsel(c_cap, en, el));
     /* (1 + 2^-40) covers the few roundings of dist itself */
     const vd bound = dmul(dadd(dist, dmul(dset1(3.0), env)), dset1(1 + 0x1p-40));
+    /* rounded up: bound >= 0, so the float above f is one spacing up */
     const vd f = dround_f(bound);
     const vdm push = dlt(f, bound);
-    *err = dmbits(push) ? dsel(push, DFN(next_f)(f, dgt(one, zero)), f) : f;
+    *err = dsel(push, dadd(f, DFN(ulp_float)(f)), f);
 }
