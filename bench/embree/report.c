@@ -42,7 +42,7 @@ static err_summary summarize(eb_err *e)
 static void speed(FILE *f, const eb_row *r, size_t n)
 {
     fprintf(f,
-            "\nM rays/s (%d threads; packet = rays per Embree call; cylray-leaf: up to %d "
+            "\nM rays/s (%d threads; packet = rays per Embree call; cylray-leaf: %d "
             "cylinders a leaf, grouped by Embree's SAH builder)\n",
             r[0].threads, r[EB_LEAF < n ? EB_LEAF : 0].leaf_m);
     fprintf(f, "%-7s %-9s %-16s %8s", "isa", "scene", "variant", "build s");
