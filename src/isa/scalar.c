@@ -10,17 +10,17 @@
 #undef KFN
 
 /* The secondary rays: on x86-64, whose baseline has SSE2, two lanes of doubles (two
- * rays in flight: one ray's chain of dependent steps leaves the core idle), the same
- * answers bit for bit as one lane; elsewhere one lane, plain C. */
+ * rays an operation: a vector's time hardly grows with its width, docs/performance.md),
+ * the same answers bit for bit as one lane; elsewhere one lane, plain C. */
+#define DFN(n) CYLRAY_CAT(n, CYLRAY_CAT(_, SPWD))
 #if defined(__x86_64__) && defined(__SSE2__)
 #define SPWD scalar_d2
 #define DW 2
 #include "simd/f64_x86.h"
 #else
 #define SPWD scalar_d1
-#include "simd/f64_scalar.h"
+#include "simd/f64_scalar.h" /* its helpers are named with DFN */
 #endif
-#define DFN(n) CYLRAY_CAT(n, CYLRAY_CAT(_, SPWD))
 #include "spawn/spawn.h"
 #include "simd/f64_undef.h"
 #undef DFN
