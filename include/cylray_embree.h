@@ -143,14 +143,15 @@ CYLRAY_EMBREE_API int cylray_embree_spawn_origin_side(RTCGeometry geometry, unsi
                                                       float t, const float Ng[3], int outward,
                                                       const float w[3], float out[3]);
 
-/* Packets through a scene that holds such a geometry, in place of rtcIntersect4/8/16
- * and rtcOccluded4/8/16 (same arguments, same results): Embree's packet call where the
- * packet is coherent (the context's flags say RTC_INTERSECT_CONTEXT_FLAG_COHERENT, or
- * at least three valid rays share one direction octant), and otherwise rtcIntersect1 /
- * rtcOccluded1 for each valid ray with the same context. Embree 3 traverses user
- * geometry in packets without ever dropping to one ray at a time, so an incoherent
- * packet would cost more than its rays one a call. Filter functions run as with
- * Embree's own calls (with N = 1 for rays traced one a call). */
+/* Packets through a scene that holds such a geometry, in place of rtcIntersect4/8/16 and
+ * rtcOccluded4/8/16 (same arguments, aligned as Embree requires: valid and the packet to
+ * 16, 32, 64 bytes for 4, 8, 16 rays; same results): Embree's packet call where the packet
+ * is coherent (the context's flags say RTC_INTERSECT_CONTEXT_FLAG_COHERENT, or at least
+ * three valid rays share one direction octant), and otherwise rtcIntersect1 / rtcOccluded1
+ * for each valid ray with the same context. Embree 3 traverses user geometry in packets
+ * without ever dropping to one ray at a time, so an incoherent packet would cost more than
+ * its rays one a call. Filter functions run as with Embree's own calls (with N = 1 for rays
+ * traced one a call). */
 CYLRAY_EMBREE_API void cylray_embree_intersect4(const int *valid, RTCScene scene,
                                                 struct RTCIntersectContext *context,
                                                 struct RTCRayHit4 *rayhit);

@@ -106,11 +106,12 @@ void eb_camera_rays(eb_rays *r, const eb_scene *s, int w, int h)
     static void packet##N(RTCScene sc, eb_rays *r, size_t i0, int occ)                         \
     {                                                                                          \
         struct RTCRayHit##N rh;                                                                \
-        int valid[N], any = 0;                                                                 \
+        _Alignas(64) int valid[N]; /* Embree loads the mask as one vector */                   \
         struct RTCIntersectContext ctx;                                                        \
         rtcInitIntersectContext(&ctx);                                                         \
         ctx.flags = r->incoherent ? RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT                      \
                                   : RTC_INTERSECT_CONTEXT_FLAG_COHERENT;                       \
+        int any = 0;                                                                           \
         for (int j = 0; j < N; j++) {                                                          \
             size_t i = i0 + (size_t)j;                                                         \
             valid[j] = i < r->n && r->valid[i] ? -1 : 0;                                       \

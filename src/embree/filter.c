@@ -23,8 +23,8 @@ static float offer(unsigned N, unsigned i, const hitrec *h, unsigned geomID,
 int ceb_filter_hit(const struct RTCIntersectFunctionNArguments *a, unsigned i, const hitrec *h)
 {
     const unsigned N = a->N;
-    float hb[H_NFIELDS * 16];
-    int valid[16];
+    _Alignas(64) float hb[H_NFIELDS * 16];
+    _Alignas(64) int valid[16]; /* as Embree aligns a packet's mask */
     const float old = offer(N, i, h, a->geomID, a->context, a->rayhit, valid, hb);
     struct RTCFilterFunctionNArguments f = {valid,
                                             a->geometryUserPtr,
@@ -44,8 +44,8 @@ int ceb_filter_hit(const struct RTCIntersectFunctionNArguments *a, unsigned i, c
 int ceb_filter_occ(const struct RTCOccludedFunctionNArguments *a, unsigned i, const hitrec *h)
 {
     const unsigned N = a->N;
-    float hb[H_NFIELDS * 16];
-    int valid[16];
+    _Alignas(64) float hb[H_NFIELDS * 16];
+    _Alignas(64) int valid[16]; /* as Embree aligns a packet's mask */
     const float old = offer(N, i, h, a->geomID, a->context, a->ray, valid, hb);
     struct RTCFilterFunctionNArguments f = {valid,  a->geometryUserPtr,   a->context,
                                             a->ray, (struct RTCHitN *)hb, N};
