@@ -102,6 +102,24 @@ DFN(hit_points_stream)(const cylray_prepared *P, const cylray_rays *rays,
     return count;
 }
 
+/* The spawn's inputs and outputs for the vector of lanes [b, b + cnt) of the batched
+ * forms: points (with err), directions, and with outward the sides as +-1 in side. */
+static inline void DFN(sp_args)(const cylray_points *pts, const uint8_t *outward,
+                                const cylray_points *dirs, const cylray_points *origins,
+                                size_t b, size_t cnt, float side[DW], const float *in[10],
+                                float *out[3])
+{
+    if (outward)
+        for (size_t i = 0; i < DW; i++)
+            side[i] = outward[b + (i < cnt ? i : 0)] ? 1.0f : -1.0f;
+    const float *const a[10] = {
+        pts->x + b,  pts->y + b,  pts->z + b,  pts->err ? pts->err + b : NULL,
+        dirs->x + b, dirs->y + b, dirs->z + b, outward ? side : NULL};
+    for (int k = 0; k < 10; k++)
+        in[k] = a[k];
+    out[0] = origins->x + b, out[1] = origins->y + b, out[2] = origins->z + b;
+}
+
 /* outward: NULL (w's side), or a byte a ray (nonzero: the part's outward side). */
 CYLRAY_MAYBE_UNUSED static void DFN(spawn_stream)(const cylray_prepared *P,
                                                   const cylray_points *pts, const int32_t *part,
@@ -114,13 +132,9 @@ CYLRAY_MAYBE_UNUSED static void DFN(spawn_stream)(const cylray_prepared *P,
     float side[DW];
     for (size_t b = 0; b < n; b += DW) {
         const size_t cnt = n - b < DW ? n - b : DW;
-        if (outward)
-            for (size_t i = 0; i < DW; i++)
-                side[i] = outward[b + (i < cnt ? i : 0)] ? 1.0f : -1.0f;
-        const float *const in[10] = {
-            pts->x + b,  pts->y + b,  pts->z + b,  pts->err ? pts->err + b : NULL,
-            dirs->x + b, dirs->y + b, dirs->z + b, outward ? side : NULL};
-        float *const out[3] = {origins->x + b, origins->y + b, origins->z + b};
+        const float *in[10];
+        float *out[3];
+        DFN(sp_args)(pts, outward, dirs, origins, b, cnt, side, in, out);
         if (cnt < DW) {
             uint32_t bits = 0;
             for (size_t i = 0; i < cnt; i++)
@@ -209,13 +223,9 @@ DFN(leaf_spawn_origins)(const float *const *leaf, size_t m, const cylray_hit1 *h
         const size_t cnt = n - b < DW ? n - b : DW;
         DFN(geo) g;
         DFN(leaf_geo)(&g, leaf + b, hit + b, m, cnt);
-        if (outward)
-            for (size_t i = 0; i < DW; i++)
-                side[i] = outward[b + (i < cnt ? i : 0)] ? 1.0f : -1.0f;
-        const float *const in[10] = {
-            pts->x + b,  pts->y + b,  pts->z + b,  pts->err ? pts->err + b : NULL,
-            dirs->x + b, dirs->y + b, dirs->z + b, outward ? side : NULL};
-        float *const out[3] = {origins->x + b, origins->y + b, origins->z + b};
+        const float *in[10];
+        float *out[3];
+        DFN(sp_args)(pts, outward, dirs, origins, b, cnt, side, in, out);
         int32_t pb[DW];
         for (size_t i = 0; i < DW; i++)
             pb[i] = hit[b + (i < cnt ? i : 0)].part;
