@@ -479,13 +479,9 @@ static int run_nested(void)
             continue;
         exact_hits++;
         for (int k = 0; k < nisa; k++) {
-            cylray_ray4 q;
-            cylray_hit4 qh;
-            memset(&q, 0, sizeof q);
-            q.ox[0] = x0[0], q.oy[0] = x0[1], q.oz[0] = x0[2];
-            q.dx[0] = w[0], q.dy[0] = w[1], q.dz[0] = w[2];
-            q.tmax[0] = INFINITY;
-            if (isas[k]->intersect4(&Pi, &q, &qh, 1u, 0))
+            float tq;
+            int32_t pq;
+            if (sref_trace1(isas[k], &Pi, x0, w, &tq, &pq))
                 continue;
             cylref_band b;
             cylref_band_eval(&in, x0, w, 0.0f, INFINITY, 0, &b);
