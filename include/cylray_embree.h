@@ -119,6 +119,11 @@ CYLRAY_EMBREE_API int cylray_embree_is_cylinders(RTCGeometry geometry);
  * box, or per leaf; 0 for another geometry. */
 CYLRAY_EMBREE_API size_t cylray_embree_primitives(RTCGeometry geometry);
 
+/* How many cylinders a leaf of such a geometry holds at most (made with
+ * CYLRAY_EMBREE_LEAVES: 8 or 4, by the kernels' path); 0 without leaves or for another
+ * geometry. */
+CYLRAY_EMBREE_API unsigned cylray_embree_leaf_size(RTCGeometry geometry);
+
 /* The prepared form of cylinder primID of such a geometry, for cylray's own calls
  * (cylray_hit_point, cylray_spawn_origin, the kernels); NULL when out of range. */
 CYLRAY_EMBREE_API const cylray_prepared *cylray_embree_cylinder(RTCGeometry geometry,

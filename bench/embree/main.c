@@ -339,11 +339,6 @@ static int run_scene(const opts *o, RTCDevice dev, cylray_isa isa, int which, eb
         snprintf(r->isa, sizeof r->isa, "%s", cylray_isa_name(isa));
         snprintf(r->scene, sizeof r->scene, "%s", sc.name);
         snprintf(r->variant, sizeof r->variant, "%s", eb_variant_name((eb_variant)v));
-        /* the adapter's leaf width: the kernels' vector width */
-        r->leaf_m = v != EB_LEAF               ? 0
-                    : isa == CYLRAY_ISA_AVX512 ? 16
-                    : isa == CYLRAY_ISA_AVX2   ? 8
-                                               : 4;
         r->threads = o->threads;
         r->ns = sc.ns;
         for (int p = 0; p < EB_NPHASES; p++)
@@ -357,6 +352,7 @@ static int run_scene(const opts *o, RTCDevice dev, cylray_isa isa, int which, eb
         built[v] = 1;
         r->build_s = geo[v].build_s;
         r->nprim = geo[v].nprim;
+        r->leaf_m = (int)cylray_embree_leaf_size(geo[v].cyl); /* 0 but for leaves */
         eb_camera_rays(&fr[v].prim, &sc, o->w, o->h);
     }
 

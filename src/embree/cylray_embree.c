@@ -155,6 +155,12 @@ size_t cylray_embree_primitives(RTCGeometry geometry)
     return g ? g->nprim : 0;
 }
 
+unsigned cylray_embree_leaf_size(RTCGeometry geometry)
+{
+    const ceb *g = ceb_of(geometry);
+    return g && (g->options & CYLRAY_EMBREE_LEAVES) ? (unsigned)g->m : 0u;
+}
+
 const cylray_prepared *cylray_embree_cylinder(RTCGeometry geometry, unsigned primID)
 {
     const ceb *g = ceb_of(geometry);

@@ -391,6 +391,12 @@ int main(void)
          * tests nothing new) */
             if (v == EB_SPLIT)
                 REPORT(g.nprim <= s.ns, "%s: %zu boxes for %zu cylinders", vn, g.nprim, s.ns);
+            unsigned m = cylray_embree_leaf_size(g.cyl),
+                     want = v != EB_LEAF                                         ? 0
+                            : isa == CYLRAY_ISA_AVX2 || isa == CYLRAY_ISA_AVX512 ? 8
+                                                                                 : 4;
+            REPORT(m != want || (m && g.nprim * m < s.ns), "%s: leaves of %u, %zu primitives",
+                   vn, m, g.nprim);
             packet_passes(g.scene, vn, v != EB_LEAF, 0, &r, tfar0, valid0, &passed, &failed);
             eb_camera_rays(&r, &s, W, H);
             int bad = exact(vn, &g, &ref, &r);
@@ -446,14 +452,15 @@ int main(void)
         d.count = 0;
         bad += cylray_embree_new_geometry(dev, &d, &st) != NULL || st != CYLRAY_EINVAL;
         RTCGeometry tri = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_TRIANGLE);
-        bad += cylray_embree_is_cylinders(tri) || cylray_embree_primitives(tri) != 0;
+        bad += cylray_embree_is_cylinders(tri) || cylray_embree_primitives(tri) != 0 ||
+               cylray_embree_leaf_size(tri) != 0;
         rtcReleaseGeometry(tri);
         d = eb_scene_desc(&s, 0, K);
         RTCGeometry geo = cylray_embree_new_geometry(dev, &d, &st);
         float z[3] = {0, 0, 0}, one[3] = {1, 0, 0}, out[3];
         bad +=
             !geo || st != CYLRAY_OK || !cylray_embree_is_cylinders(geo) ||
-            cylray_embree_primitives(geo) != s.ns ||
+            cylray_embree_primitives(geo) != s.ns || cylray_embree_leaf_size(geo) != 0 ||
             cylray_embree_cylinder(geo, (unsigned)s.ns) != NULL ||
             cylray_embree_cylinder(geo, 0) == NULL ||
             cylray_embree_spawn_origin(geo, (unsigned)s.ns, z, one, 1, one, one, out) != -1 ||
