@@ -11,7 +11,22 @@
  * read before in registers (or in spill slots). */
 #define CYLRAY_REREAD() __asm__ volatile("" ::: "memory")
 #define CYLRAY_MAYBE_UNUSED __attribute__((unused))
+#if defined(__POPCNT__) || !(defined(__x86_64__) || defined(__i386__))
 #define CYLRAY_POPCOUNT(x) ((unsigned)__builtin_popcount(x))
+#else
+/* On x86 without the popcnt instruction (the SSE4.1 and scalar paths may not assume
+ * it) the builtin is a call into libgcc, and a call inside a kernel's loop spills
+ * every vector register live across it. The lane masks are at most 32 bits: this
+ * inline form is a dozen integer operations. */
+CYLRAY_INLINE unsigned cylray_popcount_(unsigned x)
+{
+    x = x - ((x >> 1) & 0x55555555u);
+    x = (x & 0x33333333u) + ((x >> 2) & 0x33333333u);
+    x = (x + (x >> 4)) & 0x0f0f0f0fu;
+    return (x * 0x01010101u) >> 24;
+}
+#define CYLRAY_POPCOUNT(x) cylray_popcount_((unsigned)(x))
+#endif
 #define CYLRAY_CTZ(x) ((size_t)__builtin_ctz(x))
 #else
 #define CYLRAY_INLINE static inline
