@@ -16,15 +16,7 @@
 #else
 /* On x86 without the popcnt instruction (the SSE4.1 and scalar paths may not assume
  * it) the builtin is a call into libgcc, and a call inside a kernel's loop spills
- * every vector register live across it. The lane masks are at most 32 bits: this
- * inline form is a dozen integer operations. */
-CYLRAY_INLINE unsigned cylray_popcount_(unsigned x)
-{
-    x = x - ((x >> 1) & 0x55555555u);
-    x = (x & 0x33333333u) + ((x >> 2) & 0x33333333u);
-    x = (x + (x >> 4)) & 0x0f0f0f0fu;
-    return (x * 0x01010101u) >> 24;
-}
+ * every vector register live across it. */
 #define CYLRAY_POPCOUNT(x) cylray_popcount_((unsigned)(x))
 #endif
 #define CYLRAY_CTZ(x) ((size_t)__builtin_ctz(x))
@@ -33,13 +25,7 @@ CYLRAY_INLINE unsigned cylray_popcount_(unsigned x)
 #define CYLRAY_NOINLINE static
 #define CYLRAY_REREAD() ((void)0)
 #define CYLRAY_MAYBE_UNUSED
-static inline unsigned CYLRAY_POPCOUNT(unsigned x)
-{
-    unsigned n = 0;
-    for (; x; x &= x - 1)
-        n++;
-    return n;
-}
+#define CYLRAY_POPCOUNT(x) cylray_popcount_((unsigned)(x))
 static inline size_t CYLRAY_CTZ(unsigned x)
 {
     size_t n = 0;
@@ -48,6 +34,16 @@ static inline size_t CYLRAY_CTZ(unsigned x)
     return n;
 }
 #endif
+
+/* The bits of a lane mask (at most 32), where the compiler has no instruction for
+ * it: a dozen integer operations, no branch, no call. */
+CYLRAY_INLINE unsigned cylray_popcount_(unsigned x)
+{
+    x = x - ((x >> 1) & 0x55555555u);
+    x = (x & 0x33333333u) + ((x >> 2) & 0x33333333u);
+    x = (x + (x >> 4)) & 0x0f0f0f0fu;
+    return (x * 0x01010101u) >> 24;
+}
 
 #define CYLRAY_CAT_(a, b) a##b
 #define CYLRAY_CAT(a, b) CYLRAY_CAT_(a, b)
