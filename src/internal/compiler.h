@@ -6,7 +6,14 @@
 
 #if defined(__GNUC__) || defined(__clang__)
 #define CYLRAY_INLINE static inline __attribute__((always_inline))
+/* The rare paths (lanes that need the scaled instance, a stream's last lanes): out of
+ * the hot code and compiled for size. */
 #define CYLRAY_NOINLINE static __attribute__((noinline, cold))
+/* Out of line but compiled for speed: the drivers that read their flags at run time,
+ * which whole scenes run (cylinders with one end disc). As cold functions, their
+ * helpers (the SSE4.1 exact products in double) were calls that spilled every
+ * vector register. */
+#define CYLRAY_OUTLINE static __attribute__((noinline))
 /* Makes the compiler read memory again after this point instead of keeping what it
  * read before in registers (or in spill slots). */
 #define CYLRAY_REREAD() __asm__ volatile("" ::: "memory")
@@ -23,6 +30,7 @@
 #else
 #define CYLRAY_INLINE static inline
 #define CYLRAY_NOINLINE static
+#define CYLRAY_OUTLINE static
 #define CYLRAY_REREAD() ((void)0)
 #define CYLRAY_MAYBE_UNUSED
 #define CYLRAY_POPCOUNT(x) cylray_popcount_((unsigned)(x))

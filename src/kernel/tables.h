@@ -15,7 +15,7 @@ static unsigned KFN(generic_fl)(const cylray_prepared *P, unsigned flags, int oc
 }
 
 /* One instance each of the drivers with the flags read at run time. */
-CYLRAY_MAYBE_UNUSED CYLRAY_NOINLINE size_t KFN(stream_any)(const cylray_prepared *P,
+CYLRAY_MAYBE_UNUSED CYLRAY_OUTLINE size_t KFN(stream_any)(const cylray_prepared *P,
                                                            const cylray_rays *R,
                                                            const cylray_hits *H,
                                                            uint8_t *occluded, size_t n,
@@ -24,7 +24,7 @@ CYLRAY_MAYBE_UNUSED CYLRAY_NOINLINE size_t KFN(stream_any)(const cylray_prepared
     return KFN(stream)(P, R, H, occluded, n, rt, FL);
 }
 
-CYLRAY_MAYBE_UNUSED CYLRAY_NOINLINE uint32_t KFN(packet_any)(const cylray_prepared *P,
+CYLRAY_MAYBE_UNUSED CYLRAY_OUTLINE uint32_t KFN(packet_any)(const cylray_prepared *P,
                                                              float *ray, float *hit, size_t n,
                                                              uint32_t active, unsigned rt,
                                                              unsigned FL)
@@ -33,7 +33,7 @@ CYLRAY_MAYBE_UNUSED CYLRAY_NOINLINE uint32_t KFN(packet_any)(const cylray_prepar
                    : KFN(packet)(P, ray, hit, n, active, rt, FL);
 }
 
-CYLRAY_MAYBE_UNUSED CYLRAY_NOINLINE int KFN(leaf_any)(const float *L, size_t lm,
+CYLRAY_MAYBE_UNUSED CYLRAY_OUTLINE int KFN(leaf_any)(const float *L, size_t lm,
                                                       cylray_ray1 *ray, cylray_hit1 *hit,
                                                       unsigned rt, unsigned FL)
 {
