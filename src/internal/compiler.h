@@ -6,13 +6,13 @@
 
 #if defined(__GNUC__) || defined(__clang__)
 #define CYLRAY_INLINE static inline __attribute__((always_inline))
-/* The rare paths (lanes that need the scaled instance, a stream's last lanes): out of
- * the hot code and compiled for size. */
+/* The rare paths (lanes that need the scaled instance): out of the hot code and
+ * compiled for size. */
 #define CYLRAY_NOINLINE static __attribute__((noinline, cold))
 /* Out of line but compiled for speed: the drivers that read their flags at run time,
- * which whole scenes run (cylinders with one end disc). As cold functions, their
- * helpers (the SSE4.1 exact products in double) were calls that spilled every
- * vector register. */
+ * which whole scenes run (cylinders with one end disc), and a stream's last lanes. As
+ * cold functions, their helpers (the SSE4.1 exact products in double) were calls that
+ * spilled every vector register. */
 #define CYLRAY_OUTLINE static __attribute__((noinline))
 /* Makes the compiler read memory again after this point instead of keeping what it
  * read before in registers (or in spill slots). */

@@ -80,8 +80,9 @@ CYLRAY_INLINE uint32_t KFN(packet1)(const cylray_prepared *P, float *ray, float 
 
 /* The last lanes of a stream, fewer than two vectors, through a local copy: nothing
  * beyond the caller's arrays is read or written. One instance per ISA and width, with
- * the flags read at run time: it runs once per stream call. */
-CYLRAY_NOINLINE size_t KFN(stream_tail)(const cylray_prepared *P, const cylray_rays *R,
+ * the flags read at run time. It runs once per stream call, and a short stream is
+ * nothing else, so it is compiled for speed, not as a cold path (docs/performance.md). */
+CYLRAY_OUTLINE size_t KFN(stream_tail)(const cylray_prepared *P, const cylray_rays *R,
                                         const cylray_hits *H, uint8_t *occluded, size_t n,
                                         size_t i, unsigned rt, unsigned FL)
 {
