@@ -78,46 +78,45 @@ CYLRAY_INLINE uint32_t KFN(packet1)(const cylray_prepared *P, float *ray, float 
     return KFN(vector)(P, &R, &H, 0, active, rt, FL, NULL, 0, 1, ray, hit, VW).hit[0];
 }
 
-/* The last lanes of a stream, fewer than two vectors, through a local copy: nothing
- * beyond the caller's arrays is read or written. One instance per ISA and width, with
- * the flags read at run time. It runs once per stream call, and a short stream is
- * nothing else, so it is compiled for speed, not as a cold path (docs/performance.md). */
+/* The last lanes of a stream (fewer than a vector: all of a short stream) as one packet
+ * of VW lanes, copied in and out: nothing beyond the caller's arrays is read or
+ * written. `one` is the stream's own table slot's one-vector packet function, whose
+ * kernel is specialised as the stream's is; the streams with flags read at run time
+ * pass NULL and get the packet driver with those flags. The views are the caller's own
+ * (not renamed for an aligned cylinder: the packet function does that). A short stream
+ * runs here only, so it is compiled for speed, not as a cold path
+ * (docs/performance.md). */
 CYLRAY_OUTLINE size_t KFN(stream_tail)(const cylray_prepared *P, const cylray_rays *R,
-                                        const cylray_hits *H, uint8_t *occluded, size_t n,
-                                        size_t i, unsigned rt, unsigned FL)
+                                       const cylray_hits *H, uint8_t *occluded, size_t n,
+                                       size_t i, unsigned rt, unsigned FL,
+                                       KFN(packet_fn) one)
 {
     const int occ = (FL & CYLRAY_KF_OCCLUDED) != 0;
     const int normal = (FL & CYLRAY_NORMAL) && !occ;
     const size_t rest = n - i;
-    float in[8][2 * VW] = {{0}}, out[4][2 * VW] = {{0}};
-    int32_t part[2 * VW] = {0};
+    CYLRAY_ALIGN(64) float ray[8 * VW] = {0};
+    CYLRAY_ALIGN(64) float hit[5 * VW];
     const float *src[8] = {R->ox, R->oy, R->oz, R->dx, R->dy, R->dz, R->tmin, R->tmax};
-    for (int f = 0; f < 8; f++)
+    for (size_t f = 0; f < 8; f++)
         for (size_t j = 0; j < rest; j++)
-            in[f][j] = src[f][i + j];
-    const cylray_rays lr = {in[0], in[1], in[2], in[3], in[4], in[5], in[6], in[7]};
-    const cylray_hits lh = {out[0], out[1], out[2], out[3], part};
-    size_t count = 0;
-    for (size_t b = 0; b < rest; b += VW) {
-        const uint32_t bits = rest - b >= VW ? VFULL : (uint32_t)((1u << (rest - b)) - 1u);
-        uint32_t m = KFN(vector)(P, &lr, &lh, b, bits, rt, FL | CYLRAY_KF_SCRATCH, NULL, 0, 0,
-                                 NULL, NULL, 0)
-                         .hit[0];
-        count += CYLRAY_POPCOUNT(m);
-        for (; m; m &= m - 1) {
-            const size_t j = b + CYLRAY_CTZ(m);
-            if (occ) {
-                occluded[i + j] = 1;
-                continue;
-            }
-            H->t[i + j] = out[0][j];
-            R->tmax[i + j] = in[7][j];
-            H->part[i + j] = part[j];
-            if (normal) {
-                H->nx[i + j] = out[1][j];
-                H->ny[i + j] = out[2][j];
-                H->nz[i + j] = out[3][j];
-            }
+            ray[f * VW + j] = src[f][i + j];
+    const uint32_t bits = (uint32_t)((1u << rest) - 1u);
+    float *h = occ ? NULL : hit;
+    uint32_t m = one ? one(P, ray, h, VW, bits, rt) : KFN(packet1)(P, ray, h, bits, rt, FL);
+    const size_t count = CYLRAY_POPCOUNT(m);
+    for (; m; m &= m - 1) {
+        const size_t j = CYLRAY_CTZ(m);
+        if (occ) {
+            occluded[i + j] = 1;
+            continue;
+        }
+        H->t[i + j] = hit[j];
+        R->tmax[i + j] = ray[7 * VW + j];
+        memcpy(&H->part[i + j], &hit[4 * VW + j], sizeof H->part[0]);
+        if (normal) {
+            H->nx[i + j] = hit[VW + j];
+            H->ny[i + j] = hit[2 * VW + j];
+            H->nz[i + j] = hit[3 * VW + j];
         }
     }
     return count;

@@ -2,7 +2,7 @@
 /* kernel/stream.h - the stream driver and the leaf driver. */
 
 /* A stream of any length: whole vectors in place, then the last lanes through
- * KFN(stream_tail). Where the ISA file sets KPAIRS (the widths and kernels on which it
+ * KFN(stream_tail) as a packet (`one`: see there). Where the ISA file sets KPAIRS (the widths and kernels on which it
  * was measured to pay), a stream keeps two vectors in flight (KFN(block2)) while the
  * rejection drops none; once a pair sees a vector rejected, the vectors go one at a time
  * until KGROUP_ in a row pass it (a rejected vector would otherwise run beside one that
@@ -10,7 +10,7 @@
 #define KGROUP_ KGROUP(cylray_kflags_of_(FL, rt))
 CYLRAY_INLINE size_t KFN(stream)(const cylray_prepared *P, const cylray_rays *R0,
                                  const cylray_hits *H0, uint8_t *occluded, size_t n,
-                                 unsigned rt, const unsigned FL)
+                                 unsigned rt, const unsigned FL, KFN(packet_fn) one)
 {
     const int occ = (FL & CYLRAY_KF_OCCLUDED) != 0;
     const int aligned = (FL & CYLRAY_KF_ALIGNED) != 0;
@@ -54,7 +54,7 @@ CYLRAY_INLINE size_t KFN(stream)(const cylray_prepared *P, const cylray_rays *R0
     }
 #undef KOCC_MARK_
     if (whole < n)
-        count += KFN(stream_tail)(P, R, H, occluded, n, whole, rt, FL);
+        count += KFN(stream_tail)(P, R0, H0, occluded, n, whole, rt, FL, one);
     return count;
 }
 #undef KGROUP_

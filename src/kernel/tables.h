@@ -21,7 +21,7 @@ CYLRAY_MAYBE_UNUSED CYLRAY_OUTLINE size_t KFN(stream_any)(const cylray_prepared 
                                                            uint8_t *occluded, size_t n,
                                                            unsigned rt, unsigned FL)
 {
-    return KFN(stream)(P, R, H, occluded, n, rt, FL);
+    return KFN(stream)(P, R, H, occluded, n, rt, FL, NULL);
 }
 
 CYLRAY_MAYBE_UNUSED CYLRAY_OUTLINE uint32_t KFN(packet_any)(const cylray_prepared *P,
@@ -132,17 +132,17 @@ CYLRAY_MAYBE_UNUSED static size_t KFN(stream_generic)(const cylray_prepared *P,
 /* The three drivers of one table slot; the calls are given, as they differ between the
  * specialised drivers and the run-time ones. */
 #define KSLOT_(kind, b, pk1_call, pk_body, st_call)                                            \
-    static size_t KFN(st_##kind##_##b)(const cylray_prepared *P, const cylray_rays *R,         \
-                                       const cylray_hits *H, uint8_t *o, size_t n,             \
-                                       unsigned rt)                                            \
-    {                                                                                          \
-        return st_call;                                                                        \
-    }                                                                                          \
     static uint32_t KFN(pk1_##kind##_##b)(const cylray_prepared *P, float *R, float *H,        \
                                           size_t n, uint32_t a, unsigned rt)                   \
     {                                                                                          \
         (void)n;                                                                               \
         return pk1_call;                                                                       \
+    }                                                                                          \
+    static size_t KFN(st_##kind##_##b)(const cylray_prepared *P, const cylray_rays *R,         \
+                                       const cylray_hits *H, uint8_t *o, size_t n,             \
+                                       unsigned rt)                                            \
+    {                                                                                          \
+        return st_call;                                                                        \
     }                                                                                          \
     static uint32_t KFN(pk_##kind##_##b)(const cylray_prepared *P, float *R, float *H,         \
                                          size_t n, uint32_t a, unsigned rt)                    \
@@ -158,7 +158,7 @@ CYLRAY_MAYBE_UNUSED static size_t KFN(stream_generic)(const cylray_prepared *P,
 #endif
 #define KSPEC_(kind, b, fl)                                                                    \
     KSLOT_(kind, b, KFN(packet1)(P, R, H, a, rt, fl), KPACKET_SEVERAL_(kind, b, fl, packet),   \
-           KFN(stream)(P, R, H, o, n, rt, fl))
+           KFN(stream)(P, R, H, o, n, rt, fl, KFN(pk1_##kind##_##b)))
 #define KANY_(kind, b, fl)                                                                     \
     KSLOT_(kind, b, KFN(packet_any)(P, R, H, n, a, rt, fl),                                    \
            KPACKET_SEVERAL_(kind, b, fl, packet_any), KFN(stream_any)(P, R, H, o, n, rt, fl))
