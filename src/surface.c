@@ -14,8 +14,23 @@ typedef struct surf_cyl {
 /* The largest float below 1: where v rounds up to 1, it stays in [0, 1). */
 #define BELOW_ONE 0x1.fffffep-1f
 
-static void surface_at(const surf_cyl *s, const float p[3], int32_t part, float uv[2],
-                       float dpdu[3], float dpdv[3])
+/* surface_at is compiled twice on x86 (src/meson.build): here, and with AVX2 and FMA
+ * as cylray_surface_at_fma_, where each fma() of the double-double products is one
+ * instruction instead of a call into libm (32 a call, with the live floating-point
+ * registers saved around each). The products are exact either way: the answers are
+ * the same. */
+#ifdef CYLRAY_SURFACE_FMA
+#define SURFACE_AT_ cylray_surface_at_fma_
+#define SURFACE_LINKAGE_
+#else
+#define SURFACE_AT_ surface_at_plain
+#define SURFACE_LINKAGE_ static
+#endif
+void cylray_surface_at_fma_(const surf_cyl *s, const float p[3], int32_t part, float uv[2],
+                            float dpdu[3], float dpdv[3]);
+
+SURFACE_LINKAGE_ void SURFACE_AT_(const surf_cyl *s, const float p[3], int32_t part,
+                                  float uv[2], float dpdu[3], float dpdv[3])
 {
     part &= CYLRAY_PART_MASK;
     if (part != CYLRAY_SIDE && part != CYLRAY_CAP_LO && part != CYLRAY_CAP_HI)
@@ -94,6 +109,22 @@ static void surface_at(const surf_cyl *s, const float p[3], int32_t part, float 
             dpdv[k] = (float)(TWO_PI * rho * (co * b2[k].hi - si * b1[k].hi));
 }
 
+#ifndef CYLRAY_SURFACE_FMA
+/* The FMA instance where the chosen kernels are AVX2 or AVX-512 (the CPU has FMA, and
+ * CYLRAY_ISA did not ask for less). */
+static void surface_at(const surf_cyl *s, const float p[3], int32_t part, float uv[2],
+                       float dpdu[3], float dpdv[3])
+{
+#ifdef CYLRAY_HAVE_SURFACE_FMA
+    const cylray_isa isa = cylray_kernels_best()->isa;
+    if (isa == CYLRAY_ISA_AVX2 || isa == CYLRAY_ISA_AVX512) {
+        cylray_surface_at_fma_(s, p, part, uv, dpdu, dpdv);
+        return;
+    }
+#endif
+    surface_at_plain(s, p, part, uv, dpdu, dpdv);
+}
+
 void cylray_surface(const cylray_prepared *cyl, const float p[3], int32_t part, float uv[2],
                     float dpdu[3], float dpdv[3])
 {
@@ -136,3 +167,4 @@ static void leaf_surface(const float *geom, const uint32_t *meta, unsigned m,
 LEAF_SURFACE_(4)
 LEAF_SURFACE_(8)
 LEAF_SURFACE_(16)
+#endif
