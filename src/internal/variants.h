@@ -24,9 +24,6 @@
 #define CYLRAY_KF_KIND_SHIFT 10
 #define CYLRAY_KF_SCALED 0x1000u  /* the rare-lane instance: d scaled to near unit length */
 #define CYLRAY_KF_ONE_END 0x2000u /* a capped cylinder with one disc only */
-/* The hits go to the driver's own scratch, which reads back the hit lanes alone: the
- * kernel may store whole vectors there (the stream tail; a leaf always does). */
-#define CYLRAY_KF_SCRATCH 0x4000u
 /* The public flags every kernel reads at run time rather than being specialised for. */
 #define CYLRAY_KF_RUNTIME (CYLRAY_FACE_FORWARD | CYLRAY_CULL_BACK)
 

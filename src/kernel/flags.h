@@ -10,7 +10,8 @@
 typedef struct {
     unsigned kind;
     int leaf, capped, finite, one_end, aligned, scaled, occ, normal, cull, ff, refine, fast;
-    int scratch;
+    int scratch; /* the hits go to a leaf's own scratch, read back at the hit lanes only:
+                  * whole vectors may be stored there */
 } cylray_kflags_;
 
 CYLRAY_INLINE cylray_kflags_ cylray_kflags_of_(unsigned FL, unsigned rt)
@@ -31,7 +32,7 @@ CYLRAY_INLINE cylray_kflags_ cylray_kflags_of_(unsigned FL, unsigned rt)
     F.ff = (rt & CYLRAY_FACE_FORWARD) != 0;
     F.refine = (FL & CYLRAY_REFINE) != 0;
     F.fast = (FL & CYLRAY_FAST) != 0;
-    F.scratch = F.leaf || (FL & CYLRAY_KF_SCRATCH) != 0;
+    F.scratch = F.leaf;
     return F;
 }
 
