@@ -10,9 +10,9 @@
  * compiled for size. */
 #define CYLRAY_NOINLINE static __attribute__((noinline, cold))
 /* Out of line but compiled for speed: the drivers that read their flags at run time,
- * which whole scenes run (cylinders with one end disc), and a stream's last lanes. As
- * cold functions, their helpers (the SSE4.1 exact products in double) were calls that
- * spilled every vector register. */
+ * which whole scenes run (cylinders with one end disc), and a stream's last lanes.
+ * Compiled as cold, their helpers (the SSE4.1 exact products in double) would be
+ * calls, with every live vector register spilled around each. */
 #define CYLRAY_OUTLINE static __attribute__((noinline))
 /* Makes the compiler read memory again after this point instead of keeping what it
  * read before in registers (or in spill slots). */

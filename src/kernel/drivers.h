@@ -88,8 +88,7 @@ CYLRAY_INLINE uint32_t KFN(packet1)(const cylray_prepared *P, float *ray, float 
  * (docs/performance.md). */
 CYLRAY_OUTLINE size_t KFN(stream_tail)(const cylray_prepared *P, const cylray_rays *R,
                                        const cylray_hits *H, uint8_t *occluded, size_t n,
-                                       size_t i, unsigned rt, unsigned FL,
-                                       KFN(packet_fn) one)
+                                       size_t i, unsigned rt, unsigned FL, KFN(packet_fn) one)
 {
     const int occ = (FL & CYLRAY_KF_OCCLUDED) != 0;
     const int normal = (FL & CYLRAY_NORMAL) && !occ;

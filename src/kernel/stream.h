@@ -2,11 +2,12 @@
 /* kernel/stream.h - the stream driver and the leaf driver. */
 
 /* A stream of any length: whole vectors in place, then the last lanes through
- * KFN(stream_tail) as a packet (`one`: see there). Where the ISA file sets KPAIRS (the widths and kernels on which it
- * was measured to pay), a stream keeps two vectors in flight (KFN(block2)) while the
- * rejection drops none; once a pair sees a vector rejected, the vectors go one at a time
- * until KGROUP_ in a row pass it (a rejected vector would otherwise run beside one that
- * hits, as its twin, and cost what the pair saves). Occlusion streams run the same way. */
+ * KFN(stream_tail) as a packet (`one`: see there). Where the ISA file sets KPAIRS (the
+ * widths and kernels on which it was measured to pay), a stream keeps two vectors in
+ * flight (KFN(block2)) while the rejection drops none; once a pair sees a vector
+ * rejected, the vectors go one at a time until KGROUP_ in a row pass it (a rejected
+ * vector would otherwise run beside one that hits, as its twin, and cost what the pair
+ * saves). Occlusion streams run the same way. */
 #define KGROUP_ KGROUP(cylray_kflags_of_(FL, rt))
 CYLRAY_INLINE size_t KFN(stream)(const cylray_prepared *P, const cylray_rays *R0,
                                  const cylray_hits *H0, uint8_t *occluded, size_t n,

@@ -16,26 +16,26 @@ static unsigned KFN(generic_fl)(const cylray_prepared *P, unsigned flags, int oc
 
 /* One instance each of the drivers with the flags read at run time. */
 CYLRAY_MAYBE_UNUSED CYLRAY_OUTLINE size_t KFN(stream_any)(const cylray_prepared *P,
-                                                           const cylray_rays *R,
-                                                           const cylray_hits *H,
-                                                           uint8_t *occluded, size_t n,
-                                                           unsigned rt, unsigned FL)
+                                                          const cylray_rays *R,
+                                                          const cylray_hits *H,
+                                                          uint8_t *occluded, size_t n,
+                                                          unsigned rt, unsigned FL)
 {
     return KFN(stream)(P, R, H, occluded, n, rt, FL, NULL);
 }
 
 CYLRAY_MAYBE_UNUSED CYLRAY_OUTLINE uint32_t KFN(packet_any)(const cylray_prepared *P,
-                                                             float *ray, float *hit, size_t n,
-                                                             uint32_t active, unsigned rt,
-                                                             unsigned FL)
+                                                            float *ray, float *hit, size_t n,
+                                                            uint32_t active, unsigned rt,
+                                                            unsigned FL)
 {
     return n == VW ? KFN(packet1)(P, ray, hit, active, rt, FL)
                    : KFN(packet)(P, ray, hit, n, active, rt, FL);
 }
 
 CYLRAY_MAYBE_UNUSED CYLRAY_OUTLINE int KFN(leaf_any)(const float *L, size_t lm,
-                                                      cylray_ray1 *ray, cylray_hit1 *hit,
-                                                      unsigned rt, unsigned FL)
+                                                     cylray_ray1 *ray, cylray_hit1 *hit,
+                                                     unsigned rt, unsigned FL)
 {
     return KFN(leaf)(L, lm, ray, hit, rt, FL);
 }
