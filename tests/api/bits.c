@@ -1,8 +1,9 @@
 /* SPDX-License-Identifier: MIT */
 /* The kernels count a vector's hit lanes with CYLRAY_POPCOUNT and find the next one
- * with CYLRAY_CTZ (internal/compiler.h), each in one of three forms: the builtin, an
- * inline count on x86 without popcnt, plain C for other compilers. Every form this
- * build can compile is checked against a count bit by bit. */
+ * with CYLRAY_CTZ (internal/compiler.h): the builtins with GNU C (the count inline
+ * instead on x86 without popcnt), plain C for other compilers. The form this build
+ * takes and the plain C one (bits_portable.c) are checked against a count bit by
+ * bit. */
 #include "internal/compiler.h"
 
 #include <stdint.h>
