@@ -82,10 +82,10 @@ CYLRAY_INLINE uint32_t KFN(packet1)(const cylray_prepared *P, float *ray, float 
  * of VW lanes, copied in and out: nothing beyond the caller's arrays is read or
  * written. `one` is the stream's own table slot's one-vector packet function, whose
  * kernel is specialised as the stream's is; the streams with flags read at run time
- * pass NULL and get the packet driver with those flags. The views are the caller's own
- * (not renamed for an aligned cylinder: the packet function does that). A short stream
- * runs here only, so it is compiled for speed, not as a cold path
- * (docs/performance.md). */
+ * pass NULL and get the packet driver with those flags. The views are the stream's,
+ * renamed for an aligned cylinder; the packet function renames its packet itself, so
+ * the lanes go in and out in the caller's order. A short stream runs here only, so it
+ * is compiled for speed, not as a cold path (docs/performance.md). */
 CYLRAY_OUTLINE size_t KFN(stream_tail)(const cylray_prepared *P, const cylray_rays *R,
                                        const cylray_hits *H, uint8_t *occluded, size_t n,
                                        size_t i, unsigned rt, unsigned FL, KFN(packet_fn) one)
@@ -93,12 +93,15 @@ CYLRAY_OUTLINE size_t KFN(stream_tail)(const cylray_prepared *P, const cylray_ra
     const int occ = (FL & CYLRAY_KF_OCCLUDED) != 0;
     const int normal = (FL & CYLRAY_NORMAL) && !occ;
     const size_t rest = n - i;
+    size_t k[3]; /* the views' component j is the packet's k[j] (cylray_packet_rays_) */
+    cylray_axis_order_(P, (FL & CYLRAY_KF_ALIGNED) != 0, k);
     CYLRAY_ALIGN(64) float ray[8 * VW] = {0};
     CYLRAY_ALIGN(64) float hit[5 * VW];
     const float *src[8] = {R->ox, R->oy, R->oz, R->dx, R->dy, R->dz, R->tmin, R->tmax};
+    const size_t field[8] = {k[0], k[1], k[2], 3 + k[0], 3 + k[1], 3 + k[2], 6, 7};
     for (size_t f = 0; f < 8; f++)
         for (size_t j = 0; j < rest; j++)
-            ray[f * VW + j] = src[f][i + j];
+            ray[field[f] * VW + j] = src[f][i + j];
     const uint32_t bits = (uint32_t)((1u << rest) - 1u);
     float *h = occ ? NULL : hit;
     uint32_t m = one ? one(P, ray, h, VW, bits, rt) : KFN(packet1)(P, ray, h, bits, rt, FL);
@@ -113,9 +116,9 @@ CYLRAY_OUTLINE size_t KFN(stream_tail)(const cylray_prepared *P, const cylray_ra
         R->tmax[i + j] = ray[7 * VW + j];
         memcpy(&H->part[i + j], &hit[4 * VW + j], sizeof H->part[0]);
         if (normal) {
-            H->nx[i + j] = hit[VW + j];
-            H->ny[i + j] = hit[2 * VW + j];
-            H->nz[i + j] = hit[3 * VW + j];
+            H->nx[i + j] = hit[(1 + k[0]) * VW + j];
+            H->ny[i + j] = hit[(1 + k[1]) * VW + j];
+            H->nz[i + j] = hit[(1 + k[2]) * VW + j];
         }
     }
     return count;

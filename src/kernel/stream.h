@@ -55,7 +55,7 @@ CYLRAY_INLINE size_t KFN(stream)(const cylray_prepared *P, const cylray_rays *R0
     }
 #undef KOCC_MARK_
     if (whole < n)
-        count += KFN(stream_tail)(P, R0, H0, occluded, n, whole, rt, FL, one);
+        count += KFN(stream_tail)(P, R, H, occluded, n, whole, rt, FL, one);
     return count;
 }
 #undef KGROUP_

@@ -92,9 +92,12 @@ static uint32_t KFN(packet_by_stream)(const cylray_prepared *P, float *ray, floa
 }
 #endif
 
-CYLRAY_MAYBE_UNUSED static uint32_t KFN(packet_generic)(const cylray_prepared *P, float *ray,
-                                                        float *hit, size_t n, uint32_t active,
-                                                        unsigned flags)
+/* The entry points' way to the generic drivers: cold, so that their hot path to the
+ * specialised kernels stays free of the call's register saves. */
+CYLRAY_MAYBE_UNUSED CYLRAY_NOINLINE uint32_t KFN(packet_generic)(const cylray_prepared *P,
+                                                                 float *ray, float *hit,
+                                                                 size_t n, uint32_t active,
+                                                                 unsigned flags)
 {
 #if VW == 1 /* KFN(by_stream_) above */
     return KFN(by_stream_)(P, ray, hit, n, active, flags & CYLRAY_KF_RUNTIME, NULL,
@@ -105,10 +108,11 @@ CYLRAY_MAYBE_UNUSED static uint32_t KFN(packet_generic)(const cylray_prepared *P
 #endif
 }
 
-CYLRAY_MAYBE_UNUSED static size_t KFN(stream_generic)(const cylray_prepared *P,
-                                                      const cylray_rays *R,
-                                                      const cylray_hits *H, uint8_t *occluded,
-                                                      size_t n, unsigned flags)
+CYLRAY_MAYBE_UNUSED CYLRAY_NOINLINE size_t KFN(stream_generic)(const cylray_prepared *P,
+                                                               const cylray_rays *R,
+                                                               const cylray_hits *H,
+                                                               uint8_t *occluded, size_t n,
+                                                               unsigned flags)
 {
     return KFN(stream_any)(P, R, H, occluded, n, flags & CYLRAY_KF_RUNTIME,
                            KFN(generic_fl)(P, flags, occluded != NULL));
