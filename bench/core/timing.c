@@ -9,6 +9,7 @@
  * ray. Hit counts are summed into a volatile sink, so no pass can be optimised away. */
 #include "bench.h"
 #include "clock.h"
+#include "internal/compiler.h" /* CYLRAY_POPCOUNT, the library's own lane count */
 #include "timing_run.h"
 
 #include <math.h>
@@ -44,15 +45,12 @@ result *results_push(result_list *l)
     return r;
 }
 
-/* The hit lanes of a packet, counted inline: this file is compiled for any x86-64,
- * where __builtin_popcount is a call into libgcc, and that call would be timed with
- * every packet (the streams count their own hits inside the library). */
+/* The hit lanes of a packet, counted as the library counts its streams': on any x86-64
+ * this file is compiled for, __builtin_popcount is a call into libgcc, which would be
+ * timed with every packet. */
 static inline unsigned popc(uint32_t m)
 {
-    m = m - ((m >> 1) & 0x55555555u);
-    m = (m & 0x33333333u) + ((m >> 2) & 0x33333333u);
-    m = (m + (m >> 4)) & 0x0f0f0f0fu;
-    return (unsigned)((m * 0x01010101u) >> 24);
+    return CYLRAY_POPCOUNT(m);
 }
 
 /* One pass over batch b for packets of N lanes: every packet against every cylinder,
