@@ -3,6 +3,8 @@
 #include "cylray_internal.h"
 #include "internal/dd.h"
 
+#include <string.h>
+
 #define TWO_PI 6.283185307179586476925
 
 /* The geometry surface_at needs, from a prepared cylinder or a leaf lane. */
@@ -29,12 +31,12 @@ typedef struct surf_cyl {
 void cylray_surface_at_fma_(const surf_cyl *s, const float p[3], int32_t part, float uv[2],
                             float dpdu[3], float dpdv[3]);
 
-SURFACE_LINKAGE_ void SURFACE_AT_(const surf_cyl *s, const float p[3], int32_t part,
-                                  float uv[2], float dpdu[3], float dpdv[3])
+/* The double-double path, every quantity good to about 2^-100 of its size: u and v,
+ * and the derivatives that turn with the azimuth (dpdr: a disc's dpdu; NULL on the
+ * side, whose dpdu SURFACE_AT_ writes). */
+static void surface_dd(const surf_cyl *s, const float p[3], int32_t part, float uv[2],
+                       float dpdr[3], float dpdv[3])
 {
-    part &= CYLRAY_PART_MASK;
-    if (part != CYLRAY_SIDE && part != CYLRAY_CAP_LO && part != CYLRAY_CAP_HI)
-        return;
     /* The unit axis as a double-double; exact along a coordinate axis. */
     cylray_dd n[3];
     int zeros = (s->v[0] == 0) + (s->v[1] == 0) + (s->v[2] == 0);
@@ -50,13 +52,6 @@ SURFACE_LINKAGE_ void SURFACE_AT_(const surf_cyl *s, const float p[3], int32_t p
             n[k] = dd_div(dd_make(s->v[k], 0.0), sv);
     }
     const int side = part == CYLRAY_SIDE, finite = isfinite(s->H);
-    if (dpdu && side)
-        for (int k = 0; k < 3; k++)
-            dpdu[k] = (float)((finite ? 2.0 * s->H : 1.0) * n[k].hi);
-    if (uv && !side)
-        uv[0] = part == CYLRAY_CAP_HI ? 1.0f : 0.0f;
-    if (!uv && !dpdv && !(dpdu && !side))
-        return;
     /* p - c is exact as a double-double. */
     cylray_dd r[3];
     for (int k = 0; k < 3; k++)
@@ -101,12 +96,146 @@ SURFACE_LINKAGE_ void SURFACE_AT_(const surf_cyl *s, const float p[3], int32_t p
         return;
     }
     /* A disc: the radial coordinate w = rho / R in [0, 1] with v the azimuth. */
-    if (dpdu)
+    if (dpdr)
         for (int k = 0; k < 3; k++)
-            dpdu[k] = (float)(s->R * (co * b1[k].hi + si * b2[k].hi));
+            dpdr[k] = (float)(s->R * (co * b1[k].hi + si * b2[k].hi));
     if (dpdv)
         for (int k = 0; k < 3; k++)
             dpdv[k] = (float)(TWO_PI * rho * (co * b2[k].hi - si * b1[k].hi));
+}
+
+/* Would every double within e of x round to the float x rounds to? The midpoints
+ * between floats are doubles, and rounding is monotonic, so the two comparisons are
+ * exact statements about x - e and x + e. */
+static float float_step(float f, int up) /* nextafterf, inline; f not NaN */
+{
+    if (f == 0)
+        return up ? 0x1p-149f : -0x1p-149f;
+    uint32_t b;
+    memcpy(&b, &f, sizeof b);
+    b = (f > 0) == (up != 0) ? b + 1u : b - 1u;
+    memcpy(&f, &b, sizeof f);
+    return f;
+}
+
+static int float_decided(double x, double e)
+{
+    const float f = (float)x;
+    if (isnan(f))
+        return 0;
+    const double below = ((double)f + (double)float_step(f, 0)) * 0.5;
+    const double above = ((double)f + (double)float_step(f, 1)) * 0.5;
+    return x - e > below && x + e < above;
+}
+
+/* The unit axis in double, good to 4U |n_k| (U = 2^-53: two sums of exact squares, a
+ * square root, a division); exact along a coordinate axis. */
+static void axis_d(const surf_cyl *s, double n[3])
+{
+    int zeros = (s->v[0] == 0) + (s->v[1] == 0) + (s->v[2] == 0);
+    if (zeros == 2) {
+        for (int k = 0; k < 3; k++)
+            n[k] = s->v[k] == 0 ? 0.0 : s->v[k] > 0 ? 1.0 : -1.0;
+        return;
+    }
+    const double sv =
+        sqrt((double)s->v[0] * s->v[0] + (double)s->v[1] * s->v[1] + (double)s->v[2] * s->v[2]);
+    for (int k = 0; k < 3; k++)
+        n[k] = s->v[k] / sv + 0.0; /* + 0: a zero is +0, as on the double-double path */
+}
+
+/* u and v in plain double, where the error bound e of the coordinates (z = r.n, x, y in
+ * the frame, rho = |(x, y)|) decides their floats: each then rounds to the float of its
+ * exact value, as on the double-double path (good to 2^-100). Returns 0 where it does
+ * not decide: u or v within the bound of a midpoint between two floats (about one
+ * point in 2^20 of ordinary ones), or v at its seam (y of either sign where x > 0). */
+static int uv_quick(const surf_cyl *s, int side, double z, double x, double y, double rho,
+                    double e, float uv[2])
+{
+    float u = 0.0f;
+    if (side) {
+        double ud = z, eu = e;
+        if (isfinite(s->H)) {
+            ud = (z + s->H) / (2.0 * s->H);
+            eu = e / (2.0 * s->H) + 0x1p-51 * fabs(ud);
+        }
+        /* twice the bound: the double-double path's value lies within it as well */
+        if (!float_decided(ud, 2.0 * eu))
+            return 0;
+        u = (float)ud;
+    }
+    /* The azimuth moves by at most 1.5 e / rho; atan2 (charged two ulps), 2 pi and the
+     * division add 6U |t|, the wrap U. */
+    if (!(y > e || y < -e || x < 0))
+        return 0;
+    double t = atan2(y, x) / TWO_PI, et = 2.0 * (0.25 * e / rho + 0x1p-50 * fabs(t));
+    if (t < 0)
+        t += 1.0, et += 0x1p-51;
+    if (!float_decided(t, et))
+        return 0;
+    const float f = (float)t + 0.0f; /* + 0: no -0 */
+    if (!side)
+        u = uv[0];
+    uv[0] = u, uv[1] = f < 1.0f ? f : BELOW_ONE;
+    return 1;
+}
+
+/* The frame and the coordinates in plain double first, with a bound on their error,
+ * and the double-double path only for what that bound leaves undecided. The bound: the
+ * axis is good to 4U |n_k|; a = -1 / (s + n_z), whose denominator is at least 1, to
+ * 7U |a|; every frame component, each at most 1 in size, to 19U; r = p - c to U |r_k|;
+ * so each of z, x and y to 23U R1, with R1 = |r_0| + |r_1| + |r_2|; E = 2^-47 R1 is
+ * 64U R1. Where rho > 2^26 E the azimuth's cosine and sine are good to 2^-25, and the
+ * derivatives with them (the header promises 2^-20); short of that, and for NaN or
+ * infinite coordinates, the double-double path computes everything that turns with
+ * the azimuth. Each choice depends on p alone, never on which outputs are asked for,
+ * so an output does not change with the others. */
+SURFACE_LINKAGE_ void SURFACE_AT_(const surf_cyl *s, const float p[3], int32_t part,
+                                  float uv[2], float dpdu[3], float dpdv[3])
+{
+    part &= CYLRAY_PART_MASK;
+    if (part != CYLRAY_SIDE && part != CYLRAY_CAP_LO && part != CYLRAY_CAP_HI)
+        return;
+    const int side = part == CYLRAY_SIDE;
+    double n[3];
+    axis_d(s, n);
+    if (dpdu && side)
+        for (int k = 0; k < 3; k++)
+            dpdu[k] = (float)((isfinite(s->H) ? 2.0 * s->H : 1.0) * n[k]);
+    if (uv && !side)
+        uv[0] = part == CYLRAY_CAP_HI ? 1.0f : 0.0f;
+    float *const dpdr = side ? NULL : dpdu; /* a disc's dpdu turns with the azimuth */
+    if (!uv && !dpdv && !dpdr)
+        return;
+    double r[3], R1 = 0;
+    for (int k = 0; k < 3; k++) {
+        r[k] = (double)p[k] - (double)s->c[k];
+        R1 += fabs(r[k]);
+    }
+    const double E = 0x1p-47 * R1;
+    /* The frame of Duff et al., as on the double-double path, whose zeros are +0 where
+     * they come from a product (hence the + 0) and -0 in -n_y. */
+    const double sg = n[2] >= 0 ? 1.0 : -1.0, a = -1.0 / (sg + n[2]),
+                 b = n[0] * n[1] * a + 0.0;
+    const double b1[3] = {1.0 + sg * (n[0] * n[0] * a), sg * b + 0.0, -sg * n[0] + 0.0};
+    const double b2[3] = {b, sg + n[1] * n[1] * a, -n[1]};
+    const double x = r[0] * b1[0] + r[1] * b1[1] + r[2] * b1[2];
+    const double y = r[0] * b2[0] + r[1] * b2[1] + r[2] * b2[2];
+    const double rho = sqrt(x * x + y * y);
+    if (!(E < INFINITY) || !(rho > 0x1p26 * E)) {
+        surface_dd(s, p, part, uv, dpdr, dpdv);
+        return;
+    }
+    const double co = x / rho, si = y / rho;
+    for (int k = 0; k < 3 && dpdv; k++)
+        dpdv[k] = (float)(TWO_PI * (side ? s->R : rho) * (co * b2[k] - si * b1[k]));
+    for (int k = 0; k < 3 && dpdr; k++)
+        dpdr[k] = (float)(s->R * (co * b1[k] + si * b2[k]));
+    if (uv) {
+        const double z = side ? r[0] * n[0] + r[1] * n[1] + r[2] * n[2] : 0.0;
+        if (!uv_quick(s, side, z, x, y, rho, E, uv))
+            surface_dd(s, p, part, uv, NULL, NULL);
+    }
 }
 
 #ifndef CYLRAY_SURFACE_FMA

@@ -159,6 +159,10 @@ static void make_point(cylgen_rng *g, const tkq *q, int part, int finite, float 
     else {
         z = part == CYLRAY_CAP_HI ? q->H : -q->H;
         r = q->R * (cylq)tk_u(g);
+        /* now and then next to the axis, where the azimuth says less and less: the
+         * plain-double evaluation hands over to the double-double one there */
+        if (tk_u(g) < 0.1)
+            r = q->R * (cylq)tk_log(g, 1e-12, 1e-3);
     }
     tk_point(q, z, cos(th), sin(th), r, pt);
     for (int k = 0; k < 3; k++)
