@@ -104,10 +104,8 @@ static void surface_dd(const surf_cyl *s, const float p[3], int32_t part, float 
             dpdv[k] = (float)(TWO_PI * rho * (co * b2[k].hi - si * b1[k].hi));
 }
 
-/* Would every double within e of x round to the float x rounds to? The midpoints
- * between floats are doubles, and rounding is monotonic, so the two comparisons are
- * exact statements about x - e and x + e. */
-static float float_step(float f, int up) /* nextafterf, inline; f not NaN */
+/* nextafterf toward +inf (up) or -inf, inline; f not NaN */
+static float float_step(float f, int up)
 {
     if (f == 0)
         return up ? 0x1p-149f : -0x1p-149f;
@@ -118,6 +116,9 @@ static float float_step(float f, int up) /* nextafterf, inline; f not NaN */
     return f;
 }
 
+/* Would every double within e of x round to the float x rounds to? The midpoints
+ * between floats are doubles, and rounding is monotonic, so the two comparisons are
+ * exact statements about x - e and x + e. */
 static int float_decided(double x, double e)
 {
     const float f = (float)x;
@@ -174,9 +175,9 @@ static int uv_quick(const surf_cyl *s, int side, double z, double x, double y, d
     if (!float_decided(t, et))
         return 0;
     const float f = (float)t + 0.0f; /* + 0: no -0 */
-    if (!side)
-        u = uv[0];
-    uv[0] = u, uv[1] = f < 1.0f ? f : BELOW_ONE;
+    if (side)
+        uv[0] = u; /* a disc's u is written already */
+    uv[1] = f < 1.0f ? f : BELOW_ONE;
     return 1;
 }
 
