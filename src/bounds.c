@@ -81,36 +81,25 @@ static int axis_coord_d(const float v[3], int k, double *n, double *s)
     return 0;
 }
 
-/* nextafterf toward +inf (up) or -inf, inline; f not NaN */
-static float float_step(float f, int up)
-{
-    if (f == 0)
-        return up ? 0x1p-149f : -0x1p-149f;
-    uint32_t b;
-    memcpy(&b, &f, sizeof b);
-    b = (f > 0) == (up != 0) ? b + 1u : b - 1u;
-    memcpy(&f, &b, sizeof f);
-    return f;
-}
-
-/* The largest float <= x and the smallest float >= x (x not NaN). */
+/* The largest float <= x and the smallest float >= x (x not NaN); the rounding is
+ * opaque (internal/round.h), so that (double)f is not folded into x. */
 static float floor_f(double x)
 {
-    float f = (float)x;
-    return (double)f > x ? float_step(f, 0) : f;
+    const float f = cylray_to_float_(x);
+    return (double)f > x ? cylray_float_step_(f, 0) : f;
 }
 
 static float ceil_f(double x)
 {
-    float f = (float)x;
-    return (double)f < x ? float_step(f, 1) : f;
+    const float f = cylray_to_float_(x);
+    return (double)f < x ? cylray_float_step_(f, 1) : f;
 }
 
 /* c + a + b rounded outward to float, where a and b are within 6 units of 2^-53 of
  * themselves (exact where `exact`): 1 and *out where decided. The sum's two roundings
  * add 2 units of the magnitudes; 2^-48 of them (32 units) bounds every error, the
  * roundings of x -+ e included. */
-static int face_quick(double c, double a, double b, int exact, int dir, float *out)
+static inline int face_quick(double c, double a, double b, int exact, int dir, float *out)
 {
     const cylray_dd s1 = dd_two_sum(c, a), s2 = dd_two_sum(s1.hi, b);
     const double x = s2.hi;

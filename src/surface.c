@@ -3,8 +3,6 @@
 #include "cylray_internal.h"
 #include "internal/dd.h"
 
-#include <string.h>
-
 #define TWO_PI 6.283185307179586476925
 
 /* The geometry surface_at needs, from a prepared cylinder or a leaf lane. */
@@ -104,28 +102,17 @@ static void surface_dd(const surf_cyl *s, const float p[3], int32_t part, float 
             dpdv[k] = (float)(TWO_PI * rho * (co * b2[k].hi - si * b1[k].hi));
 }
 
-/* nextafterf toward +inf (up) or -inf, inline; f not NaN */
-static float float_step(float f, int up)
-{
-    if (f == 0)
-        return up ? 0x1p-149f : -0x1p-149f;
-    uint32_t b;
-    memcpy(&b, &f, sizeof b);
-    b = (f > 0) == (up != 0) ? b + 1u : b - 1u;
-    memcpy(&f, &b, sizeof f);
-    return f;
-}
-
 /* Would every double within e of x round to the float x rounds to? The midpoints
  * between floats are doubles, and rounding is monotonic, so the two comparisons are
  * exact statements about x - e and x + e. */
 static int float_decided(double x, double e)
 {
-    const float f = (float)x;
-    if (isnan(f))
+    if (isnan(x))
         return 0;
-    const double below = ((double)f + (double)float_step(f, 0)) * 0.5;
-    const double above = ((double)f + (double)float_step(f, 1)) * 0.5;
+    /* opaque: the compiler may not fold (double)(float)x into x */
+    const float f = cylray_to_float_(x);
+    const double below = ((double)f + (double)cylray_float_step_(f, 0)) * 0.5;
+    const double above = ((double)f + (double)cylray_float_step_(f, 1)) * 0.5;
     return x - e > below && x + e < above;
 }
 

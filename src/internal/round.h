@@ -45,4 +45,34 @@ static inline float cylray_round_float_(double hi, double lo)
     return f;
 }
 
+/* (float)x as the hardware rounds it, opaque to the optimiser: for code that compares
+ * the float with x, where a compiler must not fold (double)(float)x back into x (see
+ * above). Elsewhere the rounding on the bits. */
+static inline float cylray_to_float_(double x)
+{
+#if (defined(__GNUC__) || defined(__clang__)) && defined(__x86_64__)
+    float f = (float)x;
+    __asm__("" : "+x"(f));
+    return f;
+#elif (defined(__GNUC__) || defined(__clang__)) && defined(__aarch64__)
+    float f = (float)x;
+    __asm__("" : "+w"(f));
+    return f;
+#else
+    return cylray_round_float_(x, 0.0);
+#endif
+}
+
+/* The float next to f toward +inf (up) or -inf: nextafterf inline, for f not NaN. */
+static inline float cylray_float_step_(float f, int up)
+{
+    if (f == 0)
+        return up ? 0x1p-149f : -0x1p-149f;
+    uint32_t b;
+    memcpy(&b, &f, sizeof b);
+    b = (f > 0) == (up != 0) ? b + 1u : b - 1u;
+    memcpy(&f, &b, sizeof f);
+    return f;
+}
+
 #endif
