@@ -151,7 +151,12 @@ cylray_status cylray_cylinder_from_endpoints(cylray_cylinder *out, const float p
      * the float whose rounding interval holds it, each midpoint m judged exactly by the
      * sign of |a|^2 - (2m)^2 (a tie goes to the even float). */
     float h = cylray_round_float_(0.5 * sqrt(len2), 0);
-    if (len2 > 0 && h > 0 && isfinite(h)) {
+    /* The guess is the rounding of |a| / 2 wherever the bound on its error decides it:
+     * len2 is within 5 units of 2^-53 of |a|^2 (each al at most half an ulp of its ah,
+     * the squares and sums rounded once each), 0.5 sqrt(len2) within 4 of |a| / 2, and
+     * the bound used is 8. */
+    const double hd = 0.5 * sqrt(len2);
+    if (len2 > 0 && h > 0 && isfinite(h) && !cylray_float_decided_(hd, 0x1p-50 * hd)) {
         for (int iter = 0; iter < 4; iter++) {
             const float up = next_up_down(h, 1), dn = next_up_down(h, -1);
             uint32_t hb;

@@ -102,20 +102,6 @@ static void surface_dd(const surf_cyl *s, const float p[3], int32_t part, float 
             dpdv[k] = (float)(TWO_PI * rho * (co * b2[k].hi - si * b1[k].hi));
 }
 
-/* Would every double within e of x round to the float x rounds to? The midpoints
- * between floats are doubles, and rounding is monotonic, so the two comparisons are
- * exact statements about x - e and x + e. */
-static int float_decided(double x, double e)
-{
-    if (isnan(x))
-        return 0;
-    /* opaque: the compiler may not fold (double)(float)x into x */
-    const float f = cylray_to_float_(x);
-    const double below = ((double)f + (double)cylray_float_step_(f, 0)) * 0.5;
-    const double above = ((double)f + (double)cylray_float_step_(f, 1)) * 0.5;
-    return x - e > below && x + e < above;
-}
-
 /* The unit axis in double, good to 4U |n_k| (U = 2^-53: two sums of exact squares, a
  * square root, a division); exact along a coordinate axis. */
 static void axis_d(const surf_cyl *s, double n[3])
@@ -148,7 +134,7 @@ static int uv_quick(const surf_cyl *s, int side, double z, double x, double y, d
             eu = e / (2.0 * s->H) + 0x1p-51 * fabs(ud);
         }
         /* twice the bound: the double-double path's value lies within it as well */
-        if (!float_decided(ud, 2.0 * eu))
+        if (!cylray_float_decided_(ud, 2.0 * eu))
             return 0;
         u = (float)ud;
     }
@@ -159,7 +145,7 @@ static int uv_quick(const surf_cyl *s, int side, double z, double x, double y, d
     double t = atan2(y, x) / TWO_PI, et = 2.0 * (0.25 * e / rho + 0x1p-50 * fabs(t));
     if (t < 0)
         t += 1.0, et += 0x1p-51;
-    if (!float_decided(t, et))
+    if (!cylray_float_decided_(t, et))
         return 0;
     const float f = (float)t + 0.0f; /* + 0: no -0 */
     if (side)

@@ -75,4 +75,17 @@ static inline float cylray_float_step_(float f, int up)
     return f;
 }
 
+/* Would every double within e of x round to the float x rounds to? The midpoints
+ * between floats are doubles and rounding is monotonic, so the two comparisons are
+ * exact statements about x - e and x + e. */
+static inline int cylray_float_decided_(double x, double e)
+{
+    if (x != x)
+        return 0;
+    const float f = cylray_to_float_(x);
+    const double below = ((double)f + (double)cylray_float_step_(f, 0)) * 0.5;
+    const double above = ((double)f + (double)cylray_float_step_(f, 1)) * 0.5;
+    return x - e > below && x + e < above;
+}
+
 #endif
