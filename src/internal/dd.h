@@ -11,6 +11,8 @@
 
 #include <math.h>
 
+#include "round.h"
+
 typedef struct cylray_dd {
     double hi, lo;
 } cylray_dd;
@@ -99,17 +101,17 @@ static inline cylray_dd dd_sqrt(cylray_dd a)
 /* The largest float <= a.hi + a.lo, and the smallest float >= it. */
 static inline float dd_floor_float(cylray_dd a)
 {
-    float f = (float)a.hi;
+    float f = cylray_to_float_(a.hi); /* opaque: (double)f is not folded into a.hi */
     if ((double)f > a.hi || ((double)f == a.hi && a.lo < 0))
-        f = nextafterf(f, -INFINITY);
+        f = cylray_float_step_(f, 0);
     return f;
 }
 
 static inline float dd_ceil_float(cylray_dd a)
 {
-    float f = (float)a.hi;
+    float f = cylray_to_float_(a.hi);
     if ((double)f < a.hi || ((double)f == a.hi && a.lo > 0))
-        f = nextafterf(f, INFINITY);
+        f = cylray_float_step_(f, 1);
     return f;
 }
 
