@@ -198,7 +198,7 @@ static void disc_box(const float c[3], const float v[3], double R, cylray_dd t, 
 {
     for (int k = 0; k < 3; k++) {
         /* t n_k in double: the product's rounding and t's own add 2 units of 2^-53 to
-         * n_k's 4; always pushed outward, as below */
+         * n_k's 3; always pushed outward, as below */
         double n, s;
         axis_coord_d(v, k, &n, &s);
         const double m_d = (t.hi + t.lo) * n, r_d = R * s;
