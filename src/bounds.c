@@ -81,18 +81,10 @@ static int axis_coord_d(const float v[3], int k, double *n, double *s)
     return 0;
 }
 
-/* The largest float <= x and the smallest float >= x (x not NaN); the rounding is
- * opaque (internal/round.h), so that (double)f is not folded into x. */
-static float floor_f(double x)
+/* x rounded down or up to float (x not NaN) */
+static float outward_f(double x, int dir)
 {
-    const float f = cylray_to_float_(x);
-    return (double)f > x ? cylray_float_step_(f, 0) : f;
-}
-
-static float ceil_f(double x)
-{
-    const float f = cylray_to_float_(x);
-    return (double)f < x ? cylray_float_step_(f, 1) : f;
+    return dir < 0 ? dd_floor_float(dd_make(x, 0.0)) : dd_ceil_float(dd_make(x, 0.0));
 }
 
 /* c + a + b rounded outward to float, where a and b are within 6 units of 2^-53 of
@@ -104,12 +96,12 @@ static inline int face_quick(double c, double a, double b, int exact, int dir, f
     const cylray_dd s1 = dd_two_sum(c, a), s2 = dd_two_sum(s1.hi, b);
     const double x = s2.hi;
     if (exact && s1.lo == 0 && s2.lo == 0) {
-        *out = dir < 0 ? floor_f(x) : ceil_f(x); /* the sum is exact */
+        *out = outward_f(x, dir); /* the sum is exact */
         return 1;
     }
     const double e = (fabs(c) + fabs(a) + fabs(b)) * 0x1p-48;
-    const float f = dir < 0 ? floor_f(x - e) : ceil_f(x + e);
-    if (f != (dir < 0 ? floor_f(x + e) : ceil_f(x - e)))
+    const float f = outward_f(x + dir * e, dir);
+    if (f != outward_f(x - dir * e, dir))
         return 0;
     *out = f;
     return 1;

@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* leaf.c - building leaves of cylinders, and cylinders from their end points. */
 #include "cylray_internal.h"
+#include "internal/dd.h"
 
 #include <string.h>
 
@@ -66,13 +67,6 @@ LEAF_PREPARE_(4)
 LEAF_PREPARE_(8)
 LEAF_PREPARE_(16)
 
-/* s + e = a + b exactly (Knuth's two-sum: any order of magnitudes). */
-static void two_sum(double a, double b, double *s, double *e)
-{
-    const double x = a + b, bb = x - a;
-    *e = (a - (x - bb)) + (b - bb);
-    *s = x;
-}
 
 /* The sign of the exact sum of x[0..n) (n <= 24), by growing a nonoverlapping
  * expansion (Shewchuk): the sign of a nonoverlapping expansion is its largest term's. */
@@ -84,11 +78,10 @@ static int sum_sign(const double *x, int n)
         double q = x[i];
         int k = 0;
         for (int j = 0; j < m; j++) {
-            double s, e;
-            two_sum(q, h[j], &s, &e);
-            if (e != 0)
-                h[k++] = e;
-            q = s;
+            const cylray_dd t = dd_two_sum(q, h[j]); /* exact: any order of magnitudes */
+            if (t.lo != 0)
+                h[k++] = t.lo;
+            q = t.hi;
         }
         if (q != 0)
             h[k++] = q;
@@ -118,16 +111,6 @@ static int cmp_sq(const double ah[3], const double al[3], double mid)
     return sum_sign(x, n);
 }
 
-/* The float next to a positive finite f, above (s > 0) or below. */
-static float next_up_down(float f, int s)
-{
-    uint32_t b;
-    memcpy(&b, &f, sizeof b);
-    b = s > 0 ? b + 1 : b - 1;
-    memcpy(&f, &b, sizeof f);
-    return f;
-}
-
 cylray_status cylray_cylinder_from_endpoints(cylray_cylinder *out, const float p0[3],
                                              const float p1[3], float radius, unsigned flags)
 {
@@ -140,11 +123,11 @@ cylray_status cylray_cylinder_from_endpoints(cylray_cylinder *out, const float p
             return CYLRAY_EINVAL;
         /* The difference and the sum of two floats are exact as two-term sums in
          * double; each is rounded once, to float (halving is exact). */
-        double sh, sl;
-        two_sum((double)p1[k], -(double)p0[k], &ah[k], &al[k]);
-        two_sum((double)p0[k], (double)p1[k], &sh, &sl);
+        const cylray_dd d = dd_two_sum((double)p1[k], -(double)p0[k]);
+        const cylray_dd m = dd_two_sum((double)p0[k], (double)p1[k]);
+        ah[k] = d.hi, al[k] = d.lo;
         c.axis[k] = cylray_round_float_(ah[k], al[k]);
-        c.center[k] = cylray_round_float_(0.5 * sh, 0.5 * sl);
+        c.center[k] = cylray_round_float_(0.5 * m.hi, 0.5 * m.lo);
         len2 += ah[k] * ah[k];
     }
     /* The half height |a| / 2 rounded once: a first guess from double, then moved to
@@ -158,7 +141,7 @@ cylray_status cylray_cylinder_from_endpoints(cylray_cylinder *out, const float p
     const double hd = 0.5 * sqrt(len2);
     if (len2 > 0 && h > 0 && isfinite(h) && !cylray_float_decided_(hd, 0x1p-50 * hd)) {
         for (int iter = 0; iter < 4; iter++) {
-            const float up = next_up_down(h, 1), dn = next_up_down(h, -1);
+            const float up = cylray_float_step_(h, 1), dn = cylray_float_step_(h, 0);
             uint32_t hb;
             memcpy(&hb, &h, sizeof hb);
             const int even = (hb & 1u) == 0;
