@@ -20,6 +20,7 @@
 # AMD Zen 1-3 run (its loop over the hit lanes is left out of the trace, as every
 # branch is), `masked` what Intel runs. --keep writes the trace to FILE.
 #
+# AVX-512 cannot be traced: valgrind does not run it (bench/README.md, icount.sh).
 # Needs valgrind and an llvm-mca of LLVM 16 or later: LLVM 14's znver3 model takes a
 # 256-bit FMA as one a cycle, where Zen 2 and 3 run two (docs/performance.md).
 # Environment: CYLBENCH_BUILD as for icount.sh (default build-bench/, a release build).
@@ -39,7 +40,7 @@ for a in "$@"; do
     --stores=*) stores=${a#*=} ;;
     --cpus=*) cpus=${a#*=}; cpus=${cpus//,/ } ;;
     --keep=*) keep=${a#*=} ;;
-    *) sed -n '2,24s/^# \{0,1\}//p' "$0" >&2; exit 1 ;;
+    *) sed -n '2,26s/^# \{0,1\}//p' "$0" >&2; exit 1 ;;
     esac
 done
 
