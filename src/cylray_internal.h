@@ -36,4 +36,8 @@ static inline int cylray_stores_by_lane_(void)
 }
 int cylray_cpu_stores_by_lane_(void);
 
+/* Whether cylray_prepare takes the cylinder (prepare.c): what it checks before it
+ * derives anything, for cylray_cylinder_from_endpoints, which refuses what it refuses. */
+int cylray_cylinder_ok_(const cylray_cylinder *in);
+
 #endif

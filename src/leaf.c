@@ -158,8 +158,7 @@ cylray_status cylray_cylinder_from_endpoints(cylray_cylinder *out, const float p
     c.radius = radius;
     c.half_height = h;
     c.flags = flags;
-    cylray_prepared p;
-    if (!(len2 > 0) || cylray_prepare(&p, &c) != CYLRAY_OK)
+    if (!(len2 > 0) || !cylray_cylinder_ok_(&c))
         return CYLRAY_EINVAL;
     *out = c;
     return CYLRAY_OK;

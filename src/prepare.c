@@ -32,24 +32,30 @@ static int coord_ok(float x)
     return isfinite(x) && fabs((double)x) <= CYLRAY_MAX_COORD;
 }
 
-cylray_status cylray_prepare(cylray_prepared *out, const cylray_cylinder *in)
+int cylray_cylinder_ok_(const cylray_cylinder *in)
 {
-    if (!out || !in)
-        return CYLRAY_EINVAL;
     const float *c = in->center, *a = in->axis;
     const double R = in->radius, H = in->half_height;
     for (int k = 0; k < 3; k++)
         if (!coord_ok(c[k]) || !coord_ok(a[k]))
-            return CYLRAY_EINVAL;
+            return 0;
     if (!(R >= CYLRAY_MIN_RADIUS) || !(R <= CYLRAY_MAX_COORD))
-        return CYLRAY_EINVAL;
+        return 0;
     if (!(H > 0) || (isfinite(H) && H > CYLRAY_MAX_COORD))
-        return CYLRAY_EINVAL;
+        return 0;
     if (in->flags & ~CYLRAY_CAPPED)
-        return CYLRAY_EINVAL;
+        return 0;
     double amax = fmax(fabs((double)a[0]), fmax(fabs((double)a[1]), fabs((double)a[2])));
-    if (amax < FLT_MIN) /* zero, or so small that its direction has lost its bits */
+    return amax >= FLT_MIN; /* not zero, nor so small that its direction has lost its bits */
+}
+
+cylray_status cylray_prepare(cylray_prepared *out, const cylray_cylinder *in)
+{
+    if (!out || !in || !cylray_cylinder_ok_(in))
         return CYLRAY_EINVAL;
+    const float *c = in->center, *a = in->axis;
+    const double R = in->radius, H = in->half_height;
+    double amax = fmax(fabs((double)a[0]), fmax(fabs((double)a[1]), fabs((double)a[2])));
 
     cylray_prepared p;
     memset(&p, 0, sizeof p);
