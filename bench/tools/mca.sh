@@ -10,9 +10,10 @@
 #
 # Runs one configuration of the harness (cylicount) under callgrind with the count of
 # every instruction, takes the kernel function of libcylray that ran the most
-# instructions (with --driver=textbook, the auto-vectorized peer's loop in cylicount), and keeps the instructions of it that ran as many times as most of its
-# instructions did: the straight path that every call or pair runs (no branch, no
-# store loop, no rare path). That trace, in address order, goes through llvm-mca once
+# instructions (with --driver=textbook, the auto-vectorized peer's loop in cylicount),
+# and keeps the instructions of it that ran as many times as most of its instructions
+# did: the straight path that every call or pair runs (no branch, no store loop, no
+# rare path). That trace, in address order, goes through llvm-mca once
 # (the latency of one pass) and 100 times back to back (the steady state), per model.
 # A pass is one call of a packet function, or one pair of a stream's vectors.
 #
@@ -40,7 +41,7 @@ for a in "$@"; do
     --stores=*) stores=${a#*=} ;;
     --cpus=*) cpus=${a#*=}; cpus=${cpus//,/ } ;;
     --keep=*) keep=${a#*=} ;;
-    *) sed -n '2,26s/^# \{0,1\}//p' "$0" >&2; exit 1 ;;
+    *) sed -n '2,27s/^# \{0,1\}//p' "$0" >&2; exit 1 ;;
     esac
 done
 
@@ -125,12 +126,15 @@ sys.stderr.write("%s %d %d\n" % (fn, passes, len(kept)))
 EOF
 read -r fn passes n <"$tmp/what"
 [ -n "$keep" ] && cp "$tmp/trace.s" "$keep"
-echo "$scenario $isa $driver $flags, stores $stores: $fn, $n instructions a pass (ran $passes times)"
+echo "$scenario $isa $driver $flags, stores $stores:" \
+    "$fn, $n instructions a pass (ran $passes times)"
 echo "$mca:"
 for cpu in $cpus; do
-    one=$("$mca" -mcpu="$cpu" -iterations=1 "$tmp/trace.s" 2>/dev/null | awk '/^Total Cycles/ { print $3 }')
+    one=$("$mca" -mcpu="$cpu" -iterations=1 "$tmp/trace.s" 2>/dev/null |
+        awk '/^Total Cycles/ { print $3 }')
     many=$("$mca" -mcpu="$cpu" -iterations=100 "$tmp/trace.s" 2>/dev/null |
-        awk '/^Total Cycles/ { c = $3 } /^Total uOps/ { u = $3 } END { printf "%.1f %.0f", c / 100, u / 100 }')
+        awk '/^Total Cycles/ { c = $3 } /^Total uOps/ { u = $3 }
+             END { printf "%.1f %.0f", c / 100, u / 100 }')
     read -r steady uops <<<"$many"
     printf '  %-16s one pass %5s cycles   100 back to back %7s cycles a pass   %5s uops a pass\n' \
         "$cpu" "$one" "$steady" "$uops"
