@@ -67,7 +67,6 @@ LEAF_PREPARE_(4)
 LEAF_PREPARE_(8)
 LEAF_PREPARE_(16)
 
-
 /* The sign of the exact sum of x[0..n) (n <= 24), by growing a nonoverlapping
  * expansion (Shewchuk): the sign of a nonoverlapping expansion is its largest term's. */
 static int sum_sign(const double *x, int n)

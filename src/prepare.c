@@ -32,6 +32,12 @@ static int coord_ok(float x)
     return isfinite(x) && fabs((double)x) <= CYLRAY_MAX_COORD;
 }
 
+/* The axis's largest magnitude: its scale, and whether it has a direction at all. */
+static double axis_max(const float a[3])
+{
+    return fmax(fabs((double)a[0]), fmax(fabs((double)a[1]), fabs((double)a[2])));
+}
+
 int cylray_cylinder_ok_(const cylray_cylinder *in)
 {
     const float *c = in->center, *a = in->axis;
@@ -45,8 +51,7 @@ int cylray_cylinder_ok_(const cylray_cylinder *in)
         return 0;
     if (in->flags & ~CYLRAY_CAPPED)
         return 0;
-    double amax = fmax(fabs((double)a[0]), fmax(fabs((double)a[1]), fabs((double)a[2])));
-    return amax >= FLT_MIN; /* not zero, nor so small that its direction has lost its bits */
+    return axis_max(a) >= FLT_MIN; /* not zero, nor so small that its direction is lost */
 }
 
 cylray_status cylray_prepare(cylray_prepared *out, const cylray_cylinder *in)
@@ -55,7 +60,7 @@ cylray_status cylray_prepare(cylray_prepared *out, const cylray_cylinder *in)
         return CYLRAY_EINVAL;
     const float *c = in->center, *a = in->axis;
     const double R = in->radius, H = in->half_height;
-    double amax = fmax(fabs((double)a[0]), fmax(fabs((double)a[1]), fabs((double)a[2])));
+    const double amax = axis_max(a);
 
     cylray_prepared p;
     memset(&p, 0, sizeof p);
