@@ -175,9 +175,11 @@ CYLRAY_API cylray_status cylray_prepare(cylray_prepared *out, const cylray_cylin
 #define CYLRAY_FACE_FORWARD 0x02u /* flip the normal to face the ray: dot(n, d) <= 0 */
 #define CYLRAY_CULL_BACK 0x04u    /* ignore hits met from inside (BACKFACE) */
 #define CYLRAY_REFINE 0x08u       /* polish the root once more from the first hit */
-/* CYLRAY_FAST: reciprocal and square-root estimates refined by a Newton step instead
+/* CYLRAY_FAST: reciprocal and square-root estimates refined by Newton steps instead
  * of divisions and square roots; t is held to 8 ulps beyond the exact band instead of
- * 4 (docs/design.md, section 4). */
+ * 4 (docs/design.md, section 4). The estimates are the CPU's: on SSE4.1 and AVX2 their
+ * tables differ between vendors, and so may FAST's answers (each within that rule).
+ * Without it, one build answers bit for bit alike on every CPU of a path's ISA. */
 #define CYLRAY_FAST 0x10u
 #define CYLRAY_FLAGS_ALL 0x1fu
 
@@ -313,7 +315,9 @@ CYLRAY_API cylray_status cylray_cylinder_from_endpoints(cylray_cylinder *out, co
  * never hits again, on any ISA, the surface it leaves at that point (nor, at a rim, the
  * other surface through it), and it starts strictly on its own side of each of them, by
  * twice the kernels' tested tolerance and no more, whenever that offset is below a
- * quarter of the radius and of the half height. The tolerance includes that of t, a
+ * quarter of the radius and of the half height. (The side form sending a ray outward
+ * along a w that dips back into the side starts it up to three tolerances further
+ * out: near a tangency, far enough that the exact ray and the kernels miss alike.) The tolerance includes that of t, a
  * float whose spacing at 0 is 2^-149: along a direction w the origin keeps about
  * 2^-147 |w| from the surface, which matters only for directions far longer than the
  * scene (2^-19 for |w| = FLT_MAX).

@@ -14,6 +14,12 @@
 #   gcc-release    gcc, release (-O3, what the README's install line builds),
 #                  warnings are errors, no bench
 #   clang-release  clang, release, warnings are errors, no bench
+#   estimates  gcc, release, once for each stand-in for the hardware's reciprocal and
+#            reciprocal-square-root estimates (-Destimate=exact, high, low, table:
+#            what another vendor's CPU may give; src/simd/estimate.h): CYLRAY_FAST's
+#            accuracy (cylcheck, leafcheck) on every x86 path, and every answer of
+#            the other flag sets bit for bit the gcc-release build's (outhash
+#            --no-fast), so that a run on one CPU speaks for every CPU of its ISA
 #   asan     clang with AddressSanitizer + UndefinedBehaviorSanitizer; the library is
 #            also built with libFuzzer coverage, so the fuzz step reuses this build
 #   aarch64  cross-compiled for AArch64 (NEON), gcc's ASan + UBSan, under qemu-user
@@ -33,7 +39,7 @@
 set -euo pipefail
 
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
-ALL_CONFIGS=(gcc clang gcc-release clang-release asan aarch64 tsan fuzz)
+ALL_CONFIGS=(gcc clang gcc-release clang-release estimates asan aarch64 tsan fuzz)
 FUZZ_SECONDS=${FUZZ_SECONDS:-120}
 FUZZ_RUNS=${FUZZ_RUNS:-20000}
 FUZZ_SEED=${FUZZ_SEED:-1}
@@ -47,7 +53,7 @@ for a in "$@"; do
         sed -n '3,32p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'
         exit 0
         ;;
-    gcc | clang | gcc-release | clang-release | asan | aarch64 | tsan | fuzz) CONFIGS+=("$a") ;;
+    gcc | clang | gcc-release | clang-release | estimates | asan | aarch64 | tsan | fuzz) CONFIGS+=("$a") ;;
     *)
         echo "run.sh: unknown configuration '$a' (known: ${ALL_CONFIGS[*]})" >&2
         exit 2
@@ -82,7 +88,7 @@ have_cxx() { command -v c++ || command -v g++ || command -v clang++; }
 need meson command -v meson
 need ninja-build command -v ninja
 need python3 command -v python3
-if wants gcc || wants gcc-release; then need gcc command -v gcc; fi
+if wants gcc || wants gcc-release || wants estimates; then need gcc command -v gcc; fi
 if wants clang || wants clang-release || wants asan || wants tsan || wants fuzz; then
     need clang command -v clang
 fi
@@ -267,6 +273,56 @@ config_release() { # config_release <name> <cc> <cxx>
 config_gcc-release() { config_release gcc-release gcc g++; }
 config_clang-release() { config_release clang-release clang clang++; }
 
+# CYLRAY_FAST takes the hardware's estimates, whose tables differ between vendors
+# (rcpps, rsqrtps); nothing else does. Each stand-in build checks FAST's accuracy on
+# every path, and that the other flag sets answer bit for bit as the hardware build.
+config_estimates() {
+    local t0 ref="" v dir isa p f c ff log tests
+    t0=$(date +%s)
+    command -v gcc >/dev/null || { unavailable estimates gcc; return; }
+    TEST_ENV=()
+    if CC=gcc CXX=g++ BUILD_TARGETS=tests/check/outhash setup_build build/test-gcc-release \
+        --buildtype=release --werror -Dbench=false; then
+        ref=$(build/test-gcc-release/tests/check/outhash --no-fast)
+    fi
+    if [ -z "$ref" ]; then
+        build_failed estimates build/test-gcc-release "$t0"
+        return
+    fi
+    p=0 f=0
+    for v in exact high low table; do
+        dir=build/test-est-$v
+        if ! CC=gcc CXX=g++ BUILD_TARGETS="tests/check/cylcheck tests/check/leafcheck tests/check/outhash" \
+            setup_build "$dir" --buildtype=release --werror -Dbench=false -Destimate="$v"; then
+            echo "   $v: build failed (see $dir.build.log)"
+            f=$((f + 1))
+            continue
+        fi
+        if [ "$("$dir/tests/check/outhash" --no-fast)" = "$ref" ]; then
+            p=$((p + 1))
+        else
+            echo "   $v: the answers without CYLRAY_FAST differ from the hardware build's"
+            f=$((f + 1))
+        fi
+        tests=()
+        for isa in sse41 avx2 avx512; do tests+=("cylcheck-$isa" "leafcheck-$isa"); done
+        rm -f "$dir"/meson-logs/testlog*.json
+        meson test -C "$dir" --no-rebuild --print-errorlogs "${tests[@]}" >"$dir.test.log" 2>&1 || true
+
+        log=$(ls -t "$dir"/meson-logs/testlog*.json 2>/dev/null | head -1)
+        if [ -z "$log" ]; then
+            echo "   $v: no test results ($dir.test.log)"
+            f=$((f + 1))
+            continue
+        fi
+        read -r c ff < <(count_log "$log")
+        echo "   $v: outhash --no-fast as the hardware build's; cylcheck, leafcheck: $c passed, $ff failed"
+        [ "$ff" -eq 0 ] || grep -E '^FAIL|^headline.*FAIL|missed' "$dir.test.log" | head -20 | sed 's/^/     /'
+        p=$((p + c)) f=$((f + ff))
+    done
+    note estimates "$p" "$f" $(($(date +%s) - t0)) "$([ "$f" -eq 0 ] || echo "see build/test-est-*.test.log")"
+}
+
 # The clang ASan + UBSan build, with libFuzzer coverage in every object. Targets to
 # build: all, or those in BUILD_TARGETS.
 ASAN_DIR=build/test-asan
@@ -368,6 +424,7 @@ for cfg in "${CONFIGS[@]}"; do
     clang) what="clang, debugoptimized, -Werror" ;;
     gcc-release) what="gcc, release (-O3), -Werror" ;;
     clang-release) what="clang, release (-O3), -Werror" ;;
+    estimates) what="gcc, release, other vendors' estimates in place of the hardware's (exact, high, low, table)" ;;
     asan) what="clang, ASan + UBSan (+ fuzzer coverage), CYLRAY_TEST_QUICK=1" ;;
     aarch64) what="aarch64 cross, NEON, ASan + UBSan under qemu-user, CYLRAY_TEST_QUICK=1" ;;
     tsan) what="clang, ThreadSanitizer, the thread test" ;;

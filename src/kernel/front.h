@@ -74,9 +74,10 @@ CYLRAY_INLINE int KFN(reject)(KFN(lanes) * st, const cylray_kat_ *k, const cylra
     vm act = st->act;
 
     /* Shift to the closest approach to the center. s need not be accurate: any s is
-     * exact as long as w' is formed from the same s, and t = s + t'. So a refined
-     * reciprocal estimate serves, and the divider is kept for the roots. */
-    const vf rdd = vrcp_fast(dd);
+     * exact as long as w' is formed from the same s, and t = s + t'. But the answers
+     * (and a spawned ray's fate near a tangency) follow s bit for bit, so s comes from
+     * the divider rather than the vendor's estimate (KRCP). */
+    const vf rdd = KRCP(F, dd);
     vf s = vmul(vneg(wd), rdd);
     if (F.finite) {
         /* ww + s wd = ww - wd^2 / dd is the squared distance of the closest approach

@@ -3,6 +3,12 @@
 
 #define KDOT(ax, ay, az, bx, by, bz) vfma(ax, bx, vfma(ay, by, vmul(az, bz)))
 
+/* 1 / x where the kernel only needs some value near it (a shift, a slide): the
+ * divider's correctly rounded quotient, so that every CPU of one ISA gives the same
+ * answers; the hardware estimate (rcpps's table differs between vendors) only under
+ * CYLRAY_FAST, whose answers are documented to differ. */
+#define KRCP(F, x) ((F).fast ? vrcp_fast(x) : vdiv(vset1(1.0f), (x)))
+
 /* The side's quadratic from the shifted origin p: f = v x p (so that nB = e.f is -B),
  * C = f.f - R^2 v.v and g = e.p, the triple product of Lagrange's form (with an
  * aligned axis g is the caller's, from the unshifted origin). */

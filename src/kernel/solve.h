@@ -27,11 +27,11 @@ CYLRAY_INLINE void KFN(shift)(KFN(lanes) * st, const cylray_kat_ *k, const cylra
 CYLRAY_INLINE void KFN(slide)(KFN(lanes) * st, const cylray_kat_ *k, const cylray_kflags_ F)
 {
     const vf vx = st->vx, vy = st->vy, vz = st->vz, dx = st->dx, dy = st->dy, dz = st->dz;
-    /* u need not be accurate (the slide is exact for any u): a leaf takes an estimate
-     * of 1 / v.v. */
+    /* u need not be accurate (the slide is exact for any u); a leaf, which stores no
+     * 1 / v.v, forms it as the shift does (KRCP). */
     vf u = vmul(KDOT(st->whx, st->why, st->whz, vx, vy, vz),
                 KFN(cyl_in)(k, F, offsetof(cylray_prepared, inv_vv),
-                            vrcp_fast(KDOT(vx, vy, vz, vx, vy, vz))));
+                            KRCP(F, KDOT(vx, vy, vz, vx, vy, vz))));
     vf hx = vfma_x(vneg(u), vx, st->whx), hy = vfma_x(vneg(u), vy, st->why),
        hz = vfma_x(vneg(u), vz, st->whz);
     vf s2 = vfnma(KDOT(hx, hy, hz, dx, dy, dz), st->rdd, vzero());

@@ -230,6 +230,7 @@ KTABLE_SIZE_(leaf_table, CYLRAY_SPECS);
 KTABLE_SIZE_(leaf_occ_table, CYLRAY_OCC_SPECS);
 
 #undef KDOT
+#undef KRCP
 #undef KFL_
 #undef KLFL_
 #undef KSPEC_

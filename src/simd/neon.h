@@ -42,15 +42,22 @@ static inline vf KFN(dop_x)(vf a, vf b, vf c, vf d)
 }
 #define vdop_x(a, b, c, d) KFN(dop_x)(a, b, c, d)
 /* The estimates give 8 bits; two Newton steps give about 23. */
+#define vrcp_est_(x) vrecpeq_f32(x)
+#define vrsqrt_est_(x) vrsqrteq_f32(x)
+/* The test builds' stand-ins for the estimates (simd/estimate.h): 8 bits. */
+#define VEST_ERR 0x1p-8f
+#define vest_cut_(x)                                                                           \
+    vreinterpretq_f32_u32(vandq_u32(vreinterpretq_u32_f32(x), vdupq_n_u32(0xffff8000u)))
+#include "estimate.h"
 static inline vf KFN(rcp_fast)(vf x)
 {
-    vf r = vrecpeq_f32(x);
+    vf r = vrcp_est_(x);
     r = vmulq_f32(r, vrecpsq_f32(x, r));
     return vmulq_f32(r, vrecpsq_f32(x, r));
 }
 static inline vf KFN(rsqrt_fast)(vf x)
 {
-    vf r = vrsqrteq_f32(x);
+    vf r = vrsqrt_est_(x);
     r = vmulq_f32(r, vrsqrtsq_f32(vmulq_f32(x, r), r));
     return vmulq_f32(r, vrsqrtsq_f32(vmulq_f32(x, r), r));
 }

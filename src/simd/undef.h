@@ -33,6 +33,9 @@
 #undef vdop_x
 #undef vrcp_est_
 #undef vrsqrt_est_
+#undef VEST_ERR
+#undef VEST_BITS_
+#undef vest_cut_
 #undef vrcp_fast
 #undef vrsqrt_fast
 #undef vcmp_

@@ -132,15 +132,32 @@ static inline __m128 KFN(dop_x)(__m128 a, __m128 b, __m128 c, __m128 d)
 #define vrcp_est_(x) VX(rcp_ps)(x)
 #define vrsqrt_est_(x) VX(rsqrt_ps)(x)
 #endif
+/* The documented error of the estimates (rcp14: 2^-14; rcpps: 1.5 x 2^-12), and their
+ * bits, for the test builds' stand-ins (simd/estimate.h). */
+#if X86_KMASK
+#define VEST_ERR 0x1p-14f
+#define VEST_BITS_ 0xffffffe0u
+#else
+#define VEST_ERR 0x1.8p-12f
+#define VEST_BITS_ 0xfffff800u
+#endif
+#define vest_cut_(x) VX(and_ps)(x, VCASTF(VX(set1_epi32)((int)VEST_BITS_)))
+#include "estimate.h"
 static inline vf KFN(rcp_fast)(vf x)
 {
     vf r = vrcp_est_(x);
+#if !X86_KMASK
+    r = vfma(r, vfnma(x, r, vset1(1.0f)), r);
+#endif
     return vfma(r, vfnma(x, r, vset1(1.0f)), r);
 }
 static inline vf KFN(rsqrt_fast)(vf x)
 {
     vf r = vrsqrt_est_(x);
     vf hx = vmul(x, vset1(0.5f));
+#if !X86_KMASK
+    r = vmul(r, vfnma(hx, vmul(r, r), vset1(1.5f)));
+#endif
     return vmul(r, vfnma(hx, vmul(r, r), vset1(1.5f)));
 }
 #define vrcp_fast(x) KFN(rcp_fast)(x)

@@ -10,6 +10,31 @@ typedef struct DFN(surf) {
     int any; /* some lane clears it */
 } DFN(surf);
 
+/* How far outside the side to start a ray along w that dips back into it, given the
+ * clearance c the plain rule gives and the margin m (twice the kernels' tolerance box
+ * b). The side is convex from outside: the ray meets it only when its origin lies
+ * nearer than dt = R (1 / cos - 1), the offset at which its line is tangent (cos: of
+ * the dip below the tangent plane, in the cross-section), and the distance at which it
+ * meets it grows like 1 - sqrt(1 - c / dt), which is convex in c. A kernel may take the
+ * origin for one up to b nearer; so near a tangency a clearance of 2b can turn a miss
+ * into a hit, and a hit at half the distance into one much nearer. Clear of the tangency
+ * (c <= 0.85 dt) a clearance of 3b keeps the nearer hit beyond half the exact one
+ * (1 - sqrt(1 - 2u/3) >= (1 - sqrt(1 - u)) / 2 for u <= 0.9); nearer to it, the origin
+ * goes out to dt + 2b, where the exact ray and every ray the box admits miss. */
+CYLRAY_INLINE vd DFN(dip_clearance)(const DFN(geo) * g, const vd r[3], const vd w[3], vd c,
+                                    vd m)
+{
+    const vd zero = dset1(0.0), one = dset1(1.0);
+    const vd wr = DFN(dot3)(r, w), wv = DFN(dot3)(g->nv, w);
+    const vd wp2 = dsub(DFN(dot3)(w, w), dmul(wv, wv));
+    /* sin^2 of the dip; a w along the axis (wp2 = 0) runs along the side: no dip */
+    const vd s2 = dsel(dgt(wp2, zero), dmin(one, ddiv(dmul(wr, wr), wp2)), zero);
+    const vd co = dsqrt(dsub(one, s2));
+    const vd dt = ddiv(dmul(g->R, s2), dmul(dadd(one, co), co)); /* INFINITY at co = 0 */
+    const vd ch = dadd(c, dmul(dset1(0.5), m));
+    return dsel(dle(ch, dmul(dset1(0.85), dt)), ch, dmax(ch, dadd(dt, m)));
+}
+
 /* THE SPAWNED ORIGIN leaving p (doubles of floats, bound err) on `part` in direction
  * w: out, doubles of floats. side: +1 or -1 puts the origin on that side of the part's
  * own surface (+1: where its outward normal points), 0 on w's side; any other surface
@@ -93,6 +118,9 @@ CYLRAY_INLINE void DFN(spawn)(const DFN(geo) * g, const vd p[3], vd err, vd part
     const vd v2 = dmul(dset1(2.0), DFN(ulp_f)(dmax(wmax, xmax)));
     const vd rim = dsel(dgt(count, one), rnd, zero);
     vd delta[3] = {zero, zero, zero};
+    /* Outward from the side along a w that dips back into it (the side form only) */
+    const vdm dip = dmandn(dmand(S[0].in, S[0].pos), wpos[0]);
+    const int ndip = S[0].any && dmbits(dip) != 0;
     const vd m2c = S[1].any | S[2].any
                        ? dmul(dset1(CYLRAY_SPAWN_SAFETY),
                               dadd(dadd(dmul(v2, g->l1v), dmul(rmax, g->tilt)), uHt))
@@ -107,6 +135,9 @@ CYLRAY_INLINE void DFN(spawn)(const DFN(geo) * g, const vd p[3], vd err, vd part
         vd a = dadd(dadd(dadd(x->base, e_d), m), rim);
         if (i == 0) /* inward from the side: the rounding's tangential part */
             a = dadd(a, dsel(x->pos, zero, dmul(dmul(dmul(dset1(2.0), rnd), rnd), g->inv_R)));
+        if (i == 0 && ndip)
+            a = dsel(dip, dadd(x->base, DFN(dip_clearance)(g, r, w, dadd(dadd(e_d, m), rim), m)),
+                     a);
         a = dmul(dmul(a, dset1(1 + 0x1p-20)), x->sgn);
         if (i == 0) {
             /* r may be NaN where p is not finite: the lanes left out add +0 */
