@@ -46,27 +46,52 @@ const char *cylray_isa_name(cylray_isa isa)
     return (unsigned)isa < CYLRAY_ISA_COUNT ? names[isa] : "unknown";
 }
 
-atomic_int cylray_stores_by_lane_v_;
-
-/* The store policy of the AVX kernels: the CPU's, or CYLRAY_STORES=lanes|masked (to
- * test either on any CPU; another value is ignored). */
-static void choose_stores(void)
+/* The store policies of the x86 kernels (CYLRAY_STORE_*), chosen once per process:
+ * AVX2 takes the CPU's (cylray_cpu_store_policy_), SSE4.1, which has no masked store,
+ * the blends on every CPU; CYLRAY_STORES=masked|blend|lanes forces one on both (to
+ * test each on any CPU; masked stores as lanes on SSE; another value is ignored).
+ * Threads racing on the first call compute the same answer. */
+static atomic_uint stores_chosen; /* 1 + AVX2's policy + 4 SSE4.1's; 0: not yet */
+static unsigned store_policies(void)
 {
+    unsigned p = atomic_load_explicit(&stores_chosen, memory_order_relaxed);
+    if (p)
+        return p - 1u;
+    unsigned avx = cylray_cpu_store_policy_(), sse = CYLRAY_STORE_BLEND;
     const char *want = getenv("CYLRAY_STORES");
-    int lanes = cylray_cpu_stores_by_lane_();
-    if (want && strcmp(want, "lanes") == 0)
-        lanes = 1;
-    else if (want && strcmp(want, "masked") == 0)
-        lanes = 0;
-    atomic_store_explicit(&cylray_stores_by_lane_v_, lanes, memory_order_relaxed);
+    static const char *const names[3] = {"masked", "blend", "lanes"};
+    for (unsigned i = 0; want && i < 3; i++)
+        if (strcmp(want, names[i]) == 0)
+            avx = sse = i;
+    p = avx + 4u * sse;
+    atomic_store_explicit(&stores_chosen, p + 1u, memory_order_relaxed);
+    return p;
+}
+
+/* An ISA's table, with its store policy where it has several. */
+static const cylray_kernels *with_stores(cylray_isa isa)
+{
+#if defined(CYLRAY_HAVE_SSE41) || defined(CYLRAY_HAVE_AVX2)
+    const unsigned p = store_policies(), avx = p % 4u, sse = p / 4u;
+#endif
+#ifdef CYLRAY_HAVE_SSE41
+    if (isa == CYLRAY_ISA_SSE41)
+        return sse == CYLRAY_STORE_BLEND ? &cylray_kernels_sse41_blend_ : &cylray_kernels_sse41_;
+#endif
+#ifdef CYLRAY_HAVE_AVX2
+    if (isa == CYLRAY_ISA_AVX2)
+        return avx == CYLRAY_STORE_BLEND   ? &cylray_kernels_avx2_blend_
+               : avx == CYLRAY_STORE_LANES ? &cylray_kernels_avx2_lanes_
+                                           : &cylray_kernels_avx2_;
+#endif
+    return built[isa];
 }
 
 const cylray_kernels *cylray_kernels_for(cylray_isa isa)
 {
     if ((unsigned)isa >= CYLRAY_ISA_COUNT || !built[isa] || !cylray_cpu_has_(isa))
         return NULL;
-    choose_stores();
-    return built[isa];
+    return with_stores(isa);
 }
 
 /* The warning, as one line from one fprintf call; a name that is no path at all (a

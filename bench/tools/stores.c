@@ -4,10 +4,12 @@
  * The kernel stores six fields of a hit vector (t, tmax, part and the normal's three
  * components) through vstore_hits (src/simd/x86_stores.h), writing the lanes
  * that hit and no other. This times the store stage alone, with the policies that
- * header offers compiled side by side from the header itself (vstore_hits):
- *   masked  the AVX masked store (vmaskmovps / vpmaskmovd) of each field;
+ * header offers, from the header itself (vstore_hits), for a vector whose lanes are
+ * all active:
+ *   masked  the AVX masked store (vmaskmovps / vpmaskmovd) of each field (Intel);
+ *   blend   load, blend the hit lanes in, store each field (AMD, and SSE);
  *   lanes   a plain store of each field when every lane hit, else one loop over the
- *           hit lanes that stores all six fields of a lane (AMD Zen 1-3, and SSE);
+ *           hit lanes that stores all six fields of a lane (a partly active vector);
  * on 8 lanes (ymm) and 4 (xmm), over hit masks drawn as a tracer's rays make them:
  * every lane, none but one, and each lane with probability 1/2, 3/4 and 7/8 (random,
  * so that a branch on the mask mispredicts as it would on incoherent rays). Reported:
@@ -24,6 +26,7 @@
 #include <string.h>
 
 #include "clock.h"
+#include "internal/variants.h"
 #include "machine.h"
 #include "stats.h"
 
@@ -33,61 +36,38 @@
 #define X86_FMA 1
 #define X86_KMASK 0
 
-/* One instantiation of the header per width and policy: the store stage of a hit
- * vector with normals, as the kernel runs it (vstore_hits). */
+/* One instantiation of the header per width: the store stage of a hit vector with
+ * normals, as the kernel runs it (vstore_hits), with every lane active. */
 #define RUN_(name)                                                                             \
-    static void name(float *const *f, int32_t *part, const uint32_t *m, size_t nv)             \
+    static void name(unsigned pol, float *const *f, int32_t *part, const uint32_t *m,          \
+                     size_t nv)                                                                \
     {                                                                                          \
         for (size_t v = 0; v < nv; v++) {                                                      \
             const vm mk = mfrom_bits(m[v]);                                                    \
             const vf x = vset1((float)v);                                                      \
             const size_t o = (v & 63u) * VW;                                                   \
-            vstore_hits(mk, 1, f[0] + o, f[1] + o, part + o, f[2] + o, f[3] + o, f[4] + o, x,  \
-                        vadd(x, vset1(1.0f)), vadd(x, vset1(2.0f)), vadd(x, vset1(3.0f)),      \
-                        vadd(x, vset1(4.0f)));                                                 \
+            vstore_hits(mk, VFULL, pol, 1, f[0] + o, f[1] + o, part + o, f[2] + o, f[3] + o,   \
+                        f[4] + o, x, vadd(x, vset1(1.0f)), vadd(x, vset1(2.0f)),               \
+                        vadd(x, vset1(3.0f)), vadd(x, vset1(4.0f)));                           \
         }                                                                                      \
     }
 #define VW 8
-#define X86_STORES_BY_LANE 0
-#define KFN(n) n##_masked8
+#define KFN(n) n##_8
 #include "simd/x86.h"
 #include "simd/x86_stores.h"
-RUN_(run_masked8)
+RUN_(run8)
 #include "simd/undef.h"
 #undef KFN
-#undef X86_STORES_BY_LANE
-
-#define VW 8
-#define X86_STORES_BY_LANE 1
-#define KFN(n) n##_lanes8
-#include "simd/x86.h"
-#include "simd/x86_stores.h"
-RUN_(run_lanes8)
-#include "simd/undef.h"
-#undef KFN
-#undef X86_STORES_BY_LANE
 
 #define VW 4
-#define X86_STORES_BY_LANE 0
-#define KFN(n) n##_masked4
+#define KFN(n) n##_4
 #include "simd/x86.h"
 #include "simd/x86_stores.h"
-RUN_(run_masked4)
+RUN_(run4)
 #include "simd/undef.h"
 #undef KFN
-#undef X86_STORES_BY_LANE
 
-#define VW 4
-#define X86_STORES_BY_LANE 1
-#define KFN(n) n##_lanes4
-#include "simd/x86.h"
-#include "simd/x86_stores.h"
-RUN_(run_lanes4)
-#include "simd/undef.h"
-#undef KFN
-#undef X86_STORES_BY_LANE
-
-typedef void (*run_fn)(float *const *, int32_t *, const uint32_t *, size_t);
+typedef void (*run_fn)(unsigned, float *const *, int32_t *, const uint32_t *, size_t);
 
 static uint64_t rng(uint64_t *s)
 {
@@ -122,10 +102,10 @@ int main(int argc, char **argv)
         const char *name;
         int w;
         run_fn fn;
-    } pol[] = {{"masked", 8, run_masked8},
-               {"lanes", 8, run_lanes8},
-               {"masked", 4, run_masked4},
-               {"lanes", 4, run_lanes4}};
+        unsigned policy;
+    } pol[] = {{"masked", 8, run8, CYLRAY_STORE_MASKED}, {"blend", 8, run8, CYLRAY_STORE_BLEND},
+               {"lanes", 8, run8, CYLRAY_STORE_LANES},   {"blend", 4, run4, CYLRAY_STORE_BLEND},
+               {"lanes", 4, run4, CYLRAY_STORE_LANES}};
     const struct {
         const char *name;
         int p16; /* per-lane hit probability in 16ths; 16 every lane, 0 one lane */
@@ -151,11 +131,11 @@ int main(int argc, char **argv)
                 masks[v] = m ? m : 1u; /* the store stage runs only for a hit vector */
             }
             double t[1000], ns[1000];
-            pol[pi].fn(f, part, masks, NV); /* warm */
+            pol[pi].fn(pol[pi].policy, f, part, masks, NV); /* warm */
             for (int r = 0; r < reps; r++) {
                 const double n0 = clk_ns();
                 const uint64_t t0 = clk_ticks();
-                pol[pi].fn(f, part, masks, NV);
+                pol[pi].fn(pol[pi].policy, f, part, masks, NV);
                 t[r] = (double)(clk_ticks() - t0) / NV;
                 ns[r] = (clk_ns() - n0) / NV;
             }

@@ -24,8 +24,23 @@
 #define CYLRAY_KF_KIND_SHIFT 10
 #define CYLRAY_KF_SCALED 0x1000u  /* the rare-lane instance: d scaled to near unit length */
 #define CYLRAY_KF_ONE_END 0x2000u /* a capped cylinder with one disc only */
-/* The public flags every kernel reads at run time rather than being specialised for. */
-#define CYLRAY_KF_RUNTIME (CYLRAY_FACE_FORWARD | CYLRAY_CULL_BACK)
+/* How the x86 kernels store a hit vector (docs/performance.md, "Stores by vendor"):
+ * the policy is a property of the kernel table the dispatch chose for the CPU, whose
+ * entry points pass it down with the run-time flags.
+ *   MASKED  AVX's masked stores (vmaskmovps); where there are none (SSE), as LANES
+ *   BLEND   a vector whose lanes are all active: load, blend the hit lanes in, store
+ *           (the missed lanes' values go back unchanged); others as LANES
+ *   LANES   a plain store per field when every lane hit, else a loop over the hit
+ *           lanes
+ * AVX-512 stores through its mask registers whatever the policy. */
+#define CYLRAY_KF_STORE_SHIFT 14
+#define CYLRAY_KF_STORE_MASK (3u << CYLRAY_KF_STORE_SHIFT)
+#define CYLRAY_STORE_MASKED 0u
+#define CYLRAY_STORE_BLEND 1u
+#define CYLRAY_STORE_LANES 2u
+/* The public flags every kernel reads at run time rather than being specialised for,
+ * and the store policy, which its table sets. */
+#define CYLRAY_KF_RUNTIME (CYLRAY_FACE_FORWARD | CYLRAY_CULL_BACK | CYLRAY_KF_STORE_MASK)
 
 /* The kernel tables are indexed by the cylinder's variant (its kind, plus 3 when the
  * axis is a coordinate axis) and the flags a kernel is specialised for (normals,

@@ -53,4 +53,7 @@
 #define SPW16 avx2_d4
 #define SPWS avx2_d4
 #include "spawn/entry.h"
+/* a table per store policy (internal/variants.h; dispatch.c picks one) */
+#define KSTORES(X)                                                                             \
+    X(, CYLRAY_STORE_MASKED) X(_blend, CYLRAY_STORE_BLEND) X(_lanes, CYLRAY_STORE_LANES)
 #include "isa/entry.h"

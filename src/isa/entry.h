@@ -5,35 +5,67 @@
  * Parameters: KISA (suffix, e.g. avx2), KISA_ENUM, KISA_NAME, and KW4, KW8, KW16 (the
  * instantiation suffix that serves each packet width), KWSTREAM (the one that serves
  * streams: the widest vector), and KL4,
- * KL8, KL16 (the one that serves each leaf size). */
+ * KL8, KL16 (the one that serves each leaf size); optionally KSTORES(X), which calls
+ * X(suffix, policy) for each store policy (CYLRAY_STORE_*) the ISA offers a table
+ * for: cylray_kernels_<KISA><suffix>_, whose intersect entry points pass that policy
+ * down with the run-time flags (the occluded, leaf and spawn ones store no hit vector
+ * and are shared). Without it, one table with CYLRAY_STORE_MASKED. */
 
 #define KI_(name) CYLRAY_CAT(name, CYLRAY_CAT(_, KISA))
 #define KW_(name, w) CYLRAY_CAT(name, CYLRAY_CAT(_, w))
 
 /* The packet structs are read as arrays of n-lane fields (cylray_packet_rays_). */
-#define KPACKET_(n)                                                                            \
-    _Static_assert(offsetof(cylray_ray##n, tmax) == 7 * n * sizeof(float) &&                   \
-                       offsetof(cylray_hit##n, part) == 4 * n * sizeof(float),                 \
-                   "packet fields are n-lane arrays, back to back");                           \
-    static uint32_t KI_(intersect##n)(const cylray_prepared *P, cylray_ray##n *ray,            \
-                                      cylray_hit##n *hit, uint32_t active, unsigned flags)     \
+/* The intersect entry points of one store policy st, named with suffix sfx. User flags
+ * beyond CYLRAY_FLAGS_ALL are dropped, so that none can pose as a policy. */
+#define KISECT_ENTRY_(n, sfx, st)                                                              \
+    static uint32_t KI_(intersect##n##sfx)(const cylray_prepared *P, cylray_ray##n *ray,       \
+                                           cylray_hit##n *hit, uint32_t active,                \
+                                           unsigned flags)                                     \
     {                                                                                          \
         active &= (uint32_t)((1ull << n) - 1u);                                                \
         if (!active || !ray || !hit || !cylray_prepared_ok_(P))                                \
             return 0;                                                                          \
+        flags = (flags & CYLRAY_FLAGS_ALL) | (st) << CYLRAY_KF_STORE_SHIFT;                    \
         if (cylray_generic_(P))                                                                \
             return KW_(packet_generic, KW##n)(P, ray->ox, hit->t, n, active, flags);           \
         const KW_(packet_fn, KW##n) *t =                                                       \
             n == KW_(vw, KW##n) ? KW_(isect1_table, KW##n) : KW_(isect_table, KW##n);          \
         return t[cylray_isect_index_(P->variant, flags)](P, ray->ox, hit->t, n, active,        \
                                                          flags & CYLRAY_KF_RUNTIME);           \
-    }                                                                                          \
+    }
+#define KISECT_STREAM_(sfx, st)                                                                \
+    static size_t KI_(intersect_stream##sfx)(const cylray_prepared *P, const cylray_rays *rays, \
+                                             const cylray_hits *hits, size_t n,                \
+                                             unsigned flags)                                   \
+    {                                                                                          \
+        if (!n || !rays || !hits || !cylray_prepared_ok_(P))                                   \
+            return 0;                                                                          \
+        flags = (flags & CYLRAY_FLAGS_ALL) | (st) << CYLRAY_KF_STORE_SHIFT;                    \
+        if (cylray_generic_(P))                                                                \
+            return KW_(stream_generic, KWSTREAM)(P, rays, hits, NULL, n, flags);               \
+        return KW_(isect_stream_table, KWSTREAM)[cylray_isect_index_(P->variant, flags)](      \
+            P, rays, hits, NULL, n, flags & CYLRAY_KF_RUNTIME);                                \
+    }
+#define KISECT_ALL_(sfx, st)                                                                   \
+    KISECT_ENTRY_(4, sfx, st) KISECT_ENTRY_(8, sfx, st) KISECT_ENTRY_(16, sfx, st)            \
+        KISECT_STREAM_(sfx, st)
+#ifndef KSTORES
+#define KSTORES(X) X(, CYLRAY_STORE_MASKED)
+#endif
+KSTORES(KISECT_ALL_)
+
+/* The packet structs are read as arrays of n-lane fields (cylray_packet_rays_). */
+#define KPACKET_(n)                                                                            \
+    _Static_assert(offsetof(cylray_ray##n, tmax) == 7 * n * sizeof(float) &&                   \
+                       offsetof(cylray_hit##n, part) == 4 * n * sizeof(float),                 \
+                   "packet fields are n-lane arrays, back to back");                           \
     static uint32_t KI_(occluded##n)(const cylray_prepared *P, const cylray_ray##n *ray,       \
                                      uint32_t active, unsigned flags)                          \
     {                                                                                          \
         active &= (uint32_t)((1ull << n) - 1u);                                                \
         if (!active || !ray || !cylray_prepared_ok_(P))                                        \
             return 0;                                                                          \
+        flags &= CYLRAY_FLAGS_ALL;                                                             \
         /* the occluded kernels read tmax and never write through this pointer */              \
         if (cylray_generic_(P))                                                                \
             return KW_(packet_generic, KW##n)(P, (float *)(uintptr_t)ray->ox, NULL, n, active, \
@@ -47,22 +79,12 @@ KPACKET_(4)
 KPACKET_(8)
 KPACKET_(16)
 
-static size_t KI_(intersect_stream)(const cylray_prepared *P, const cylray_rays *rays,
-                                    const cylray_hits *hits, size_t n, unsigned flags)
-{
-    if (!n || !rays || !hits || !cylray_prepared_ok_(P))
-        return 0;
-    if (cylray_generic_(P))
-        return KW_(stream_generic, KWSTREAM)(P, rays, hits, NULL, n, flags);
-    return KW_(isect_stream_table, KWSTREAM)[cylray_isect_index_(P->variant, flags)](
-        P, rays, hits, NULL, n, flags & CYLRAY_KF_RUNTIME);
-}
-
 static size_t KI_(occluded_stream)(const cylray_prepared *P, const cylray_rays *rays,
                                    uint8_t *occluded, size_t n, unsigned flags)
 {
     if (!n || !rays || !occluded || !cylray_prepared_ok_(P))
         return 0;
+    flags &= CYLRAY_FLAGS_ALL;
     if (cylray_generic_(P))
         return KW_(stream_generic, KWSTREAM)(P, rays, NULL, occluded, n, flags);
     return KW_(occ_stream_table, KWSTREAM)[cylray_occ_index_(P->variant, flags)](
@@ -80,8 +102,8 @@ static size_t KI_(occluded_stream)(const cylray_prepared *P, const cylray_rays *
     {                                                                                          \
         if (!leaf || !ray || !hit)                                                             \
             return 0;                                                                          \
-        return KW_(leaf_table, KL##m)[cylray_spec_(flags)](leaf->geom_[0], m, ray, hit,        \
-                                                           flags & CYLRAY_KF_RUNTIME);         \
+        return KW_(leaf_table, KL##m)[cylray_spec_(flags)](                                    \
+            leaf->geom_[0], m, ray, hit, flags & CYLRAY_FLAGS_ALL & CYLRAY_KF_RUNTIME);        \
     }                                                                                          \
     static int KI_(leaf_occluded##m)(const cylray_leaf##m *leaf, const cylray_ray1 *ray,       \
                                      unsigned flags)                                           \
@@ -97,27 +119,34 @@ KLEAF_ENTRY_(4)
 KLEAF_ENTRY_(8)
 KLEAF_ENTRY_(16)
 
-const cylray_kernels CYLRAY_CAT(CYLRAY_CAT(cylray_kernels_, KISA), _) = {
-    KISA_ENUM,
-    KISA_NAME,
-    KI_(intersect4),
-    KI_(intersect8),
-    KI_(intersect16),
-    KI_(occluded4),
-    KI_(occluded8),
-    KI_(occluded16),
-    KI_(intersect_stream),
-    KI_(occluded_stream),
-    KI_(leaf_intersect4),
-    KI_(leaf_intersect8),
-    KI_(leaf_intersect16),
-    KI_(leaf_occluded4),
-    KI_(leaf_occluded8),
-    KI_(leaf_occluded16),
-    KSPAWN_SLOTS, /* spawn/entry.h */
-};
+#define KTABLE_(sfx, st)                                                                       \
+    const cylray_kernels CYLRAY_CAT(CYLRAY_CAT(CYLRAY_CAT(cylray_kernels_, KISA), sfx), _) = {   \
+        KISA_ENUM,                                                                             \
+        KISA_NAME,                                                                             \
+        KI_(intersect4##sfx),                                                                  \
+        KI_(intersect8##sfx),                                                                  \
+        KI_(intersect16##sfx),                                                                 \
+        KI_(occluded4),                                                                        \
+        KI_(occluded8),                                                                        \
+        KI_(occluded16),                                                                       \
+        KI_(intersect_stream##sfx),                                                            \
+        KI_(occluded_stream),                                                                  \
+        KI_(leaf_intersect4),                                                                  \
+        KI_(leaf_intersect8),                                                                  \
+        KI_(leaf_intersect16),                                                                 \
+        KI_(leaf_occluded4),                                                                   \
+        KI_(leaf_occluded8),                                                                   \
+        KI_(leaf_occluded16),                                                                  \
+        KSPAWN_SLOTS, /* spawn/entry.h */                                                      \
+    };
+KSTORES(KTABLE_)
 
 #undef KI_
 #undef KW_
 #undef KPACKET_
 #undef KLEAF_ENTRY_
+#undef KISECT_ENTRY_
+#undef KISECT_STREAM_
+#undef KISECT_ALL_
+#undef KTABLE_
+#undef KSTORES

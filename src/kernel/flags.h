@@ -12,6 +12,7 @@ typedef struct {
     int leaf, capped, finite, one_end, aligned, scaled, occ, normal, cull, ff, refine, fast;
     int scratch; /* the hits go to a leaf's own scratch, read back at the hit lanes only:
                   * whole vectors may be stored there */
+    unsigned stores; /* the store policy (CYLRAY_STORE_*), read at run time */
 } cylray_kflags_;
 
 CYLRAY_INLINE cylray_kflags_ cylray_kflags_of_(unsigned FL, unsigned rt)
@@ -33,6 +34,7 @@ CYLRAY_INLINE cylray_kflags_ cylray_kflags_of_(unsigned FL, unsigned rt)
     F.refine = (FL & CYLRAY_REFINE) != 0;
     F.fast = (FL & CYLRAY_FAST) != 0;
     F.scratch = F.leaf;
+    F.stores = (rt & CYLRAY_KF_STORE_MASK) >> CYLRAY_KF_STORE_SHIFT;
     return F;
 }
 

@@ -37,8 +37,9 @@ CYLRAY_INLINE void KFN(renormalize)(const KFN(lanes) * st, const cylray_kflags_ 
 
 #ifndef vstore_hits
 /* The fields of a hit vector, each stored at the hit lanes (the ISA header may store
- * them together instead). */
-#define vstore_hits(m, normal, pt, ptmax, ppart, pnx, pny, pnz, t, part, nx, ny, nz)           \
+ * them together instead, by the store policy, knowing which lanes are active). */
+#define vstore_hits(m, active, stores, normal, pt, ptmax, ppart, pnx, pny, pnz, t, part, nx, ny, \
+                    nz)                                                                        \
     do {                                                                                       \
         vstore_m(pt, m, t);                                                                    \
         vstore_m(ptmax, m, t);                                                                 \
@@ -141,6 +142,6 @@ CYLRAY_INLINE void KFN(store)(const KFN(lanes) * st, const cylray_kat_ *k,
     float *const pnx = F.normal ? k->H->nx + i : NULL,
                  *const pny = F.normal ? k->H->ny + i : NULL,
                  *const pnz = F.normal ? k->H->nz + i : NULL;
-    vstore_hits(hit, F.normal, k->H->t + i, k->R->tmax + i, k->H->part + i, pnx, pny, pnz, T,
-                part, nx, ny, nz);
+    vstore_hits(hit, k->bits, F.stores, F.normal, k->H->t + i, k->R->tmax + i, k->H->part + i,
+                pnx, pny, pnz, T, part, nx, ny, nz);
 }

@@ -1,12 +1,10 @@
 /* SPDX-License-Identifier: MIT */
 /* simd/x86_stores.h - how the x86 kernels store the lanes that hit: whole vectors for
- * scratch, mask-register stores on AVX-512, and on SSE and AVX either masked stores or
- * one lane at a time, as the dispatch chose for the CPU.
+ * scratch, mask-register stores on AVX-512, and on SSE and AVX blends, masked stores
+ * or one lane at a time, by the store policy of the table the dispatch chose.
  *
- * Included after simd/x86.h, with the same VW, X86_FMA and X86_KMASK, and optionally:
- *   X86_STORES_BY_LANE  1 to store a lane at a time on AVX, 0 for the masked stores;
- *                       the dispatch's choice (cylray_stores_by_lane_) when not set
- * simd/undef.h takes every name back. */
+ * Included after simd/x86.h, with the same VW, X86_FMA and X86_KMASK; simd/undef.h
+ * takes every name back. */
 
 /* Whole-vector stores, for scratch that the caller reads back at the hit lanes only. */
 #define vstoreu(p, x) VX(storeu_ps)(p, x)
@@ -16,36 +14,22 @@
 #define vstore_m(p, m, x) VX(mask_storeu_ps)(p, m, x)
 #define vstore_part_m(p, m, x) VX(mask_storeu_epi32)(p, m, VX(cvttps_epi32)(x))
 #else /* vector masks */
-/* The stores of the hit lanes (docs/performance.md, "Stores by vendor"). A lane that
- * did not hit is never written, so nothing may be read back and blended in. AVX has
- * a masked store, two uops on Intel cores but microcoded on AMD Zen 1 to 3 (42 uops
- * and 12 cycles for 256 bits); SSE has none at all. So the hit vector's fields are
- * stored together (vstore_hits): a plain store each when every lane hit, else either
- * the masked stores or one loop over the hit lanes that stores every field of a lane,
- * whose exit is the one branch that a mix of hits and misses mispredicts.
- * X86_STORES_BY_LANE says which on AVX: the choice the dispatch made for this CPU
- * (cylray_stores_by_lane_, cylray_internal.h); a constant where the includer sets it. */
-#if X86_FMA && !defined(X86_STORES_BY_LANE)
-#define X86_STORES_BY_LANE cylray_stores_by_lane_()
-#endif
-#define vstore_m(p, m, x) KFN(store_m)(p, m, x)
-#define vstore_part_m(p, m, x) KFN(store_part_m)(p, m, x)
+/* The stores of the hit lanes, by the policy the dispatch chose with the table
+ * (CYLRAY_STORE_*, internal/variants.h; docs/performance.md, "Stores by vendor"). AVX's
+ * masked store is two uops on Intel cores but microcode on AMD Zen 1 to 4 (11-17
+ * cycles each for 256 bits); SSE has none. A missed lane keeps its value, and may be
+ * stored back unchanged in a whole-vector store, but an inactive lane is never
+ * touched: so a vector whose lanes are all active may load each field, blend the hit
+ * lanes in and store it whole, which every core runs at a plain store's cost. The
+ * fields are stored together: a plain store each when every lane hit; else, by the
+ * policy, the masked stores, the blends (all lanes active) or one loop over the hit
+ * lanes that stores every field of a lane, whose exit is the one branch that a mix of
+ * hits and misses mispredicts. */
 /* A partly hit vector, a lane at a time: every field of a lane, then the next. */
 static inline __attribute__((always_inline)) void
 KFN(store_lanes)(uint32_t b, int normal, float *pt, float *ptmax, int32_t *ppart, float *pnx,
                  float *pny, float *pnz, vf t, vi_ ip, vf nx, vf ny, vf nz)
 {
-    if (b == VFULL) {
-        VX(storeu_ps)(pt, t);
-        VX(storeu_ps)(ptmax, t);
-        VXI(storeu)((vi_ *)(void *)ppart, ip);
-        if (normal) {
-            VX(storeu_ps)(pnx, nx);
-            VX(storeu_ps)(pny, ny);
-            VX(storeu_ps)(pnz, nz);
-        }
-        return;
-    }
     float lt[VW], lx[VW], ly[VW], lz[VW];
     int32_t lp[VW];
     VX(storeu_ps)(lt, t);
@@ -67,13 +51,40 @@ KFN(store_lanes)(uint32_t b, int normal, float *pt, float *ptmax, int32_t *ppart
         }
     }
 }
+/* One field of a vector whose lanes are all active: the hit lanes blended into what
+ * is there. */
+#define KBLEND_(p, m, x) VX(storeu_ps)(p, VX(blendv_ps)(VX(loadu_ps)(p), x, m))
 static inline __attribute__((always_inline)) void
-KFN(store_hits)(vm m, int normal, float *pt, float *ptmax, int32_t *ppart, float *pnx,
-                float *pny, float *pnz, vf t, vf part, vf nx, vf ny, vf nz)
+KFN(store_hits)(vm m, uint32_t active, unsigned stores, int normal, float *pt, float *ptmax,
+                int32_t *ppart, float *pnx, float *pny, float *pnz, vf t, vf part, vf nx, vf ny,
+                vf nz)
 {
     const vi_ ip = VX(cvttps_epi32)(part);
+    const uint32_t b = mbits(m);
+    if (b == VFULL) {
+        VX(storeu_ps)(pt, t);
+        VX(storeu_ps)(ptmax, t);
+        VXI(storeu)((vi_ *)(void *)ppart, ip);
+        if (normal) {
+            VX(storeu_ps)(pnx, nx);
+            VX(storeu_ps)(pny, ny);
+            VX(storeu_ps)(pnz, nz);
+        }
+        return;
+    }
+    if (stores == CYLRAY_STORE_BLEND && active == VFULL) {
+        KBLEND_(pt, m, t);
+        KBLEND_(ptmax, m, t);
+        KBLEND_((float *)(void *)ppart, m, VCASTF(ip));
+        if (normal) {
+            KBLEND_(pnx, m, nx);
+            KBLEND_(pny, m, ny);
+            KBLEND_(pnz, m, nz);
+        }
+        return;
+    }
 #if X86_FMA
-    if (__builtin_expect(!X86_STORES_BY_LANE, 1)) {
+    if (stores == CYLRAY_STORE_MASKED) {
         VX(maskstore_ps)(pt, VCASTI(m), t);
         VX(maskstore_ps)(ptmax, VCASTI(m), t);
         VX(maskstore_epi32)((int *)ppart, VCASTI(m), ip);
@@ -88,46 +99,11 @@ KFN(store_hits)(vm m, int normal, float *pt, float *ptmax, int32_t *ppart, float
     /* Inline: out of line, with vectors for arguments, gcc 12 left the upper halves of
      * the ymm registers dirty on return from a one-vector packet, and the caller's SSE
      * code then ran 4x slower. */
-    KFN(store_lanes)(mbits(m), normal, pt, ptmax, ppart, pnx, pny, pnz, t, ip, nx, ny, nz);
+    KFN(store_lanes)(b, normal, pt, ptmax, ppart, pnx, pny, pnz, t, ip, nx, ny, nz);
 }
-/* One field alone, as vstore_hits stores it. */
-static inline __attribute__((always_inline)) void KFN(store_m)(float *p, vm m, vf x)
-{
-#if X86_FMA
-    if (!X86_STORES_BY_LANE) {
-        VX(maskstore_ps)(p, VCASTI(m), x);
-        return;
-    }
-#endif
-    const uint32_t b = mbits(m);
-    if (b == VFULL) {
-        VX(storeu_ps)(p, x);
-        return;
-    }
-    float l[VW];
-    VX(storeu_ps)(l, x);
-    for (uint32_t r = b; r; r &= r - 1u)
-        p[__builtin_ctz(r)] = l[__builtin_ctz(r)];
-}
-static inline __attribute__((always_inline)) void KFN(store_part_m)(int32_t *p, vm m, vf x)
-{
-    const vi_ xi = VX(cvttps_epi32)(x);
-#if X86_FMA
-    if (!X86_STORES_BY_LANE) {
-        VX(maskstore_epi32)((int *)p, VCASTI(m), xi);
-        return;
-    }
-#endif
-    const uint32_t b = mbits(m);
-    if (b == VFULL) {
-        VXI(storeu)((vi_ *)(void *)p, xi);
-        return;
-    }
-    int32_t l[VW];
-    VXI(storeu)((vi_ *)(void *)l, xi);
-    for (uint32_t r = b; r; r &= r - 1u)
-        p[__builtin_ctz(r)] = l[__builtin_ctz(r)];
-}
-#define vstore_hits(m, normal, pt, ptmax, ppart, pnx, pny, pnz, t, part, nx, ny, nz)           \
-    KFN(store_hits)(m, normal, pt, ptmax, ppart, pnx, pny, pnz, t, part, nx, ny, nz)
+#undef KBLEND_
+#define vstore_hits(m, active, stores, normal, pt, ptmax, ppart, pnx, pny, pnz, t, part, nx, ny, \
+                    nz)                                                                        \
+    KFN(store_hits)(m, active, stores, normal, pt, ptmax, ppart, pnx, pny, pnz, t, part, nx, ny, \
+                    nz)
 #endif
