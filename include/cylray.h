@@ -201,10 +201,12 @@ CYLRAY_PACKET_(16, 64)
 /* For every lane i whose bit is set in `active` (bits at and beyond the width are
  * ignored): on a hit at t in [tmin, tmax] the kernel writes lane i of *hit (t, part,
  * and the normal with CYLRAY_NORMAL), sets ray->tmax[i] = t and sets bit i of the
- * result. Misses and inactive lanes are not written; nothing else of *ray is. A lane
- * never hits when a field is NaN or infinite (but tmin = -INFINITY, tmax = INFINITY),
- * when its direction is zero, or when tmin > tmax; the other lanes' answers do not
- * depend on it. */
+ * result. A lane that misses keeps its values (when every lane is active, the kernel
+ * may store them back unchanged as part of a whole-vector store, which is cheaper
+ * than a masked store on AMD CPUs); an inactive lane is never written; nothing else
+ * of *ray is. A lane never hits when a field is NaN or infinite (but tmin = -INFINITY,
+ * tmax = INFINITY), when its direction is zero, or when tmin > tmax; the other lanes'
+ * answers do not depend on it. */
 CYLRAY_API uint32_t cylray_intersect4(const cylray_prepared *cyl, cylray_ray4 *ray,
                                       cylray_hit4 *hit, uint32_t active, unsigned flags);
 CYLRAY_API uint32_t cylray_intersect8(const cylray_prepared *cyl, cylray_ray8 *ray,
