@@ -76,7 +76,8 @@ static const cylray_kernels *with_stores(cylray_isa isa)
 #endif
 #ifdef CYLRAY_HAVE_SSE41
     if (isa == CYLRAY_ISA_SSE41)
-        return sse == CYLRAY_STORE_BLEND ? &cylray_kernels_sse41_blend_ : &cylray_kernels_sse41_;
+        return sse == CYLRAY_STORE_BLEND ? &cylray_kernels_sse41_blend_
+                                         : &cylray_kernels_sse41_;
 #endif
 #ifdef CYLRAY_HAVE_AVX2
     if (isa == CYLRAY_ISA_AVX2)

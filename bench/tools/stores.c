@@ -103,8 +103,10 @@ int main(int argc, char **argv)
         int w;
         run_fn fn;
         unsigned policy;
-    } pol[] = {{"masked", 8, run8, CYLRAY_STORE_MASKED}, {"blend", 8, run8, CYLRAY_STORE_BLEND},
-               {"lanes", 8, run8, CYLRAY_STORE_LANES},   {"blend", 4, run4, CYLRAY_STORE_BLEND},
+    } pol[] = {{"masked", 8, run8, CYLRAY_STORE_MASKED},
+               {"blend", 8, run8, CYLRAY_STORE_BLEND},
+               {"lanes", 8, run8, CYLRAY_STORE_LANES},
+               {"blend", 4, run4, CYLRAY_STORE_BLEND},
                {"lanes", 4, run4, CYLRAY_STORE_LANES}};
     const struct {
         const char *name;

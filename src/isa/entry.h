@@ -34,9 +34,9 @@
                                                          flags & CYLRAY_KF_RUNTIME);           \
     }
 #define KISECT_STREAM_(sfx, st)                                                                \
-    static size_t KI_(intersect_stream##sfx)(const cylray_prepared *P, const cylray_rays *rays, \
-                                             const cylray_hits *hits, size_t n,                \
-                                             unsigned flags)                                   \
+    static size_t KI_(intersect_stream##sfx)(const cylray_prepared *P,                         \
+                                             const cylray_rays *rays, const cylray_hits *hits, \
+                                             size_t n, unsigned flags)                         \
     {                                                                                          \
         if (!n || !rays || !hits || !cylray_prepared_ok_(P))                                   \
             return 0;                                                                          \
@@ -47,8 +47,8 @@
             P, rays, hits, NULL, n, flags & CYLRAY_KF_RUNTIME);                                \
     }
 #define KISECT_ALL_(sfx, st)                                                                   \
-    KISECT_ENTRY_(4, sfx, st) KISECT_ENTRY_(8, sfx, st) KISECT_ENTRY_(16, sfx, st)            \
-        KISECT_STREAM_(sfx, st)
+    KISECT_ENTRY_(4, sfx, st)                                                                  \
+    KISECT_ENTRY_(8, sfx, st) KISECT_ENTRY_(16, sfx, st) KISECT_STREAM_(sfx, st)
 #ifndef KSTORES
 #define KSTORES(X) X(, CYLRAY_STORE_MASKED)
 #endif
@@ -120,7 +120,7 @@ KLEAF_ENTRY_(8)
 KLEAF_ENTRY_(16)
 
 #define KTABLE_(sfx, st)                                                                       \
-    const cylray_kernels CYLRAY_CAT(CYLRAY_CAT(CYLRAY_CAT(cylray_kernels_, KISA), sfx), _) = {   \
+    const cylray_kernels CYLRAY_CAT(CYLRAY_CAT(CYLRAY_CAT(cylray_kernels_, KISA), sfx), _) = { \
         KISA_ENUM,                                                                             \
         KISA_NAME,                                                                             \
         KI_(intersect4##sfx),                                                                  \

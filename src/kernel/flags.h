@@ -5,14 +5,15 @@
 #ifndef CYLRAY_KERNEL_FLAGS_H
 #define CYLRAY_KERNEL_FLAGS_H
 
-/* What an instantiation's flags decide. Every field but the run-time ones (cull, ff)
- * is a compile-time constant where a kernel is specialised, and its branches fold. */
+/* What an instantiation's flags decide. Every field but the run-time ones (cull, ff,
+ * stores) is a compile-time constant where a kernel is specialised, and its branches
+ * fold. scratch: the hits go to a leaf's own scratch, read back at the hit lanes only,
+ * so whole vectors may be stored there; stores: the store policy (CYLRAY_STORE_*). */
 typedef struct {
     unsigned kind;
     int leaf, capped, finite, one_end, aligned, scaled, occ, normal, cull, ff, refine, fast;
-    int scratch; /* the hits go to a leaf's own scratch, read back at the hit lanes only:
-                  * whole vectors may be stored there */
-    unsigned stores; /* the store policy (CYLRAY_STORE_*), read at run time */
+    int scratch;
+    unsigned stores;
 } cylray_kflags_;
 
 CYLRAY_INLINE cylray_kflags_ cylray_kflags_of_(unsigned FL, unsigned rt)

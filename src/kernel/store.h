@@ -38,8 +38,8 @@ CYLRAY_INLINE void KFN(renormalize)(const KFN(lanes) * st, const cylray_kflags_ 
 #ifndef vstore_hits
 /* The fields of a hit vector, each stored at the hit lanes (the ISA header may store
  * them together instead, by the store policy, knowing which lanes are active). */
-#define vstore_hits(m, active, stores, normal, pt, ptmax, ppart, pnx, pny, pnz, t, part, nx, ny, \
-                    nz)                                                                        \
+#define vstore_hits(m, active, stores, normal, pt, ptmax, ppart, pnx, pny, pnz, t, part, nx,   \
+                    ny, nz)                                                                    \
     do {                                                                                       \
         vstore_m(pt, m, t);                                                                    \
         vstore_m(ptmax, m, t);                                                                 \

@@ -102,8 +102,5 @@ KFN(store_hits)(vm m, uint32_t active, unsigned stores, int normal, float *pt, f
     KFN(store_lanes)(b, normal, pt, ptmax, ppart, pnx, pny, pnz, t, ip, nx, ny, nz);
 }
 #undef KBLEND_
-#define vstore_hits(m, active, stores, normal, pt, ptmax, ppart, pnx, pny, pnz, t, part, nx, ny, \
-                    nz)                                                                        \
-    KFN(store_hits)(m, active, stores, normal, pt, ptmax, ppart, pnx, pny, pnz, t, part, nx, ny, \
-                    nz)
+#define vstore_hits KFN(store_hits)
 #endif

@@ -136,8 +136,8 @@ CYLRAY_INLINE void DFN(spawn)(const DFN(geo) * g, const vd p[3], vd err, vd part
         if (i == 0) /* inward from the side: the rounding's tangential part */
             a = dadd(a, dsel(x->pos, zero, dmul(dmul(dmul(dset1(2.0), rnd), rnd), g->inv_R)));
         if (i == 0 && ndip)
-            a = dsel(dip, dadd(x->base, DFN(dip_clearance)(g, r, w, dadd(dadd(e_d, m), rim), m)),
-                     a);
+            a = dsel(dip,
+                     dadd(x->base, DFN(dip_clearance)(g, r, w, dadd(dadd(e_d, m), rim), m)), a);
         a = dmul(dmul(a, dset1(1 + 0x1p-20)), x->sgn);
         if (i == 0) {
             /* r may be NaN where p is not finite: the lanes left out add +0 */

@@ -1123,8 +1123,8 @@ static int run_axis(void)
  * cylinder, or meets it first at t_e with t < t_e / 2: the promise is about the
  * distance, so the exact ray runs on past the caller's tmax (a grazing exit at 1.006
  * that a kernel, within its tolerance, reports at 0.9998 < tmax = 1 keeps it). */
-static int premature(const cylray_cylinder *cyl, const float x0[3], const float w[3],
-                     int left, int hit_part, float t)
+static int premature(const cylray_cylinder *cyl, const float x0[3], const float w[3], int left,
+                     int hit_part, float t)
 {
     if ((hit_part & CYLRAY_PART_MASK) != (left & CYLRAY_PART_MASK))
         return 0;
