@@ -138,7 +138,7 @@ cylray_status cylray_bounds(const cylray_prepared *cyl, float lo[3], float hi[3]
     return CYLRAY_OK;
 }
 
-/* A leaf's geometry is geom[field * m + lane] (cylray_internal.h). */
+/* A leaf's geometry is geom[field * m + lane] (internal/leaf.h). */
 static cylray_status leaf_bounds(const float *geom, const uint32_t *meta, unsigned m,
                                  float lo[3], float hi[3])
 {

@@ -106,7 +106,7 @@ cylray_status cylray_prepare(cylray_prepared *out, const cylray_cylinder *in)
     /* Only the rare instance of the general kernel (variant >= 6) takes the scaled
      * form; the others, and the coordinate-axis kernels, take R^2 as it is. */
     p.axis_id = zeros == 2 && j == 0 ? (a[0] != 0 ? 1u : a[1] != 0 ? 2u : 3u) : 0u;
-    /* The renaming of cylray_internal.h: along x, (x, y, z) is read as (y, z, x); along
+    /* The renaming of internal/views.h: along x, (x, y, z) is read as (y, z, x); along
      * y, as (z, x, y); so that the axis is the third coordinate. */
     for (unsigned j = 0; j < 3; j++)
         p.order[j] = (uint8_t)(p.axis_id ? (p.axis_id + j) % 3u : j);

@@ -92,7 +92,7 @@ static size_t KI_(occluded_stream)(const cylray_prepared *P, const cylray_rays *
 }
 
 /* Leaves: a leaf of M runs on the instantiation KLm (VW lanes at a time, M / VW times).
- * A leaf is read as its field array: geom_, then meta_ and id_ (cylray_internal.h). */
+ * A leaf is read as its field array: geom_, then meta_ and id_ (internal/leaf.h). */
 #define KLEAF_ENTRY_(m)                                                                        \
     _Static_assert(offsetof(cylray_leaf##m, meta_) == CYLRAY_LF_COUNT * m * sizeof(float) &&   \
                        offsetof(cylray_leaf##m, id_) == (CYLRAY_LF_COUNT + 1) * m * 4,         \

@@ -42,7 +42,7 @@ CYLRAY_INLINE cylray_kflags_ cylray_kflags_of_(unsigned FL, unsigned rt)
 /* Where one vector's lanes come from and go to: the cylinder (P) or the leaf (L, lm
  * lanes), the rays and hits, the first lane i and the active lanes. An aligned
  * cylinder comes with its rays' coordinates already renamed by the drivers
- * (cylray_internal.h), so that its axis is the third one; c3 is its center renamed
+ * (internal/views.h), so that its axis is the third one; c3 is its center renamed
  * the same way. */
 typedef struct {
     const cylray_prepared *P;

@@ -124,7 +124,7 @@ CYLRAY_MAYBE_UNUSED CYLRAY_NOINLINE size_t KFN(stream_generic)(const cylray_prep
  * CYLRAY_REFINE, and the occluded ones likewise. FAST and REFINE together (an odd
  * pair: one trades accuracy away, the other buys it) take the drivers that read their
  * flags at run time, as the rare cylinders do; so do face-forward and culling in every
- * kernel (a select each). b is cylray_spec_'s encoding (cylray_internal.h); the tables
+ * kernel (a select each). b is cylray_spec_'s encoding (internal/variants.h); the tables
  * are indexed by cylray_isect_index_ / cylray_occ_index_. Half the specialisations of
  * every combination, in build time and size, for the same speed where it counts. */
 #define KSPECFL_(b)                                                                            \
