@@ -51,6 +51,7 @@ const char *cylray_isa_name(cylray_isa isa)
  * the blends on every CPU; CYLRAY_STORES=masked|blend|lanes forces one on both (to
  * test each on any CPU; masked stores as lanes on SSE; another value is ignored).
  * Threads racing on the first call compute the same answer. */
+#if defined(CYLRAY_HAVE_SSE41) || defined(CYLRAY_HAVE_AVX2)
 static atomic_uint stores_chosen; /* 1 + AVX2's policy + 4 SSE4.1's; 0: not yet */
 static unsigned store_policies(void)
 {
@@ -67,12 +68,14 @@ static unsigned store_policies(void)
     atomic_store_explicit(&stores_chosen, p + 1u, memory_order_relaxed);
     return p;
 }
+#endif
 
 /* An ISA's table, with its store policy where it has several. */
 static const cylray_kernels *with_stores(cylray_isa isa)
 {
 #if defined(CYLRAY_HAVE_SSE41) || defined(CYLRAY_HAVE_AVX2)
     const unsigned p = store_policies(), avx = p % 4u, sse = p / 4u;
+    (void)avx, (void)sse; /* one of them, where one ISA alone is built */
 #endif
 #ifdef CYLRAY_HAVE_SSE41
     if (isa == CYLRAY_ISA_SSE41)
