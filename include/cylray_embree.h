@@ -1,12 +1,15 @@
-/* cylray_embree.h - cylray's cylinders as an Embree 3 geometry.
+/* cylray_embree.h - cylray's cylinders as an Embree 3 or Embree 4 geometry.
  * SPDX-License-Identifier: MIT
  *
  * An optional part of cylray, in its own library (cylray_embree; pkg-config
- * cylray_embree, CMake cylray::cylray_embree), built where Embree 3 is found. It turns
- * the caller's cylinders into one RTCGeometry of Embree's user type that a renderer
- * attaches to its own scene next to its triangles and curves. Embree's BVH finds the
- * candidates; cylray's kernels answer them, and the hits land in Embree's record as a
- * curve's would:
+ * cylray_embree, CMake cylray::cylray_embree), built against the Embree the build found:
+ * CYLRAY_EMBREE_RTC_MAJOR (3 or 4, from cylray_embree_config.h, installed beside this
+ * header) says which, and that header includes Embree's own (embree3/rtcore.h or
+ * embree4/rtcore.h). Including another major version of Embree's headers before this
+ * one is an error. It turns the caller's cylinders into one RTCGeometry of Embree's user
+ * type that a renderer attaches to its own scene next to its triangles and curves.
+ * Embree's BVH finds the candidates; cylray's kernels answer them, and the hits land in
+ * Embree's record as a curve's would:
  *
  *   tfar     the hit distance
  *   Ng       the unit outward normal of the surface hit (never flipped toward the ray)
@@ -15,22 +18,46 @@
  *            the hit point, (b1, b2) the orthonormal frame of Duff et al. (JCGT 2017)
  *            built from the unit axis p1 - p0
  *   primID   the cylinder's index in the caller's arrays
- *   geomID, instID   as Embree hands them to the geometry
+ *   geomID, instID   as Embree hands them to the geometry (instID copied from the
+ *            query context); on Embree 4 built with instance arrays
+ *            (RTC_GEOMETRY_INSTANCE_ARRAY), instPrimID likewise
  *
  * A miss writes nothing; an occluded ray gets tfar = -INFINITY. Rays are x(t) = o + t d
- * for t in [tnear, tfar]. Filter functions (the geometry's, set with
- * rtcSetGeometryIntersectFilterFunction / rtcSetGeometryOccludedFilterFunction, and the
- * context's) see each hit before it is accepted; when one is rejected, the next hit of
- * the same cylinder along the ray is offered, as Embree's curves do.
+ * for t in [tnear, tfar]. On Embree 4 the callbacks also write valid[] back, -1 for a
+ * lane they reported a hit (or occlusion) for and 0 for the others, as that version
+ * asks of user geometry.
  *
- * Embree 3 only: what depends on Embree's API version lives in one internal header of
- * the adapter, which checks RTC_VERSION_MAJOR == 3 when it is compiled; a port to
- * Embree 4 (rtcore.h under embree4/, RTCRayQueryContext, the arguments' new fields)
- * changes that header and the include below. */
+ * Filter functions see each hit before it is accepted; when one is rejected, the next
+ * hit of the same cylinder along the ray is offered, as Embree's curves do. Which
+ * filters run:
+ *   the geometry's    (rtcSetGeometryIntersectFilterFunction /
+ *                     rtcSetGeometryOccludedFilterFunction) with CYLRAY_EMBREE_FILTER:
+ *                     Embree 3 through rtcFilterIntersection / rtcFilterOcclusion,
+ *                     Embree 4 through rtcInvokeIntersectFilterFromGeometry /
+ *                     rtcInvokeOccludedFilterFromGeometry
+ *   the query's       Embree 3: the context's (RTCIntersectContext.filter), always, as
+ *                     rtcFilterIntersection calls it. Embree 4: the filter of
+ *                     RTCIntersectArguments / RTCOccludedArguments is never seen by a
+ *                     user geometry (Embree does not pass the arguments to its
+ *                     callbacks), so pass it in a cylray_embree_context (below) as well,
+ *                     and give the geometry CYLRAY_EMBREE_CONTEXT
+ *   the extended context's filter (cylray_embree_context.filter), on both versions,
+ *                     with CYLRAY_EMBREE_CONTEXT: after the others, as Embree calls an
+ *                     argument filter after the geometry's
+ * Each filter gets the whole ray packet with one lane valid, the hit in the hit record,
+ * and the ray's tfar set to the hit's t while it runs.
+ *
+ * Embree 4 also starts geometries with mask 0x1 and tests ray masks (Embree 3 starts
+ * them at 0xFFFFFFFF): a geometry made here keeps Embree's default, so rays with mask
+ * 0 miss it there; rtcSetGeometryMask sets another. */
 #ifndef CYLRAY_EMBREE_H
 #define CYLRAY_EMBREE_H
 
-#include <embree3/rtcore.h>
+#include "cylray_embree_config.h"
+
+#if !defined(RTC_VERSION_MAJOR) || RTC_VERSION_MAJOR != CYLRAY_EMBREE_RTC_MAJOR
+#error "cylray_embree was built against another major version of Embree than the one included"
+#endif
 
 #include "cylray.h"
 
@@ -64,11 +91,52 @@ extern "C" {
  * many as its own rule (k = 0) gives. Each hit is reported by the one box whose
  * stretch of the axis holds it. Ignored with CYLRAY_EMBREE_LEAVES. */
 #define CYLRAY_EMBREE_SPLIT 0x2u
-/* Filters: pass every hit through rtcFilterIntersection / rtcFilterOcclusion. Embree 3
- * does not tell a user geometry whether filter functions were set on it, so say so
- * here; without it only the context's filter (RTCIntersectContext.filter), when set,
- * is called, and occlusion stops at the first hit without one. */
+/* Filters: offer every hit to the geometry's filter functions (see the top of this
+ * file). Embree does not tell a user geometry whether filter functions were set on it,
+ * so say so here; without it only the query's filter, when there is one, is called,
+ * and occlusion stops at the first hit without one. */
 #define CYLRAY_EMBREE_FILTER 0x4u
+/* Extended context: every query that can reach this geometry passes a
+ * cylray_embree_context (initialised with cylray_embree_init_context) as its context,
+ * whose filter the adapter then calls. Without it the adapter never reads past Embree's
+ * own context struct. */
+#define CYLRAY_EMBREE_CONTEXT 0x8u
+
+/* The query context as Embree's version names it. */
+#if CYLRAY_EMBREE_RTC_MAJOR >= 4
+typedef struct RTCRayQueryContext cylray_embree_rtc_context;
+#else
+typedef struct RTCIntersectContext cylray_embree_rtc_context;
+#endif
+
+#define CYLRAY_EMBREE_CONTEXT_TAG 0x63796c63u /* "cylc" */
+
+/* A context that carries what the callbacks need and Embree 4 does not hand them: the
+ * renderer's query filter (what it sets as RTCIntersectArguments.filter for its other
+ * geometries; NULL for none) and a pointer of its own. Pass &ctx.rtc as the query's
+ * context (Embree 4: RTCIntersectArguments.context / RTCOccludedArguments.context;
+ * Embree 3: the context argument); a filter can cast its args->context back to
+ * cylray_embree_context to reach user. */
+typedef struct cylray_embree_context {
+    cylray_embree_rtc_context rtc; /* first: Embree hands this pointer to the callbacks */
+    unsigned tag;                  /* CYLRAY_EMBREE_CONTEXT_TAG */
+    RTCFilterFunctionN filter;
+    void *user;
+} cylray_embree_context;
+
+/* Embree's own initialisation of ctx->rtc, the tag, the filter, user NULL. */
+static inline void cylray_embree_init_context(cylray_embree_context *ctx,
+                                              RTCFilterFunctionN filter)
+{
+#if CYLRAY_EMBREE_RTC_MAJOR >= 4
+    rtcInitRayQueryContext(&ctx->rtc);
+#else
+    rtcInitIntersectContext(&ctx->rtc);
+#endif
+    ctx->tag = CYLRAY_EMBREE_CONTEXT_TAG;
+    ctx->filter = filter;
+    ctx->user = 0;
+}
 
 /* The caller's cylinders in endpoint form: cylinder i runs from p0 to p1 with radius r
  * and the end discs caps says (CYLRAY_CAPPED_LO is the disc at p0), read from
@@ -107,7 +175,8 @@ CYLRAY_EMBREE_API RTCGeometry cylray_embree_new_geometry(RTCDevice device,
                                                          cylray_status *status);
 
 /* Instead of rtcReleaseGeometry for such a geometry: drops the caller's reference and
- * frees cylray's data, which Embree 3 gives no way to tie to the geometry's own end.
+ * frees cylray's data, which Embree (3 and 4) gives no way to tie to the geometry's own
+ * end.
  * Call it once no scene can trace the geometry any more (the scenes holding it
  * released, or it detached and those scenes committed again). NULL is ignored. */
 CYLRAY_EMBREE_API void cylray_embree_release_geometry(RTCGeometry geometry);
@@ -149,14 +218,36 @@ CYLRAY_EMBREE_API int cylray_embree_spawn_origin_side(RTCGeometry geometry, unsi
                                                       const float w[3], float out[3]);
 
 /* Packets through a scene that holds such a geometry, in place of rtcIntersect4/8/16 and
- * rtcOccluded4/8/16 (same arguments, aligned as Embree requires: valid and the packet to
- * 16, 32, 64 bytes for 4, 8, 16 rays; same results): Embree's packet call where the packet
- * is coherent (the context's flags say RTC_INTERSECT_CONTEXT_FLAG_COHERENT, or at least
- * three valid rays share one direction octant), and otherwise rtcIntersect1 / rtcOccluded1
- * for each valid ray with the same context. Embree 3 traverses user geometry in packets
- * without ever dropping to one ray at a time, so an incoherent packet would cost more than
- * its rays one a call. Filter functions run as with Embree's own calls (with N = 1 for rays
- * traced one a call). */
+ * rtcOccluded4/8/16 (the same arguments in the same order as the Embree version's own
+ * call, aligned as Embree requires: valid and the packet to 16, 32, 64 bytes for 4, 8,
+ * 16 rays; same results): Embree's packet call where the packet is coherent (the
+ * query's flags say so: Embree 3's context flags RTC_INTERSECT_CONTEXT_FLAG_COHERENT,
+ * Embree 4's argument flags RTC_RAY_QUERY_FLAG_COHERENT; or at least three valid rays
+ * share one direction octant), and otherwise rtcIntersect1 / rtcOccluded1 for each
+ * valid ray with the same context (and arguments). Embree traverses user geometry in
+ * packets without ever dropping to one ray at a time, so an incoherent packet would
+ * cost more than its rays one a call. Filter functions run as with Embree's own calls
+ * (with N = 1 for rays traced one a call). */
+#if CYLRAY_EMBREE_RTC_MAJOR >= 4
+CYLRAY_EMBREE_API void cylray_embree_intersect4(const int *valid, RTCScene scene,
+                                                struct RTCRayHit4 *rayhit,
+                                                struct RTCIntersectArguments *args);
+CYLRAY_EMBREE_API void cylray_embree_intersect8(const int *valid, RTCScene scene,
+                                                struct RTCRayHit8 *rayhit,
+                                                struct RTCIntersectArguments *args);
+CYLRAY_EMBREE_API void cylray_embree_intersect16(const int *valid, RTCScene scene,
+                                                struct RTCRayHit16 *rayhit,
+                                                struct RTCIntersectArguments *args);
+CYLRAY_EMBREE_API void cylray_embree_occluded4(const int *valid, RTCScene scene,
+                                               struct RTCRay4 *ray,
+                                               struct RTCOccludedArguments *args);
+CYLRAY_EMBREE_API void cylray_embree_occluded8(const int *valid, RTCScene scene,
+                                               struct RTCRay8 *ray,
+                                               struct RTCOccludedArguments *args);
+CYLRAY_EMBREE_API void cylray_embree_occluded16(const int *valid, RTCScene scene,
+                                               struct RTCRay16 *ray,
+                                               struct RTCOccludedArguments *args);
+#else
 CYLRAY_EMBREE_API void cylray_embree_intersect4(const int *valid, RTCScene scene,
                                                 struct RTCIntersectContext *context,
                                                 struct RTCRayHit4 *rayhit);
@@ -164,8 +255,8 @@ CYLRAY_EMBREE_API void cylray_embree_intersect8(const int *valid, RTCScene scene
                                                 struct RTCIntersectContext *context,
                                                 struct RTCRayHit8 *rayhit);
 CYLRAY_EMBREE_API void cylray_embree_intersect16(const int *valid, RTCScene scene,
-                                                 struct RTCIntersectContext *context,
-                                                 struct RTCRayHit16 *rayhit);
+                                                struct RTCIntersectContext *context,
+                                                struct RTCRayHit16 *rayhit);
 CYLRAY_EMBREE_API void cylray_embree_occluded4(const int *valid, RTCScene scene,
                                                struct RTCIntersectContext *context,
                                                struct RTCRay4 *ray);
@@ -173,8 +264,9 @@ CYLRAY_EMBREE_API void cylray_embree_occluded8(const int *valid, RTCScene scene,
                                                struct RTCIntersectContext *context,
                                                struct RTCRay8 *ray);
 CYLRAY_EMBREE_API void cylray_embree_occluded16(const int *valid, RTCScene scene,
-                                                struct RTCIntersectContext *context,
-                                                struct RTCRay16 *ray);
+                                               struct RTCIntersectContext *context,
+                                               struct RTCRay16 *ray);
+#endif
 
 #ifdef __cplusplus
 }

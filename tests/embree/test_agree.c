@@ -3,7 +3,8 @@
  * exact reference's: Embree's BVH with the adapter (one cylinder a primitive, split
  * boxes, leaves) at 1, 4, 8 and 16 rays a call, against every cylinder tried in turn;
  * the hit record's u and v against cylray_surface; filter functions (the
- * geometry's and the context's) offered every hit once, in order along each cylinder,
+ * geometry's and the query's: Embree 3's context filter, Embree 4's argument filter
+ * through the adapter's extended context) offered every hit once, in order along each cylinder,
  * with the next hit of a cylinder taken when one is rejected; the spawn helper's
  * origins never hitting their own cylinder again. */
 #include "geom.h"
@@ -173,7 +174,7 @@ static void rule_filter(const struct RTCFilterFunctionNArguments *a)
     }
 }
 
-/* The context's filter that rejects every hit and records each one offered. */
+/* The query's filter that rejects every hit and records each one offered. */
 typedef struct offered {
     uint32_t prim[64];
     float t[64];
@@ -203,15 +204,14 @@ static int offer_all(const char *what, RTCScene scene, const eb_rays *r)
         float o[3], d[3];
         eb_rays_get(r, i, o, d);
         for (int occ = 0; occ < 2; occ++) {
-            struct RTCIntersectContext ctx;
-            rtcInitIntersectContext(&ctx);
-            ctx.filter = record_filter;
+            eb_query q;
+            eb_query_init(&q, record_filter, 0);
             OFFERED.n = 0;
             struct RTCRayHit rh = eb_rayhit1(o, d, 0, INFINITY);
             if (occ)
-                rtcOccluded1(scene, &ctx, &rh.ray);
+                EB_OCCLUDED1(scene, &q, &rh.ray);
             else
-                rtcIntersect1(scene, &ctx, &rh);
+                EB_INTERSECT1(scene, &q, &rh);
             int fine = rh.ray.tfar == INFINITY && rh.hit.geomID == RTC_INVALID_GEOMETRY_ID;
             int want = 0;
             for (uint32_t c = 0; c < S->ns; c++) {
@@ -323,8 +323,9 @@ static void mix_rays(eb_rays *r)
 
 /* Every packet size, intersect and occluded, on the camera rays and on the incoherent
  * ones: each answer held to check(); the counts go to *passed and *failed. */
-static void packet_passes(RTCScene sc, const char *vn, int exact_t, int filtered, eb_rays *r,
-                          float *tfar0, uint8_t *valid0, int *passed, int *failed)
+static void packet_passes(RTCScene sc, const char *vn, int exact_t, int filtered,
+                          RTCFilterFunctionN query_filter, eb_rays *r, float *tfar0,
+                          uint8_t *valid0, int *passed, int *failed)
 {
     static const int packets[4] = {1, 4, 8, 16};
     for (int p = 0; p < 4; p++)
@@ -333,9 +334,12 @@ static void packet_passes(RTCScene sc, const char *vn, int exact_t, int filtered
             rays_for(r, tfar0, valid0);
             if (mixed)
                 mix_rays(r);
-            eb_trace(sc, r, packets[p], 2, occ, NULL);
-            char what[96];
-            snprintf(what, sizeof what, "%s%s packet %d%s %s", vn, filtered ? " filtered" : "",
+            eb_trace_filtered(sc, r, packets[p], 2, occ, NULL, query_filter);
+            char what[112];
+            snprintf(what, sizeof what, "%s%s packet %d%s %s", vn,
+                     !filtered       ? ""
+                     : query_filter ? " query-filtered"
+                                    : " filtered",
                      packets[p], mixed ? " incoherent" : "", occ ? "occluded" : "intersect");
             const int bad = check(what, r, tfar0, valid0, occ, exact_t, filtered);
             printf("%s %s (%d disagreements)\n", bad ? "FAIL" : "ok  ", what, bad);
@@ -397,7 +401,8 @@ int main(void)
                                                                                  : 4;
             REPORT(m != want || (m && g.nprim * m < s.ns), "%s: leaves of %u, %zu primitives",
                    vn, m, g.nprim);
-            packet_passes(g.scene, vn, v != EB_LEAF, 0, &r, tfar0, valid0, &passed, &failed);
+            packet_passes(g.scene, vn, v != EB_LEAF, 0, NULL, &r, tfar0, valid0, &passed,
+                          &failed);
             eb_camera_rays(&r, &s, W, H);
             int bad = exact(vn, &g, &ref, &r);
             REPORT(bad, "%s: the exact reference, and the spawn helper's secondary rays", vn);
@@ -417,20 +422,41 @@ int main(void)
             RTCScene sc = rtcNewScene(dev);
             rtcAttachGeometry(sc, geo);
             rtcCommitScene(sc);
-            packet_passes(sc, vn, v != EB_LEAF, 1, &r, tfar0, valid0, &passed, &failed);
+            packet_passes(sc, vn, v != EB_LEAF, 1, NULL, &r, tfar0, valid0, &passed, &failed);
             rtcReleaseScene(sc);
             cylray_embree_release_geometry(geo);
 
-            /* without FILTER: the context's filter is still called */
-            d.options &= ~CYLRAY_EMBREE_FILTER;
+            /* the same rule as the query's filter, as a renderer passes it (query.h:
+             * Embree 3's context filter; Embree 4's argument filter, which reaches the
+             * adapter through the extended context only), the geometry without one */
+            d.options = (d.options & ~CYLRAY_EMBREE_FILTER) | CYLRAY_EMBREE_CONTEXT;
             geo = cylray_embree_new_geometry(dev, &d, NULL);
+            if (!geo) {
+                REPORT(1, "%s: build with the extended context", vn);
+                continue;
+            }
+            rtcCommitGeometry(geo);
+            sc = rtcNewScene(dev);
+            rtcAttachGeometry(sc, geo);
+            rtcCommitScene(sc);
+            packet_passes(sc, vn, v != EB_LEAF, 1, rule_filter, &r, tfar0, valid0, &passed,
+                          &failed);
+            rtcReleaseScene(sc);
+            cylray_embree_release_geometry(geo);
+
+            /* without FILTER: the query's filter is still called */
+            geo = cylray_embree_new_geometry(dev, &d, NULL);
+            if (!geo) {
+                REPORT(1, "%s: build with the extended context", vn);
+                continue;
+            }
             rtcCommitGeometry(geo);
             sc = rtcNewScene(dev);
             rtcAttachGeometry(sc, geo);
             rtcCommitScene(sc);
             eb_camera_rays(&r, &s, W, H);
             bad = offer_all(vn, sc, &r);
-            REPORT(bad, "%s: the context's filter offered every hit once", vn);
+            REPORT(bad, "%s: the query's filter offered every hit once", vn);
             rtcReleaseScene(sc);
             cylray_embree_release_geometry(geo);
         }
