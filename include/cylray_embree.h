@@ -39,11 +39,13 @@
  *                     rtcFilterIntersection calls it. Embree 4: the filter of
  *                     RTCIntersectArguments / RTCOccludedArguments is never seen by a
  *                     user geometry (Embree does not pass the arguments to its
- *                     callbacks), so pass it in a cylray_embree_context (below) as well,
- *                     and give the geometry CYLRAY_EMBREE_CONTEXT
- *   the extended context's filter (cylray_embree_context.filter), on both versions,
- *                     with CYLRAY_EMBREE_CONTEXT: after the others, as Embree calls an
- *                     argument filter after the geometry's
+ *                     callbacks; Embree's documentation advises a context struct of the
+ *                     renderer's that begins with RTCRayQueryContext), so it comes in a
+ *                     cylray_embree_context (below) as well, to a geometry made with
+ *                     CYLRAY_EMBREE_CONTEXT, and is called after the geometry's, as
+ *                     Embree calls an argument filter
+ * cylray_embree_init_context puts a query's filter where each version looks for it, so
+ * one renderer source serves both.
  * Each filter gets the whole ray packet with one lane valid, the hit in the hit record,
  * and the ray's tfar set to the hit's t while it runs.
  *
@@ -112,29 +114,37 @@ typedef struct RTCIntersectContext cylray_embree_rtc_context;
 #define CYLRAY_EMBREE_CONTEXT_TAG 0x63796c63u /* "cylc" */
 
 /* A context that carries what the callbacks need and Embree 4 does not hand them: the
- * renderer's query filter (what it sets as RTCIntersectArguments.filter for its other
- * geometries; NULL for none) and a pointer of its own. Pass &ctx.rtc as the query's
- * context (Embree 4: RTCIntersectArguments.context / RTCOccludedArguments.context;
- * Embree 3: the context argument); a filter can cast its args->context back to
- * cylray_embree_context to reach user. */
+ * query's filter (what a renderer sets as RTCIntersectArguments.filter /
+ * RTCOccludedArguments.filter for its other geometries; NULL for none) and a pointer of
+ * its own. Pass &ctx.rtc as the query's context (Embree 4: the arguments' context;
+ * Embree 3: the context argument) and make the geometry with CYLRAY_EMBREE_CONTEXT; a
+ * filter reaches user by casting its args->context back to cylray_embree_context. */
 typedef struct cylray_embree_context {
     cylray_embree_rtc_context rtc; /* first: Embree hands this pointer to the callbacks */
     unsigned tag;                  /* CYLRAY_EMBREE_CONTEXT_TAG */
-    RTCFilterFunctionN filter;
+    RTCFilterFunctionN filter;     /* called by the adapter after the geometry's filter */
     void *user;
 } cylray_embree_context;
 
-/* Embree's own initialisation of ctx->rtc, the tag, the filter, user NULL. */
+/* Embree's own initialisation of ctx->rtc, the tag, user NULL, and the query's filter
+ * where each version's queries look for it: Embree 4 in ctx->filter (the adapter calls
+ * it; Embree's own geometries call the arguments' filter, which the renderer sets to
+ * the same function with RTC_RAY_QUERY_FLAG_INVOKE_ARGUMENT_FILTER), Embree 3 in
+ * ctx->rtc.filter, which Embree calls for every geometry, the adapter's included, and
+ * ctx->filter NULL (set by hand, it would be called after that one). One renderer
+ * source then serves both. */
 static inline void cylray_embree_init_context(cylray_embree_context *ctx,
                                               RTCFilterFunctionN filter)
 {
 #if CYLRAY_EMBREE_RTC_MAJOR >= 4
     rtcInitRayQueryContext(&ctx->rtc);
+    ctx->filter = filter;
 #else
     rtcInitIntersectContext(&ctx->rtc);
+    ctx->rtc.filter = filter;
+    ctx->filter = 0;
 #endif
     ctx->tag = CYLRAY_EMBREE_CONTEXT_TAG;
-    ctx->filter = filter;
     ctx->user = 0;
 }
 

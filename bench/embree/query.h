@@ -4,7 +4,7 @@
  * the adapter reads only from geometries made with CYLRAY_EMBREE_CONTEXT), the query's
  * filter and whether its packets are coherent. Embree 3 carries both in the context;
  * Embree 4 in RTCIntersectArguments / RTCOccludedArguments, which a user geometry never
- * sees, so the filter goes into the extended context as well. */
+ * sees, so cylray_embree_init_context puts the filter into the extended context too. */
 #ifndef EB_QUERY_H
 #define EB_QUERY_H
 
@@ -34,8 +34,7 @@ static inline void eb_query_init(eb_query *q, RTCFilterFunctionN filter, int coh
     q->iargs.context = q->oargs.context = &q->ctx.rtc;
     q->iargs.filter = q->oargs.filter = filter;
 #else
-    cylray_embree_init_context(&q->ctx, NULL);
-    q->ctx.rtc.filter = filter;
+    cylray_embree_init_context(&q->ctx, filter);
     q->ctx.rtc.flags =
         coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
 #endif
