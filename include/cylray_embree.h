@@ -208,6 +208,34 @@ CYLRAY_EMBREE_API unsigned cylray_embree_leaf_size(RTCGeometry geometry);
 CYLRAY_EMBREE_API const cylray_prepared *cylray_embree_cylinder(RTCGeometry geometry,
                                                                 unsigned primID);
 
+/* What a renderer asks about a hit on such a geometry (o, d the ray, t the tfar it came
+ * back with, primID and Ng from its hit record). Embree's hit record has no field to
+ * spare for the part hit; Ng says it (a disc's normal is the axis), and these read it
+ * from there.
+ *
+ * The part: CYLRAY_SIDE, CYLRAY_CAP_LO (the disc at p0) or CYLRAY_CAP_HI; -1 when
+ * primID is out of range, geometry is not such a geometry, or Ng is zero or not
+ * finite. */
+CYLRAY_EMBREE_API int cylray_embree_hit_part(RTCGeometry geometry, unsigned primID,
+                                             const float Ng[3]);
+
+/* The hit point p on that part, with *err (when err is not NULL) a bound on its distance
+ * from the exact surface: cylray_hit_point_normal's, so the point keeps the normal's
+ * azimuth where float t cannot place it (a ray from far away). 0, or -1 (nothing
+ * written) as cylray_embree_hit_part. */
+CYLRAY_EMBREE_API int cylray_embree_hit_point(RTCGeometry geometry, unsigned primID,
+                                              const float o[3], const float d[3], float t,
+                                              const float Ng[3], float p[3], float *err);
+
+/* The surface at that hit point: cylray_surface's uv, dpdu and dpdv (see cylray.h; any
+ * of p, uv, dpdu, dpdv may be NULL), and the point itself into p. Returns the part, or
+ * -1 (nothing written) as cylray_embree_hit_part. The hit record's u and v are the same
+ * coordinates (v from a faster azimuth, within 4e-7). */
+CYLRAY_EMBREE_API int cylray_embree_surface(RTCGeometry geometry, unsigned primID,
+                                            const float o[3], const float d[3], float t,
+                                            const float Ng[3], float p[3], float uv[2],
+                                            float dpdu[3], float dpdv[3]);
+
 /* Secondary rays. For a hit on this geometry of the ray o + t d (t the tfar it came back
  * with, primID and Ng from its hit record): the origin of a new ray leaving that hit in
  * direction w, to be traced with tnear = 0. It never hits again the surface it leaves

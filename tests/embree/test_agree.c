@@ -235,6 +235,37 @@ static int offer_all(const char *what, RTCScene scene, const eb_rays *r)
     return bad;
 }
 
+/* The adapter's hit calls on a hit of prim at t: the part read from Ng is the part the
+ * kernel gives for the same hit (where it finds the same t), and the point and surface
+ * are cylray's own for that part. 0 when they agree. */
+static int hit_calls(RTCGeometry geo, uint32_t prim, const float o[3], const float d[3],
+                     float t, const float ng[3])
+{
+    CYLRAY_ALIGN(16) cylray_ray4 r;
+    CYLRAY_ALIGN(16) cylray_hit4 h;
+    for (int j = 0; j < 4; j++) {
+        r.ox[j] = o[0], r.oy[j] = o[1], r.oz[j] = o[2];
+        r.dx[j] = d[0], r.dy[j] = d[1], r.dz[j] = d[2];
+        r.tmin[j] = 0, r.tmax[j] = INFINITY;
+    }
+    int part = cylray_embree_hit_part(geo, prim, ng);
+    if (part < 0)
+        return 1;
+    if (!K->intersect4(&PREP[prim], &r, &h, 1, CYLRAY_NORMAL) || h.t[0] != t)
+        return 0; /* another t (a leaf's query): no kernel part to hold it to */
+    if (part != (h.part[0] & CYLRAY_PART_MASK))
+        return 1;
+    float p[3], err = -1, q[3], e, p2[3], uv[2], uv2[2], du[3], dv[3], du2[3], dv2[3];
+    cylray_hit_point_normal(&PREP[prim], o, d, t, part, ng, q, &e);
+    if (cylray_embree_hit_point(geo, prim, o, d, t, ng, p, &err) || memcmp(p, q, sizeof p) ||
+        err != e)
+        return 1;
+    cylray_surface(&PREP[prim], q, part, uv2, du2, dv2);
+    return cylray_embree_surface(geo, prim, o, d, t, ng, p2, uv, du, dv) != part ||
+           memcmp(p2, q, sizeof q) || memcmp(uv, uv2, sizeof uv) ||
+           memcmp(du, du2, sizeof du) || memcmp(dv, dv2, sizeof dv);
+}
+
 /* The exact reference: the scene's first hit in binary128 (tests/ref), each answer
  * judged as the comparison's tables judge it; no unexcused wrong answer. Secondary
  * rays from the spawn helper must not hit their own cylinder. */
@@ -254,6 +285,9 @@ static int exact(const char *what, const eb_geom *g, const eb_ref *ref, const eb
         eb_judge(&e, ref, &x, prim, t, ng);
         if (prim == RTC_INVALID_GEOMETRY_ID || prim != x.xid || !x.xhit)
             continue;
+        if (hit_calls(g->cyl, prim, x.o, x.d, t, ng) && bad++ < 3)
+            printf("  %s: the hit calls disagree with cylray's on prim %u at t %.9g\n", what,
+                   prim, t);
         /* a reflection and a refraction-like continuation from the hit */
         float n[3], w[2][3], org[3];
         eb_facing_normal(ng, x.d, n);
@@ -480,6 +514,8 @@ int main(void)
         RTCGeometry tri = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_TRIANGLE);
         bad += cylray_embree_is_cylinders(tri) || cylray_embree_primitives(tri) != 0 ||
                cylray_embree_leaf_size(tri) != 0;
+        const float up[3] = {0, 0, 1};
+        bad += cylray_embree_hit_part(tri, 0, up) != -1;
         rtcReleaseGeometry(tri);
         d = eb_scene_desc(&s, 0, K);
         RTCGeometry geo = cylray_embree_new_geometry(dev, &d, &st);
@@ -491,7 +527,12 @@ int main(void)
             cylray_embree_cylinder(geo, 0) == NULL ||
             cylray_embree_spawn_origin(geo, (unsigned)s.ns, z, one, 1, one, one, out) != -1 ||
             cylray_embree_spawn_origin(geo, 0, z, one, 1, z, one, out) != -1 ||
-            cylray_embree_spawn_origin_side(geo, 0, z, one, 1, z, 1, one, out) != -1;
+            cylray_embree_spawn_origin_side(geo, 0, z, one, 1, z, 1, one, out) != -1 ||
+            cylray_embree_hit_part(geo, (unsigned)s.ns, one) != -1 ||
+            cylray_embree_hit_part(geo, 0, z) != -1 ||
+            cylray_embree_hit_point(geo, 0, z, one, 1, z, out, NULL) != -1 ||
+            cylray_embree_surface(geo, (unsigned)s.ns, z, one, 1, one, out, NULL, NULL, NULL) !=
+                -1;
         cylray_embree_release_geometry(geo);
         cylray_embree_release_geometry(NULL);
         REPORT(bad, "refused input, and the accessors");
