@@ -84,15 +84,21 @@ extern "C" {
 /* cylray_embree_desc.options, OR'ed. */
 /* Leaves: the cylinders are grouped by Embree's SAH builder into leaves of 8 (4 with
  * the SSE4.1 and scalar kernels), one user primitive a leaf, each answered
- * by one leaf query per ray. Without it, one cylinder is one primitive, answered for
+ * by one leaf query per ray. Without it, one cylinder (or one piece of a split one) is
+ * one primitive, answered for
  * every valid ray of Embree's packet at once by cylray's packet kernels. */
 #define CYLRAY_EMBREE_LEAVES 0x1u
-/* Split boxes: a long cylinder tilted off the coordinate axes gets several boxes along
- * its axis instead of one (its single box would be mostly empty and make Embree call
- * the geometry for rays that pass far from it): the slices of cylray_split_boxes, as
- * many as its own rule (k = 0) gives. Each hit is reported by the one box whose
- * stretch of the axis holds it. Ignored with CYLRAY_EMBREE_LEAVES. */
+/* Split boxes, the default: a cylinder longer than 16 radii and tilted off the
+ * coordinate axes gets several boxes along its axis instead of one (its single box
+ * would be mostly empty and make Embree call the geometry for rays that pass far from
+ * it): the slices of cylray_split_boxes, as many as its own rule (k = 0) gives. Each
+ * hit is reported by the one box whose stretch of the axis holds it. A shorter
+ * cylinder keeps one box: its pieces would cost more primitives and callbacks than its
+ * box wastes (bonds 10 radii long: 4-6 % more time split; rods of 1e4 radii: 2.9x less).
+ * CYLRAY_EMBREE_SPLIT asks for it by name; CYLRAY_EMBREE_NO_SPLIT gives every cylinder
+ * one box. Not with CYLRAY_EMBREE_LEAVES. */
 #define CYLRAY_EMBREE_SPLIT 0x2u
+#define CYLRAY_EMBREE_NO_SPLIT 0x10u
 /* Filters: offer every hit to the geometry's filter functions (see the top of this
  * file). Embree does not tell a user geometry whether filter functions were set on it,
  * so say so here; without it only the query's filter, when there is one, is called,

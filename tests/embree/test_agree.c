@@ -517,8 +517,17 @@ int main(void)
         const float up[3] = {0, 0, 1};
         bad += cylray_embree_hit_part(tri, 0, up) != -1;
         rtcReleaseGeometry(tri);
-        d = eb_scene_desc(&s, 0, K);
+        /* split boxes by default: as many primitives as with CYLRAY_EMBREE_SPLIT */
+        d = eb_scene_desc(&s, CYLRAY_EMBREE_SPLIT, K);
         RTCGeometry geo = cylray_embree_new_geometry(dev, &d, &st);
+        size_t nsplit = cylray_embree_primitives(geo);
+        cylray_embree_release_geometry(geo);
+        d = eb_scene_desc(&s, 0, K);
+        geo = cylray_embree_new_geometry(dev, &d, &st);
+        bad += nsplit <= s.ns || cylray_embree_primitives(geo) != nsplit;
+        cylray_embree_release_geometry(geo);
+        d = eb_scene_desc(&s, CYLRAY_EMBREE_NO_SPLIT, K);
+        geo = cylray_embree_new_geometry(dev, &d, &st);
         float z[3] = {0, 0, 0}, one[3] = {1, 0, 0}, out[3];
         bad +=
             !geo || st != CYLRAY_OK || !cylray_embree_is_cylinders(geo) ||
