@@ -192,7 +192,8 @@ CYLRAY_EMBREE_API RTCGeometry cylray_embree_new_geometry(RTCDevice device,
 
 /* Instead of rtcReleaseGeometry for such a geometry: drops the caller's reference and
  * frees cylray's data, which Embree (3 and 4) gives no way to tie to the geometry's own
- * end.
+ * end (a user geometry holds no buffers, and nothing is called when it goes).
+ * rtcReleaseGeometry alone leaks that data.
  * Call it once no scene can trace the geometry any more (the scenes holding it
  * released, or it detached and those scenes committed again). NULL is ignored. */
 CYLRAY_EMBREE_API void cylray_embree_release_geometry(RTCGeometry geometry);
