@@ -281,8 +281,8 @@ CYLRAY_EMBREE_API void cylray_embree_intersect8(const int *valid, RTCScene scene
                                                 struct RTCRayHit8 *rayhit,
                                                 struct RTCIntersectArguments *args);
 CYLRAY_EMBREE_API void cylray_embree_intersect16(const int *valid, RTCScene scene,
-                                                struct RTCRayHit16 *rayhit,
-                                                struct RTCIntersectArguments *args);
+                                                 struct RTCRayHit16 *rayhit,
+                                                 struct RTCIntersectArguments *args);
 CYLRAY_EMBREE_API void cylray_embree_occluded4(const int *valid, RTCScene scene,
                                                struct RTCRay4 *ray,
                                                struct RTCOccludedArguments *args);
@@ -290,8 +290,8 @@ CYLRAY_EMBREE_API void cylray_embree_occluded8(const int *valid, RTCScene scene,
                                                struct RTCRay8 *ray,
                                                struct RTCOccludedArguments *args);
 CYLRAY_EMBREE_API void cylray_embree_occluded16(const int *valid, RTCScene scene,
-                                               struct RTCRay16 *ray,
-                                               struct RTCOccludedArguments *args);
+                                                struct RTCRay16 *ray,
+                                                struct RTCOccludedArguments *args);
 #else
 CYLRAY_EMBREE_API void cylray_embree_intersect4(const int *valid, RTCScene scene,
                                                 struct RTCIntersectContext *context,
@@ -300,8 +300,8 @@ CYLRAY_EMBREE_API void cylray_embree_intersect8(const int *valid, RTCScene scene
                                                 struct RTCIntersectContext *context,
                                                 struct RTCRayHit8 *rayhit);
 CYLRAY_EMBREE_API void cylray_embree_intersect16(const int *valid, RTCScene scene,
-                                                struct RTCIntersectContext *context,
-                                                struct RTCRayHit16 *rayhit);
+                                                 struct RTCIntersectContext *context,
+                                                 struct RTCRayHit16 *rayhit);
 CYLRAY_EMBREE_API void cylray_embree_occluded4(const int *valid, RTCScene scene,
                                                struct RTCIntersectContext *context,
                                                struct RTCRay4 *ray);
@@ -309,8 +309,8 @@ CYLRAY_EMBREE_API void cylray_embree_occluded8(const int *valid, RTCScene scene,
                                                struct RTCIntersectContext *context,
                                                struct RTCRay8 *ray);
 CYLRAY_EMBREE_API void cylray_embree_occluded16(const int *valid, RTCScene scene,
-                                               struct RTCIntersectContext *context,
-                                               struct RTCRay16 *ray);
+                                                struct RTCIntersectContext *context,
+                                                struct RTCRay16 *ray);
 #endif
 
 #ifdef __cplusplus

@@ -9,7 +9,6 @@
 
 #include <cylray_embree.h>
 
-
 /* A collecting scene: every cylinder's box, so that one traversal lists every cylinder
  * a ray may meet. */
 typedef struct eb_ref {

@@ -26,10 +26,9 @@ static inline void eb_query_init(eb_query *q, RTCFilterFunctionN filter, int coh
     cylray_embree_init_context(&q->ctx, filter);
     rtcInitIntersectArguments(&q->iargs);
     rtcInitOccludedArguments(&q->oargs);
-    const enum RTCRayQueryFlags f =
-        (enum RTCRayQueryFlags)((coherent ? RTC_RAY_QUERY_FLAG_COHERENT
-                                          : RTC_RAY_QUERY_FLAG_INCOHERENT) |
-                                (filter ? RTC_RAY_QUERY_FLAG_INVOKE_ARGUMENT_FILTER : 0));
+    const enum RTCRayQueryFlags f = (enum RTCRayQueryFlags)(
+        (coherent ? RTC_RAY_QUERY_FLAG_COHERENT : RTC_RAY_QUERY_FLAG_INCOHERENT) |
+        (filter ? RTC_RAY_QUERY_FLAG_INVOKE_ARGUMENT_FILTER : 0));
     q->iargs.flags = q->oargs.flags = f;
     q->iargs.context = q->oargs.context = &q->ctx.rtc;
     q->iargs.filter = q->oargs.filter = filter;

@@ -104,7 +104,7 @@ void eb_camera_rays(eb_rays *r, const eb_scene *s, int w, int h)
  * incoherent one a ray a call), copies the answers back. */
 #define EB_PACKET(N)                                                                           \
     static void packet##N(RTCScene sc, eb_rays *r, size_t i0, int occ,                         \
-                          RTCFilterFunctionN filter)                                         \
+                          RTCFilterFunctionN filter)                                           \
     {                                                                                          \
         struct RTCRayHit##N rh;                                                                \
         _Alignas(64) int valid[N]; /* Embree loads the mask as one vector */                   \

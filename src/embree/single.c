@@ -47,7 +47,7 @@ static int owns(const ceb *g, unsigned prim, uint32_t c, float u)
  * ray is tried, until one is reported or there is none. occ: an occlusion query.
  * Returns 1 when a hit was reported. */
 static int resolve(const ceb *g, const void *a_, int occ, int filt, unsigned i, uint32_t c,
-                    float t, float n[3], int32_t part)
+                   float t, float n[3], int32_t part)
 {
     const struct RTCIntersectFunctionNArguments *ai = a_;
     const struct RTCOccludedFunctionNArguments *ao = a_;
@@ -128,8 +128,8 @@ static unsigned active_lanes(const int *valid, unsigned N, unsigned lane[16])
 
 /* The packet callbacks return the lanes (bits of Embree's lane index) they reported. */
 #define CEB_SINGLE(W)                                                                          \
-    static uint32_t isect##W(const struct RTCIntersectFunctionNArguments *a, const ceb *g,         \
-                         uint32_t c, const unsigned *lane, unsigned n, int filt)               \
+    static uint32_t isect##W(const struct RTCIntersectFunctionNArguments *a, const ceb *g,     \
+                             uint32_t c, const unsigned *lane, unsigned n, int filt)           \
     {                                                                                          \
         cylray_ray##W ray;                                                                     \
         cylray_hit##W hit;                                                                     \
@@ -145,8 +145,8 @@ static unsigned active_lanes(const int *valid, unsigned N, unsigned lane[16])
             }                                                                                  \
         return got;                                                                            \
     }                                                                                          \
-    static uint32_t occ##W(const struct RTCOccludedFunctionNArguments *a, const ceb *g,            \
-                       uint32_t c, const unsigned *lane, unsigned n, int filt)                 \
+    static uint32_t occ##W(const struct RTCOccludedFunctionNArguments *a, const ceb *g,        \
+                           uint32_t c, const unsigned *lane, unsigned n, int filt)             \
     {                                                                                          \
         cylray_ray##W ray;                                                                     \
         CEB_GATHER(ray, a->ray, a->N, lane, n, W);                                             \
@@ -193,7 +193,7 @@ static int isect1(const struct RTCIntersectFunctionNArguments *a, const ceb *g, 
 }
 
 static int occ1(const struct RTCOccludedFunctionNArguments *a, const ceb *g, uint32_t c,
-                 unsigned i, int filt)
+                unsigned i, int filt)
 {
     float o[3], d[3], t, n[3];
     int32_t part;

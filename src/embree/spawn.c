@@ -63,7 +63,8 @@ int cylray_embree_hit_part(RTCGeometry geometry, unsigned primID, const float Ng
 }
 
 int cylray_embree_hit_point(RTCGeometry geometry, unsigned primID, const float o[3],
-                            const float d[3], float t, const float Ng[3], float p[3], float *err)
+                            const float d[3], float t, const float Ng[3], float p[3],
+                            float *err)
 {
     const ceb *g = ceb_of(geometry);
     int part = hit_part(g, primID, Ng);
@@ -79,8 +80,8 @@ int cylray_embree_hit_point(RTCGeometry geometry, unsigned primID, const float o
 }
 
 int cylray_embree_surface(RTCGeometry geometry, unsigned primID, const float o[3],
-                          const float d[3], float t, const float Ng[3], float p[3],
-                          float uv[2], float dpdu[3], float dpdv[3])
+                          const float d[3], float t, const float Ng[3], float p[3], float uv[2],
+                          float dpdu[3], float dpdv[3])
 {
     const ceb *g = ceb_of(geometry);
     int part = hit_part(g, primID, Ng);

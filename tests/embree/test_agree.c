@@ -371,7 +371,7 @@ static void packet_passes(RTCScene sc, const char *vn, int exact_t, int filtered
             eb_trace_filtered(sc, r, packets[p], 2, occ, NULL, query_filter);
             char what[112];
             snprintf(what, sizeof what, "%s%s packet %d%s %s", vn,
-                     !filtered       ? ""
+                     !filtered      ? ""
                      : query_filter ? " query-filtered"
                                     : " filtered",
                      packets[p], mixed ? " incoherent" : "", occ ? "occluded" : "intersect");

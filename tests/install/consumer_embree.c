@@ -92,7 +92,7 @@ int main(void)
     rtcReleaseDevice(dev);
     printf("consumer_embree: cylray %d.%d.%d with Embree %s (built against %s): hit, record "
            "and spawned ray as expected\n",
-           CYLRAY_VERSION_MAJOR, CYLRAY_VERSION_MINOR, CYLRAY_VERSION_PATCH,
-           RTC_VERSION_STRING, CYLRAY_EMBREE_RTC_BUILT);
+           CYLRAY_VERSION_MAJOR, CYLRAY_VERSION_MINOR, CYLRAY_VERSION_PATCH, RTC_VERSION_STRING,
+           CYLRAY_EMBREE_RTC_BUILT);
     return 0;
 }
