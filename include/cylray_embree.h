@@ -50,8 +50,8 @@
  * and the ray's tfar set to the hit's t while it runs.
  *
  * Embree 4 also starts geometries with mask 0x1 and tests ray masks (Embree 3 starts
- * them at 0xFFFFFFFF): a geometry made here keeps Embree's default, so rays with mask
- * 0 miss it there; rtcSetGeometryMask sets another. */
+ * them at 0xFFFFFFFF): a geometry made here keeps Embree's default, so there a ray
+ * whose mask lacks bit 0 misses it; rtcSetGeometryMask sets another. */
 #ifndef CYLRAY_EMBREE_H
 #define CYLRAY_EMBREE_H
 
