@@ -28,18 +28,26 @@
 #            FUZZ_SEED (1), so that a commit's result does not depend on the clock;
 #            FUZZ_SECONDS (120) caps the time. FUZZ_SEED=0 seeds from the clock, and
 #            tests/fuzz/run-long.sh explores for as long as one likes.
+#   embree-extra  the Embree adapter against each further Embree install prefix in
+#            CYLRAY_EMBREE_PREFIXES (colon-separated, e.g. an Embree 4 beside the
+#            distribution's Embree 3; empty: skipped): gcc, release, -Dembree_prefix,
+#            only the library, the adapter's test and the install tests (pkg-config
+#            and CMake consumers included), in build/test-embree-<N>. The other
+#            configurations test whichever Embree the system has.
 # Sanitizer and qemu configurations set CYLRAY_TEST_QUICK=1 so that heavy tests shrink.
 # Why asan and fuzz share a build: the kernels are stamped out in hundreds of flag
 # specialisations per ISA, and a sanitized build of them costs about ten CPU minutes;
 # one build serves both.
 #
 # Usage: tests/run.sh [config...]      e.g. tests/run.sh gcc clang
-# Environment: FUZZ_RUNS, FUZZ_SEED, FUZZ_SECONDS (above); CI=true makes a
-# configuration whose tools cannot be installed count as failed instead of skipped.
+# Environment: FUZZ_RUNS, FUZZ_SEED, FUZZ_SECONDS, CYLRAY_EMBREE_PREFIXES (above);
+# CI=true makes a configuration whose tools cannot be installed count as failed instead
+# of skipped.
 set -euo pipefail
 
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
-ALL_CONFIGS=(gcc clang gcc-release clang-release estimates asan aarch64 tsan fuzz)
+ALL_CONFIGS=(gcc clang gcc-release clang-release estimates asan aarch64 tsan fuzz embree-extra)
+CYLRAY_EMBREE_PREFIXES=${CYLRAY_EMBREE_PREFIXES:-}
 FUZZ_SECONDS=${FUZZ_SECONDS:-120}
 FUZZ_RUNS=${FUZZ_RUNS:-20000}
 FUZZ_SEED=${FUZZ_SEED:-1}
@@ -50,10 +58,12 @@ CONFIGS=()
 for a in "$@"; do
     case "$a" in
     -h | --help)
-        sed -n '3,32p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'
+        sed -n '3,45p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'
         exit 0
         ;;
-    gcc | clang | gcc-release | clang-release | estimates | asan | aarch64 | tsan | fuzz) CONFIGS+=("$a") ;;
+    gcc | clang | gcc-release | clang-release | estimates | asan | aarch64 | tsan | fuzz | embree-extra)
+        CONFIGS+=("$a")
+        ;;
     *)
         echo "run.sh: unknown configuration '$a' (known: ${ALL_CONFIGS[*]})" >&2
         exit 2
@@ -88,7 +98,9 @@ have_cxx() { command -v c++ || command -v g++ || command -v clang++; }
 need meson command -v meson
 need ninja-build command -v ninja
 need python3 command -v python3
-if wants gcc || wants gcc-release || wants estimates; then need gcc command -v gcc; fi
+if wants gcc || wants gcc-release || wants estimates || wants embree-extra; then
+    need gcc command -v gcc
+fi
 if wants clang || wants clang-release || wants asan || wants tsan || wants fuzz; then
     need clang command -v clang
 fi
@@ -102,7 +114,7 @@ if wants aarch64; then
 fi
 # The header's C++ test needs some C++ compiler, and the tests of an installed tree
 # cmake and pkg-config; each is skipped (not failed) without.
-if wants gcc || wants clang || wants gcc-release || wants clang-release; then
+if wants gcc || wants clang || wants gcc-release || wants clang-release || wants embree-extra; then
     need g++ have_cxx
     need cmake command -v cmake
     need pkgconf command -v pkg-config
@@ -415,6 +427,52 @@ config_fuzz() {
     fi
 }
 
+# The adapter against each extra Embree prefix. The prefix is seen through a mirror
+# (tests/embree/mirror-prefix.sh) whose library symlinks are links, whatever copy of
+# the tree it is; the build is limited to what the embree and install suites run (the
+# libraries, which the install tests stage, and those suites' programs).
+config_embree-extra() {
+    local t0 prefix n=0 dir mirror targets
+    t0=$(date +%s)
+    if [ -z "$CYLRAY_EMBREE_PREFIXES" ]; then
+        SUMMARY+=("$(printf '%-13s skipped: CYLRAY_EMBREE_PREFIXES is empty' embree-extra)")
+        echo "-- embree-extra: skipped (CYLRAY_EMBREE_PREFIXES is empty)"
+        return
+    fi
+    command -v gcc >/dev/null || { unavailable embree-extra gcc; return; }
+    TEST_ENV=()
+    local IFS_old=$IFS
+    IFS=:
+    # shellcheck disable=SC2206 # split on the colons on purpose
+    local prefixes=($CYLRAY_EMBREE_PREFIXES)
+    IFS=$IFS_old
+    for prefix in "${prefixes[@]}"; do
+        [ -n "$prefix" ] || continue
+        n=$((n + 1))
+        t0=$(date +%s)
+        dir=build/test-embree-$n
+        mirror=$PWD/build/embree-prefix-$n
+        echo "   $prefix"
+        if ! tests/embree/mirror-prefix.sh "$prefix" "$mirror" >/dev/null 2>&1; then
+            note "embree-extra" 0 1 $(($(date +%s) - t0)) "FAILED: cannot read $prefix"
+            continue
+        fi
+        if CC=gcc CXX=g++ BUILD_TARGETS=tests/embree/test_embree_agree setup_build "$dir" \
+            --buildtype=release --werror -Dbench=false -Dembree=enabled \
+            -Dembree_prefix="$mirror"; then
+            targets=$(ninja -C "$dir" -t targets all | sed -n -E \
+                's#^(src/(embree/)?lib[^/ ]*\.(so[.0-9]*|a)|tests/install/readme_example[0-9]+): .*#\1#p')
+            # shellcheck disable=SC2086 # one target a word
+            if ninja -C "$dir" $targets >>"$dir.build.log" 2>&1; then
+                grep -h 'cylray_embree:' "$dir.setup.log" | sed 's/^ */   /'
+                run_tests "embree-extra" "$dir" "$t0" --suite embree --suite install
+                continue
+            fi
+        fi
+        build_failed "embree-extra" "$dir" "$t0"
+    done
+}
+
 # ---- the run ----------------------------------------------------------------------
 i=0
 for cfg in "${CONFIGS[@]}"; do
@@ -429,6 +487,7 @@ for cfg in "${CONFIGS[@]}"; do
     aarch64) what="aarch64 cross, NEON, ASan + UBSan under qemu-user, CYLRAY_TEST_QUICK=1" ;;
     tsan) what="clang, ThreadSanitizer, the thread test" ;;
     fuzz) what="libFuzzer + ASan + UBSan on the asan build, $FUZZ_RUNS inputs from seed $FUZZ_SEED" ;;
+    embree-extra) what="gcc, release, the Embree adapter against ${CYLRAY_EMBREE_PREFIXES:-(no prefix)}" ;;
     esac
     echo "== [$i/${#CONFIGS[@]}] $cfg: $what"
     "config_$cfg"

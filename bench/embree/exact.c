@@ -10,7 +10,7 @@
 #include <string.h>
 
 typedef struct collect_ctx {
-    struct RTCIntersectContext ctx; /* first: Embree hands this pointer back */
+    cylray_embree_rtc_context ctx; /* first: Embree hands this pointer back */
     uint32_t *ids;
     size_t n, cap;
     int overflow;
@@ -26,6 +26,7 @@ static void collect_isect(const struct RTCIntersectFunctionNArguments *a)
     collect_ctx *c = (collect_ctx *)a->context;
     if (!a->valid[0])
         return;
+    a->valid[0] = 0; /* no hit: the traversal goes on (Embree 4 reads valid back) */
     if (c->n == c->cap) {
         size_t cap = c->cap ? 2 * c->cap : 256;
         uint32_t *p = realloc(c->ids, cap * sizeof *p);
@@ -96,9 +97,17 @@ int eb_ref_closest(const eb_ref *r, const float o[3], const float d[3], float tm
 {
     collect_ctx c;
     memset(&c, 0, sizeof c);
-    rtcInitIntersectContext(&c.ctx);
     struct RTCRayHit rh = eb_rayhit1(o, d, tmin, tmax);
+#if CYLRAY_EMBREE_RTC_MAJOR >= 4
+    rtcInitRayQueryContext(&c.ctx);
+    struct RTCIntersectArguments args;
+    rtcInitIntersectArguments(&args);
+    args.context = &c.ctx;
+    rtcIntersect1(r->collect, &rh, &args);
+#else
+    rtcInitIntersectContext(&c.ctx);
     rtcIntersect1(r->collect, &c.ctx, &rh);
+#endif
     cand *cs = malloc((c.n ? c.n : 1) * sizeof *cs);
     int found = 0;
     if (cs) {

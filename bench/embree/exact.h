@@ -7,7 +7,7 @@
 #include "cylref.h"
 #include "ebscene.h"
 
-#include <embree3/rtcore.h>
+#include <cylray_embree.h>
 
 /* A collecting scene: every cylinder's box, so that one traversal lists every cylinder
  * a ray may meet. */

@@ -17,7 +17,9 @@ const char *eb_variant_name(eb_variant v)
 
 unsigned eb_variant_options(eb_variant v)
 {
-    return v == EB_SPLIT ? CYLRAY_EMBREE_SPLIT : v == EB_LEAF ? CYLRAY_EMBREE_LEAVES : 0;
+    return v == EB_SPLIT  ? CYLRAY_EMBREE_SPLIT
+           : v == EB_LEAF ? CYLRAY_EMBREE_LEAVES
+                          : CYLRAY_EMBREE_NO_SPLIT;
 }
 
 cylray_embree_desc eb_scene_desc(const eb_scene *s, unsigned options, const cylray_kernels *k)

@@ -8,7 +8,6 @@
 #include "ebscene.h"
 
 #include <cylray_embree.h>
-#include <embree3/rtcore.h>
 
 typedef enum eb_variant { EB_NATIVE, EB_SINGLE, EB_SPLIT, EB_LEAF, EB_NVARIANTS } eb_variant;
 

@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT */
-/* main.c - cylembree: cylray inside Embree 3 against Embree's own cone curves, on four
- * scenes, time and error side by side.
+/* main.c - cylembree: cylray inside Embree (3 or 4: the one the adapter was built
+ * against) against that Embree's own cone curves, on four scenes, time and error side
+ * by side.
  *
  *   cylembree [--quick] [--scene=molecule,pipes,far-rods,lattice] [--isa=best|all|LIST]
  *             [--packet=1,4,8,16] [--threads=N] [--size=WxH]

@@ -103,14 +103,13 @@ void eb_camera_rays(eb_rays *r, const eb_scene *s, int w, int h)
  * cylray_embree would (cylray_embree_intersectN: a coherent packet as one, an
  * incoherent one a ray a call), copies the answers back. */
 #define EB_PACKET(N)                                                                           \
-    static void packet##N(RTCScene sc, eb_rays *r, size_t i0, int occ)                         \
+    static void packet##N(RTCScene sc, eb_rays *r, size_t i0, int occ,                         \
+                          RTCFilterFunctionN filter)                                           \
     {                                                                                          \
         struct RTCRayHit##N rh;                                                                \
         _Alignas(64) int valid[N]; /* Embree loads the mask as one vector */                   \
-        struct RTCIntersectContext ctx;                                                        \
-        rtcInitIntersectContext(&ctx);                                                         \
-        ctx.flags = r->incoherent ? RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT                      \
-                                  : RTC_INTERSECT_CONTEXT_FLAG_COHERENT;                       \
+        eb_query q;                                                                            \
+        eb_query_init(&q, filter, !r->incoherent);                                             \
         int any = 0;                                                                           \
         for (int j = 0; j < N; j++) {                                                          \
             size_t i = i0 + (size_t)j;                                                         \
@@ -130,9 +129,9 @@ void eb_camera_rays(eb_rays *r, const eb_scene *s, int w, int h)
         if (!any)                                                                              \
             return;                                                                            \
         if (occ)                                                                               \
-            cylray_embree_occluded##N(valid, sc, &ctx, &rh.ray);                               \
+            EB_OCCLUDED_N(N, valid, sc, &q, &rh.ray);                                          \
         else                                                                                   \
-            cylray_embree_intersect##N(valid, sc, &ctx, &rh);                                  \
+            EB_INTERSECT_N(N, valid, sc, &q, &rh);                                             \
         for (int j = 0; j < N; j++) {                                                          \
             size_t i = i0 + (size_t)j;                                                         \
             if (!valid[j])                                                                     \
@@ -150,12 +149,12 @@ EB_PACKET(4)
 EB_PACKET(8)
 EB_PACKET(16)
 
-static void single(RTCScene sc, eb_rays *r, size_t i, int occ)
+static void single(RTCScene sc, eb_rays *r, size_t i, int occ, RTCFilterFunctionN filter)
 {
     if (!r->valid[i])
         return;
-    struct RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
+    eb_query q;
+    eb_query_init(&q, filter, !r->incoherent);
     struct RTCRayHit rh;
     rh.ray.org_x = r->ox[i], rh.ray.org_y = r->oy[i], rh.ray.org_z = r->oz[i];
     rh.ray.dir_x = r->dx[i], rh.ray.dir_y = r->dy[i], rh.ray.dir_z = r->dz[i];
@@ -163,11 +162,11 @@ static void single(RTCScene sc, eb_rays *r, size_t i, int occ)
     rh.ray.mask = ~0u, rh.ray.id = 0, rh.ray.flags = 0;
     rh.hit.geomID = rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
     if (occ) {
-        rtcOccluded1(sc, &ctx, &rh.ray);
+        EB_OCCLUDED1(sc, &q, &rh.ray);
         r->tfar[i] = rh.ray.tfar;
         return;
     }
-    rtcIntersect1(sc, &ctx, &rh);
+    EB_INTERSECT1(sc, &q, &rh);
     r->tfar[i] = rh.ray.tfar;
     r->prim[i] =
         rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? RTC_INVALID_GEOMETRY_ID : rh.hit.primID;
@@ -178,10 +177,10 @@ static void single(RTCScene sc, eb_rays *r, size_t i, int occ)
 uint32_t eb_trace1(RTCScene scene, const float o[3], const float d[3], float tnear, float tfar,
                    float *t, float ng[3])
 {
-    struct RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
+    eb_query q;
+    eb_query_init(&q, NULL, 0);
     struct RTCRayHit rh = eb_rayhit1(o, d, tnear, tfar);
-    rtcIntersect1(scene, &ctx, &rh);
+    EB_INTERSECT1(scene, &q, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
         return RTC_INVALID_GEOMETRY_ID;
     *t = rh.ray.tfar;
@@ -193,6 +192,7 @@ typedef struct job {
     RTCScene scene;
     eb_rays *r;
     int packet, occ;
+    RTCFilterFunctionN filter;
     atomic_size_t next;
 } job;
 
@@ -210,16 +210,16 @@ static void *worker(void *arg)
         for (size_t i = a; i < b; i += (size_t)jb->packet) {
             switch (jb->packet) {
             case 4:
-                packet4(jb->scene, jb->r, i, jb->occ);
+                packet4(jb->scene, jb->r, i, jb->occ, jb->filter);
                 break;
             case 8:
-                packet8(jb->scene, jb->r, i, jb->occ);
+                packet8(jb->scene, jb->r, i, jb->occ, jb->filter);
                 break;
             case 16:
-                packet16(jb->scene, jb->r, i, jb->occ);
+                packet16(jb->scene, jb->r, i, jb->occ, jb->filter);
                 break;
             default:
-                single(jb->scene, jb->r, i, jb->occ);
+                single(jb->scene, jb->r, i, jb->occ, jb->filter);
                 break;
             }
         }
@@ -236,8 +236,14 @@ static double process_cpu_s(void)
 double eb_trace(RTCScene scene, eb_rays *r, int packet, int threads, int occluded,
                 double *cpu_s)
 {
+    return eb_trace_filtered(scene, r, packet, threads, occluded, cpu_s, NULL);
+}
+
+double eb_trace_filtered(RTCScene scene, eb_rays *r, int packet, int threads, int occluded,
+                         double *cpu_s, RTCFilterFunctionN filter)
+{
     enum { MAXT = 256 };
-    job jb = {.scene = scene, .r = r, .packet = packet, .occ = occluded};
+    job jb = {.scene = scene, .r = r, .packet = packet, .occ = occluded, .filter = filter};
     atomic_init(&jb.next, 0);
     pthread_t th[MAXT];
     if (threads < 1)

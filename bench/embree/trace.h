@@ -6,7 +6,7 @@
 
 #include "ebscene.h"
 
-#include <embree3/rtcore.h>
+#include "query.h"
 #include <stddef.h>
 #include <stdint.h>
 
@@ -43,6 +43,10 @@ void eb_camera_ray(const eb_scene *s, int w, int h, double x, double y, float o[
  * machine actually gave. */
 double eb_trace(RTCScene scene, eb_rays *r, int packet, int threads, int occluded,
                 double *cpu_s);
+/* The same with filter as the query's filter function (query.h: Embree 3's context
+ * filter; Embree 4's argument filter, and the adapter's extended context's). */
+double eb_trace_filtered(RTCScene scene, eb_rays *r, int packet, int threads, int occluded,
+                         double *cpu_s, RTCFilterFunctionN filter);
 
 /* One ray, rtcIntersect1 on the calling thread: the hit's primID (or
  * RTC_INVALID_GEOMETRY_ID), with *t and ng on a hit. */

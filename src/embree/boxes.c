@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* embree/boxes.c - a cylinder's frame (the endpoint form and the basis for u, v) and
  * the boxes Embree builds its BVH over: one per cylinder, or pieces along a long
- * tilted one (CYLRAY_EMBREE_SPLIT). */
+ * tilted one (unless CYLRAY_EMBREE_NO_SPLIT). */
 #include "ceb.h"
 
 #include <math.h>
@@ -55,15 +55,28 @@ void *ceb_alloc_aligned(size_t bytes)
 
 /* ---- one box a primitive, split along long tilted cylinders --------------------- */
 
+/* Only a cylinder longer than CEB_SPLIT_LENGTH radii is split. A short one's box wastes
+ * little room, and its pieces would cost Embree more primitives and each ray that meets
+ * it one callback a piece: on the molecule (bonds about 10 radii long) splitting by the
+ * box rule alone took 4-6 % more time, on the far rods (1e4 radii) 2.9x less. */
+#define CEB_SPLIT_LENGTH 16.0
+static int long_for_radius(const frame *f, float radius)
+{
+    double L2 = 0;
+    for (int k = 0; k < 3; k++)
+        L2 += (double)f->a[k] * f->a[k];
+    return L2 > CEB_SPLIT_LENGTH * CEB_SPLIT_LENGTH * (double)radius * radius;
+}
+
 int ceb_make_boxes(ceb *g, const cylray_cylinder *cyl)
 {
     size_t total = 0;
-    int split = (g->options & CYLRAY_EMBREE_SPLIT) != 0;
+    int split = !(g->options & CYLRAY_EMBREE_NO_SPLIT);
     /* The toolkit's rule (cylray_split_boxes with k = 0): the fewest pieces, at most
      * CYLRAY_SPLIT_MAX, whose boxes are at most twice the cylinder's width across;
      * short or axis-aligned cylinders keep one box. */
     for (size_t i = 0; i < g->n; i++) {
-        if (split) {
+        if (split && long_for_radius(&g->fr[i], cyl[i].radius)) {
             size_t k = cylray_split_boxes(&g->prep[i], 0, NULL, NULL);
             g->fr[i].pieces = k < 1 ? 1u : (uint32_t)k;
         }

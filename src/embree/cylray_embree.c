@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* cylray_embree.c - cylray's cylinders as an Embree 3 user geometry: the public calls,
+/* cylray_embree.c - cylray's cylinders as an Embree 3 or 4 user geometry: the public calls,
  * a geometry made from its description and its options. The rest of src/embree/: the
  * boxes (boxes.c), the grouping into leaves (group.c), the callbacks (single.c,
  * leaves.c), hit records and filters (hit.h, filter.c), secondary rays (spawn.c); what

@@ -32,7 +32,7 @@ int ceb_filter_hit(const struct RTCIntersectFunctionNArguments *a, unsigned i, c
                                             (struct RTCRayN *)a->rayhit,
                                             (struct RTCHitN *)hb,
                                             N};
-    ceb_filter_intersection(a, &f);
+    ceb_filter_intersection(a, &f, ((const ceb *)a->geometryUserPtr)->options, i);
     if (!valid[i]) {
         RF(a->rayhit, N, R_TFAR, i) = old;
         return 0;
@@ -49,7 +49,7 @@ int ceb_filter_occ(const struct RTCOccludedFunctionNArguments *a, unsigned i, co
     const float old = offer(N, i, h, a->geomID, a->context, a->ray, valid, hb);
     struct RTCFilterFunctionNArguments f = {valid,  a->geometryUserPtr,   a->context,
                                             a->ray, (struct RTCHitN *)hb, N};
-    ceb_filter_occlusion(a, &f);
+    ceb_filter_occlusion(a, &f, ((const ceb *)a->geometryUserPtr)->options, i);
     if (!valid[i]) {
         RF(a->ray, N, R_TFAR, i) = old;
         return 0;

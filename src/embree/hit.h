@@ -95,8 +95,11 @@ static inline void hit_fields(float *hb, unsigned N, unsigned i, const hitrec *h
     RF(hb, N, H_V, i) = h->v;
     RU(hb, N, H_PRIM, i) = h->prim;
     RU(hb, N, H_GEOM, i) = geomID;
-    for (unsigned l = 0; l < RTC_MAX_INSTANCE_LEVEL_COUNT; l++)
+    for (unsigned l = 0; l < RTC_MAX_INSTANCE_LEVEL_COUNT; l++) {
         RU(hb, N, H_INST + l, i) = ceb_inst_id(ctx, l);
+        if (CEB_INST_PRIM)
+            RU(hb, N, H_INST_PRIM + l, i) = ceb_inst_prim_id(ctx, l);
+    }
 }
 
 /* Hit h written into lane i's ray and hit record. */

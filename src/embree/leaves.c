@@ -46,7 +46,8 @@ static void beyond(cylray_ray1 *r, float t, const void *base, unsigned N, unsign
         void *base = occ ? (void *)ao->ray : (void *)ai->rayhit;                               \
         const cylray_leaf##M *leaf = (const cylray_leaf##M *)g->leaves + prim;                 \
         int filt = (g->options & CYLRAY_EMBREE_FILTER) ||                                      \
-                   (occ ? CEB_CONTEXT_FILTER(ao) : CEB_CONTEXT_FILTER(ai));                    \
+                   ceb_query_filter(occ ? ao->context : ai->context, g->options);              \
+        uint32_t got = 0; /* the lanes reported */                                             \
         for (unsigned i = 0; i < N; i++) {                                                     \
             if (!valid[i])                                                                     \
                 continue;                                                                      \
@@ -54,20 +55,26 @@ static void beyond(cylray_ray1 *r, float t, const void *base, unsigned N, unsign
             hitrec hr;                                                                         \
             load_ray1(&r, base, N, i);                                                         \
             if (occ && !filt) {                                                                \
-                if (g->k->leaf_occluded##M(leaf, &r, g->oflags))                               \
+                if (g->k->leaf_occluded##M(leaf, &r, g->oflags)) {                             \
                     RF(base, N, R_TFAR, i) = -INFINITY;                                        \
+                    got |= 1u << i;                                                            \
+                }                                                                              \
                 continue;                                                                      \
             }                                                                                  \
             for (int tries = 0; tries < 2 * (M) + 2 && next##M(g, leaf, &r, &hr); tries++) {   \
                 if (!occ && !filt) {                                                           \
                     put_hit(ai, i, &hr);                                                       \
+                    got |= 1u << i;                                                            \
                     break;                                                                     \
                 }                                                                              \
-                if (occ ? ceb_filter_occ(ao, i, &hr) : ceb_filter_hit(ai, i, &hr))             \
+                if (occ ? ceb_filter_occ(ao, i, &hr) : ceb_filter_hit(ai, i, &hr)) {           \
+                    got |= 1u << i;                                                            \
                     break;                                                                     \
+                }                                                                              \
                 beyond(&r, hr.t, base, N, i);                                                  \
             }                                                                                  \
         }                                                                                      \
+        ceb_report(occ ? ao->valid : ai->valid, N, got);                                       \
     }                                                                                          \
     static void leaf_intersect##M(const struct RTCIntersectFunctionNArguments *a)              \
     {                                                                                          \

@@ -44,9 +44,10 @@ static int owns(const ceb *g, unsigned prim, uint32_t c, float u)
 
 /* A hit the kernel found for lane i on cylinder c: reported when primitive prim owns
  * it and the filters (when called) accept it; otherwise the next hit of c along the
- * ray is tried, until one is reported or there is none. occ: an occlusion query. */
-static void resolve(const ceb *g, const void *a_, int occ, int filt, unsigned i, uint32_t c,
-                    float t, float n[3], int32_t part)
+ * ray is tried, until one is reported or there is none. occ: an occlusion query.
+ * Returns 1 when a hit was reported. */
+static int resolve(const ceb *g, const void *a_, int occ, int filt, unsigned i, uint32_t c,
+                   float t, float n[3], int32_t part)
 {
     const struct RTCIntersectFunctionNArguments *ai = a_;
     const struct RTCOccludedFunctionNArguments *ao = a_;
@@ -62,12 +63,13 @@ static void resolve(const ceb *g, const void *a_, int occ, int filt, unsigned i,
             if (occ ? (filt ? ceb_filter_occ(ao, i, &h)
                             : (RF(ao->ray, N, R_TFAR, i) = -INFINITY, 1))
                     : (filt ? ceb_filter_hit(ai, i, &h) : (put_hit(ai, i, &h), 1)))
-                return;
+                return 1;
         }
         float tmax = RF(base, N, R_TFAR, i);
         if (!one_ray(g, c, o, d, nextafterf(t, INFINITY), tmax, &t, n, &part))
-            return;
+            return 0;
     }
+    return 0;
 }
 
 /* ---- one cylinder a primitive: cylray's packet kernels ------------------------- */
@@ -124,41 +126,49 @@ static unsigned active_lanes(const int *valid, unsigned N, unsigned lane[16])
         }                                                                                      \
     } while (0)
 
+/* The packet callbacks return the lanes (bits of Embree's lane index) they reported. */
 #define CEB_SINGLE(W)                                                                          \
-    static void isect##W(const struct RTCIntersectFunctionNArguments *a, const ceb *g,         \
-                         uint32_t c, const unsigned *lane, unsigned n, int filt)               \
+    static uint32_t isect##W(const struct RTCIntersectFunctionNArguments *a, const ceb *g,     \
+                             uint32_t c, const unsigned *lane, unsigned n, int filt)           \
     {                                                                                          \
         cylray_ray##W ray;                                                                     \
         cylray_hit##W hit;                                                                     \
         CEB_GATHER(ray, a->rayhit, a->N, lane, n, W);                                          \
         uint32_t m = g->k->intersect##W(&g->prep[c], &ray, &hit, (uint32_t)((1ull << n) - 1),  \
                                         g->iflags);                                            \
+        uint32_t got = 0;                                                                      \
         for (unsigned j = 0; m; j++, m >>= 1)                                                  \
             if (m & 1) {                                                                       \
                 float nn[3] = {hit.nx[j], hit.ny[j], hit.nz[j]};                               \
-                resolve(g, a, 0, filt, lane[j], c, hit.t[j], nn, hit.part[j]);                 \
+                if (resolve(g, a, 0, filt, lane[j], c, hit.t[j], nn, hit.part[j]))             \
+                    got |= 1u << lane[j];                                                      \
             }                                                                                  \
+        return got;                                                                            \
     }                                                                                          \
-    static void occ##W(const struct RTCOccludedFunctionNArguments *a, const ceb *g,            \
-                       uint32_t c, const unsigned *lane, unsigned n, int filt)                 \
+    static uint32_t occ##W(const struct RTCOccludedFunctionNArguments *a, const ceb *g,        \
+                           uint32_t c, const unsigned *lane, unsigned n, int filt)             \
     {                                                                                          \
         cylray_ray##W ray;                                                                     \
         CEB_GATHER(ray, a->ray, a->N, lane, n, W);                                             \
-        uint32_t act = (uint32_t)((1ull << n) - 1);                                            \
+        uint32_t act = (uint32_t)((1ull << n) - 1), got = 0;                                   \
         if (!filt) {                                                                           \
             uint32_t m = g->k->occluded##W(&g->prep[c], &ray, act, g->oflags);                 \
             for (unsigned j = 0; m; j++, m >>= 1)                                              \
-                if (m & 1)                                                                     \
+                if (m & 1) {                                                                   \
                     RF(a->ray, a->N, R_TFAR, lane[j]) = -INFINITY;                             \
-            return;                                                                            \
+                    got |= 1u << lane[j];                                                      \
+                }                                                                              \
+            return got;                                                                        \
         }                                                                                      \
         cylray_hit##W hit;                                                                     \
         uint32_t m = g->k->intersect##W(&g->prep[c], &ray, &hit, act, g->iflags);              \
         for (unsigned j = 0; m; j++, m >>= 1)                                                  \
             if (m & 1) {                                                                       \
                 float nn[3] = {hit.nx[j], hit.ny[j], hit.nz[j]};                               \
-                resolve(g, a, 1, filt, lane[j], c, hit.t[j], nn, hit.part[j]);                 \
+                if (resolve(g, a, 1, filt, lane[j], c, hit.t[j], nn, hit.part[j]))             \
+                    got |= 1u << lane[j];                                                      \
             }                                                                                  \
+        return got;                                                                            \
     }
 CEB_SINGLE(4)
 CEB_SINGLE(8)
@@ -171,19 +181,19 @@ static uint32_t cyl_of(const ceb *g, unsigned prim)
 
 /* One valid lane, as Embree's hybrid traversal of incoherent packets calls: the ray is
  * broadcast, not gathered. */
-static void isect1(const struct RTCIntersectFunctionNArguments *a, const ceb *g, uint32_t c,
-                   unsigned i, int filt)
+static int isect1(const struct RTCIntersectFunctionNArguments *a, const ceb *g, uint32_t c,
+                  unsigned i, int filt)
 {
     float o[3], d[3], t, n[3];
     int32_t part;
     ray_of(a->rayhit, a->N, i, o, d);
-    if (one_ray(g, c, o, d, RF(a->rayhit, a->N, R_TNEAR, i), RF(a->rayhit, a->N, R_TFAR, i), &t,
-                n, &part))
-        resolve(g, a, 0, filt, i, c, t, n, part);
+    return one_ray(g, c, o, d, RF(a->rayhit, a->N, R_TNEAR, i), RF(a->rayhit, a->N, R_TFAR, i),
+                   &t, n, &part) &&
+           resolve(g, a, 0, filt, i, c, t, n, part);
 }
 
-static void occ1(const struct RTCOccludedFunctionNArguments *a, const ceb *g, uint32_t c,
-                 unsigned i, int filt)
+static int occ1(const struct RTCOccludedFunctionNArguments *a, const ceb *g, uint32_t c,
+                unsigned i, int filt)
 {
     float o[3], d[3], t, n[3];
     int32_t part;
@@ -196,67 +206,66 @@ static void occ1(const struct RTCOccludedFunctionNArguments *a, const ceb *g, ui
             r.dx[j] = d[0], r.dy[j] = d[1], r.dz[j] = d[2];
             r.tmin[j] = tmin, r.tmax[j] = tmax;
         }
-        if (g->k->occluded4(&g->prep[c], &r, 1u, g->oflags))
-            RF(a->ray, a->N, R_TFAR, i) = -INFINITY;
-        return;
+        if (!g->k->occluded4(&g->prep[c], &r, 1u, g->oflags))
+            return 0;
+        RF(a->ray, a->N, R_TFAR, i) = -INFINITY;
+        return 1;
     }
-    if (one_ray(g, c, o, d, tmin, tmax, &t, n, &part))
-        resolve(g, a, 1, filt, i, c, t, n, part);
+    return one_ray(g, c, o, d, tmin, tmax, &t, n, &part) &&
+           resolve(g, a, 1, filt, i, c, t, n, part);
 }
 
 /* Several valid lanes: the narrowest packet that holds them. Out of line, so that a
  * call for one ray (rtcIntersect1's, N = 1, and most of the hybrid traversal's) does
  * not set up the packets' frame or build a lane list. */
-static CEB_NOINLINE void isect_n(const struct RTCIntersectFunctionNArguments *a, const ceb *g,
-                                 uint32_t c, int filt)
+static CEB_NOINLINE uint32_t isect_n(const struct RTCIntersectFunctionNArguments *a,
+                                     const ceb *g, uint32_t c, int filt)
 {
     unsigned lane[16], n = active_lanes(a->valid, a->N, lane);
     if (n == 1)
-        isect1(a, g, c, lane[0], filt);
-    else if (n > 1 && n <= 4)
-        isect4(a, g, c, lane, n, filt);
-    else if (n > 4 && n <= 8)
-        isect8(a, g, c, lane, n, filt);
-    else if (n > 8)
-        isect16(a, g, c, lane, n, filt);
+        return (uint32_t)isect1(a, g, c, lane[0], filt) << lane[0];
+    if (n > 1 && n <= 4)
+        return isect4(a, g, c, lane, n, filt);
+    if (n > 4 && n <= 8)
+        return isect8(a, g, c, lane, n, filt);
+    return n > 8 ? isect16(a, g, c, lane, n, filt) : 0;
 }
 
-static CEB_NOINLINE void occ_n(const struct RTCOccludedFunctionNArguments *a, const ceb *g,
-                               uint32_t c, int filt)
+static CEB_NOINLINE uint32_t occ_n(const struct RTCOccludedFunctionNArguments *a, const ceb *g,
+                                   uint32_t c, int filt)
 {
     unsigned lane[16], n = active_lanes(a->valid, a->N, lane);
     if (n == 1)
-        occ1(a, g, c, lane[0], filt);
-    else if (n > 1 && n <= 4)
-        occ4(a, g, c, lane, n, filt);
-    else if (n > 4 && n <= 8)
-        occ8(a, g, c, lane, n, filt);
-    else if (n > 8)
-        occ16(a, g, c, lane, n, filt);
+        return (uint32_t)occ1(a, g, c, lane[0], filt) << lane[0];
+    if (n > 1 && n <= 4)
+        return occ4(a, g, c, lane, n, filt);
+    if (n > 4 && n <= 8)
+        return occ8(a, g, c, lane, n, filt);
+    return n > 8 ? occ16(a, g, c, lane, n, filt) : 0;
 }
 
 void ceb_single_intersect(const struct RTCIntersectFunctionNArguments *a)
 {
     const ceb *g = a->geometryUserPtr;
-    int filt = (g->options & CYLRAY_EMBREE_FILTER) || CEB_CONTEXT_FILTER(a);
+    int filt = (g->options & CYLRAY_EMBREE_FILTER) || ceb_query_filter(a->context, g->options);
     uint32_t c = cyl_of(g, a->primID);
     if (a->N == 1) {
         if (a->valid[0])
-            isect1(a, g, c, 0, filt);
+            ceb_report(a->valid, 1, (uint32_t)isect1(a, g, c, 0, filt));
         return;
     }
-    isect_n(a, g, c, filt);
+    ceb_report(a->valid, a->N, isect_n(a, g, c, filt));
 }
 
 void ceb_single_occluded(const struct RTCOccludedFunctionNArguments *a)
 {
     const ceb *g = a->geometryUserPtr;
-    int filt = (g->options & CYLRAY_EMBREE_FILTER) || CEB_CONTEXT_FILTER(a);
+    int filt = (g->options & CYLRAY_EMBREE_FILTER) || ceb_query_filter(a->context, g->options);
     uint32_t c = cyl_of(g, a->primID);
     if (a->N == 1) {
         if (a->valid[0])
-            occ1(a, g, c, 0, filt);
+            ceb_report(a->valid, 1, (uint32_t)occ1(a, g, c, 0, filt));
         return;
     }
-    occ_n(a, g, c, filt);
+    ceb_report(a->valid, a->N, occ_n(a, g, c, filt));
 }

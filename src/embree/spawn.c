@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT */
-/* embree/spawn.c - secondary rays from a hit Embree reported: cylray's hit point and
- * spawned origin, the part read back from the hit's normal. */
+/* embree/spawn.c - what a renderer asks about a hit Embree reported: its part, its
+ * point, its surface frame, and secondary rays from it (cylray's hit point and spawned
+ * origin), the part read back from the hit's normal. */
 #include "ceb.h"
 
 #include <math.h>
@@ -54,4 +55,42 @@ int cylray_embree_spawn_origin_side(RTCGeometry geometry, unsigned primID, const
         return -1;
     cylray_spawn_origin_side(&g->prep[primID], p, err, part, outward, w, out);
     return 0;
+}
+
+int cylray_embree_hit_part(RTCGeometry geometry, unsigned primID, const float Ng[3])
+{
+    return hit_part(ceb_of(geometry), primID, Ng);
+}
+
+int cylray_embree_hit_point(RTCGeometry geometry, unsigned primID, const float o[3],
+                            const float d[3], float t, const float Ng[3], float p[3],
+                            float *err)
+{
+    const ceb *g = ceb_of(geometry);
+    int part = hit_part(g, primID, Ng);
+    if (part < 0)
+        return -1;
+    float e;
+    /* the normal form: Ng is the kernel's own normal, and with it the point stays at
+     * the kernel's azimuth where float t alone cannot place it */
+    cylray_hit_point_normal(&g->prep[primID], o, d, t, part, Ng, p, &e);
+    if (err)
+        *err = e;
+    return 0;
+}
+
+int cylray_embree_surface(RTCGeometry geometry, unsigned primID, const float o[3],
+                          const float d[3], float t, const float Ng[3], float p[3], float uv[2],
+                          float dpdu[3], float dpdv[3])
+{
+    const ceb *g = ceb_of(geometry);
+    int part = hit_part(g, primID, Ng);
+    if (part < 0)
+        return -1;
+    float q[3], e;
+    cylray_hit_point_normal(&g->prep[primID], o, d, t, part, Ng, q, &e);
+    cylray_surface(&g->prep[primID], q, part, uv, dpdu, dpdv);
+    if (p)
+        p[0] = q[0], p[1] = q[1], p[2] = q[2];
+    return part;
 }

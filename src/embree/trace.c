@@ -2,8 +2,8 @@
 /* embree/trace.c - packets traced the way that pays in a scene with user geometry:
  * Embree's packet call for a coherent packet, one ray a call for an incoherent one.
  *
- * Embree 3 traverses a user geometry's BVH in packets with its chunk traversal: every
- * node is tested against the whole packet, and, unlike the hybrid traversal of its
+ * Embree (3 and 4) traverses a user geometry's BVH in packets with its chunk traversal:
+ * every node is tested against the whole packet, and, unlike the hybrid traversal of its
  * triangles and curves, it never drops to one ray at a time. Rays that no longer
  * travel together visit the union of their nodes, and the geometry is called for one
  * valid lane in most calls. One ray a call then costs less. */
@@ -11,14 +11,14 @@
 
 #include <stdint.h>
 
-/* A packet is coherent when the renderer says so in the context, or when at least
- * three rays are valid and their directions share one octant (a camera's tile, shadow
- * rays toward one light from nearby points). Bounce rays scatter over the hemisphere
- * and seldom share one. */
-static int coherent(const int *valid, const struct RTCIntersectContext *ctx, const float *dx,
-                    const float *dy, const float *dz, int n)
+/* A packet is coherent when the renderer says so in the query's flags (said_so), or
+ * when at least three rays are valid and their directions share one octant (a camera's
+ * tile, shadow rays toward one light from nearby points). Bounce rays scatter over the
+ * hemisphere and seldom share one. */
+static int coherent(const int *valid, int said_so, const float *dx, const float *dy,
+                    const float *dz, int n)
 {
-    if (ctx->flags & RTC_INTERSECT_CONTEXT_FLAG_COHERENT)
+    if (said_so)
         return 1;
     int count = 0;
     unsigned any = 0, all = 7u;
@@ -54,7 +54,7 @@ static void lane_put(void *soa, int n, int j, const void *one, int fields)
 enum { RAY_WORDS = R_NFIELDS };
 _Static_assert(sizeof(struct RTCRay) == RAY_WORDS * 4, "RTCRay: 12 words");
 _Static_assert(sizeof(struct RTCHit) >= H_NFIELDS * 4,
-               "RTCHit: Ng, u, v, primID, geomID, instID");
+               "RTCHit: Ng, u, v, primID, geomID, instID (, instPrimID)");
 
 /* Embree writes a single ray's tfar, and its whole hit record when it finds a hit;
  * the record's input is geomID and instID invalid. So only the ray goes in, and only
@@ -62,18 +62,21 @@ _Static_assert(sizeof(struct RTCHit) >= H_NFIELDS * 4,
 static void one_hit_init(struct RTCHit *h)
 {
     h->geomID = RTC_INVALID_GEOMETRY_ID;
-    for (int l = 0; l < RTC_MAX_INSTANCE_LEVEL_COUNT; l++)
+    for (int l = 0; l < RTC_MAX_INSTANCE_LEVEL_COUNT; l++) {
         h->instID[l] = RTC_INVALID_GEOMETRY_ID;
+#if CEB_INST_PRIM
+        h->instPrimID[l] = RTC_INVALID_GEOMETRY_ID;
+#endif
+    }
 }
 
 #define CEB_TRACE(N)                                                                           \
     void cylray_embree_intersect##N(const int *valid, RTCScene scene,                          \
-                                    struct RTCIntersectContext *context,                       \
-                                    struct RTCRayHit##N *rayhit)                               \
+                                    CEB_Q_PARAMS_I(struct RTCRayHit##N))                       \
     {                                                                                          \
-        if (coherent(valid, context, rayhit->ray.dir_x, rayhit->ray.dir_y, rayhit->ray.dir_z,  \
-                     N)) {                                                                     \
-            rtcIntersect##N(valid, scene, context, rayhit);                                    \
+        if (coherent(valid, CEB_COHERENT(CEB_Q), rayhit->ray.dir_x, rayhit->ray.dir_y,         \
+                     rayhit->ray.dir_z, N)) {                                                  \
+            CEB_I_N(N, valid, scene, rayhit);                                                  \
             return;                                                                            \
         }                                                                                      \
         for (int j = 0; j < N; j++) {                                                          \
@@ -82,17 +85,17 @@ static void one_hit_init(struct RTCHit *h)
             struct RTCRayHit one;                                                              \
             lane_get(&rayhit->ray, N, j, &one.ray, RAY_WORDS);                                 \
             one_hit_init(&one.hit);                                                            \
-            rtcIntersect1(scene, context, &one);                                               \
+            CEB_I_1(scene, &one);                                                              \
             rayhit->ray.tfar[j] = one.ray.tfar;                                                \
             if (one.hit.geomID != RTC_INVALID_GEOMETRY_ID)                                     \
                 lane_put(&rayhit->hit, N, j, &one.hit, H_NFIELDS);                             \
         }                                                                                      \
     }                                                                                          \
     void cylray_embree_occluded##N(const int *valid, RTCScene scene,                           \
-                                   struct RTCIntersectContext *context, struct RTCRay##N *ray) \
+                                   CEB_Q_PARAMS_O(struct RTCRay##N))                           \
     {                                                                                          \
-        if (coherent(valid, context, ray->dir_x, ray->dir_y, ray->dir_z, N)) {                 \
-            rtcOccluded##N(valid, scene, context, ray);                                        \
+        if (coherent(valid, CEB_COHERENT(CEB_Q), ray->dir_x, ray->dir_y, ray->dir_z, N)) {     \
+            CEB_O_N(N, valid, scene, ray);                                                     \
             return;                                                                            \
         }                                                                                      \
         for (int j = 0; j < N; j++) {                                                          \
@@ -100,7 +103,7 @@ static void one_hit_init(struct RTCHit *h)
                 continue;                                                                      \
             struct RTCRay one;                                                                 \
             lane_get(ray, N, j, &one, RAY_WORDS);                                              \
-            rtcOccluded1(scene, context, &one);                                                \
+            CEB_O_1(scene, &one);                                                              \
             ray->tfar[j] = one.tfar;                                                           \
         }                                                                                      \
     }

@@ -3,7 +3,8 @@
  * exact reference's: Embree's BVH with the adapter (one cylinder a primitive, split
  * boxes, leaves) at 1, 4, 8 and 16 rays a call, against every cylinder tried in turn;
  * the hit record's u and v against cylray_surface; filter functions (the
- * geometry's and the context's) offered every hit once, in order along each cylinder,
+ * geometry's and the query's: Embree 3's context filter, Embree 4's argument filter
+ * through the adapter's extended context) offered every hit once, in order along each cylinder,
  * with the next hit of a cylinder taken when one is rejected; the spawn helper's
  * origins never hitting their own cylinder again. */
 #include "geom.h"
@@ -173,7 +174,7 @@ static void rule_filter(const struct RTCFilterFunctionNArguments *a)
     }
 }
 
-/* The context's filter that rejects every hit and records each one offered. */
+/* The query's filter that rejects every hit and records each one offered. */
 typedef struct offered {
     uint32_t prim[64];
     float t[64];
@@ -203,15 +204,14 @@ static int offer_all(const char *what, RTCScene scene, const eb_rays *r)
         float o[3], d[3];
         eb_rays_get(r, i, o, d);
         for (int occ = 0; occ < 2; occ++) {
-            struct RTCIntersectContext ctx;
-            rtcInitIntersectContext(&ctx);
-            ctx.filter = record_filter;
+            eb_query q;
+            eb_query_init(&q, record_filter, 0);
             OFFERED.n = 0;
             struct RTCRayHit rh = eb_rayhit1(o, d, 0, INFINITY);
             if (occ)
-                rtcOccluded1(scene, &ctx, &rh.ray);
+                EB_OCCLUDED1(scene, &q, &rh.ray);
             else
-                rtcIntersect1(scene, &ctx, &rh);
+                EB_INTERSECT1(scene, &q, &rh);
             int fine = rh.ray.tfar == INFINITY && rh.hit.geomID == RTC_INVALID_GEOMETRY_ID;
             int want = 0;
             for (uint32_t c = 0; c < S->ns; c++) {
@@ -235,6 +235,37 @@ static int offer_all(const char *what, RTCScene scene, const eb_rays *r)
     return bad;
 }
 
+/* The adapter's hit calls on a hit of prim at t: the part read from Ng is the part the
+ * kernel gives for the same hit (where it finds the same t), and the point and surface
+ * are cylray's own for that part. 0 when they agree. */
+static int hit_calls(RTCGeometry geo, uint32_t prim, const float o[3], const float d[3],
+                     float t, const float ng[3])
+{
+    CYLRAY_ALIGN(16) cylray_ray4 r;
+    CYLRAY_ALIGN(16) cylray_hit4 h;
+    for (int j = 0; j < 4; j++) {
+        r.ox[j] = o[0], r.oy[j] = o[1], r.oz[j] = o[2];
+        r.dx[j] = d[0], r.dy[j] = d[1], r.dz[j] = d[2];
+        r.tmin[j] = 0, r.tmax[j] = INFINITY;
+    }
+    int part = cylray_embree_hit_part(geo, prim, ng);
+    if (part < 0)
+        return 1;
+    if (!K->intersect4(&PREP[prim], &r, &h, 1, CYLRAY_NORMAL) || h.t[0] != t)
+        return 0; /* another t (a leaf's query): no kernel part to hold it to */
+    if (part != (h.part[0] & CYLRAY_PART_MASK))
+        return 1;
+    float p[3], err = -1, q[3], e, p2[3], uv[2], uv2[2], du[3], dv[3], du2[3], dv2[3];
+    cylray_hit_point_normal(&PREP[prim], o, d, t, part, ng, q, &e);
+    if (cylray_embree_hit_point(geo, prim, o, d, t, ng, p, &err) || memcmp(p, q, sizeof p) ||
+        err != e)
+        return 1;
+    cylray_surface(&PREP[prim], q, part, uv2, du2, dv2);
+    return cylray_embree_surface(geo, prim, o, d, t, ng, p2, uv, du, dv) != part ||
+           memcmp(p2, q, sizeof q) || memcmp(uv, uv2, sizeof uv) ||
+           memcmp(du, du2, sizeof du) || memcmp(dv, dv2, sizeof dv);
+}
+
 /* The exact reference: the scene's first hit in binary128 (tests/ref), each answer
  * judged as the comparison's tables judge it; no unexcused wrong answer. Secondary
  * rays from the spawn helper must not hit their own cylinder. */
@@ -254,6 +285,9 @@ static int exact(const char *what, const eb_geom *g, const eb_ref *ref, const eb
         eb_judge(&e, ref, &x, prim, t, ng);
         if (prim == RTC_INVALID_GEOMETRY_ID || prim != x.xid || !x.xhit)
             continue;
+        if (hit_calls(g->cyl, prim, x.o, x.d, t, ng) && bad++ < 3)
+            printf("  %s: the hit calls disagree with cylray's on prim %u at t %.9g\n", what,
+                   prim, t);
         /* a reflection and a refraction-like continuation from the hit */
         float n[3], w[2][3], org[3];
         eb_facing_normal(ng, x.d, n);
@@ -323,8 +357,9 @@ static void mix_rays(eb_rays *r)
 
 /* Every packet size, intersect and occluded, on the camera rays and on the incoherent
  * ones: each answer held to check(); the counts go to *passed and *failed. */
-static void packet_passes(RTCScene sc, const char *vn, int exact_t, int filtered, eb_rays *r,
-                          float *tfar0, uint8_t *valid0, int *passed, int *failed)
+static void packet_passes(RTCScene sc, const char *vn, int exact_t, int filtered,
+                          RTCFilterFunctionN query_filter, eb_rays *r, float *tfar0,
+                          uint8_t *valid0, int *passed, int *failed)
 {
     static const int packets[4] = {1, 4, 8, 16};
     for (int p = 0; p < 4; p++)
@@ -333,9 +368,12 @@ static void packet_passes(RTCScene sc, const char *vn, int exact_t, int filtered
             rays_for(r, tfar0, valid0);
             if (mixed)
                 mix_rays(r);
-            eb_trace(sc, r, packets[p], 2, occ, NULL);
-            char what[96];
-            snprintf(what, sizeof what, "%s%s packet %d%s %s", vn, filtered ? " filtered" : "",
+            eb_trace_filtered(sc, r, packets[p], 2, occ, NULL, query_filter);
+            char what[112];
+            snprintf(what, sizeof what, "%s%s packet %d%s %s", vn,
+                     !filtered      ? ""
+                     : query_filter ? " query-filtered"
+                                    : " filtered",
                      packets[p], mixed ? " incoherent" : "", occ ? "occluded" : "intersect");
             const int bad = check(what, r, tfar0, valid0, occ, exact_t, filtered);
             printf("%s %s (%d disagreements)\n", bad ? "FAIL" : "ok  ", what, bad);
@@ -397,7 +435,8 @@ int main(void)
                                                                                  : 4;
             REPORT(m != want || (m && g.nprim * m < s.ns), "%s: leaves of %u, %zu primitives",
                    vn, m, g.nprim);
-            packet_passes(g.scene, vn, v != EB_LEAF, 0, &r, tfar0, valid0, &passed, &failed);
+            packet_passes(g.scene, vn, v != EB_LEAF, 0, NULL, &r, tfar0, valid0, &passed,
+                          &failed);
             eb_camera_rays(&r, &s, W, H);
             int bad = exact(vn, &g, &ref, &r);
             REPORT(bad, "%s: the exact reference, and the spawn helper's secondary rays", vn);
@@ -417,20 +456,41 @@ int main(void)
             RTCScene sc = rtcNewScene(dev);
             rtcAttachGeometry(sc, geo);
             rtcCommitScene(sc);
-            packet_passes(sc, vn, v != EB_LEAF, 1, &r, tfar0, valid0, &passed, &failed);
+            packet_passes(sc, vn, v != EB_LEAF, 1, NULL, &r, tfar0, valid0, &passed, &failed);
             rtcReleaseScene(sc);
             cylray_embree_release_geometry(geo);
 
-            /* without FILTER: the context's filter is still called */
-            d.options &= ~CYLRAY_EMBREE_FILTER;
+            /* the same rule as the query's filter, as a renderer passes it (query.h:
+             * Embree 3's context filter; Embree 4's argument filter, which reaches the
+             * adapter through the extended context only), the geometry without one */
+            d.options = (d.options & ~CYLRAY_EMBREE_FILTER) | CYLRAY_EMBREE_CONTEXT;
             geo = cylray_embree_new_geometry(dev, &d, NULL);
+            if (!geo) {
+                REPORT(1, "%s: build with the extended context", vn);
+                continue;
+            }
+            rtcCommitGeometry(geo);
+            sc = rtcNewScene(dev);
+            rtcAttachGeometry(sc, geo);
+            rtcCommitScene(sc);
+            packet_passes(sc, vn, v != EB_LEAF, 1, rule_filter, &r, tfar0, valid0, &passed,
+                          &failed);
+            rtcReleaseScene(sc);
+            cylray_embree_release_geometry(geo);
+
+            /* without FILTER: the query's filter is still called */
+            geo = cylray_embree_new_geometry(dev, &d, NULL);
+            if (!geo) {
+                REPORT(1, "%s: build with the extended context", vn);
+                continue;
+            }
             rtcCommitGeometry(geo);
             sc = rtcNewScene(dev);
             rtcAttachGeometry(sc, geo);
             rtcCommitScene(sc);
             eb_camera_rays(&r, &s, W, H);
             bad = offer_all(vn, sc, &r);
-            REPORT(bad, "%s: the context's filter offered every hit once", vn);
+            REPORT(bad, "%s: the query's filter offered every hit once", vn);
             rtcReleaseScene(sc);
             cylray_embree_release_geometry(geo);
         }
@@ -454,9 +514,20 @@ int main(void)
         RTCGeometry tri = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_TRIANGLE);
         bad += cylray_embree_is_cylinders(tri) || cylray_embree_primitives(tri) != 0 ||
                cylray_embree_leaf_size(tri) != 0;
+        const float up[3] = {0, 0, 1};
+        bad += cylray_embree_hit_part(tri, 0, up) != -1;
         rtcReleaseGeometry(tri);
-        d = eb_scene_desc(&s, 0, K);
+        /* split boxes by default: as many primitives as with CYLRAY_EMBREE_SPLIT */
+        d = eb_scene_desc(&s, CYLRAY_EMBREE_SPLIT, K);
         RTCGeometry geo = cylray_embree_new_geometry(dev, &d, &st);
+        size_t nsplit = cylray_embree_primitives(geo);
+        cylray_embree_release_geometry(geo);
+        d = eb_scene_desc(&s, 0, K);
+        geo = cylray_embree_new_geometry(dev, &d, &st);
+        bad += nsplit <= s.ns || cylray_embree_primitives(geo) != nsplit;
+        cylray_embree_release_geometry(geo);
+        d = eb_scene_desc(&s, CYLRAY_EMBREE_NO_SPLIT, K);
+        geo = cylray_embree_new_geometry(dev, &d, &st);
         float z[3] = {0, 0, 0}, one[3] = {1, 0, 0}, out[3];
         bad +=
             !geo || st != CYLRAY_OK || !cylray_embree_is_cylinders(geo) ||
@@ -465,7 +536,12 @@ int main(void)
             cylray_embree_cylinder(geo, 0) == NULL ||
             cylray_embree_spawn_origin(geo, (unsigned)s.ns, z, one, 1, one, one, out) != -1 ||
             cylray_embree_spawn_origin(geo, 0, z, one, 1, z, one, out) != -1 ||
-            cylray_embree_spawn_origin_side(geo, 0, z, one, 1, z, 1, one, out) != -1;
+            cylray_embree_spawn_origin_side(geo, 0, z, one, 1, z, 1, one, out) != -1 ||
+            cylray_embree_hit_part(geo, (unsigned)s.ns, one) != -1 ||
+            cylray_embree_hit_part(geo, 0, z) != -1 ||
+            cylray_embree_hit_point(geo, 0, z, one, 1, z, out, NULL) != -1 ||
+            cylray_embree_surface(geo, (unsigned)s.ns, z, one, 1, one, out, NULL, NULL, NULL) !=
+                -1;
         cylray_embree_release_geometry(geo);
         cylray_embree_release_geometry(NULL);
         REPORT(bad, "refused input, and the accessors");

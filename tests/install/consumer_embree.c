@@ -9,6 +9,16 @@
 #include <math.h>
 #include <stdio.h>
 
+/* Embree 4 takes optional arguments after the ray, Embree 3 a context before it. */
+#if CYLRAY_EMBREE_RTC_MAJOR >= 4
+#define INTERSECT1(scene, rh) rtcIntersect1(scene, rh, NULL)
+#define OCCLUDED1(scene, ray) rtcOccluded1(scene, ray, NULL)
+#else
+static struct RTCIntersectContext ctx;
+#define INTERSECT1(scene, rh) (rtcInitIntersectContext(&ctx), rtcIntersect1(scene, &ctx, rh))
+#define OCCLUDED1(scene, ray) (rtcInitIntersectContext(&ctx), rtcOccluded1(scene, &ctx, ray))
+#endif
+
 /* The renderer's own record of a rod. */
 typedef struct rod {
     float a[3], b[3];
@@ -45,12 +55,10 @@ int main(void)
 
     /* Along -x at y = 0, z = 1 from x = 10: the side of rod 1 at x = 4, t = 6, normal +x,
      * u = 3/4 (z = 1 of -2..2). */
-    struct RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
     struct RTCRayHit rh = {
         {10, 0, 1, 0, -1, 0, 0, 0, INFINITY, ~0u, 0, 0},
         {0, 0, 0, 0, 0, RTC_INVALID_GEOMETRY_ID, RTC_INVALID_GEOMETRY_ID, {0}}};
-    rtcIntersect1(scene, &ctx, &rh);
+    INTERSECT1(scene, &rh);
     int bad = rh.hit.geomID != id || rh.hit.primID != 1 || fabsf(rh.ray.tfar - 6) > 1e-5f ||
               fabsf(rh.hit.Ng_x - 1) > 1e-6f || fabsf(rh.hit.u - 0.75f) > 1e-6f ||
               !(rh.hit.v >= 0 && rh.hit.v < 1);
@@ -70,9 +78,9 @@ int main(void)
     struct RTCRayHit s = {
         {org[0], org[1], org[2], 0, w[0], w[1], w[2], 0, INFINITY, ~0u, 0, 0},
         {0, 0, 0, 0, 0, RTC_INVALID_GEOMETRY_ID, RTC_INVALID_GEOMETRY_ID, {0}}};
-    rtcIntersect1(scene, &ctx, &s);
+    INTERSECT1(scene, &s);
     struct RTCRay occ = {org[0], org[1], org[2], 0, w[0], w[1], w[2], 0, INFINITY, ~0u, 0, 0};
-    rtcOccluded1(scene, &ctx, &occ);
+    OCCLUDED1(scene, &occ);
     if (s.hit.primID != 1 || fabsf(org[0] + s.ray.tfar * w[0] - 2) > 1e-5f ||
         occ.tfar != -INFINITY) {
         fprintf(stderr, "consumer_embree: secondary ray: prim %u t %g, occluded tfar %g\n",
@@ -82,9 +90,9 @@ int main(void)
     rtcReleaseScene(scene);
     cylray_embree_release_geometry(geom);
     rtcReleaseDevice(dev);
-    printf("consumer_embree: cylray %d.%d.%d with Embree %s: hit, record and spawned ray "
-           "as expected\n",
-           CYLRAY_VERSION_MAJOR, CYLRAY_VERSION_MINOR, CYLRAY_VERSION_PATCH,
-           RTC_VERSION_STRING);
+    printf("consumer_embree: cylray %d.%d.%d with Embree %s (built against %s): hit, record "
+           "and spawned ray as expected\n",
+           CYLRAY_VERSION_MAJOR, CYLRAY_VERSION_MINOR, CYLRAY_VERSION_PATCH, RTC_VERSION_STRING,
+           CYLRAY_EMBREE_RTC_BUILT);
     return 0;
 }

@@ -90,18 +90,26 @@ def way_pkgconfig(work, package='cylray', source='consumer.c'):
     if not pkg_config:
         print('pkg-config not found; skipped')
         return SKIP
-    destdir, root = stage(work)
+    _, root = stage(work)
     env = dict(os.environ)
-    # Only the staged tree, and its paths under the staging directory.
+    # Only the staged tree, its prefix moved under the staging directory: by the prefix
+    # variable, not PKG_CONFIG_SYSROOT_DIR, which would move an Embree's own paths (from
+    # an install prefix of its own, outside the staged tree) too.
     env['PKG_CONFIG_LIBDIR'] = os.path.join(libdir_of(root), 'pkgconfig')
-    env['PKG_CONFIG_SYSROOT_DIR'] = destdir
     env.pop('PKG_CONFIG_PATH', None)
+    env.pop('PKG_CONFIG_SYSROOT_DIR', None)
     # With only the static library installed, -lcylray needs its private libraries too.
     static = ['--static'] if os.environ['CYLRAY_DEFAULT_LIBRARY'] == 'static' else []
-    flags = shlex.split(run([pkg_config, '--cflags', '--libs', *static, package], env=env))
+    flags = shlex.split(run([pkg_config, '--define-variable=prefix=' + root, '--cflags',
+                             '--libs', *static, package], env=env))
     exe = os.path.join(work, source[:-2] + '-pkgconfig')
     run([*cc(), '-std=c11', os.path.join(HERE, source), '-o', exe, *flags, '-lm'])
-    run_consumer(exe, library_path=libdir_of(root))
+    # An Embree from a prefix of its own is the user's to put on the library path (its
+    # pkg-config flags name the directory to link with, not an rpath).
+    paths = [libdir_of(root)]
+    if package == 'cylray_embree' and os.environ.get('CYLRAY_EMBREE_LIBDIR'):
+        paths.append(os.environ['CYLRAY_EMBREE_LIBDIR'])
+    run_consumer(exe, library_path=os.pathsep.join(paths))
     return 0
 
 
