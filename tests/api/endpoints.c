@@ -14,6 +14,7 @@
  * CYLRAY_TEST_QUICK=1 takes 10^4 pairs instead of 10^6. */
 #include "cylray.h"
 #include "quad.h"
+#include "tcheck.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -117,8 +118,7 @@ static long refusals(void)
 int main(void)
 {
     const long bad_refusals = refusals();
-    const char *q = getenv("CYLRAY_TEST_QUICK");
-    const int quick = q && *q && strcmp(q, "0") != 0;
+    const int quick = tc_quick();
     const long N = quick ? 10000 : 1000000;
     long tried = 0, bad_h = 0, bad_a = 0, bad_c = 0, refused = 0, far = 0;
     for (long n = 0; n < N; n++) {

@@ -17,6 +17,7 @@
  * the surface it leaves (spawnref.h's test). Any violation fails the test. */
 #include "cylray.h"
 #include "spawnref.h"
+#include "tcheck.h"
 
 #include <float.h>
 #include <math.h>
@@ -250,8 +251,7 @@ static int run_sweep(int quick)
 
 int main(int argc, char **argv)
 {
-    const char *q = getenv("CYLRAY_TEST_QUICK");
-    const int quick = q && *q && strcmp(q, "0") != 0;
+    const int quick = tc_quick();
     for (int i = 0; i < CYLRAY_ISA_COUNT; i++) {
         const cylray_kernels *k = cylray_kernels_for((cylray_isa)i);
         if (k)

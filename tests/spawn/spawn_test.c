@@ -25,6 +25,7 @@
  * CYLRAY_TEST_QUICK=1 shrinks the counts about a hundredfold (sanitizers, emulators).
  * Every count is printed; any violation fails the test. */
 #include "spawn_common.h"
+#include "tcheck.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -32,8 +33,7 @@
 
 int main(int argc, char **argv)
 {
-    const char *q = getenv("CYLRAY_TEST_QUICK");
-    quick = q && *q && strcmp(q, "0") != 0;
+    quick = tc_quick();
     for (int i = 0; i < CYLRAY_ISA_COUNT; i++) {
         const cylray_kernels *k = cylray_kernels_for((cylray_isa)i);
         if (k)

@@ -18,6 +18,7 @@
  *
  * CYLRAY_TEST_QUICK=1 shrinks the counts tenfold. */
 #include "cylray.h"
+#include "tcheck.h"
 #include "tkgen.h"
 
 #include <stdlib.h>
@@ -408,8 +409,7 @@ static int run_split(long n)
 
 int main(int argc, char **argv)
 {
-    const char *quick = getenv("CYLRAY_TEST_QUICK");
-    long scale = quick && *quick && *quick != '0' ? 10 : 1;
+    long scale = tc_quick() ? 10 : 1;
     const char *what = argc > 1 ? argv[1] : "box";
     if (!strcmp(what, "box"))
         return run_box(40000 / scale, 0);

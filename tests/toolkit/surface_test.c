@@ -16,6 +16,7 @@
  *
  * CYLRAY_TEST_QUICK=1 shrinks the counts tenfold. */
 #include "cylray.h"
+#include "tcheck.h"
 #include "tkgen.h"
 
 #include <float.h>
@@ -341,8 +342,7 @@ static int run_null(long n)
 
 int main(int argc, char **argv)
 {
-    const char *quick = getenv("CYLRAY_TEST_QUICK");
-    long scale = quick && *quick && *quick != '0' ? 10 : 1;
+    long scale = tc_quick() ? 10 : 1;
     const char *what = argc > 1 ? argv[1] : "exact";
     if (!strcmp(what, "exact"))
         return run_exact(100000 / scale, 0);
