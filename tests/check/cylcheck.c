@@ -12,6 +12,7 @@
  * sanitizer and qemu runs). */
 #define _POSIX_C_SOURCE 200809L /* clock_gettime, for a fresh seed */
 #include "check.h"
+#include "tcheck.h"
 
 #include <inttypes.h>
 #include <stdio.h>
@@ -53,8 +54,7 @@ static int parse_isa(const char *s)
 static void parse_args(int argc, char **argv)
 {
     int have_seed = 0;
-    const char *q = getenv("CYLRAY_TEST_QUICK");
-    if (q && *q && strcmp(q, "0") != 0)
+    if (tc_quick())
         opt.quick = 1;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
