@@ -51,9 +51,22 @@ KFN(store_lanes)(uint32_t b, int normal, float *pt, float *ptmax, int32_t *ppart
         }
     }
 }
-/* One field of a vector whose lanes are all active: the hit lanes blended into what
- * is there. */
-#define KBLEND_(p, m, x) VX(storeu_ps)(p, VX(blendv_ps)(VX(loadu_ps)(p), x, m))
+/* The six fields of a hit vector (the part as its bits), each through ST(p, x). */
+#define KFIELDS_(ST)                                                                           \
+    do {                                                                                       \
+        ST(pt, t);                                                                             \
+        ST(ptmax, t);                                                                          \
+        ST((float *)(void *)ppart, VCASTF(ip));                                                \
+        if (normal) {                                                                          \
+            ST(pnx, nx);                                                                       \
+            ST(pny, ny);                                                                       \
+            ST(pnz, nz);                                                                       \
+        }                                                                                      \
+    } while (0)
+#define KPLAIN_(p, x) VX(storeu_ps)(p, x)
+/* a vector whose lanes are all active: the hit lanes blended into what is there */
+#define KBLEND_(p, x) VX(storeu_ps)(p, VX(blendv_ps)(VX(loadu_ps)(p), x, m))
+#define KMASKED_(p, x) VX(maskstore_ps)(p, VCASTI(m), x)
 static inline __attribute__((always_inline)) void
 KFN(store_hits)(vm m, uint32_t active, unsigned stores, int normal, float *pt, float *ptmax,
                 int32_t *ppart, float *pnx, float *pny, float *pnz, vf t, vf part, vf nx, vf ny,
@@ -62,37 +75,16 @@ KFN(store_hits)(vm m, uint32_t active, unsigned stores, int normal, float *pt, f
     const vi_ ip = VX(cvttps_epi32)(part);
     const uint32_t b = mbits(m);
     if (b == VFULL) {
-        VX(storeu_ps)(pt, t);
-        VX(storeu_ps)(ptmax, t);
-        VXI(storeu)((vi_ *)(void *)ppart, ip);
-        if (normal) {
-            VX(storeu_ps)(pnx, nx);
-            VX(storeu_ps)(pny, ny);
-            VX(storeu_ps)(pnz, nz);
-        }
+        KFIELDS_(KPLAIN_);
         return;
     }
     if (stores == CYLRAY_STORE_BLEND && active == VFULL) {
-        KBLEND_(pt, m, t);
-        KBLEND_(ptmax, m, t);
-        KBLEND_((float *)(void *)ppart, m, VCASTF(ip));
-        if (normal) {
-            KBLEND_(pnx, m, nx);
-            KBLEND_(pny, m, ny);
-            KBLEND_(pnz, m, nz);
-        }
+        KFIELDS_(KBLEND_);
         return;
     }
 #if X86_FMA
     if (stores == CYLRAY_STORE_MASKED) {
-        VX(maskstore_ps)(pt, VCASTI(m), t);
-        VX(maskstore_ps)(ptmax, VCASTI(m), t);
-        VX(maskstore_epi32)((int *)ppart, VCASTI(m), ip);
-        if (normal) {
-            VX(maskstore_ps)(pnx, VCASTI(m), nx);
-            VX(maskstore_ps)(pny, VCASTI(m), ny);
-            VX(maskstore_ps)(pnz, VCASTI(m), nz);
-        }
+        KFIELDS_(KMASKED_);
         return;
     }
 #endif
@@ -101,6 +93,9 @@ KFN(store_hits)(vm m, uint32_t active, unsigned stores, int normal, float *pt, f
      * code then ran 4x slower. */
     KFN(store_lanes)(b, normal, pt, ptmax, ppart, pnx, pny, pnz, t, ip, nx, ny, nz);
 }
+#undef KFIELDS_
+#undef KPLAIN_
 #undef KBLEND_
+#undef KMASKED_
 #define vstore_hits KFN(store_hits)
 #endif
