@@ -6,7 +6,7 @@
  * that hit and no other. This times the store stage alone, with the policies that
  * header offers, from the header itself (vstore_hits), for a vector whose lanes are
  * all active:
- *   masked  the AVX masked store (vmaskmovps / vpmaskmovd) of each field (Intel);
+ *   masked  the AVX masked store (vmaskmovps) of each field (Intel);
  *   blend   load, blend the hit lanes in, store each field (AMD, and SSE);
  *   lanes   a plain store of each field when every lane hit, else one loop over the
  *           hit lanes that stores all six fields of a lane (a partly active vector);
