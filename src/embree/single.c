@@ -174,9 +174,16 @@ CEB_SINGLE(4)
 CEB_SINGLE(8)
 CEB_SINGLE(16)
 
+/* The cylinder of primitive prim. Its frame, which only a hit reads, is fetched now, so
+ * that the cache miss overlaps the intersection test rather than follow it: in a scene
+ * larger than the caches that miss cost more than the test. */
 static uint32_t cyl_of(const ceb *g, unsigned prim)
 {
-    return g->prim_cyl ? g->prim_cyl[prim] : prim;
+    uint32_t c = g->prim_cyl ? g->prim_cyl[prim] : prim;
+    const char *f = (const char *)&g->fr[c];
+    __builtin_prefetch(f);
+    __builtin_prefetch(f + sizeof(frame) - 1);
+    return c;
 }
 
 /* One valid lane, as Embree's hybrid traversal of incoherent packets calls: the ray is
