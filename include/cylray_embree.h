@@ -51,7 +51,11 @@
  *
  * Embree 4 also starts geometries with mask 0x1 and tests ray masks (Embree 3 starts
  * them at 0xFFFFFFFF): a geometry made here keeps Embree's default, so there a ray
- * whose mask lacks bit 0 misses it; rtcSetGeometryMask sets another. */
+ * whose mask lacks bit 0 misses it; rtcSetGeometryMask sets another.
+ *
+ * The floating-point modes Embree asks renderers to set (flush-to-zero and
+ * denormals-are-zero in MXCSR) are neither needed nor harmful here: the answers do not
+ * depend on them, but for subnormal inputs, which denormals-are-zero reads as 0. */
 #ifndef CYLRAY_EMBREE_H
 #define CYLRAY_EMBREE_H
 
@@ -261,6 +265,23 @@ CYLRAY_EMBREE_API int cylray_embree_spawn_origin_side(RTCGeometry geometry, unsi
                                                       const float o[3], const float d[3],
                                                       float t, const float Ng[3], int outward,
                                                       const float w[3], float out[3]);
+
+/* The same for the hits of a packet as Embree left them (RTCRayHitN of N = 4, 8 or 16
+ * lanes, after rtcIntersectN or cylray_embree_intersectN): for every lane i with
+ * valid[i] whose hit is on this geometry (its geomID equals geomID, the ID this
+ * geometry has in the scene traced) and whose tfar is finite, the origin for direction
+ * (w[i], w[N + i], w[2N + i]) goes to (out[i], out[N + i], out[2N + i]), rows as in
+ * Embree's SoA packets; other lanes of out are untouched. Returns the lanes written,
+ * bit i for lane i. The _side form takes outward[i] per lane. */
+CYLRAY_EMBREE_API uint32_t cylray_embree_spawn_origins(RTCGeometry geometry, unsigned geomID,
+                                                       const int *valid,
+                                                       const struct RTCRayHitN *rayhit,
+                                                       unsigned N, const float *w, float *out);
+CYLRAY_EMBREE_API uint32_t cylray_embree_spawn_origins_side(RTCGeometry geometry,
+                                                            unsigned geomID, const int *valid,
+                                                            const struct RTCRayHitN *rayhit,
+                                                            unsigned N, const int *outward,
+                                                            const float *w, float *out);
 
 /* Packets through a scene that holds such a geometry, in place of rtcIntersect4/8/16 and
  * rtcOccluded4/8/16 (the same arguments in the same order as the Embree version's own

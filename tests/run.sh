@@ -30,9 +30,10 @@
 #            tests/fuzz/run-long.sh explores for as long as one likes.
 #   embree-extra  the Embree adapter against each further Embree install prefix in
 #            CYLRAY_EMBREE_PREFIXES (colon-separated, e.g. an Embree 4 beside the
-#            distribution's Embree 3; empty: skipped): gcc, release, -Dembree_prefix,
-#            only the library, the adapter's test and the install tests (pkg-config
-#            and CMake consumers included), in build/test-embree-<N>. The other
+#            distribution's Embree 3; empty: skipped): gcc and clang, release and
+#            debugoptimized, -Dembree_prefix, only the library, the adapter's test and
+#            the install tests (pkg-config and CMake consumers included), in
+#            build/test-embree-<N>-<compiler>-<buildtype>. The other
 #            configurations test whichever Embree the system has.
 # Sanitizer and qemu configurations set CYLRAY_TEST_QUICK=1 so that heavy tests shrink.
 # Why asan and fuzz share a build: the kernels are stamped out in hundreds of flag
@@ -439,37 +440,45 @@ config_embree-extra() {
         echo "-- embree-extra: skipped (CYLRAY_EMBREE_PREFIXES is empty)"
         return
     fi
-    command -v gcc >/dev/null || { unavailable embree-extra gcc; return; }
     TEST_ENV=()
     local IFS_old=$IFS
     IFS=:
     # shellcheck disable=SC2206 # split on the colons on purpose
     local prefixes=($CYLRAY_EMBREE_PREFIXES)
     IFS=$IFS_old
+    local cc cxx type
     for prefix in "${prefixes[@]}"; do
         [ -n "$prefix" ] || continue
         n=$((n + 1))
-        t0=$(date +%s)
-        dir=build/test-embree-$n
         mirror=$PWD/build/embree-prefix-$n
         echo "   $prefix"
         if ! tests/embree/mirror-prefix.sh "$prefix" "$mirror" >/dev/null 2>&1; then
-            note "embree-extra" 0 1 $(($(date +%s) - t0)) "FAILED: cannot read $prefix"
+            note "embree-extra" 0 1 0 "FAILED: cannot read $prefix"
             continue
         fi
-        if CC=gcc CXX=g++ BUILD_TARGETS=tests/embree/test_embree_agree setup_build "$dir" \
-            --buildtype=release --werror -Dbench=false -Dembree=enabled \
-            -Dembree_prefix="$mirror"; then
-            targets=$(ninja -C "$dir" -t targets all | sed -n -E \
-                's#^(src/(embree/)?lib[^/ ]*\.(so[.0-9]*|a)|tests/install/readme_example[0-9]+): .*#\1#p')
-            # shellcheck disable=SC2086 # one target a word
-            if ninja -C "$dir" $targets >>"$dir.build.log" 2>&1; then
-                grep -h 'cylray_embree:' "$dir.setup.log" | sed 's/^ */   /'
-                run_tests "embree-extra" "$dir" "$t0" --suite embree --suite install
-                continue
-            fi
-        fi
-        build_failed "embree-extra" "$dir" "$t0"
+        for cc in gcc clang; do
+            command -v $cc >/dev/null || { unavailable embree-extra $cc; continue; }
+            for type in release debugoptimized; do
+                t0=$(date +%s)
+                dir=build/test-embree-$n-$cc-$type
+                echo "   $cc, $type"
+                cxx=g++
+                [ $cc = gcc ] || cxx=clang++
+                if CC=$cc CXX=$cxx BUILD_TARGETS=tests/embree/test_embree_agree setup_build "$dir" \
+                    --buildtype=$type --werror -Dbench=false -Dembree=enabled \
+                    -Dembree_prefix="$mirror"; then
+                    targets=$(ninja -C "$dir" -t targets all | sed -n -E \
+                        's#^(src/(embree/)?lib[^/ ]*\.(so[.0-9]*|a)|tests/install/readme_example[0-9]+): .*#\1#p')
+                    # shellcheck disable=SC2086 # one target a word
+                    if ninja -C "$dir" $targets >>"$dir.build.log" 2>&1; then
+                        grep -h 'cylray_embree:' "$dir.setup.log" | sed 's/^ */   /'
+                        run_tests "embree-extra" "$dir" "$t0" --suite embree --suite install
+                        continue
+                    fi
+                fi
+                build_failed "embree-extra" "$dir" "$t0"
+            done
+        done
     done
 }
 
@@ -487,7 +496,7 @@ for cfg in "${CONFIGS[@]}"; do
     aarch64) what="aarch64 cross, NEON, ASan + UBSan under qemu-user, CYLRAY_TEST_QUICK=1" ;;
     tsan) what="clang, ThreadSanitizer, the thread test" ;;
     fuzz) what="libFuzzer + ASan + UBSan on the asan build, $FUZZ_RUNS inputs from seed $FUZZ_SEED" ;;
-    embree-extra) what="gcc, release, the Embree adapter against ${CYLRAY_EMBREE_PREFIXES:-(no prefix)}" ;;
+    embree-extra) what="gcc and clang, release and debugoptimized, the Embree adapter against ${CYLRAY_EMBREE_PREFIXES:-(no prefix)}" ;;
     esac
     echo "== [$i/${#CONFIGS[@]}] $cfg: $what"
     "config_$cfg"

@@ -94,3 +94,68 @@ int cylray_embree_surface(RTCGeometry geometry, unsigned primID, const float o[3
         p[0] = q[0], p[1] = q[1], p[2] = q[2];
     return part;
 }
+
+/* Lane i's ray and hit, read from the packet rh of N lanes. */
+static void lane_of(const void *rh, unsigned N, unsigned i, float o[3], float d[3], float *t,
+                    float Ng[3], unsigned *prim)
+{
+    const float *hb = (const float *)rh + (size_t)R_NFIELDS * N;
+    for (int k = 0; k < 3; k++) {
+        o[k] = RF(rh, N, R_OX + k, i);
+        d[k] = RF(rh, N, R_DX + k, i);
+        Ng[k] = RF(hb, N, H_NGX + k, i);
+    }
+    *t = RF(rh, N, R_TFAR, i);
+    *prim = RU(hb, N, H_PRIM, i);
+}
+
+/* The packet forms: every valid lane whose hit is geomID's, one lane at a time (the
+ * lanes' cylinders differ, and a scalar call per lane costs less than gathering them
+ * into a packet per cylinder). outward: NULL for the plain form. */
+static uint32_t spawn_lanes(RTCGeometry geometry, unsigned geomID, const int *valid,
+                            const void *rh, unsigned N, const int *outward, const float *w,
+                            float *out)
+{
+    const ceb *g = ceb_of(geometry);
+    if (!g || !valid || !rh || !w || !out || N == 0 || N > 16)
+        return 0;
+    const float *hb = (const float *)rh + (size_t)R_NFIELDS * N;
+    uint32_t done = 0;
+    for (unsigned i = 0; i < N; i++) {
+        if (!valid[i] || RU(hb, N, H_GEOM, i) != geomID)
+            continue;
+        float o[3], d[3], t, Ng[3], p[3], err, wi[3], org[3];
+        unsigned prim;
+        int part;
+        lane_of(rh, N, i, o, d, &t, Ng, &prim);
+        if (!isfinite(t) || point_of(g, prim, o, d, t, Ng, p, &err, &part))
+            continue;
+        for (int k = 0; k < 3; k++)
+            wi[k] = w[(size_t)k * N + i];
+        if (outward)
+            cylray_spawn_origin_side(&g->prep[prim], p, err, part, outward[i], wi, org);
+        else
+            cylray_spawn_origin(&g->prep[prim], p, err, part, wi, org);
+        for (int k = 0; k < 3; k++)
+            out[(size_t)k * N + i] = org[k];
+        done |= 1u << i;
+    }
+    return done;
+}
+
+uint32_t cylray_embree_spawn_origins(RTCGeometry geometry, unsigned geomID, const int *valid,
+                                     const struct RTCRayHitN *rayhit, unsigned N,
+                                     const float *w, float *out)
+{
+    return spawn_lanes(geometry, geomID, valid, rayhit, N, NULL, w, out);
+}
+
+uint32_t cylray_embree_spawn_origins_side(RTCGeometry geometry, unsigned geomID,
+                                          const int *valid, const struct RTCRayHitN *rayhit,
+                                          unsigned N, const int *outward, const float *w,
+                                          float *out)
+{
+    if (!outward)
+        return 0;
+    return spawn_lanes(geometry, geomID, valid, rayhit, N, outward, w, out);
+}

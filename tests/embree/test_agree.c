@@ -381,6 +381,96 @@ static void packet_passes(RTCScene sc, const char *vn, int exact_t, int filtered
         }
 }
 
+/* The packet forms of the spawn origins against the one-ray forms, lane by lane, after
+ * Embree's own packet call of 8 rays: the same origins bit for bit on the lanes that hit
+ * this geometry, and nothing written on the others (an invalid lane, a miss, a hit on
+ * another geometry: a triangle beside the cylinders takes some rays). Returns the
+ * disagreements; *lanes counts the lanes compared. */
+static int packet_spawns(RTCDevice dev, RTCGeometry geo, const eb_rays *r, int *lanes)
+{
+    RTCScene sc = rtcNewScene(dev);
+    RTCGeometry tri = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_TRIANGLE);
+    float *v = rtcSetNewGeometryBuffer(tri, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                       3 * sizeof(float), 3);
+    unsigned *ix = rtcSetNewGeometryBuffer(tri, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                           3 * sizeof(unsigned), 1);
+    /* a large triangle through the camera's view, so that some lanes hit it first */
+    const float tv[9] = {-1e3f, -1e3f, 0, 1e3f, -1e3f, 0, 0, 1e3f, 0};
+    memcpy(v, tv, sizeof tv);
+    ix[0] = 0, ix[1] = 1, ix[2] = 2;
+    rtcSetGeometryMask(tri, 0xffffffffu);
+    rtcCommitGeometry(tri);
+    unsigned gid = rtcAttachGeometry(sc, geo), tid = rtcAttachGeometry(sc, tri);
+    rtcReleaseGeometry(tri);
+    rtcCommitScene(sc);
+    const uint32_t sentinel = 0x7fc0c0deu;
+    int bad = 0, theirs = 0, tris = 0;
+    *lanes = 0;
+    for (size_t b = 0; b + 8 <= r->n; b += 8 * 7) {
+        struct RTCRayHit8 rh;
+        memset(&rh, 0, sizeof rh);
+        RTC_ALIGN(32) int valid[8];
+        for (int j = 0; j < 8; j++) {
+            size_t i = b + (size_t)j;
+            rh.ray.org_x[j] = r->ox[i], rh.ray.org_y[j] = r->oy[i], rh.ray.org_z[j] = r->oz[i];
+            rh.ray.dir_x[j] = r->dx[i], rh.ray.dir_y[j] = r->dy[i], rh.ray.dir_z[j] = r->dz[i];
+            rh.ray.tnear[j] = 0, rh.ray.tfar[j] = INFINITY, rh.ray.mask[j] = ~0u;
+            rh.hit.geomID[j] = RTC_INVALID_GEOMETRY_ID;
+            valid[j] = j == 3 ? 0 : -1;
+        }
+#if CYLRAY_EMBREE_RTC_MAJOR >= 4
+        rtcIntersect8(valid, sc, &rh, NULL);
+#else
+        struct RTCIntersectContext ctx;
+        rtcInitIntersectContext(&ctx);
+        rtcIntersect8(valid, sc, &ctx, &rh);
+#endif
+        float w[24], out[2][24];
+        int outward[8];
+        for (int j = 0; j < 8; j++) {
+            /* a reflection-like direction on even lanes, a transmission-like one on odd */
+            float sg = j & 1 ? -1.0f : 1.0f;
+            w[j] = sg * rh.hit.Ng_x[j] + 0.3f * rh.ray.dir_x[j];
+            w[8 + j] = sg * rh.hit.Ng_y[j] + 0.3f * rh.ray.dir_y[j];
+            w[16 + j] = sg * rh.hit.Ng_z[j] + 0.3f * rh.ray.dir_z[j];
+            outward[j] = j % 3 != 1;
+        }
+        for (int k = 0; k < 48; k++)
+            memcpy(&out[k / 24][k % 24], &sentinel, 4);
+        uint32_t got[2] = {cylray_embree_spawn_origins(geo, gid, valid,
+                                                       (struct RTCRayHitN *)&rh, 8, w, out[0]),
+                           cylray_embree_spawn_origins_side(geo, gid, valid,
+                                                            (struct RTCRayHitN *)&rh, 8,
+                                                            outward, w, out[1])};
+        for (int j = 0; j < 8; j++) {
+            const int ours = valid[j] && rh.hit.geomID[j] == gid && isfinite(rh.ray.tfar[j]);
+            theirs += valid[j] && rh.hit.geomID[j] == tid;
+            float o[3] = {rh.ray.org_x[j], rh.ray.org_y[j], rh.ray.org_z[j]};
+            float d[3] = {rh.ray.dir_x[j], rh.ray.dir_y[j], rh.ray.dir_z[j]};
+            float ng[3] = {rh.hit.Ng_x[j], rh.hit.Ng_y[j], rh.hit.Ng_z[j]};
+            float wj[3] = {w[j], w[8 + j], w[16 + j]}, want[2][3];
+            if (ours) {
+                (*lanes)++;
+                bad += cylray_embree_spawn_origin(geo, rh.hit.primID[j], o, d, rh.ray.tfar[j],
+                                                  ng, wj, want[0]) != 0;
+                bad +=
+                    cylray_embree_spawn_origin_side(geo, rh.hit.primID[j], o, d, rh.ray.tfar[j],
+                                                    ng, outward[j], wj, want[1]) != 0;
+            }
+            for (int f = 0; f < 2; f++) {
+                bad += ((got[f] >> j) & 1u) != (uint32_t)ours;
+                for (int k = 0; k < 3; k++)
+                    bad += ours ? memcmp(&out[f][8 * k + j], &want[f][k], 4) != 0
+                                : memcmp(&out[f][8 * k + j], &sentinel, 4) != 0;
+            }
+        }
+        tris += theirs;
+    }
+    rtcReleaseScene(sc);
+    /* the test means something only if both kinds of lanes occurred */
+    return bad + (*lanes == 0) + (tris == 0);
+}
+
 int main(void)
 {
     eb_scene s;
@@ -545,6 +635,15 @@ int main(void)
         cylray_embree_release_geometry(geo);
         cylray_embree_release_geometry(NULL);
         REPORT(bad, "refused input, and the accessors");
+        uint32_t none = cylray_embree_spawn_origins(NULL, 0, NULL, NULL, 8, NULL, NULL);
+        d = eb_scene_desc(&s, 0, K);
+        geo = cylray_embree_new_geometry(dev, &d, &st);
+        rtcCommitGeometry(geo);
+        int lanes = 0;
+        rays_for(&r, tfar0, valid0);
+        bad = (int)none + packet_spawns(dev, geo, &r, &lanes);
+        cylray_embree_release_geometry(geo);
+        REPORT(bad, "packet spawn origins as the one-ray ones, %d lanes", lanes);
     }
 
     eb_ref_free(&ref);
