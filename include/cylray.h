@@ -86,7 +86,9 @@ extern "C" {
 
 typedef enum cylray_status {
     CYLRAY_OK = 0,
-    CYLRAY_EINVAL = 1 /* an argument outside the documented limits (cylray_prepare) */
+    CYLRAY_EINVAL = 1, /* an argument outside the documented limits (cylray_prepare) */
+    CYLRAY_ENOMEM = 2  /* memory ran out (cylray_embree_new_geometry; the core library
+                        * allocates nothing) */
 } cylray_status;
 
 /* A constant English sentence for s (never NULL, also for an unknown status). */

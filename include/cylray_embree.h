@@ -189,7 +189,8 @@ typedef struct cylray_embree_desc {
  * cylray_cylinder_from_endpoints, when count is 0 or beyond 2^32 - 1 (or the split
  * boxes would be), when an option or flag is unknown (CYLRAY_FACE_FORWARD is: Ng is
  * outward), when memory runs out or Embree refuses; *status (when not NULL) says
- * CYLRAY_EINVAL for the first three. */
+ * CYLRAY_EINVAL for the first three, CYLRAY_ENOMEM when cylray's own allocations fail,
+ * and CYLRAY_OK when Embree refused. */
 CYLRAY_EMBREE_API RTCGeometry cylray_embree_new_geometry(RTCDevice device,
                                                          const cylray_embree_desc *desc,
                                                          cylray_status *status);

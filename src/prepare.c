@@ -23,6 +23,8 @@ const char *cylray_strerror(cylray_status s)
                "NaN, infinite or beyond 2^62, a zero or subnormal axis, a radius outside "
                "[2^-60, 2^62], a half height <= 0, NaN or finite beyond 2^62, or flag bits "
                "other than CYLRAY_CAPPED_LO and CYLRAY_CAPPED_HI";
+    case CYLRAY_ENOMEM:
+        return "out of memory";
     }
     return "unknown cylray status";
 }

@@ -189,8 +189,7 @@ SURFACE_LINKAGE_ void SURFACE_AT_(const surf_cyl *s, const float p[3], int32_t p
     const double E = 0x1p-47 * R1;
     /* The frame of Duff et al., as on the double-double path, whose zeros are +0 where
      * they come from a product (hence the + 0) and -0 in -n_y. */
-    const double sg = n[2] >= 0 ? 1.0 : -1.0, a = -1.0 / (sg + n[2]),
-                 b = n[0] * n[1] * a + 0.0;
+    const double sg = n[2] >= 0 ? 1.0 : -1.0, a = -1.0 / (sg + n[2]), b = n[0] * n[1] * a + 0.0;
     const double b1[3] = {1.0 + sg * (n[0] * n[0] * a), sg * b + 0.0, -sg * n[0] + 0.0};
     const double b2[3] = {b, sg + n[1] * n[1] * a, -n[1]};
     const double x = r[0] * b1[0] + r[1] * b1[1] + r[2] * b1[2];

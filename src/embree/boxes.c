@@ -83,11 +83,11 @@ int ceb_make_boxes(ceb *g, const cylray_cylinder *cyl)
         total += g->fr[i].pieces;
     }
     if (total > 0xffffffffu)
-        return 1;
+        return CEB_BAD_INPUT;
     g->nprim = total;
     g->box = malloc(total * sizeof *g->box);
     if (!g->box)
-        return -1;
+        return CEB_NO_MEMORY;
     if (total == g->n) {
         for (size_t i = 0; i < g->n; i++)
             ceb_whole_box(&g->prep[i], &g->box[i]);
@@ -96,9 +96,10 @@ int ceb_make_boxes(ceb *g, const cylray_cylinder *cyl)
     g->prim_cyl = malloc(total * sizeof *g->prim_cyl);
     g->prim_piece = malloc(total * sizeof *g->prim_piece);
     float lo[CYLRAY_SPLIT_MAX][3], hi[CYLRAY_SPLIT_MAX][3];
-    int bad = !g->prim_cyl || !g->prim_piece;
+    if (!g->prim_cyl || !g->prim_piece)
+        return CEB_NO_MEMORY;
     size_t p = 0;
-    for (size_t i = 0; !bad && i < g->n; i++) {
+    for (size_t i = 0; i < g->n; i++) {
         const frame *f = &g->fr[i];
         uint32_t K = f->pieces;
         if (K == 1) {
@@ -117,15 +118,13 @@ int ceb_make_boxes(ceb *g, const cylray_cylinder *cyl)
             L += (double)f->a[k] * f->a[k];
         }
         float pad = (float)(0x1p-16 * (big + sqrt(L)) + 0x1p-10 * cyl[i].radius);
-        if (cylray_split_boxes(&g->prep[i], K, lo, hi) != K) {
-            bad = 1;
-            break;
-        }
+        if (cylray_split_boxes(&g->prep[i], K, lo, hi) != K)
+            return CEB_REFUSED;
         for (uint32_t k = 0; k < K; k++, p++) {
             ceb_set_box(&g->box[p], lo[k], hi[k], pad);
             g->prim_cyl[p] = (uint32_t)i;
             g->prim_piece[p] = k;
         }
     }
-    return bad ? -1 : 0;
+    return 0;
 }

@@ -62,6 +62,13 @@ void *ceb_alloc_aligned(size_t bytes);
 /* group.c: cylinders grouped into leaves with Embree's SAH builder */
 int ceb_group_leaves(ceb *g, RTCDevice dev, const cylray_cylinder *cyl);
 
+/* Why ceb_make_boxes or ceb_group_leaves failed (they return 0 otherwise): the caller
+ * of cylray_embree_new_geometry is told CYLRAY_EINVAL for the first, CYLRAY_ENOMEM for
+ * the second; for the third (Embree's builder, or a cylray call, refused) none applies. */
+#define CEB_BAD_INPUT 1
+#define CEB_NO_MEMORY 2
+#define CEB_REFUSED 3
+
 /* filter.c: a hit offered to the filter functions */
 int ceb_filter_hit(const struct RTCIntersectFunctionNArguments *a, unsigned i, const hitrec *h);
 int ceb_filter_occ(const struct RTCOccludedFunctionNArguments *a, unsigned i, const hitrec *h);

@@ -49,10 +49,11 @@ RTCGeometry cylray_embree_new_geometry(RTCDevice device, const cylray_embree_des
         (desc->flags & ~(CEB_KFLAGS | CYLRAY_NORMAL)))
         return NULL;
     size_t n = desc->count;
+    st = CYLRAY_ENOMEM;
     g = calloc(1, sizeof *g);
     cyl = malloc(n * sizeof *cyl);
     if (!g || !cyl)
-        goto fail;
+        goto fail_st;
     g->magic = CEB_MAGIC;
     g->k = desc->kernels ? desc->kernels : cylray_kernels_best();
     g->options = desc->options;
@@ -61,7 +62,9 @@ RTCGeometry cylray_embree_new_geometry(RTCDevice device, const cylray_embree_des
     g->n = n;
     g->prep = ceb_alloc_aligned(n * sizeof *g->prep);
     g->fr = malloc(n * sizeof *g->fr);
-    if (!g->k || !g->prep || !g->fr)
+    if (!g->prep || !g->fr)
+        goto fail_st;
+    if (!g->k)
         goto fail;
     for (size_t i = 0; i < n; i++) {
         const float *p0 = elem(desc->p0, desc->p0_stride, i);
@@ -76,8 +79,7 @@ RTCGeometry cylray_embree_new_geometry(RTCDevice device, const cylray_embree_des
         }
         ceb_frame_init(&g->fr[i], p0, p1);
     }
-    st = CYLRAY_OK;
-    int leaves = (desc->options & CYLRAY_EMBREE_LEAVES) != 0;
+    int leaves = (desc->options & CYLRAY_EMBREE_LEAVES) != 0, why;
     if (leaves) {
         cylray_isa isa = g->k->isa;
         /* 8 with AVX-512 too: behind Embree's BVH a leaf of 16 covers about twice
@@ -85,14 +87,15 @@ RTCGeometry cylray_embree_new_geometry(RTCDevice device, const cylray_embree_des
          * gain that back (docs/performance.md: leaves of 8 took 5-12 % less time on
          * the molecule, the pipes and the lattice) */
         g->m = isa == CYLRAY_ISA_AVX512 || isa == CYLRAY_ISA_AVX2 ? 8 : 4;
-        if (ceb_group_leaves(g, device, cyl))
-            goto fail;
+        why = ceb_group_leaves(g, device, cyl);
     } else {
-        int r = ceb_make_boxes(g, cyl);
-        if (r) {
-            st = r > 0 ? CYLRAY_EINVAL : CYLRAY_OK;
-            goto fail_st;
-        }
+        why = ceb_make_boxes(g, cyl);
+    }
+    if (why) {
+        st = why == CEB_BAD_INPUT   ? CYLRAY_EINVAL
+             : why == CEB_NO_MEMORY ? CYLRAY_ENOMEM
+                                    : CYLRAY_OK;
+        goto fail_st;
     }
     free(cyl);
     cyl = NULL;
@@ -116,7 +119,7 @@ RTCGeometry cylray_embree_new_geometry(RTCDevice device, const cylray_embree_des
         *status = CYLRAY_OK;
     return geo;
 fail:
-    st = CYLRAY_OK; /* not the input's fault: memory or Embree */
+    st = CYLRAY_OK; /* neither the input nor memory: Embree refused */
 fail_st:
     if (status)
         *status = st;

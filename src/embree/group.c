@@ -57,7 +57,7 @@ static void box_union(struct RTCBounds *u, const struct RTCBounds *b)
     {                                                                                          \
         cylray_leaf##M *lv = ceb_alloc_aligned(g->nprim * sizeof *lv);                         \
         if (!lv)                                                                               \
-            return -1;                                                                         \
+            return CEB_NO_MEMORY;                                                              \
         g->leaves = lv;                                                                        \
         for (size_t l = 0; l < g->nprim; l++) {                                                \
             const uint32_t *ids = c->order + c->first[l];                                      \
@@ -65,7 +65,7 @@ static void box_union(struct RTCBounds *u, const struct RTCBounds *b)
             for (size_t j = 0; j < c->count[l]; j++)                                           \
                 cc[j] = cyl[ids[j]];                                                           \
             if (cylray_leaf_prepare##M(&lv[l], cc, ids, c->count[l]) != CYLRAY_OK)             \
-                return -1;                                                                     \
+                return CEB_REFUSED;                                                            \
         }                                                                                      \
         return 0;                                                                              \
     }
@@ -74,7 +74,7 @@ CEB_LEAF_BUILD(8)
 
 int ceb_group_leaves(ceb *g, RTCDevice dev, const cylray_cylinder *cyl)
 {
-    int M = g->m, bad = -1;
+    int M = g->m, bad = CEB_NO_MEMORY;
     size_t n = g->n;
     struct RTCBuildPrimitive *prims = ceb_alloc_aligned(n * sizeof *prims);
     sah_ctx c = {.order = malloc(n * sizeof *c.order),
@@ -108,7 +108,9 @@ int ceb_group_leaves(ceb *g, RTCDevice dev, const cylray_cylinder *cyl)
         if (bvh)
             rtcReleaseBVH(bvh);
         g->nprim = atomic_load(&c.leaves);
-        if (root && atomic_load(&c.used) == n && (g->box = malloc(g->nprim * sizeof *g->box)))
+        if (!root || atomic_load(&c.used) != n)
+            bad = CEB_REFUSED;
+        else if ((g->box = malloc(g->nprim * sizeof *g->box)))
             bad = M == 4 ? build_leaves4(g, cyl, &c) : build_leaves8(g, cyl, &c);
         for (size_t l = 0; !bad && l < g->nprim; l++) {
             const uint32_t *ids = c.order + c.first[l];

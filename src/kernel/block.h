@@ -5,7 +5,7 @@
  * run: for one vector (two = 0: b and kb are not read), or for two in flight (two = 1),
  * their stages alternating. The hit lanes go to hit[0] (and hit[1]); store_b = 0 leaves
  * out b's store, for a twin that has nothing new to store. */
-CYLRAY_INLINE void KFN(stages)(KFN(lanes) * a, const cylray_kat_ *ka, KFN(lanes) * b,
+CYLRAY_INLINE void KFN(stages)(KFN(lanes) *a, const cylray_kat_ *ka, KFN(lanes) *b,
                                const cylray_kat_ *kb, const cylray_kflags_ F, const int two,
                                const int store_b, uint32_t hit[2])
 {

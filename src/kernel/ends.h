@@ -5,7 +5,7 @@
  * exit (so the other rim stays watertight), but a bound made by that disc is no hit:
  * the ray passes through the open end. Going up the axis (dv > 0) it enters by the low
  * disc and leaves by the high one. */
-CYLRAY_INLINE void KFN(open_ends)(KFN(lanes) * st, const cylray_kat_ *k, const cylray_kflags_ F,
+CYLRAY_INLINE void KFN(open_ends)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F,
                                   vf slab_in, vf slab_out)
 {
     vm lo_on, hi_on;
@@ -27,7 +27,7 @@ CYLRAY_INLINE void KFN(open_ends)(KFN(lanes) * st, const cylray_kat_ *k, const c
 
 /* Stage 6, the ends: entry and exit relative to p, and whether each is on the
  * surface (the slab and the caps of a finite cylinder). */
-CYLRAY_INLINE void KFN(ends)(KFN(lanes) * st, const cylray_kat_ *k, const cylray_kflags_ F)
+CYLRAY_INLINE void KFN(ends)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
 {
     const vf zero = vzero(), inf = vset1(INFINITY), tn = st->tn, tf = st->tf;
     st->side_lo = tn, st->side_hi = tf;
@@ -85,8 +85,7 @@ CYLRAY_INLINE void KFN(ends)(KFN(lanes) * st, const cylray_kat_ *k, const cylray
  * entry test decides correctly which of the two can be the first in [tmin, tmax]. The
  * bounds are clamped to finite values, so that no infinite t ever hits. Returns the
  * hit lanes. */
-CYLRAY_INLINE uint32_t KFN(decide)(KFN(lanes) * st, const cylray_kat_ *k,
-                                   const cylray_kflags_ F)
+CYLRAY_INLINE uint32_t KFN(decide)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
 {
     const vf one = vset1(1.0f);
     vf tmin = vmax(vset1(-FLT_MAX), KFN(ray_in)(k, F, k->R->tmin)); /* a NaN bound stays */

@@ -5,7 +5,7 @@
 /* Stage 1, the ray: A (aligned), d.d and the lanes in play. An Inf or NaN anywhere but
  * in d turns C or D into NaN later, which takes the lane out there. Returns
  * nonzero for a vector that the rare instance must take, else 0. */
-CYLRAY_INLINE int KFN(load_ray)(KFN(lanes) * st, const cylray_kat_ *k, const cylray_kflags_ F)
+CYLRAY_INLINE int KFN(load_ray)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
 {
     const vf zero = vzero(), one = vset1(1.0f), inf = vset1(INFINITY);
     KFN(load_o)(st, k, F);
@@ -48,7 +48,7 @@ CYLRAY_INLINE int KFN(load_ray)(KFN(lanes) * st, const cylray_kat_ *k, const cyl
 
 /* Stage 2, the cheap rejections: the sphere around a finite cylinder and the tube
  * around the axis, from w = o - c rounded. Returns whether any lane is left. */
-CYLRAY_INLINE int KFN(reject)(KFN(lanes) * st, const cylray_kat_ *k, const cylray_kflags_ F)
+CYLRAY_INLINE int KFN(reject)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
 {
     const vf zero = vzero(), inf = vset1(INFINITY);
     const vf dx = st->dx, dy = st->dy, dz = st->dz, dd = st->dd;

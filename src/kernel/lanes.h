@@ -73,7 +73,7 @@ CYLRAY_INLINE vf KFN(sane)(const cylray_kat_ *k, vf x, vf dead)
     return vsel(mfrom_bits(k->bits), x, dead);
 }
 /* The origin and the center, loaded by the ray's stage and again by the shift's. */
-CYLRAY_INLINE void KFN(load_o)(KFN(lanes) * st, const cylray_kat_ *k, const cylray_kflags_ F)
+CYLRAY_INLINE void KFN(load_o)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
 {
     st->ox = KFN(ray_in)(k, F, k->R->ox), st->oy = KFN(ray_in)(k, F, k->R->oy);
     st->oz = KFN(ray_in)(k, F, k->R->oz);

@@ -6,7 +6,7 @@
  * with the product s d exact. The inputs are read again rather than kept across the
  * rejection (the caller's CYLRAY_REREAD): a rejected vector then spills nothing, and
  * the rest loses nothing (it would reload them from the stack instead). */
-CYLRAY_INLINE void KFN(shift)(KFN(lanes) * st, const cylray_kat_ *k, const cylray_kflags_ F)
+CYLRAY_INLINE void KFN(shift)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
 {
     KFN(load_o)(st, k, F);
     vf bx = vsub(st->whx, st->ox), by = vsub(st->why, st->oy), bz = vsub(st->whz, st->oz);
@@ -24,7 +24,7 @@ CYLRAY_INLINE void KFN(shift)(KFN(lanes) * st, const cylray_kat_ *k, const cylra
  * c, an origin near the surface far along the axis wants c slid to the origin's
  * level. |C / B| estimates the near root's distance; each lane keeps the shift that
  * makes it smaller. */
-CYLRAY_INLINE void KFN(slide)(KFN(lanes) * st, const cylray_kat_ *k, const cylray_kflags_ F)
+CYLRAY_INLINE void KFN(slide)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
 {
     const vf vx = st->vx, vy = st->vy, vz = st->vz, dx = st->dx, dy = st->dy, dz = st->dz;
     /* u need not be accurate (the slide is exact for any u); a leaf, which stores no
@@ -56,7 +56,7 @@ CYLRAY_INLINE void KFN(slide)(KFN(lanes) * st, const cylray_kat_ *k, const cylra
 
 /* Stage 4, the side's quadratic and its discriminant, in Lagrange's form. Returns
  * whether any lane can still hit. */
-CYLRAY_INLINE int KFN(side)(KFN(lanes) * st, const cylray_kat_ *k, const cylray_kflags_ F)
+CYLRAY_INLINE int KFN(side)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
 {
     const vf zero = vzero(), dx = st->dx, dy = st->dy;
     st->g = zero;
@@ -101,7 +101,7 @@ CYLRAY_INLINE int KFN(side)(KFN(lanes) * st, const cylray_kat_ *k, const cylray_
 }
 
 /* Stage 5, the side's roots tn <= tf (relative to p), polished with CYLRAY_REFINE. */
-CYLRAY_INLINE void KFN(roots)(KFN(lanes) * st, const cylray_kat_ *k, const cylray_kflags_ F)
+CYLRAY_INLINE void KFN(roots)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
 {
     const vm side = st->side;
     const vf A = st->A, C = st->C, D = st->D, nB = st->nB;

@@ -4,7 +4,7 @@
 /* A hit point that rounding moved well off the surface (a radius far below the
  * coordinates' ulp) gets a true normalisation, divided by its largest component
  * first, so that a length whose square underflows or overflows still normalises. */
-CYLRAY_INLINE void KFN(renormalize)(const KFN(lanes) * st, const cylray_kflags_ F, vm off,
+CYLRAY_INLINE void KFN(renormalize)(const KFN(lanes) *st, const cylray_kflags_ F, vm off,
                                     vf *nx, vf *ny, vf *nz, vf *corr)
 {
     const vf zero = vzero(), inf = vset1(INFINITY);
@@ -53,7 +53,7 @@ CYLRAY_INLINE void KFN(renormalize)(const KFN(lanes) * st, const cylray_kflags_ 
 #endif
 
 /* Stage 8b, the unit normal at the hit lanes. */
-CYLRAY_INLINE void KFN(normals)(const KFN(lanes) * st, const cylray_kat_ *k,
+CYLRAY_INLINE void KFN(normals)(const KFN(lanes) *st, const cylray_kat_ *k,
                                 const cylray_kflags_ F, vm on_side, vm cap_hi, vf *onx, vf *ony,
                                 vf *onz)
 {
@@ -108,7 +108,7 @@ CYLRAY_INLINE void KFN(normals)(const KFN(lanes) * st, const cylray_kat_ *k,
  * lanes. On a capped cylinder, the chosen t is the side's or a cap's; which cap
  * follows from the direction: entering upwards (or leaving downwards) is the low one.
  * An aligned axis pointing down the third coordinate swaps the names (P->cap_up). */
-CYLRAY_INLINE void KFN(store)(const KFN(lanes) * st, const cylray_kat_ *k,
+CYLRAY_INLINE void KFN(store)(const KFN(lanes) *st, const cylray_kat_ *k,
                               const cylray_kflags_ F)
 {
     const vf one = vset1(1.0f);

@@ -185,7 +185,9 @@ CYLRAY_MAYBE_UNUSED CYLRAY_NOINLINE size_t KFN(stream_generic)(const cylray_prep
 #define KALL8_(X) K8_(X, 0) K8_(X, 1) K8_(X, 2) K8_(X, 3) K8_(X, 4) K8_(X, 5)
 #define KALL4_(X) K4_(X, 0) K4_(X, 1) K4_(X, 2) K4_(X, 3) K4_(X, 4) K4_(X, 5)
 
-/* b = 6, 7 (occluded: 3) are FAST with REFINE. */
+/* b = 6, 7 (occluded: 3) are FAST with REFINE. Lists of definitions: clang-format reads
+ * them as one long expression and breaks them differently from version to version. */
+/* clang-format off */
 #define KKIND_(k)                                                                              \
     KISECT_(k, 0)                                                                              \
     KISECT_(k, 1) KISECT_(k, 2) KISECT_(k, 3) KISECT_(k, 4) KISECT_(k, 5) KISECTANY_(k, 6)     \
@@ -194,6 +196,7 @@ KKIND_(0)
 KKIND_(1) KKIND_(2) KKIND_(3) KKIND_(4) KKIND_(5) KLEAF_(0) KLEAF_(1) KLEAF_(2) KLEAF_(3)
     KLEAF_(4) KLEAF_(5) KLEAFANY_(6) KLEAFANY_(7) KLEAFOCC_(0) KLEAFOCC_(1) KLEAFOCC_(2)
         KLEAFOCCANY_(3)
+/* clang-format on */
 
 #define KREF_PK1_(k, b) KFN(pk1_##k##_##b),
 #define KREF_PK_(k, b) KFN(pk_##k##_##b),

@@ -63,9 +63,11 @@ static inline uint32_t DFN(hit_bits)(const int32_t *part)
     return dmbits(dgt(dload_bits(part, CYLRAY_PART_MASK), dset1(0.0)));
 }
 
-CYLRAY_MAYBE_UNUSED static size_t
-DFN(hit_points_stream)(const cylray_prepared *P, const cylray_rays *rays,
-                       const cylray_hits *hits, const cylray_points *pts, size_t n, int normals)
+CYLRAY_MAYBE_UNUSED static size_t DFN(hit_points_stream)(const cylray_prepared *P,
+                                                         const cylray_rays *rays,
+                                                         const cylray_hits *hits,
+                                                         const cylray_points *pts, size_t n,
+                                                         int normals)
 {
     DFN(geo) g;
     DFN(geo_prepared)(&g, P);
@@ -151,7 +153,7 @@ CYLRAY_MAYBE_UNUSED static void DFN(spawn_stream)(const cylray_prepared *P,
 
 /* Leaves in bulk: hit i of a query of leaf[i] (its geom_ array, m lanes a field). The
  * lanes' cylinders are gathered into vectors; so are the AoS rays and hits. */
-CYLRAY_MAYBE_UNUSED static void DFN(leaf_geo)(DFN(geo) * g, const float *const *leaf,
+CYLRAY_MAYBE_UNUSED static void DFN(leaf_geo)(DFN(geo) *g, const float *const *leaf,
                                               const cylray_hit1 *hit, size_t m, size_t cnt)
 {
     float f[8][DW], lo[DW], hi[DW];
@@ -178,9 +180,11 @@ CYLRAY_MAYBE_UNUSED static void DFN(leaf_geo)(DFN(geo) * g, const float *const *
     (g, c, v, dloadu_f(f[6]), dloadu_f(f[7]), dgt(dloadu_f(lo), zero), dgt(dloadu_f(hi), zero));
 }
 
-CYLRAY_MAYBE_UNUSED static void
-DFN(leaf_hit_points)(const float *const *leaf, size_t m, const cylray_ray1 *ray,
-                     const cylray_hit1 *hit, const cylray_points *pts, size_t n, int normals)
+CYLRAY_MAYBE_UNUSED static void DFN(leaf_hit_points)(const float *const *leaf, size_t m,
+                                                     const cylray_ray1 *ray,
+                                                     const cylray_hit1 *hit,
+                                                     const cylray_points *pts, size_t n,
+                                                     int normals)
 {
     for (size_t b = 0; b < n; b += DW) {
         const size_t cnt = n - b < DW ? n - b : DW;
@@ -213,10 +217,9 @@ DFN(leaf_hit_points)(const float *const *leaf, size_t m, const cylray_ray1 *ray,
     }
 }
 
-CYLRAY_MAYBE_UNUSED static void
-DFN(leaf_spawn_origins)(const float *const *leaf, size_t m, const cylray_hit1 *hit,
-                        const cylray_points *pts, const uint8_t *outward,
-                        const cylray_points *dirs, const cylray_points *origins, size_t n)
+CYLRAY_MAYBE_UNUSED static void DFN(leaf_spawn_origins)(
+    const float *const *leaf, size_t m, const cylray_hit1 *hit, const cylray_points *pts,
+    const uint8_t *outward, const cylray_points *dirs, const cylray_points *origins, size_t n)
 {
     float side[DW];
     for (size_t b = 0; b < n; b += DW) {
@@ -238,7 +241,7 @@ DFN(leaf_spawn_origins)(const float *const *leaf, size_t m, const cylray_hit1 *h
 
 #if DW == 1
 /* The scalar entry points: one lane; n, the kernel's normal or NULL; side as in spawn. */
-CYLRAY_MAYBE_UNUSED static void DFN(hit_point1)(const DFN(geo) * g, const float o[3],
+CYLRAY_MAYBE_UNUSED static void DFN(hit_point1)(const DFN(geo) *g, const float o[3],
                                                 const float d[3], float t, int32_t part,
                                                 const float *n, float p[3], float *err)
 {
@@ -256,7 +259,7 @@ CYLRAY_MAYBE_UNUSED static void DFN(hit_point1)(const DFN(geo) * g, const float 
     DFN(hp_lanes)(g, in, &part, out, 1u);
 }
 
-CYLRAY_MAYBE_UNUSED static void DFN(spawn1)(const DFN(geo) * g, const float p[3], float err,
+CYLRAY_MAYBE_UNUSED static void DFN(spawn1)(const DFN(geo) *g, const float p[3], float err,
                                             int32_t part, int side, const float w[3],
                                             float out[3])
 {

@@ -57,7 +57,7 @@ static inline vd DFN(l1)(const vd a[3])
 }
 
 /* The cylinders' derived values, from their floats (c, v, R, H and the discs). */
-CYLRAY_INLINE void DFN(geo_make)(DFN(geo) * g, const vd c[3], const vd v[3], vd R, vd H, vdm lo,
+CYLRAY_INLINE void DFN(geo_make)(DFN(geo) *g, const vd c[3], const vd v[3], vd R, vd H, vdm lo,
                                  vdm hi)
 {
     const vd one = dset1(1.0), zero = dset1(0.0);
@@ -100,7 +100,7 @@ CYLRAY_INLINE void DFN(geo_make)(DFN(geo) * g, const vd c[3], const vd v[3], vd 
 }
 
 /* A prepared cylinder in every lane. */
-static inline void DFN(geo_prepared)(DFN(geo) * g, const cylray_prepared *P)
+static inline void DFN(geo_prepared)(DFN(geo) *g, const cylray_prepared *P)
 {
     vd c[3], v[3];
     for (int k = 0; k < 3; k++) {

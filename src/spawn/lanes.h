@@ -19,7 +19,7 @@ static inline void DFN(store)(float *p, vd x, uint32_t bits)
 
 /* Hit points of DW rays whose fields start at the given pointers (o, d: 3 each, t, then
  * the kernel's normal or NULLs); out: x, y, z, err (err may be NULL). */
-CYLRAY_INLINE void DFN(hp_lanes)(const DFN(geo) * g, const float *const in[10],
+CYLRAY_INLINE void DFN(hp_lanes)(const DFN(geo) *g, const float *const in[10],
                                  const int32_t *part, float *const out[4], uint32_t bits)
 {
     vd o[3], d[3], p[3], err, n[3];
@@ -39,7 +39,7 @@ CYLRAY_INLINE void DFN(hp_lanes)(const DFN(geo) * g, const float *const in[10],
 
 /* Origins of DW points (x, y, z, err: err may be NULL for 0) with directions w, and the
  * side asked for (+1, -1; NULL: w's side). */
-CYLRAY_INLINE void DFN(sp_lanes)(const DFN(geo) * g, const float *const in[10],
+CYLRAY_INLINE void DFN(sp_lanes)(const DFN(geo) *g, const float *const in[10],
                                  const int32_t *part, float *const out[3], uint32_t bits)
 {
     vd p[3], w[3], x[3];
@@ -57,7 +57,7 @@ CYLRAY_INLINE void DFN(sp_lanes)(const DFN(geo) * g, const float *const in[10],
 /* Fewer than DW lanes (a stream's tail): through buffers padded with the first lane. */
 CYLRAY_MAYBE_UNUSED static void DFN(tail)(void (*fn)(const DFN(geo) *, const float *const[10],
                                                      const int32_t *, float *const[], uint32_t),
-                                          const DFN(geo) * g, const float *const in[10],
+                                          const DFN(geo) *g, const float *const in[10],
                                           const int32_t *part, float *const *out, size_t nout,
                                           size_t cnt, uint32_t bits)
 {
@@ -81,14 +81,14 @@ CYLRAY_MAYBE_UNUSED static void DFN(tail)(void (*fn)(const DFN(geo) *, const flo
                 out[f][i] = ob[f][i];
 }
 
-CYLRAY_MAYBE_UNUSED static void DFN(hp_fn)(const DFN(geo) * g, const float *const in[10],
+CYLRAY_MAYBE_UNUSED static void DFN(hp_fn)(const DFN(geo) *g, const float *const in[10],
                                            const int32_t *part, float *const out[],
                                            uint32_t bits)
 {
     DFN(hp_lanes)(g, in, part, out, bits);
 }
 
-CYLRAY_MAYBE_UNUSED static void DFN(sp_fn)(const DFN(geo) * g, const float *const in[10],
+CYLRAY_MAYBE_UNUSED static void DFN(sp_fn)(const DFN(geo) *g, const float *const in[10],
                                            const int32_t *part, float *const out[],
                                            uint32_t bits)
 {

@@ -21,8 +21,7 @@ typedef struct DFN(surf) {
  * (c <= 0.85 dt) a clearance of 3b keeps the nearer hit beyond half the exact one
  * (1 - sqrt(1 - 2u/3) >= (1 - sqrt(1 - u)) / 2 for u <= 0.9); nearer to it, the origin
  * goes out to dt + 2b, where the exact ray and every ray the box admits miss. */
-CYLRAY_INLINE vd DFN(dip_clearance)(const DFN(geo) * g, const vd r[3], const vd w[3], vd c,
-                                    vd m)
+CYLRAY_INLINE vd DFN(dip_clearance)(const DFN(geo) *g, const vd r[3], const vd w[3], vd c, vd m)
 {
     const vd zero = dset1(0.0), one = dset1(1.0);
     const vd wr = DFN(dot3)(r, w), wv = DFN(dot3)(g->nv, w);
@@ -39,7 +38,7 @@ CYLRAY_INLINE vd DFN(dip_clearance)(const DFN(geo) * g, const vd r[3], const vd 
  * w: out, doubles of floats. side: +1 or -1 puts the origin on that side of the part's
  * own surface (+1: where its outward normal points), 0 on w's side; any other surface
  * it must clear is cleared to w's side. */
-CYLRAY_INLINE void DFN(spawn)(const DFN(geo) * g, const vd p[3], vd err, vd part, vd side,
+CYLRAY_INLINE void DFN(spawn)(const DFN(geo) *g, const vd p[3], vd err, vd part, vd side,
                               const vd w[3], vd out[3])
 {
     const vd zero = dset1(0.0), one = dset1(1.0);

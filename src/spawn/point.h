@@ -3,7 +3,7 @@
 
 /* THE HIT POINT of the rays o + t d at t on `part` (as doubles of its low bits): the
  * point p (doubles of floats) and the bound err (likewise). */
-CYLRAY_INLINE void DFN(hit_point)(const DFN(geo) * g, const vd o[3], const vd d[3], vd t,
+CYLRAY_INLINE void DFN(hit_point)(const DFN(geo) *g, const vd o[3], const vd d[3], vd t,
                                   vd part, const vd *nk, vd back, vd p[3], vd *err)
 {
     const vd zero = dset1(0.0), one = dset1(1.0);

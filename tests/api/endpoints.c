@@ -14,6 +14,7 @@
  * CYLRAY_TEST_QUICK=1 takes 10^4 pairs instead of 10^6. */
 #include "cylray.h"
 #include "quad.h"
+#include "rng.h"
 #include "tcheck.h"
 
 #include <math.h>
@@ -24,10 +25,7 @@
 static uint64_t rng_state = 0x243f6a8885a308d3ull;
 static uint64_t next_u64(void)
 {
-    uint64_t z = (rng_state += 0x9e3779b97f4a7c15ull);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return z ^ (z >> 31);
+    return rng_splitmix64(&rng_state);
 }
 
 /* A float in [-2^e, 2^e] with its exponent at least e - span (or zero). */

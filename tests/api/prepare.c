@@ -150,6 +150,10 @@ int main(void)
     CHECK(ok && *ok, "strerror(CYLRAY_OK) gives no message");
     CHECK(inv && *inv, "strerror(CYLRAY_EINVAL) gives no message");
     CHECK(ok && inv && strcmp(ok, inv) != 0, "CYLRAY_OK and CYLRAY_EINVAL read the same");
+    const char *nomem = cylray_strerror(CYLRAY_ENOMEM);
+    CHECK(nomem && *nomem, "strerror(CYLRAY_ENOMEM) gives no message");
+    CHECK(nomem && ok && inv && strcmp(nomem, ok) != 0 && strcmp(nomem, inv) != 0,
+          "CYLRAY_ENOMEM reads as another status");
     const char *unk = cylray_strerror((cylray_status)12345);
     CHECK(unk && *unk, "strerror of an unknown status gives no message");
 

@@ -15,6 +15,7 @@
 #include "cylray.h"
 #include "flagsets.h"
 #include "guarded.h"
+#include "rng.h"
 #include "scene.h"
 #include "tcheck.h"
 
@@ -41,7 +42,7 @@ static void widths_agree(const cylray_kernels *k, const cylray_prepared *P, cons
             slice(all, first, w, &b);
             /* all lanes, then a random subset of them */
             const uint32_t full = (uint32_t)((1u << w) - 1u);
-            const uint32_t masks[2] = {full, (uint32_t)cylgen_splitmix64(seed) & full};
+            const uint32_t masks[2] = {full, (uint32_t)rng_splitmix64(seed) & full};
             for (int mi = 0; mi < 2; mi++) {
                 g_intersect(k, (int)w, P, &b, w, masks[mi], flags, 0, &r);
                 for (size_t i = 0; i < w; i++) {

@@ -8,18 +8,11 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "rng.h"
 #include "tcheck.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 int LLVMFuzzerInitialize(int *argc, char ***argv);
-
-static uint64_t next(uint64_t *s)
-{
-    uint64_t z = (*s += 0x9e3779b97f4a7c15ull);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return z ^ (z >> 31);
-}
 
 int main(int argc, char **argv)
 {
@@ -34,9 +27,9 @@ int main(int argc, char **argv)
                 n /= 8;
             uint8_t buf[512];
             for (unsigned long i = 0; i < n; i++) {
-                const size_t len = (size_t)(next(&seed) % sizeof buf);
+                const size_t len = (size_t)(rng_splitmix64(&seed) % sizeof buf);
                 for (size_t j = 0; j < len; j++)
-                    buf[j] = (uint8_t)next(&seed);
+                    buf[j] = (uint8_t)rng_splitmix64(&seed);
                 /* most inputs aim their rays: set the tag bit often */
                 for (size_t j = 40; j < len; j += 29)
                     buf[j] |= 0x80;

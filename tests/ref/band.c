@@ -10,6 +10,8 @@
  * vertices (where t is extreme, and random ones) catch what is not linear. */
 #include "exact.h"
 
+#include "../support/rng.h"
+
 #include <stdint.h>
 #include <string.h>
 
@@ -22,14 +24,6 @@ enum { IN_W = 0, IN_D = 3, IN_V = 6, IN_R = 9, IN_H = 10, IN_COUNT = 11 };
 #define RANDOM_VERTICES 8
 #define MAX_ENUM_BITS 14
 #define MAX_OUTCOMES 12
-
-static uint64_t mix64(uint64_t *s)
-{
-    uint64_t z = (*s += 0x9e3779b97f4a7c15u);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9u;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebu;
-    return z ^ (z >> 31);
-}
 
 static uint64_t fbits(float f)
 {
@@ -213,7 +207,7 @@ void cylref_band_eval(const cylray_cylinder *cyl, const float o[3], const float 
     seed ^= fbits(cyl->radius) << 11 ^ fbits(cyl->half_height) << 29;
     for (int vtx = 0; vtx < 2 + RANDOM_VERTICES; vtx++) {
         signed char k[IN_COUNT] = {0};
-        uint64_t bits = mix64(&seed);
+        uint64_t bits = rng_splitmix64(&seed);
         for (int i = 0; i < pc.n_in; i++) {
             int s = (bits >> i) & 1 ? 1 : -1;
             if (vtx < 2 && x0.hit)

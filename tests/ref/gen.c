@@ -6,6 +6,8 @@
  * cylinder, off only by the final rounding of o and d. */
 #include "gen.h"
 
+#include "../support/rng.h"
+
 #include <float.h>
 #include <math.h>
 #include <string.h>
@@ -14,10 +16,7 @@
 
 uint64_t cylgen_splitmix64(uint64_t *state)
 {
-    uint64_t z = (*state += 0x9e3779b97f4a7c15u);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9u;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebu;
-    return z ^ (z >> 31);
+    return rng_splitmix64(state);
 }
 
 void cylgen_seed(cylgen_rng *r, uint64_t seed)
@@ -46,7 +45,7 @@ uint64_t cylgen_next(cylgen_rng *r)
 
 double cylgen_uniform(cylgen_rng *r)
 {
-    return (double)(cylgen_next(r) >> 11) * 0x1p-53;
+    return rng_unit(cylgen_next(r));
 }
 
 static double uni(cylgen_rng *r, double a, double b)

@@ -16,6 +16,7 @@
 #include "cylray.h"
 #include "flagsets.h"
 #include "guarded.h"
+#include "rng.h"
 #include "scene.h"
 #include "tcheck.h"
 
@@ -47,7 +48,7 @@ static void masks(const cylray_kernels *k, const cylray_prepared *P, const gbatc
     g_intersect(k, w, P, rays, (size_t)w, full, flags, 0, &all);
     const uint32_t count = w <= 8 ? (1u << w) : (quick ? 40u : 300u);
     for (uint32_t mi = 0; mi < count; mi++) {
-        uint32_t m = w <= 8 ? mi : (uint32_t)cylgen_splitmix64(seed) & full;
+        uint32_t m = w <= 8 ? mi : (uint32_t)rng_splitmix64(seed) & full;
         if (w > 8 && mi < 16)
             m = 1u << mi; /* every single lane */
         for (int kind = 0; kind < NPOISON; kind++) {

@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* spawn_round.c - spawn_test round: the library's rounding to float. */
 
+#include "rng.h"
 #include "spawn_common.h"
 
 #include <math.h>
@@ -11,15 +12,6 @@
 
 /* ---- rounding to float --------------------------------------------------------- */
 
-static uint64_t rng_next(uint64_t *s)
-{
-    *s += 0x9e3779b97f4a7c15ull;
-    uint64_t z = *s;
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return z ^ (z >> 31);
-}
-
 /* cylray_round_float_(x, 0) against the conversion on random doubles of every
  * magnitude a float reaches (subnormals, ties, overflow), and (hi, lo) against an exact
  * tie-break: hi a midpoint between two floats, lo of either sign. */
@@ -29,10 +21,10 @@ int run_round(void)
     long bad = 0, ties = 0;
     uint64_t s = 12345;
     for (long i = 0; i < N; i++) {
-        uint64_t r = rng_next(&s), b;
+        uint64_t r = rng_splitmix64(&s), b;
         /* exponents from 2^-160 to 2^130; every third a float or a midpoint */
         const int ex = (int)(r % 291) - 160;
-        b = ((uint64_t)(ex + 1023) << 52) | (rng_next(&s) & 0xfffffffffffffull);
+        b = ((uint64_t)(ex + 1023) << 52) | (rng_splitmix64(&s) & 0xfffffffffffffull);
         if (i % 3 == 1)
             b &= ~((1ull << 28) - 1) | (1ull << 28);
         else if (i % 3 == 2)

@@ -5,10 +5,11 @@
 #include <math.h>
 
 #include "frame.h"
+#include "rng.h"
 
 double scene_uniform(uint64_t *state, double lo, double hi)
 {
-    return lo + (hi - lo) * (double)(cylgen_splitmix64(state) >> 11) * 0x1p-53;
+    return lo + (hi - lo) * rng_unit(rng_splitmix64(state));
 }
 
 static void unit_random(uint64_t *s, double v[3])
@@ -42,7 +43,7 @@ void scene_rays(uint64_t seed, const cylray_cylinder *c, gbatch *b, size_t first
     for (size_t i = first; i < first + n; i++) {
         double o[3], d[3], tgt[3], tmin = 0, tmax = INFINITY;
         const double ang = scene_uniform(&s, 0, 6.283185307179586);
-        switch (cylgen_splitmix64(&s) % 6) {
+        switch (rng_splitmix64(&s) % 6) {
         case 0: /* from outside at a point inside the solid: enters */
         case 1:
             at(c, u, e1, e2, scene_uniform(&s, -0.9, 0.9) * H, scene_uniform(&s, 0, 0.9) * R,
@@ -57,8 +58,7 @@ void scene_rays(uint64_t seed, const cylray_cylinder *c, gbatch *b, size_t first
             unit_random(&s, d);
             break;
         case 3: /* down onto a cap, a little tilted */
-            at(c, u, e1, e2,
-               (cylgen_splitmix64(&s) & 1 ? 1 : -1) * scene_uniform(&s, 1.5, 4) * H,
+            at(c, u, e1, e2, (rng_splitmix64(&s) & 1 ? 1 : -1) * scene_uniform(&s, 1.5, 4) * H,
                scene_uniform(&s, 0, 0.95) * R, ang, o);
             at(c, u, e1, e2, 0, scene_uniform(&s, 0, 0.5) * R, -ang, tgt);
             for (int k = 0; k < 3; k++)

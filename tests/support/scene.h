@@ -13,7 +13,7 @@
 #include "gen.h"
 #include "guarded.h"
 
-/* Uniform in [lo, hi), drawn with cylgen_splitmix64 (gen.h): the same sequence on every
+/* Uniform in [lo, hi), drawn with rng_splitmix64 (rng.h): the same sequence on every
  * platform. */
 double scene_uniform(uint64_t *state, double lo, double hi);
 
