@@ -13,7 +13,8 @@
 #            and a short deterministic libFuzzer session as tests)
 #   gcc-release    gcc, release (-O3, what the README's install line builds),
 #                  warnings are errors, no bench
-#   clang-release  clang, release, warnings are errors, no bench
+#   clang-release  clang, release, warnings are errors, no bench; every answer of
+#                  outhash bit for bit the gcc-release build's when that ran first
 #   estimates  gcc, release, once for each stand-in for the hardware's reciprocal and
 #            reciprocal-square-root estimates (-Destimate=exact, high, low, table:
 #            what another vendor's CPU may give; src/simd/estimate.h): CYLRAY_FAST's
@@ -279,8 +280,24 @@ config_release() { # config_release <name> <cc> <cxx>
     san_env "" # clang's fuzz target, if built, carries ASan and UBSan
     if CC=$2 CXX=$3 setup_build "$dir" --buildtype=release --werror -Dbench=false; then
         run_tests "$1" "$dir" "$t0"
+        [ "$1" = gcc-release ] && GCC_RELEASE_BUILT=1
+        same_bits "$1" "$dir"
     else
         build_failed "$1" "$dir" "$t0"
+    fi
+}
+# The library's answers do not depend on the compiler: every path, width, flag set
+# (CYLRAY_FAST included) and leaf hashed by outhash, bit for bit as the gcc release
+# build's, where that configuration was built earlier in the same run.
+GCC_RELEASE_BUILT=0
+same_bits() { # same_bits <config> <dir>
+    local ref=build/test-gcc-release/tests/check/outhash
+    [ "$1" != gcc-release ] && [ "$GCC_RELEASE_BUILT" = 1 ] && [ -x "$2/tests/check/outhash" ] ||
+        return 0
+    if [ "$("$2/tests/check/outhash")" = "$("$ref")" ]; then
+        note "$1" 1 0 0 "outhash: the gcc release build's answers bit for bit"
+    else
+        note "$1" 0 1 0 "FAILED: outhash differs from the gcc release build's"
     fi
 }
 config_gcc-release() { config_release gcc-release gcc g++; }

@@ -163,6 +163,9 @@ static void stream(const cylray_kernels *k, const cylray_prepared *p, const soa 
     float tmax[MAXN + 1], t[MAXN + 1], nx[MAXN + 1], ny[MAXN + 1], nz[MAXN + 1];
     int32_t part[MAXN + 1];
     uint8_t occ[MAXN + 1];
+    /* every byte hashed is defined: the lanes past n + 1 too, which a stream must not
+     * touch */
+    memset(tmax, 0x5a, sizeof tmax);
     memcpy(tmax, s->tmax, sizeof tmax[0] * n);
     tmax[n] = 7.0f;
     memset(t, 0x5a, sizeof t), memset(nx, 0x5a, sizeof nx), memset(ny, 0x5a, sizeof ny);
