@@ -50,8 +50,8 @@ if [ -f "$build/build.ninja" ]; then
 else
     meson setup "$build" "$root" -Dbuildtype=release -Dtests=false -Dbench=true >/dev/null
 fi
-ninja -C "$build" bench/cylicount >/dev/null
-exe=$build/bench/cylicount
+ninja -C "$build" bench/tools/cylicount >/dev/null
+exe=$build/bench/tools/cylicount
 
 pin=()
 [ -n "${CYLICOUNT_CPU:-}" ] && pin=(taskset -c "$CYLICOUNT_CPU")

@@ -69,18 +69,18 @@ if [ -f "$build/build.ninja" ]; then
 else
     meson setup "$build" "$root" -Dbuildtype=release -Dtests=false -Dbench=true >/dev/null
 fi
-ninja -C "$build" bench/cylicount >/dev/null
+ninja -C "$build" bench/tools/cylicount >/dev/null
 lib=$(readlink -f "$build/src/libcylray.so")
 prefix=""
 if [ "$driver" = textbook ]; then
-    lib=$(readlink -f "$build/bench/cylicount")
+    lib=$(readlink -f "$build/bench/tools/cylicount")
     prefix=tb_
 fi
 
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 CYLRAY_STORES=$stores valgrind --tool=callgrind --dump-instr=yes --compress-pos=no \
-    --compress-strings=no --callgrind-out-file="$tmp/cg" "$build/bench/cylicount" \
+    --compress-strings=no --callgrind-out-file="$tmp/cg" "$build/bench/tools/cylicount" \
     --isa="$isa" --driver="$driver" --flags="$flags" --scenario="$scenario" --passes=16 \
     >"$tmp/log" 2>&1 || { cat "$tmp/log" >&2; exit 1; }
 

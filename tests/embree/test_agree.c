@@ -9,7 +9,6 @@
  * origins never hitting their own cylinder again. */
 #include "geom.h"
 #include "judge.h"
-#include "rays.h"
 #include "trace.h"
 
 #include <math.h>
@@ -328,11 +327,11 @@ static void rays_for(eb_rays *r, float *tfar0, uint8_t *valid0)
 {
     eb_camera_rays(r, S, W, H);
     r->incoherent = 0;
-    rng gen = {99};
+    eb_rng gen = {99};
     for (size_t i = 0; i < r->n; i++) {
         r->valid[i] = i % 7 != 3;
         if (i % 3 == 0)
-            r->tfar[i] = (float)rng_range(&gen, 5, 40);
+            r->tfar[i] = (float)eb_range(&gen, 5, 40);
         tfar0[i] = r->tfar[i];
         valid0[i] = r->valid[i];
     }

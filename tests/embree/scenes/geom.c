@@ -3,7 +3,7 @@
  * adapter in its three arrangements. */
 #include "geom.h"
 
-#include "clock.h"
+#include "clocks.h"
 
 #include <math.h>
 #include <string.h>
@@ -94,7 +94,7 @@ int eb_geom_build(eb_geom *g, RTCDevice dev, const eb_scene *s, eb_variant v,
     memset(g, 0, sizeof *g);
     g->variant = v;
     g->src = s;
-    double t0 = clk_ns();
+    double t0 = eb_wall_s();
     RTCGeometry geo;
     if (v == EB_NATIVE) {
         geo = native_geometry(dev, s);
@@ -115,7 +115,7 @@ int eb_geom_build(eb_geom *g, RTCDevice dev, const eb_scene *s, eb_variant v,
     if (v == EB_NATIVE)
         rtcReleaseGeometry(geo);
     rtcCommitScene(g->scene);
-    g->build_s = (clk_ns() - t0) * 1e-9;
+    g->build_s = eb_wall_s() - t0;
     return rtcGetDeviceError(dev) == RTC_ERROR_NONE ? 0 : -1;
 }
 

@@ -15,7 +15,7 @@
  * so that a branch on the mask mispredicts as it would on incoherent rays). Reported:
  * TSC ticks and nanoseconds per vector, the median of --reps runs, and the machine.
  *
- *     build/rel/bench/cylstores [--reps=N]
+ *     build/rel/bench/stores/cylstores [--reps=N]
  *
  * It measures one core's store path in isolation; whether a policy pays inside the
  * kernel, where the stores overlap a long dependency chain, is what the A/B runs of

@@ -35,6 +35,15 @@ const char *eb_scene_name(int which);
 /* Returns the index of a scene name, or -1. */
 int eb_scene_find(const char *name);
 
+/* The scenes' draws, and the bounce directions' and the tests' too: splitmix64 from the
+ * exact reference's generators (cylgen_splitmix64), so that a seed gives the same scene
+ * on every platform. */
+typedef struct eb_rng {
+    uint64_t s;
+} eb_rng;
+double eb_unit(eb_rng *g); /* uniform in [0, 1) */
+double eb_range(eb_rng *g, double a, double b);
+
 /* Builds scene `which`, the same for a given seed. 0 on success. */
 int eb_scene_make(eb_scene *s, int which, uint64_t seed);
 /* A scene of n random cylinders of every cap kind, for the agreement test. */

@@ -3,6 +3,8 @@
  * hit/miss mixes, far origins and clusters, all in double and rounded once to float. */
 #include "rays.h"
 
+#include "gen.h"
+
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -52,13 +54,11 @@ void raysoa_get(const raysoa *r, size_t i, float o[3], float d[3])
     d[0] = r->dx[i], d[1] = r->dy[i], d[2] = r->dz[i];
 }
 
-/* splitmix64: small, fast, and the same sequence on every platform. */
+/* splitmix64 from the exact reference's generators: small, fast, the same sequence on
+ * every platform, and the one the Embree scenes draw from too. */
 static uint64_t rng_next(rng *g)
 {
-    uint64_t z = (g->s += 0x9e3779b97f4a7c15ull);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return z ^ (z >> 31);
+    return cylgen_splitmix64(&g->s);
 }
 
 double rng_unit(rng *g)

@@ -1,19 +1,28 @@
 /* SPDX-License-Identifier: MIT */
 /* trace.c - ray storage, the camera, and the threaded tile loop around Embree's
  * rtcIntersect and rtcOccluded calls. */
-#define _POSIX_C_SOURCE 200809L /* clock_gettime(CLOCK_PROCESS_CPUTIME_ID) */
 #include "trace.h"
 
-#include "clock.h"
+#include "clocks.h"
 #include "geom.h"
-#include "rays.h"
 
 #include <float.h>
 #include <math.h>
 #include <pthread.h>
 #include <stdatomic.h>
+#include <stdlib.h>
 #include <string.h>
-#include <time.h>
+
+/* 64-byte aligned and zeroed, so that each array starts on a cache line; NULL when out
+ * of memory. */
+static void *alloc64(size_t bytes)
+{
+    size_t b = (bytes + 63) & ~(size_t)63; /* aligned_alloc wants a multiple */
+    void *p = aligned_alloc(64, b ? b : 64);
+    if (p)
+        memset(p, 0, b ? b : 64);
+    return p;
+}
 
 int eb_rays_alloc(eb_rays *r, size_t n)
 {
@@ -23,9 +32,9 @@ int eb_rays_alloc(eb_rays *r, size_t n)
                      &r->tfar, &r->ngx, &r->ngy, &r->ngz, &r->u,  &r->v};
     int bad = 0;
     for (int k = 0; k < 13; k++)
-        bad |= !(*f[k] = bench_alloc(n * sizeof(float)));
-    bad |= !(r->prim = bench_alloc(n * sizeof *r->prim));
-    bad |= !(r->valid = bench_alloc(n));
+        bad |= !(*f[k] = alloc64(n * sizeof(float)));
+    bad |= !(r->prim = alloc64(n * sizeof *r->prim));
+    bad |= !(r->valid = alloc64(n));
     if (bad)
         eb_rays_free(r);
     return bad ? -1 : 0;
@@ -36,7 +45,7 @@ void eb_rays_free(eb_rays *r)
     void *p[15] = {r->ox,  r->oy,  r->oz,  r->dx, r->dy, r->dz,   r->tnear, r->tfar,
                    r->ngx, r->ngy, r->ngz, r->u,  r->v,  r->prim, r->valid};
     for (int k = 0; k < 15; k++)
-        bench_free(p[k]);
+        free(p[k]);
     memset(r, 0, sizeof *r);
 }
 
@@ -226,13 +235,6 @@ static void *worker(void *arg)
     }
 }
 
-static double process_cpu_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 double eb_trace(RTCScene scene, eb_rays *r, int packet, int threads, int occluded,
                 double *cpu_s)
 {
@@ -250,7 +252,7 @@ double eb_trace_filtered(RTCScene scene, eb_rays *r, int packet, int threads, in
         threads = 1;
     if (threads > MAXT)
         threads = MAXT;
-    double t0 = clk_ns(), c0 = process_cpu_s();
+    double t0 = eb_wall_s(), c0 = eb_cpu_s();
     int started = 0;
     for (int k = 1; k < threads; k++)
         if (pthread_create(&th[started], NULL, worker, &jb) == 0)
@@ -259,8 +261,8 @@ double eb_trace_filtered(RTCScene scene, eb_rays *r, int packet, int threads, in
     for (int k = 0; k < started; k++)
         pthread_join(th[k], NULL);
     if (cpu_s)
-        *cpu_s = process_cpu_s() - c0;
-    return (clk_ns() - t0) * 1e-9;
+        *cpu_s = eb_cpu_s() - c0;
+    return eb_wall_s() - t0;
 }
 
 /* ---- secondary rays ------------------------------------------------------------ */
@@ -280,9 +282,9 @@ static float maxabs3(const float p[3])
 }
 
 /* A cosine-distributed direction around n. */
-static void cosine_dir(rng *g, const float n[3], float w[3])
+static void cosine_dir(eb_rng *g, const float n[3], float w[3])
 {
-    double u1 = rng_unit(g), u2 = rng_unit(g), r = sqrt(u1), ph = 2 * 3.14159265358979 * u2;
+    double u1 = eb_unit(g), u2 = eb_unit(g), r = sqrt(u1), ph = 2 * 3.14159265358979 * u2;
     double a[3] = {fabs(n[0]) < 0.6 ? 1 : 0, fabs(n[0]) < 0.6 ? 0 : 1, 0}, b[3], c[3];
     b[0] = n[1] * a[2] - n[2] * a[1], b[1] = n[2] * a[0] - n[0] * a[2];
     b[2] = n[0] * a[1] - n[1] * a[0];
@@ -355,7 +357,7 @@ void eb_spawn(const eb_geom *g, const eb_rays *prim, eb_rays *shadow, eb_rays *b
             set_ray(shadow, i, org, l, tn, sqrtf(dl));
         }
 
-        rng gen = {0x5eed0000ull + i};
+        eb_rng gen = {0x5eed0000ull + i};
         float w[3];
         cosine_dir(&gen, nf, w);
         origin_for(g, prim, i, p, w, org, &tn);

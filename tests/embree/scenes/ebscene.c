@@ -9,12 +9,22 @@
  * one exact reference judges both. */
 #include "ebscene.h"
 
-#include "rays.h"
+#include "gen.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+double eb_unit(eb_rng *g)
+{
+    return (double)(cylgen_splitmix64(&g->s) >> 11) * 0x1p-53;
+}
+
+double eb_range(eb_rng *g, double a, double b)
+{
+    return a + (b - a) * eb_unit(g);
+}
 
 static const char *const names[EB_NSCENES] = {"molecule", "pipes", "far-rods", "lattice"};
 
@@ -100,7 +110,7 @@ static void set3(float o[3], double x, double y, double z)
 
 /* Ball-and-stick without the balls: atoms on a jittered cubic lattice, a bond to each
  * of the three forward neighbours with probability 0.92 (about 105,000 bonds). */
-static void molecule(builder *b, rng *g)
+static void molecule(builder *b, eb_rng *g)
 {
     enum { N = 34 };
     eb_scene *s = b->s;
@@ -112,7 +122,7 @@ static void molecule(builder *b, rng *g)
             for (int k = 0; k < N; k++) {
                 double p[3] = {i, j, k};
                 for (int c = 0; c < 3; c++)
-                    atom[i][j][k][c] = p[c] + rng_range(g, -0.15, 0.15);
+                    atom[i][j][k][c] = p[c] + eb_range(g, -0.15, 0.15);
             }
     for (int i = 0; i < N; i++)
         for (int j = 0; j < N; j++)
@@ -120,7 +130,7 @@ static void molecule(builder *b, rng *g)
                 for (int a = 0; a < 3; a++) {
                     int n[3] = {i, j, k};
                     n[a]++;
-                    if (n[a] >= N || rng_unit(g) > 0.92)
+                    if (n[a] >= N || eb_unit(g) > 0.92)
                         continue;
                     double pts[2][3];
                     memcpy(pts[0], atom[i][j][k], sizeof pts[0]);
@@ -137,7 +147,7 @@ static void molecule(builder *b, rng *g)
 /* A plant's pipe runs: Manhattan polylines on an integer grid in a 60^3 box, 3-11
  * straight pieces of length 2-7 each, never turning back on themselves (two runs may
  * share a stretch of grid line: coincident surfaces, where either answer is right). */
-static void pipes(builder *b, rng *g)
+static void pipes(builder *b, eb_rng *g)
 {
     eb_scene *s = b->s;
     b->quantum = 1;
@@ -145,16 +155,16 @@ static void pipes(builder *b, rng *g)
     for (int p = 0; p < 500; p++) {
         double pts[12][3];
         for (int c = 0; c < 3; c++)
-            pts[0][c] = floor(rng_range(g, 0, 60));
-        int n = 4 + (int)(rng_unit(g) * 8), last = -1;
+            pts[0][c] = floor(eb_range(g, 0, 60));
+        int n = 4 + (int)(eb_unit(g) * 8), last = -1;
         for (int i = 1; i < n; i++) {
             int a;
             do
-                a = (int)(rng_unit(g) * 3);
+                a = (int)(eb_unit(g) * 3);
             while (a == last);
             last = a;
             memcpy(pts[i], pts[i - 1], sizeof pts[i]);
-            double step = (rng_unit(g) < 0.5 ? -1 : 1) * floor(rng_range(g, 2, 8));
+            double step = (eb_unit(g) < 0.5 ? -1 : 1) * floor(eb_range(g, 2, 8));
             if (pts[i][a] + step < 0 || pts[i][a] + step > 60)
                 step = -step; /* stay in the plant's box, away from the camera */
             pts[i][a] += step;
@@ -175,20 +185,20 @@ static const int quads[][4] = {{0, 0, 1, 1},         {0, 0, 1, 1},      {0, 200,
                                {0, 120, 3599, 3601}, {0, 60, 899, 901}, {0, 36, 323, 325}};
 
 /* A direction from the table, its coordinates permuted and signed; *len = m. */
-static void int_direction(rng *g, double out[3], double *len)
+static void int_direction(eb_rng *g, double out[3], double *len)
 {
-    const int *q = quads[(int)(rng_unit(g) * (sizeof quads / sizeof quads[0]))];
-    int perm = (int)(rng_unit(g) * 6);
+    const int *q = quads[(int)(eb_unit(g) * (sizeof quads / sizeof quads[0]))];
+    int perm = (int)(eb_unit(g) * 6);
     static const int P[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2},
                                 {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
     for (int c = 0; c < 3; c++)
-        out[c] = q[P[perm][c]] * (rng_unit(g) < 0.5 ? -1 : 1);
+        out[c] = q[P[perm][c]] * (eb_unit(g) < 0.5 ? -1 : 1);
     *len = q[3];
 }
 
 /* Long thin rods (length 1e4 radii) around a point 48,000 units from the world origin,
  * the camera among them: every coordinate is large, every radius small. */
-static void far_rods(builder *b, rng *g)
+static void far_rods(builder *b, eb_rng *g)
 {
     eb_scene *s = b->s;
     b->quantum = 0x1p-6;
@@ -197,7 +207,7 @@ static void far_rods(builder *b, rng *g)
     for (int r = 0; r < 1000; r++) {
         double c[3], u[3], m;
         for (int k = 0; k < 3; k++)
-            c[k] = nearbyint((C[k] + rng_range(g, -150, 150)) * 64) / 64;
+            c[k] = nearbyint((C[k] + eb_range(g, -150, 150)) * 64) / 64;
         /* half length about 1250 = 5e3 radii, exact: a multiple of 1/16 per unit of m */
         int_direction(g, u, &m);
         double sc = nearbyint(1250 / m * 16) / 16;
@@ -268,7 +278,7 @@ int eb_scene_make(eb_scene *s, int which, uint64_t seed)
     memset(s, 0, sizeof *s);
     snprintf(s->name, sizeof s->name, "%s", eb_scene_name(which));
     builder b = {.s = s};
-    rng g = {seed * 0x2545f4914f6cdd1dull + (uint64_t)which};
+    eb_rng g = {seed * 0x2545f4914f6cdd1dull + (uint64_t)which};
     switch (which) {
     case EB_MOLECULE:
         molecule(&b, &g);
@@ -297,19 +307,19 @@ int eb_scene_small(eb_scene *s, size_t n, uint64_t seed)
     memset(s, 0, sizeof *s);
     snprintf(s->name, sizeof s->name, "small");
     builder b = {.s = s, .quantum = 0x1p-10};
-    rng g = {seed};
+    eb_rng g = {seed};
     s->radius = 0.35f;
     static const unsigned kinds[4] = {0, CYLRAY_CAPPED_LO, CYLRAY_CAPPED_HI, CYLRAY_CAPPED};
     for (size_t i = 0; i < n; i++) {
         /* every fifth a long one, which gets split boxes */
         double p[3], q[3], reach = i % 5 == 4 ? 12 : 3;
         for (int k = 0; k < 3; k++) {
-            p[k] = rng_range(&g, -8, 8);
-            q[k] = p[k] + rng_range(&g, -reach, reach);
+            p[k] = eb_range(&g, -8, 8);
+            q[k] = p[k] + eb_range(&g, -reach, reach);
         }
         uint32_t v = add_vertex(&b, p);
         add_vertex(&b, q);
-        add_segment(&b, v, kinds[(int)(rng_unit(&g) * 4)]);
+        add_segment(&b, v, kinds[(int)(eb_unit(&g) * 4)]);
     }
     set3(s->eye, 0, 3, 24);
     set3(s->look, 0, 0, 0);
