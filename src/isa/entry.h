@@ -137,7 +137,7 @@ KLEAF_ENTRY_(16)
         KI_(leaf_occluded4),                                                                   \
         KI_(leaf_occluded8),                                                                   \
         KI_(leaf_occluded16),                                                                  \
-        KSPAWN_SLOTS, /* spawn/entry.h */                                                      \
+        KSPAWN_SLOTS, /* spawn/entries.h */                                                    \
     };
 KSTORES(KTABLE_)
 

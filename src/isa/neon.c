@@ -32,5 +32,5 @@
 #define SPW8 neon_d2
 #define SPW16 neon_d2
 #define SPWS neon_d2
-#include "spawn/entry.h"
+#include "spawn/entries.h"
 #include "isa/entry.h"

@@ -39,5 +39,5 @@
 #define SPW8 SPWD
 #define SPW16 SPWD
 #define SPWS SPWD
-#include "spawn/entry.h"
+#include "spawn/entries.h"
 #include "isa/entry.h"

@@ -43,7 +43,7 @@ typedef size_t (*KFN(stream_fn))(const cylray_prepared *, const cylray_rays *,
 typedef int (*KFN(leaf_fn))(const float *, size_t, cylray_ray1 *, cylray_hit1 *, unsigned);
 
 #include "kmath.h"
-#include "lanes.h"
+#include "state.h"
 #include "front.h"
 #include "solve.h"
 #include "ends.h"

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* spawn.c - secondary rays: the hit point moved onto the surface with a bound on its
+/* spawn/one_ray.c - secondary rays: the hit point moved onto the surface with a bound on its
  * distance to it, and the origin from which a new ray leaves that surface; the scalar
  * entry points, and the batched ones dispatched to the path in use.
  *

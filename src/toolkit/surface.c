@@ -1,5 +1,6 @@
 /* SPDX-License-Identifier: MIT */
-/* surface.c - surface coordinates (u, v) and their derivatives at a point of a cylinder. */
+/* toolkit/surface.c - surface coordinates (u, v) and their derivatives at a point of a
+ * cylinder. */
 #include "cylray_internal.h"
 #include "internal/dd.h"
 

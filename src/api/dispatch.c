@@ -1,12 +1,12 @@
 /* SPDX-License-Identifier: MIT */
-/* dispatch.c - choosing a path once, and the plain entry points that use it.
+/* api/dispatch.c - choosing a path once, and the plain entry points that use it.
  *
  * The choice is made on the first call and kept in an atomic pointer: threads racing
  * on that first call compute the same answer, so the race is harmless. */
 #include "cylray_internal.h"
 
 #if defined(__AVX__) || defined(__AVX2__) || defined(__AVX512F__)
-#error "dispatch.c runs before the CPU is known: compile it without AVX"
+#error "api/dispatch.c runs before the CPU is known: compile it without AVX"
 #endif
 
 #include <stdatomic.h>

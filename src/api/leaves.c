@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* leaf.c - building leaves of cylinders, and cylinders from their end points. */
+/* api/leaves.c - building leaves of cylinders, and cylinders from their end points. */
 #include "cylray_internal.h"
 #include "internal/dd.h"
 
