@@ -56,4 +56,5 @@
 /* a table per store policy (internal/variants.h; api/dispatch.c picks one) */
 #define KSTORES(X)                                                                             \
     X(, CYLRAY_STORE_MASKED) X(_blend, CYLRAY_STORE_BLEND) X(_lanes, CYLRAY_STORE_LANES)
-#include "isa/entry.h"
+#include "kernel/entries.h"
+#include "isa/table.h"

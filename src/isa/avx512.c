@@ -71,4 +71,5 @@
 #define SPW16 avx512_d8
 #define SPWS avx512_d8
 #include "spawn/entries.h"
-#include "isa/entry.h"
+#include "kernel/entries.h"
+#include "isa/table.h"

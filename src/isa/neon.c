@@ -33,4 +33,5 @@
 #define SPW16 neon_d2
 #define SPWS neon_d2
 #include "spawn/entries.h"
-#include "isa/entry.h"
+#include "kernel/entries.h"
+#include "isa/table.h"

@@ -40,4 +40,5 @@
 #define SPW16 SPWD
 #define SPWS SPWD
 #include "spawn/entries.h"
-#include "isa/entry.h"
+#include "kernel/entries.h"
+#include "isa/table.h"

@@ -42,4 +42,5 @@
 #include "spawn/entries.h"
 /* a table per store policy (internal/variants.h; api/dispatch.c picks one) */
 #define KSTORES(X) X(, CYLRAY_STORE_MASKED) X(_blend, CYLRAY_STORE_BLEND)
-#include "isa/entry.h"
+#include "kernel/entries.h"
+#include "isa/table.h"

@@ -15,7 +15,8 @@
  *
  * The files below read in the order a vector flows: the margins and the flags (shared
  * by every instantiation), the math, the lane state, the stages from the ray to the
- * store, the block that runs them, the drivers and the tables.
+ * store, the block that runs them, the packet, stream and leaf drivers, the drivers
+ * with the flags read at run time, and the tables.
  *
  * The math is docs/design.md section 2. Coordinates are cylinder-relative: w = o - c is
  * formed exactly as a two-term sum, then the origin is moved along the ray to its
@@ -49,8 +50,10 @@ typedef int (*KFN(leaf_fn))(const float *, size_t, cylray_ray1 *, cylray_hit1 *,
 #include "ends.h"
 #include "store.h"
 #include "block.h"
-#include "drivers.h"
+#include "packet.h"
 #include "stream.h"
+#include "leaf.h"
+#include "runtime.h"
 #include "tables.h"
 
 #undef KGROUP
