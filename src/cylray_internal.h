@@ -33,6 +33,10 @@ int cylray_cpu_has_(cylray_isa isa);
  * are microcode (AMD, Hygon), else MASKED. */
 unsigned cylray_cpu_store_policy_(void);
 
+/* Whether the toolkit's surface coordinates take their FMA instance, as the path
+ * chosen does (api/dispatch.c). */
+int cylray_surface_fma_(void);
+
 /* Whether cylray_prepare takes the cylinder (api/prepare.c): what it checks before it
  * derives anything, for cylray_cylinder_from_endpoints, which refuses what it refuses. */
 int cylray_cylinder_ok_(const cylray_cylinder *in);
