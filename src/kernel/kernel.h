@@ -13,8 +13,8 @@
  * KFN(occ1_table) for packets of one vector, KFN(isect_table) and KFN(occ_table) for
  * packets of several, KFN(isect_stream_table) and KFN(occ_stream_table); KFN(vw) = VW.
  *
- * The files below read in the order a vector flows: the margins and the flags (shared
- * by every instantiation), the math, the lane state, the stages from the ray to the
+ * The files below read in the order a vector flows: the margins and where a vector's
+ * lanes come from (shared by every instantiation), the math, the lane state, the stages from the ray to the
  * store, the block that runs them, the packet, stream and leaf drivers, the drivers
  * with the flags read at run time, and the tables.
  *
@@ -28,7 +28,7 @@
  */
 
 #include "margins.h"
-#include "flags.h"
+#include "io.h"
 
 #ifndef KPAIRS
 #define KPAIRS(F) 0

@@ -2,18 +2,6 @@
 /* kernel/runtime.h - the drivers with the flags read at run time: the generic
  * variants' way in, and the specialisations that take them. */
 
-/* The drivers for what the specialisations (kernel/tables.h) leave out: a cylinder whose
- * radius is far from 1 or that has one disc only (variant >= CYLRAY_VARIANT_GENERIC).
- * The flags select the kernel's branches at run time. */
-static unsigned KFN(generic_fl)(const cylray_prepared *P, unsigned flags, int occ)
-{
-    return P->kind << CYLRAY_KF_KIND_SHIFT | (occ ? CYLRAY_KF_OCCLUDED : 0u) |
-           (flags & ((occ ? 0u : CYLRAY_NORMAL) | CYLRAY_REFINE | CYLRAY_FAST)) |
-           (P->kind == CYLRAY_KIND_CAPPED && P->caps != CYLRAY_CAPPED ? CYLRAY_KF_ONE_END
-                                                                      : 0u) |
-           CYLRAY_KF_SCALED;
-}
-
 /* One instance each of the drivers with the flags read at run time. */
 CYLRAY_MAYBE_UNUSED CYLRAY_OUTLINE size_t KFN(stream_any)(const cylray_prepared *P,
                                                           const cylray_rays *R,
@@ -92,8 +80,10 @@ static uint32_t KFN(packet_by_stream)(const cylray_prepared *P, float *ray, floa
 }
 #endif
 
-/* The entry points' way to the generic drivers: cold, so that their hot path to the
- * specialised kernels stays free of the call's register saves. */
+/* The entry points' way to the generic drivers, for what the specialisations
+ * (kernel/tables.h) leave out: a cylinder whose radius is far from 1 or that has one
+ * disc only (variant >= CYLRAY_VARIANT_GENERIC). Cold, so that the entry points' hot
+ * path to the specialised kernels stays free of the call's register saves. */
 CYLRAY_MAYBE_UNUSED CYLRAY_NOINLINE uint32_t KFN(packet_generic)(const cylray_prepared *P,
                                                                  float *ray, float *hit,
                                                                  size_t n, uint32_t active,
@@ -101,10 +91,10 @@ CYLRAY_MAYBE_UNUSED CYLRAY_NOINLINE uint32_t KFN(packet_generic)(const cylray_pr
 {
 #if VW == 1 /* KFN(by_stream_) above */
     return KFN(by_stream_)(P, ray, hit, n, active, flags & CYLRAY_KF_RUNTIME, NULL,
-                           KFN(generic_fl)(P, flags, hit == NULL));
+                           cylray_generic_kf_(P, flags, hit == NULL));
 #else
     return KFN(packet_any)(P, ray, hit, n, active, flags & CYLRAY_KF_RUNTIME,
-                           KFN(generic_fl)(P, flags, hit == NULL));
+                           cylray_generic_kf_(P, flags, hit == NULL));
 #endif
 }
 
@@ -115,5 +105,5 @@ CYLRAY_MAYBE_UNUSED CYLRAY_NOINLINE size_t KFN(stream_generic)(const cylray_prep
                                                                unsigned flags)
 {
     return KFN(stream_any)(P, R, H, occluded, n, flags & CYLRAY_KF_RUNTIME,
-                           KFN(generic_fl)(P, flags, occluded != NULL));
+                           cylray_generic_kf_(P, flags, occluded != NULL));
 }

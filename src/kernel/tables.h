@@ -8,15 +8,12 @@
  * CYLRAY_REFINE, and the occluded ones likewise. FAST and REFINE together (an odd
  * pair: one trades accuracy away, the other buys it) take the drivers that read their
  * flags at run time, as the rare cylinders do; so do face-forward and culling in every
- * kernel (a select each). b is cylray_spec_'s encoding (internal/variants.h); the tables
- * are indexed by cylray_isect_index_ / cylray_occ_index_. Half the specialisations of
+ * kernel (a select each). kind is the variant, b cylray_spec_'s encoding (both decoded
+ * in internal/variants.h); the tables are indexed by cylray_isect_index_ /
+ * cylray_occ_index_. Half the specialisations of
  * every combination, in build time and size, for the same speed where it counts. */
-#define KSPECFL_(b)                                                                            \
-    (((b)&1 ? CYLRAY_NORMAL : 0u) | ((b)&2 ? CYLRAY_FAST : 0u) | ((b)&4 ? CYLRAY_REFINE : 0u))
-#define KFL_(kind, b, extra)                                                                   \
-    (((kind) % 3u) << CYLRAY_KF_KIND_SHIFT | ((kind) >= 3 ? CYLRAY_KF_ALIGNED : 0u) |          \
-     KSPECFL_(b) | (extra))
-#define KLFL_(b, extra) (CYLRAY_KIND_LEAF << CYLRAY_KF_KIND_SHIFT | KSPECFL_(b) | (extra))
+#define KFL_(kind, spec) (CYLRAY_VARIANT_KF_(kind) | (spec))
+#define KLFL_(spec) (CYLRAY_KIND_LEAF << CYLRAY_KF_KIND_SHIFT | (spec))
 /* The three drivers of one table slot; the calls are given, as they differ between the
  * specialised drivers and the run-time ones. */
 #define KSLOT_(kind, b, pk1_call, pk_body, st_call)                                            \
@@ -50,20 +47,20 @@
 #define KANY_(kind, b, fl)                                                                     \
     KSLOT_(kind, b, KFN(packet_any)(P, R, H, n, a, rt, fl),                                    \
            KPACKET_SEVERAL_(kind, b, fl, packet_any), KFN(stream_any)(P, R, H, o, n, rt, fl))
-#define KISECT_(kind, b) KSPEC_(kind, b, KFL_(kind, b, 0u))
-#define KOCC_(kind, b) KSPEC_(kind, o##b, KFL_(kind, (b) << 1, CYLRAY_KF_OCCLUDED))
-#define KISECTANY_(kind, b) KANY_(kind, b, KFL_(kind, b, 0u))
-#define KOCCANY_(kind, b) KANY_(kind, o##b, KFL_(kind, (b) << 1, CYLRAY_KF_OCCLUDED))
+#define KISECT_(kind, b) KSPEC_(kind, b, KFL_(kind, CYLRAY_SPEC_KF_(b)))
+#define KOCC_(kind, b) KSPEC_(kind, o##b, KFL_(kind, CYLRAY_OCC_SPEC_KF_(b)))
+#define KISECTANY_(kind, b) KANY_(kind, b, KFL_(kind, CYLRAY_SPEC_KF_(b)))
+#define KOCCANY_(kind, b) KANY_(kind, o##b, KFL_(kind, CYLRAY_OCC_SPEC_KF_(b)))
 #define KLEAFDRV_(name, drv, fl)                                                               \
     static int KFN(name)(const float *L, size_t lm, cylray_ray1 *r, cylray_hit1 *h,            \
                          unsigned rt)                                                          \
     {                                                                                          \
         return KFN(drv)(L, lm, r, h, rt, fl);                                                  \
     }
-#define KLEAF_(b) KLEAFDRV_(lf_##b, leaf, KLFL_(b, 0u))
-#define KLEAFOCC_(b) KLEAFDRV_(lo_##b, leaf, KLFL_((b) << 1, CYLRAY_KF_OCCLUDED))
-#define KLEAFANY_(b) KLEAFDRV_(lf_##b, leaf_any, KLFL_(b, 0u))
-#define KLEAFOCCANY_(b) KLEAFDRV_(lo_##b, leaf_any, KLFL_((b) << 1, CYLRAY_KF_OCCLUDED))
+#define KLEAF_(b) KLEAFDRV_(lf_##b, leaf, KLFL_(CYLRAY_SPEC_KF_(b)))
+#define KLEAFOCC_(b) KLEAFDRV_(lo_##b, leaf, KLFL_(CYLRAY_OCC_SPEC_KF_(b)))
+#define KLEAFANY_(b) KLEAFDRV_(lf_##b, leaf_any, KLFL_(CYLRAY_SPEC_KF_(b)))
+#define KLEAFOCCANY_(b) KLEAFDRV_(lo_##b, leaf_any, KLFL_(CYLRAY_OCC_SPEC_KF_(b)))
 #define K8_(X, k) X(k, 0) X(k, 1) X(k, 2) X(k, 3) X(k, 4) X(k, 5) X(k, 6) X(k, 7)
 #define K4_(X, k) X(k, 0) X(k, 1) X(k, 2) X(k, 3)
 #define KALL8_(X) K8_(X, 0) K8_(X, 1) K8_(X, 2) K8_(X, 3) K8_(X, 4) K8_(X, 5)
@@ -135,7 +132,6 @@ KTABLE_SIZE_(leaf_occ_table, CYLRAY_OCC_SPECS);
 #undef K4_
 #undef KALL8_
 #undef KALL4_
-#undef KSPECFL_
 #undef KREF_PK1_
 #undef KREF_PK_
 #undef KREF_ST_
