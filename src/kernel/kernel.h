@@ -14,9 +14,9 @@
  * packets of several, KFN(isect_stream_table) and KFN(occ_stream_table); KFN(vw) = VW.
  *
  * The files below read in the order a vector flows: the margins and where a vector's
- * lanes come from (shared by every instantiation), the math, the lane state, the stages from the ray to the
- * store, the block that runs them, the packet, stream and leaf drivers, the drivers
- * with the flags read at run time, and the tables.
+ * lanes come from (shared by every instantiation), the math, the lane state, the
+ * stages from the ray to the store, the block that runs them, the packet, stream and
+ * leaf drivers, the drivers with the flags read at run time, and the tables.
  *
  * The math is docs/design.md section 2. Coordinates are cylinder-relative: w = o - c is
  * formed exactly as a two-term sum, then the origin is moved along the ray to its
