@@ -26,14 +26,18 @@ extern const cylray_kernels cylray_kernels_avx2_lanes_;
 extern const cylray_kernels cylray_kernels_avx512_;
 extern const cylray_kernels cylray_kernels_neon_;
 
-/* CPU support, from cpu.c: nonzero when the CPU and the OS can run that ISA. */
+/* CPU support, from api/cpu.c: nonzero when the CPU and the OS can run that ISA. */
 int cylray_cpu_has_(cylray_isa isa);
 
-/* The store policy AVX's masked stores call for on this CPU (cpu.c): BLEND where they
+/* The store policy AVX's masked stores call for on this CPU (api/cpu.c): BLEND where they
  * are microcode (AMD, Hygon), else MASKED. */
 unsigned cylray_cpu_store_policy_(void);
 
-/* Whether cylray_prepare takes the cylinder (prepare.c): what it checks before it
+/* Whether the toolkit's surface coordinates take their FMA instance, as the path
+ * chosen does (api/dispatch.c). */
+int cylray_surface_fma_(void);
+
+/* Whether cylray_prepare takes the cylinder (api/prepare.c): what it checks before it
  * derives anything, for cylray_cylinder_from_endpoints, which refuses what it refuses. */
 int cylray_cylinder_ok_(const cylray_cylinder *in);
 

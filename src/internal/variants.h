@@ -1,10 +1,12 @@
 /* SPDX-License-Identifier: MIT */
-/* internal/variants.h - the kinds of cylinder, the kernel flags, and how they index
- * the kernel tables. */
+/* internal/variants.h - the kinds of cylinder, the kernel flags, the variant of a
+ * prepared cylinder and how it and the flags index the kernel tables: each encoded
+ * here and decoded here. */
 #ifndef CYLRAY_INTERNAL_VARIANTS_H
 #define CYLRAY_INTERNAL_VARIANTS_H
 
 #include "cylray.h"
+#include "compiler.h"
 
 #define CYLRAY_KIND_INFINITE 0u
 #define CYLRAY_KIND_OPEN 1u   /* finite, no end discs: a tube */
@@ -59,8 +61,23 @@ static inline int cylray_generic_(const cylray_prepared *p)
 {
     return p->variant >= CYLRAY_VARIANT_GENERIC;
 }
+/* The kernel flags of a specialised variant v (below CYLRAY_VARIANT_GENERIC): its kind
+ * and whether its axis is a coordinate axis; a constant expression, for the tables. */
+#define CYLRAY_VARIANT_KF_(v)                                                                  \
+    (((v) % CYLRAY_KIND_COUNT) << CYLRAY_KF_KIND_SHIFT |                                       \
+     ((v) >= CYLRAY_KIND_COUNT ? CYLRAY_KF_ALIGNED : 0u))
+/* The kernel flags of a generic variant, which the generic drivers read at run time:
+ * the kind, one disc or two, and the public flags that select the kernel's branches. */
+static inline unsigned cylray_generic_kf_(const cylray_prepared *P, unsigned flags, int occ)
+{
+    return P->kind << CYLRAY_KF_KIND_SHIFT | (occ ? CYLRAY_KF_OCCLUDED : 0u) |
+           (flags & ((occ ? 0u : CYLRAY_NORMAL) | CYLRAY_REFINE | CYLRAY_FAST)) |
+           (P->kind == CYLRAY_KIND_CAPPED && P->caps != CYLRAY_CAPPED ? CYLRAY_KF_ONE_END
+                                                                      : 0u) |
+           CYLRAY_KF_SCALED;
+}
 /* The one encoding of the specialised flags: bit 0 normals, bit 1 FAST, bit 2 REFINE
- * (the kernel template's KFL_ decodes it; cylray_occ_spec_ drops the normals): the
+ * (CYLRAY_SPEC_KF_ below decodes it; cylray_occ_spec_ drops the normals): the
  * tables have CYLRAY_SPECS entries per variant, CYLRAY_OCC_SPECS for occlusion. */
 #define CYLRAY_SPECS 8u
 #define CYLRAY_OCC_SPECS 4u
@@ -73,6 +90,11 @@ static inline unsigned cylray_occ_spec_(unsigned flags)
 {
     return cylray_spec_(flags) >> 1;
 }
+/* The flags a specialisation b stands for, b as cylray_spec_ encodes them, or as
+ * cylray_occ_spec_ does for occlusion; constant expressions, for the tables. */
+#define CYLRAY_SPEC_KF_(b)                                                                     \
+    (((b)&1 ? CYLRAY_NORMAL : 0u) | ((b)&2 ? CYLRAY_FAST : 0u) | ((b)&4 ? CYLRAY_REFINE : 0u))
+#define CYLRAY_OCC_SPEC_KF_(b) (CYLRAY_SPEC_KF_((b) << 1) | CYLRAY_KF_OCCLUDED)
 static inline unsigned cylray_isect_index_(unsigned variant, unsigned flags)
 {
     return variant * CYLRAY_SPECS + cylray_spec_(flags);
@@ -80,6 +102,41 @@ static inline unsigned cylray_isect_index_(unsigned variant, unsigned flags)
 static inline unsigned cylray_occ_index_(unsigned variant, unsigned flags)
 {
     return variant * CYLRAY_OCC_SPECS + cylray_occ_spec_(flags);
+}
+
+/* What an instantiation's flags decide. Every field but the run-time ones (cull, ff,
+ * stores) is a compile-time constant where a kernel is specialised, and its branches
+ * fold. scratch: the hits go to a leaf's own scratch, read back at the hit lanes only,
+ * so whole vectors may be stored there; stores: the store policy (CYLRAY_STORE_*). */
+typedef struct {
+    unsigned kind;
+    int leaf, capped, finite, one_end, aligned, scaled, occ, normal, cull, ff, refine, fast;
+    int scratch;
+    unsigned stores;
+} cylray_kflags_;
+
+/* The kernel flags decoded, FL the specialised ones and rt those read at run time. */
+CYLRAY_INLINE cylray_kflags_ cylray_kflags_of_(unsigned FL, unsigned rt)
+{
+    cylray_kflags_ F;
+    F.kind = (FL >> CYLRAY_KF_KIND_SHIFT) & 3u;
+    F.leaf = F.kind == CYLRAY_KIND_LEAF;
+    /* A leaf's lanes are cylinders of any kind: each runs the capped solid's logic with
+     * its own discs (an open tube has none, an infinite one an infinite slab). */
+    F.capped = F.kind == CYLRAY_KIND_CAPPED || F.leaf;
+    F.finite = F.kind != CYLRAY_KIND_INFINITE;
+    F.one_end = F.leaf || (FL & CYLRAY_KF_ONE_END) != 0;
+    F.aligned = (FL & CYLRAY_KF_ALIGNED) != 0;
+    F.scaled = (FL & CYLRAY_KF_SCALED) != 0;
+    F.occ = (FL & CYLRAY_KF_OCCLUDED) != 0;
+    F.normal = (FL & CYLRAY_NORMAL) && !F.occ;
+    F.cull = ((FL | rt) & CYLRAY_CULL_BACK) != 0;
+    F.ff = (rt & CYLRAY_FACE_FORWARD) != 0;
+    F.refine = (FL & CYLRAY_REFINE) != 0;
+    F.fast = (FL & CYLRAY_FAST) != 0;
+    F.scratch = F.leaf;
+    F.stores = (rt & CYLRAY_KF_STORE_MASK) >> CYLRAY_KF_STORE_SHIFT;
+    return F;
 }
 
 static inline int cylray_prepared_ok_(const cylray_prepared *p)

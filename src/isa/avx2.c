@@ -52,8 +52,9 @@
 #define SPW8 avx2_d4
 #define SPW16 avx2_d4
 #define SPWS avx2_d4
-#include "spawn/entry.h"
-/* a table per store policy (internal/variants.h; dispatch.c picks one) */
+#include "spawn/entries.h"
+/* a table per store policy (internal/variants.h; api/dispatch.c picks one) */
 #define KSTORES(X)                                                                             \
     X(, CYLRAY_STORE_MASKED) X(_blend, CYLRAY_STORE_BLEND) X(_lanes, CYLRAY_STORE_LANES)
-#include "isa/entry.h"
+#include "kernel/entries.h"
+#include "isa/table.h"

@@ -70,5 +70,6 @@
 #define SPW8 avx512_d8
 #define SPW16 avx512_d8
 #define SPWS avx512_d8
-#include "spawn/entry.h"
-#include "isa/entry.h"
+#include "spawn/entries.h"
+#include "kernel/entries.h"
+#include "isa/table.h"

@@ -32,5 +32,6 @@
 #define SPW8 neon_d2
 #define SPW16 neon_d2
 #define SPWS neon_d2
-#include "spawn/entry.h"
-#include "isa/entry.h"
+#include "spawn/entries.h"
+#include "kernel/entries.h"
+#include "isa/table.h"

@@ -39,5 +39,6 @@
 #define SPW8 SPWD
 #define SPW16 SPWD
 #define SPWS SPWD
-#include "spawn/entry.h"
-#include "isa/entry.h"
+#include "spawn/entries.h"
+#include "kernel/entries.h"
+#include "isa/table.h"

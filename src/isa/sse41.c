@@ -39,7 +39,8 @@
 #define SPW8 sse41_d2
 #define SPW16 sse41_d2
 #define SPWS sse41_d2
-#include "spawn/entry.h"
-/* a table per store policy (internal/variants.h; dispatch.c picks one) */
+#include "spawn/entries.h"
+/* a table per store policy (internal/variants.h; api/dispatch.c picks one) */
 #define KSTORES(X) X(, CYLRAY_STORE_MASKED) X(_blend, CYLRAY_STORE_BLEND)
-#include "isa/entry.h"
+#include "kernel/entries.h"
+#include "isa/table.h"

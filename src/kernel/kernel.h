@@ -13,9 +13,10 @@
  * KFN(occ1_table) for packets of one vector, KFN(isect_table) and KFN(occ_table) for
  * packets of several, KFN(isect_stream_table) and KFN(occ_stream_table); KFN(vw) = VW.
  *
- * The files below read in the order a vector flows: the margins and the flags (shared
- * by every instantiation), the math, the lane state, the stages from the ray to the
- * store, the block that runs them, the drivers and the tables.
+ * The files below read in the order a vector flows: the margins and where a vector's
+ * lanes come from (shared by every instantiation), the math, the lane state, the
+ * stages from the ray to the store, the block that runs them, the packet, stream and
+ * leaf drivers, the drivers with the flags read at run time, and the tables.
  *
  * The math is docs/design.md section 2. Coordinates are cylinder-relative: w = o - c is
  * formed exactly as a two-term sum, then the origin is moved along the ray to its
@@ -27,7 +28,7 @@
  */
 
 #include "margins.h"
-#include "flags.h"
+#include "io.h"
 
 #ifndef KPAIRS
 #define KPAIRS(F) 0
@@ -43,14 +44,16 @@ typedef size_t (*KFN(stream_fn))(const cylray_prepared *, const cylray_rays *,
 typedef int (*KFN(leaf_fn))(const float *, size_t, cylray_ray1 *, cylray_hit1 *, unsigned);
 
 #include "kmath.h"
-#include "lanes.h"
+#include "state.h"
 #include "front.h"
 #include "solve.h"
 #include "ends.h"
 #include "store.h"
 #include "block.h"
-#include "drivers.h"
+#include "packet.h"
 #include "stream.h"
+#include "leaf.h"
+#include "runtime.h"
 #include "tables.h"
 
 #undef KGROUP

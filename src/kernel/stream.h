@@ -1,5 +1,51 @@
 /* SPDX-License-Identifier: MIT */
-/* kernel/stream.h - the stream driver and the leaf driver. */
+/* kernel/stream.h - the stream driver and its tail. */
+
+/* The last lanes of a stream (fewer than a vector: all of a short stream) as one packet
+ * of VW lanes, copied in and out: nothing beyond the caller's arrays is read or
+ * written. `one` is the stream's own table slot's one-vector packet function, whose
+ * kernel is specialised as the stream's is; the streams with flags read at run time
+ * pass NULL and get the packet driver with those flags. The views are the stream's,
+ * renamed for an aligned cylinder; the packet function renames its packet itself, so
+ * the lanes go in and out in the caller's order. A short stream runs here only, so it
+ * is compiled for speed, not as a cold path (docs/performance.md). */
+CYLRAY_OUTLINE size_t KFN(stream_tail)(const cylray_prepared *P, const cylray_rays *R,
+                                       const cylray_hits *H, uint8_t *occluded, size_t n,
+                                       size_t i, unsigned rt, unsigned FL, KFN(packet_fn) one)
+{
+    const int occ = (FL & CYLRAY_KF_OCCLUDED) != 0;
+    const int normal = (FL & CYLRAY_NORMAL) && !occ;
+    const size_t rest = n - i;
+    size_t k[3]; /* the views' component j is the packet's k[j] (cylray_packet_rays_) */
+    cylray_axis_order_(P, (FL & CYLRAY_KF_ALIGNED) != 0, k);
+    CYLRAY_ALIGN(64) float ray[8 * VW] = {0};
+    CYLRAY_ALIGN(64) float hit[5 * VW];
+    const float *src[8] = {R->ox, R->oy, R->oz, R->dx, R->dy, R->dz, R->tmin, R->tmax};
+    const size_t field[8] = {k[0], k[1], k[2], 3 + k[0], 3 + k[1], 3 + k[2], 6, 7};
+    for (size_t f = 0; f < 8; f++)
+        for (size_t j = 0; j < rest; j++)
+            ray[field[f] * VW + j] = src[f][i + j];
+    const uint32_t bits = (uint32_t)((1u << rest) - 1u);
+    float *h = occ ? NULL : hit;
+    uint32_t m = one ? one(P, ray, h, VW, bits, rt) : KFN(packet1)(P, ray, h, bits, rt, FL);
+    const size_t count = CYLRAY_POPCOUNT(m);
+    for (; m; m &= m - 1) {
+        const size_t j = CYLRAY_CTZ(m);
+        if (occ) {
+            occluded[i + j] = 1;
+            continue;
+        }
+        H->t[i + j] = hit[j];
+        R->tmax[i + j] = ray[7 * VW + j];
+        memcpy(&H->part[i + j], &hit[4 * VW + j], sizeof H->part[0]);
+        if (normal) {
+            H->nx[i + j] = hit[(1 + k[0]) * VW + j];
+            H->ny[i + j] = hit[(1 + k[1]) * VW + j];
+            H->nz[i + j] = hit[(1 + k[2]) * VW + j];
+        }
+    }
+    return count;
+}
 
 /* A stream of any length: whole vectors in place, then the last lanes through
  * KFN(stream_tail) as a packet (`one`: see there). Where the ISA file sets KPAIRS (the
@@ -59,53 +105,3 @@ CYLRAY_INLINE size_t KFN(stream)(const cylray_prepared *P, const cylray_rays *R0
     return count;
 }
 #undef KGROUP_
-
-/* One ray against a leaf of lm cylinders (lm a multiple of VW, at most 16): a vector of
- * lanes at a time, each with tmax lowered to the closest hit so far, so that a farther
- * vector is rejected cheaply; the closest lane wins, the lowest of equal ones. */
-CYLRAY_INLINE int KFN(leaf)(const float *L, size_t lm, cylray_ray1 *ray, cylray_hit1 *hit,
-                            unsigned rt, const unsigned FL)
-{
-    const int occ = (FL & CYLRAY_KF_OCCLUDED) != 0;
-    const int normal = (FL & CYLRAY_NORMAL) && !occ;
-    const uint32_t *meta = (const uint32_t *)(const void *)(L + CYLRAY_LF_COUNT * lm);
-    const uint32_t used = meta[CYLRAY_LM_USED];
-    float tmax = ray->tmax;
-    const cylray_rays R = {&ray->o[0], &ray->o[1], &ray->o[2], &ray->d[0],
-                           &ray->d[1], &ray->d[2], &ray->tmin, &tmax};
-    float out[4][16];
-    int32_t part[16];
-    const cylray_hits H = {out[0], out[1], out[2], out[3], part};
-    int best = -1;
-    for (size_t b = 0; b < lm; b += VW) {
-        uint32_t a = (used >> b) & VFULL;
-        if (!a)
-            continue;
-        uint32_t m = KFN(vector)(NULL, &R, &H, b, a, rt, FL, L, lm, 0, NULL, NULL, 0).hit[0];
-        if (occ) {
-            if (m)
-                return 1;
-            continue;
-        }
-        for (; m; m &= m - 1) {
-            int j = (int)(b + CYLRAY_CTZ(m));
-            if (best < 0 || out[0][j] < out[0][best])
-                best = j;
-        }
-        if (best >= 0)
-            tmax = out[0][best];
-    }
-    if (best < 0)
-        return 0;
-    hit->t = out[0][best];
-    if (normal) {
-        hit->n[0] = out[1][best];
-        hit->n[1] = out[2][best];
-        hit->n[2] = out[3][best];
-    }
-    hit->part = part[best];
-    hit->id = meta[lm + best]; /* id_ follows meta_ */
-    hit->lane = (uint32_t)best;
-    ray->tmax = out[0][best];
-    return 1;
-}

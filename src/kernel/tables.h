@@ -1,122 +1,6 @@
 /* SPDX-License-Identifier: MIT */
-/* kernel/tables.h - the drivers with the flags read at run time, and the
- * specialisations stamped into the tables the entry points index. */
-
-/* The drivers for what the specialisations below leave out: a cylinder whose radius is
- * far from 1 or that has one disc only (variant >= CYLRAY_VARIANT_GENERIC). The flags
- * select the kernel's branches at run time. */
-static unsigned KFN(generic_fl)(const cylray_prepared *P, unsigned flags, int occ)
-{
-    return P->kind << CYLRAY_KF_KIND_SHIFT | (occ ? CYLRAY_KF_OCCLUDED : 0u) |
-           (flags & ((occ ? 0u : CYLRAY_NORMAL) | CYLRAY_REFINE | CYLRAY_FAST)) |
-           (P->kind == CYLRAY_KIND_CAPPED && P->caps != CYLRAY_CAPPED ? CYLRAY_KF_ONE_END
-                                                                      : 0u) |
-           CYLRAY_KF_SCALED;
-}
-
-/* One instance each of the drivers with the flags read at run time. */
-CYLRAY_MAYBE_UNUSED CYLRAY_OUTLINE size_t KFN(stream_any)(const cylray_prepared *P,
-                                                          const cylray_rays *R,
-                                                          const cylray_hits *H,
-                                                          uint8_t *occluded, size_t n,
-                                                          unsigned rt, unsigned FL)
-{
-    return KFN(stream)(P, R, H, occluded, n, rt, FL, NULL);
-}
-
-CYLRAY_MAYBE_UNUSED CYLRAY_OUTLINE uint32_t KFN(packet_any)(const cylray_prepared *P,
-                                                            float *ray, float *hit, size_t n,
-                                                            uint32_t active, unsigned rt,
-                                                            unsigned FL)
-{
-    return n == VW ? KFN(packet1)(P, ray, hit, active, rt, FL)
-                   : KFN(packet)(P, ray, hit, n, active, rt, FL);
-}
-
-CYLRAY_MAYBE_UNUSED CYLRAY_OUTLINE int KFN(leaf_any)(const float *L, size_t lm,
-                                                     cylray_ray1 *ray, cylray_hit1 *hit,
-                                                     unsigned rt, unsigned FL)
-{
-    return KFN(leaf)(L, lm, ray, hit, rt, FL);
-}
-
-#if VW == 1
-/* One lane a vector: a packet of several is a stream of its lanes, and runs through a
- * stream driver (its slot's, or the one with the flags read at run time), a run of
- * consecutive active lanes a call (a whole packet is one call). The lanes see the same
- * kernel with the same inputs, so the answers are the same; a second copy of every
- * kernel (about a third of this path's code) is not. The hit lanes are read back from
- * the parts, which the stream writes to a local copy (a hit's part is never 0), or
- * from the occluded bytes. */
-CYLRAY_INLINE uint32_t KFN(by_stream_)(const cylray_prepared *P, float *ray, float *hit,
-                                       size_t n, uint32_t active, unsigned rt,
-                                       KFN(stream_fn) st, unsigned FL)
-{
-    int32_t part[32] = {0};
-    uint8_t occ[32] = {0};
-    for (size_t b = 0; b < n;) {
-        if (!((active >> b) & 1u)) {
-            b++;
-            continue;
-        }
-        size_t e = b + 1;
-        while (e < n && ((active >> e) & 1u))
-            e++;
-        const cylray_rays R = {ray + b,         ray + n + b,     ray + 2 * n + b,
-                               ray + 3 * n + b, ray + 4 * n + b, ray + 5 * n + b,
-                               ray + 6 * n + b, ray + 7 * n + b};
-        const cylray_hits H = {hit ? hit + b : NULL, hit ? hit + n + b : NULL,
-                               hit ? hit + 2 * n + b : NULL, hit ? hit + 3 * n + b : NULL,
-                               part + b};
-        if (st)
-            st(P, &R, hit ? &H : NULL, hit ? NULL : occ + b, e - b, rt);
-        else
-            KFN(stream_any)(P, &R, hit ? &H : NULL, hit ? NULL : occ + b, e - b, rt, FL);
-        b = e;
-    }
-    int32_t *out = hit ? (int32_t *)(void *)(hit + 4 * n) : NULL;
-    uint32_t hits = 0;
-    for (size_t j = 0; j < n; j++) {
-        if (hit ? part[j] != 0 : occ[j] != 0) {
-            hits |= 1u << j;
-            if (hit)
-                out[j] = part[j];
-        }
-    }
-    return hits;
-}
-static uint32_t KFN(packet_by_stream)(const cylray_prepared *P, float *ray, float *hit,
-                                      size_t n, uint32_t active, unsigned rt, KFN(stream_fn) st)
-{
-    return KFN(by_stream_)(P, ray, hit, n, active, rt, st, 0u);
-}
-#endif
-
-/* The entry points' way to the generic drivers: cold, so that their hot path to the
- * specialised kernels stays free of the call's register saves. */
-CYLRAY_MAYBE_UNUSED CYLRAY_NOINLINE uint32_t KFN(packet_generic)(const cylray_prepared *P,
-                                                                 float *ray, float *hit,
-                                                                 size_t n, uint32_t active,
-                                                                 unsigned flags)
-{
-#if VW == 1 /* KFN(by_stream_) above */
-    return KFN(by_stream_)(P, ray, hit, n, active, flags & CYLRAY_KF_RUNTIME, NULL,
-                           KFN(generic_fl)(P, flags, hit == NULL));
-#else
-    return KFN(packet_any)(P, ray, hit, n, active, flags & CYLRAY_KF_RUNTIME,
-                           KFN(generic_fl)(P, flags, hit == NULL));
-#endif
-}
-
-CYLRAY_MAYBE_UNUSED CYLRAY_NOINLINE size_t KFN(stream_generic)(const cylray_prepared *P,
-                                                               const cylray_rays *R,
-                                                               const cylray_hits *H,
-                                                               uint8_t *occluded, size_t n,
-                                                               unsigned flags)
-{
-    return KFN(stream_any)(P, R, H, occluded, n, flags & CYLRAY_KF_RUNTIME,
-                           KFN(generic_fl)(P, flags, occluded != NULL));
-}
+/* kernel/tables.h - the specialisations stamped into the tables the entry points
+ * index. */
 
 /* The specialisations, where a tracer spends its time: for each kind of cylinder
  * (infinite, open, capped; the same three along a coordinate axis; and a leaf) the
@@ -124,15 +8,12 @@ CYLRAY_MAYBE_UNUSED CYLRAY_NOINLINE size_t KFN(stream_generic)(const cylray_prep
  * CYLRAY_REFINE, and the occluded ones likewise. FAST and REFINE together (an odd
  * pair: one trades accuracy away, the other buys it) take the drivers that read their
  * flags at run time, as the rare cylinders do; so do face-forward and culling in every
- * kernel (a select each). b is cylray_spec_'s encoding (internal/variants.h); the tables
- * are indexed by cylray_isect_index_ / cylray_occ_index_. Half the specialisations of
+ * kernel (a select each). kind is the variant, b cylray_spec_'s encoding (both decoded
+ * in internal/variants.h); the tables are indexed by cylray_isect_index_ /
+ * cylray_occ_index_. Half the specialisations of
  * every combination, in build time and size, for the same speed where it counts. */
-#define KSPECFL_(b)                                                                            \
-    (((b)&1 ? CYLRAY_NORMAL : 0u) | ((b)&2 ? CYLRAY_FAST : 0u) | ((b)&4 ? CYLRAY_REFINE : 0u))
-#define KFL_(kind, b, extra)                                                                   \
-    (((kind) % 3u) << CYLRAY_KF_KIND_SHIFT | ((kind) >= 3 ? CYLRAY_KF_ALIGNED : 0u) |          \
-     KSPECFL_(b) | (extra))
-#define KLFL_(b, extra) (CYLRAY_KIND_LEAF << CYLRAY_KF_KIND_SHIFT | KSPECFL_(b) | (extra))
+#define KFL_(kind, spec) (CYLRAY_VARIANT_KF_(kind) | (spec))
+#define KLFL_(spec) (CYLRAY_KIND_LEAF << CYLRAY_KF_KIND_SHIFT | (spec))
 /* The three drivers of one table slot; the calls are given, as they differ between the
  * specialised drivers and the run-time ones. */
 #define KSLOT_(kind, b, pk1_call, pk_body, st_call)                                            \
@@ -166,20 +47,20 @@ CYLRAY_MAYBE_UNUSED CYLRAY_NOINLINE size_t KFN(stream_generic)(const cylray_prep
 #define KANY_(kind, b, fl)                                                                     \
     KSLOT_(kind, b, KFN(packet_any)(P, R, H, n, a, rt, fl),                                    \
            KPACKET_SEVERAL_(kind, b, fl, packet_any), KFN(stream_any)(P, R, H, o, n, rt, fl))
-#define KISECT_(kind, b) KSPEC_(kind, b, KFL_(kind, b, 0u))
-#define KOCC_(kind, b) KSPEC_(kind, o##b, KFL_(kind, (b) << 1, CYLRAY_KF_OCCLUDED))
-#define KISECTANY_(kind, b) KANY_(kind, b, KFL_(kind, b, 0u))
-#define KOCCANY_(kind, b) KANY_(kind, o##b, KFL_(kind, (b) << 1, CYLRAY_KF_OCCLUDED))
+#define KISECT_(kind, b) KSPEC_(kind, b, KFL_(kind, CYLRAY_SPEC_KF_(b)))
+#define KOCC_(kind, b) KSPEC_(kind, o##b, KFL_(kind, CYLRAY_OCC_SPEC_KF_(b)))
+#define KISECTANY_(kind, b) KANY_(kind, b, KFL_(kind, CYLRAY_SPEC_KF_(b)))
+#define KOCCANY_(kind, b) KANY_(kind, o##b, KFL_(kind, CYLRAY_OCC_SPEC_KF_(b)))
 #define KLEAFDRV_(name, drv, fl)                                                               \
     static int KFN(name)(const float *L, size_t lm, cylray_ray1 *r, cylray_hit1 *h,            \
                          unsigned rt)                                                          \
     {                                                                                          \
         return KFN(drv)(L, lm, r, h, rt, fl);                                                  \
     }
-#define KLEAF_(b) KLEAFDRV_(lf_##b, leaf, KLFL_(b, 0u))
-#define KLEAFOCC_(b) KLEAFDRV_(lo_##b, leaf, KLFL_((b) << 1, CYLRAY_KF_OCCLUDED))
-#define KLEAFANY_(b) KLEAFDRV_(lf_##b, leaf_any, KLFL_(b, 0u))
-#define KLEAFOCCANY_(b) KLEAFDRV_(lo_##b, leaf_any, KLFL_((b) << 1, CYLRAY_KF_OCCLUDED))
+#define KLEAF_(b) KLEAFDRV_(lf_##b, leaf, KLFL_(CYLRAY_SPEC_KF_(b)))
+#define KLEAFOCC_(b) KLEAFDRV_(lo_##b, leaf, KLFL_(CYLRAY_OCC_SPEC_KF_(b)))
+#define KLEAFANY_(b) KLEAFDRV_(lf_##b, leaf_any, KLFL_(CYLRAY_SPEC_KF_(b)))
+#define KLEAFOCCANY_(b) KLEAFDRV_(lo_##b, leaf_any, KLFL_(CYLRAY_OCC_SPEC_KF_(b)))
 #define K8_(X, k) X(k, 0) X(k, 1) X(k, 2) X(k, 3) X(k, 4) X(k, 5) X(k, 6) X(k, 7)
 #define K4_(X, k) X(k, 0) X(k, 1) X(k, 2) X(k, 3)
 #define KALL8_(X) K8_(X, 0) K8_(X, 1) K8_(X, 2) K8_(X, 3) K8_(X, 4) K8_(X, 5)
@@ -254,7 +135,6 @@ KTABLE_SIZE_(leaf_occ_table, CYLRAY_OCC_SPECS);
 #undef K4_
 #undef KALL8_
 #undef KALL4_
-#undef KSPECFL_
 #undef KREF_PK1_
 #undef KREF_PK_
 #undef KREF_ST_

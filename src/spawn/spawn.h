@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* spawn/spawn.h - secondary rays, written once against the double-vector vocabulary
  * (simd/f64_*.h) and compiled per ISA and width: the hit point with its bound, and the
- * spawned origin. spawn.c holds the derivation of every step; this is its one
+ * spawned origin. spawn/one_ray.c holds the derivation of every step; this is its one
  * implementation, the scalar entry points being its one-lane instance.
  *
  * Every operation is an IEEE double operation in a fixed order, with no fused
@@ -16,7 +16,7 @@
 
 #ifndef CYLRAY_SPAWN_TMPL_ONCE_
 #define CYLRAY_SPAWN_TMPL_ONCE_
-#define CYLRAY_SPAWN_SAFETY 2.0 /* spawn.c says why */
+#define CYLRAY_SPAWN_SAFETY 2.0 /* spawn/one_ray.c says why */
 #define CYLRAY_SQRT3 1.7320508075688774
 #endif
 
@@ -24,5 +24,5 @@
 #include "spawn/geo.h"
 #include "spawn/point.h"
 #include "spawn/origin.h"
-#include "spawn/lanes.h"
+#include "spawn/batch.h"
 #include "spawn/forms.h"

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* bounds.c - the float box of a prepared cylinder and of a leaf, rounded outward. */
+/* toolkit/bounds.c - the float box of a prepared cylinder and of a leaf, rounded outward. */
 #include "cylray_internal.h"
 #include "internal/dd.h"
 

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* prepare.c - validating a cylinder and deriving what every kernel call needs. */
+/* api/prepare.c - validating a cylinder and deriving what every kernel call needs. */
 #include "cylray_internal.h"
 
 #include <float.h>

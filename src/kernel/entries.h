@@ -1,20 +1,18 @@
 /* SPDX-License-Identifier: MIT */
-/* isa/entry.h - one ISA's public entry points and its cylray_kernels table, from the
- * kernel instantiations its translation unit made.
+/* kernel/entries.h - one ISA's kernel entry points, from the kernel instantiations its
+ * translation unit made; isa/table.h puts them in its cylray_kernels table.
  *
- * Parameters: KISA (suffix, e.g. avx2), KISA_ENUM, KISA_NAME, and KW4, KW8, KW16 (the
- * instantiation suffix that serves each packet width), KWSTREAM (the one that serves
- * streams: the widest vector), and KL4,
- * KL8, KL16 (the one that serves each leaf size); optionally KSTORES(X), which calls
- * X(suffix, policy) for each store policy (CYLRAY_STORE_*) the ISA offers a table
- * for: cylray_kernels_<KISA><suffix>_, whose intersect entry points pass that policy
- * down with the run-time flags (the occluded, leaf and spawn ones store no hit vector
- * and are shared). Without it, one table with CYLRAY_STORE_MASKED. */
+ * Parameters: KISA (suffix, e.g. avx2), and KW4, KW8, KW16 (the instantiation suffix
+ * that serves each packet width), KWSTREAM (the one that serves streams: the widest
+ * vector), and KL4, KL8, KL16 (the one that serves each leaf size); optionally
+ * KSTORES(X), which calls X(suffix, policy) for each store policy (CYLRAY_STORE_*) the
+ * ISA offers a table for, whose intersect entry points pass that policy down with the
+ * run-time flags (the occluded, leaf and spawn ones store no hit vector and are
+ * shared). Without it, CYLRAY_STORE_MASKED alone. */
 
 #define KI_(name) CYLRAY_CAT(name, CYLRAY_CAT(_, KISA))
 #define KW_(name, w) CYLRAY_CAT(name, CYLRAY_CAT(_, w))
 
-/* The packet structs are read as arrays of n-lane fields (cylray_packet_rays_). */
 /* The intersect entry points of one store policy st, named with suffix sfx. User flags
  * beyond CYLRAY_FLAGS_ALL are dropped, so that none can pose as a policy. */
 #define KISECT_ENTRY_(n, sfx, st)                                                              \
@@ -119,28 +117,6 @@ KLEAF_ENTRY_(4)
 KLEAF_ENTRY_(8)
 KLEAF_ENTRY_(16)
 
-#define KTABLE_(sfx, st)                                                                       \
-    const cylray_kernels CYLRAY_CAT(CYLRAY_CAT(CYLRAY_CAT(cylray_kernels_, KISA), sfx), _) = { \
-        KISA_ENUM,                                                                             \
-        KISA_NAME,                                                                             \
-        KI_(intersect4##sfx),                                                                  \
-        KI_(intersect8##sfx),                                                                  \
-        KI_(intersect16##sfx),                                                                 \
-        KI_(occluded4),                                                                        \
-        KI_(occluded8),                                                                        \
-        KI_(occluded16),                                                                       \
-        KI_(intersect_stream##sfx),                                                            \
-        KI_(occluded_stream),                                                                  \
-        KI_(leaf_intersect4),                                                                  \
-        KI_(leaf_intersect8),                                                                  \
-        KI_(leaf_intersect16),                                                                 \
-        KI_(leaf_occluded4),                                                                   \
-        KI_(leaf_occluded8),                                                                   \
-        KI_(leaf_occluded16),                                                                  \
-        KSPAWN_SLOTS, /* spawn/entry.h */                                                      \
-    };
-KSTORES(KTABLE_)
-
 #undef KI_
 #undef KW_
 #undef KPACKET_
@@ -148,5 +124,3 @@ KSTORES(KTABLE_)
 #undef KISECT_ENTRY_
 #undef KISECT_STREAM_
 #undef KISECT_ALL_
-#undef KTABLE_
-#undef KSTORES

@@ -1,71 +1,9 @@
 /* SPDX-License-Identifier: MIT */
-/* leaf.c - building leaves of cylinders, and cylinders from their end points. */
+/* api/endpoints.c - a cylinder from its end points and radius. */
 #include "cylray_internal.h"
 #include "internal/dd.h"
 
 #include <string.h>
-
-/* Fills a leaf of m lanes (the geom_, meta_ and id_ arrays of cylray_leafM, given as
- * one array of (CYLRAY_LF_COUNT + 2) m words) from cyl[0..n), all or nothing. */
-static cylray_status leaf_prepare(void *out, size_t m, size_t bytes, const cylray_cylinder *cyl,
-                                  const uint32_t *ids, size_t n)
-{
-    if (!out || n > m || (n && !cyl))
-        return CYLRAY_EINVAL;
-    float geom[CYLRAY_LF_COUNT][16];
-    uint32_t meta[16] = {0}, id[16] = {0};
-    memset(geom, 0, sizeof geom);
-    for (size_t k = 0; k < m; k++)
-        geom[CYLRAY_LF_BOUND2][k] = -1.0f; /* padding: no ray passes the sphere test */
-    for (size_t k = 0; k < n; k++) {
-        cylray_prepared p;
-        if (cylray_prepare(&p, &cyl[k]) != CYLRAY_OK)
-            return CYLRAY_EINVAL;
-        const float f[CYLRAY_LF_COUNT] = {
-            [CYLRAY_LF_CX] = p.c[0],
-            [CYLRAY_LF_CY] = p.c[1],
-            [CYLRAY_LF_CZ] = p.c[2],
-            [CYLRAY_LF_VX] = p.v[0],
-            [CYLRAY_LF_VY] = p.v[1],
-            [CYLRAY_LF_VZ] = p.v[2],
-            [CYLRAY_LF_R] = p.radius,
-            [CYLRAY_LF_H] = p.half_height,
-            [CYLRAY_LF_RRVV] = p.rr_vv,
-            [CYLRAY_LF_HV] = p.h_v,
-            [CYLRAY_LF_SQS] = p.sqrt_vv / p.g_s, /* an exact power-of-two scaling */
-            [CYLRAY_LF_GS] = p.g_s,
-            [CYLRAY_LF_NSCALE] = p.nscale,
-            [CYLRAY_LF_BOUND2] = p.bound2,
-        };
-        for (int j = 0; j < CYLRAY_LF_COUNT; j++)
-            geom[j][k] = f[j];
-        meta[CYLRAY_LM_USED] |= 1u << k;
-        if (p.caps & CYLRAY_CAPPED_LO)
-            meta[CYLRAY_LM_LO] |= 1u << k;
-        if (p.caps & CYLRAY_CAPPED_HI)
-            meta[CYLRAY_LM_HI] |= 1u << k;
-        id[k] = ids ? ids[k] : (uint32_t)k;
-    }
-    unsigned char *o = out;
-    for (int j = 0; j < CYLRAY_LF_COUNT; j++)
-        memcpy(o + (size_t)j * m * 4, geom[j], m * 4);
-    memcpy(o + CYLRAY_LF_COUNT * m * 4, meta, m * 4);
-    memcpy(o + (CYLRAY_LF_COUNT + 1) * m * 4, id, m * 4);
-    (void)bytes;
-    return CYLRAY_OK;
-}
-
-#define LEAF_PREPARE_(m)                                                                       \
-    _Static_assert(sizeof(cylray_leaf##m) == (CYLRAY_LF_COUNT + 2) * m * 4,                    \
-                   "a leaf is its field arrays, 64 bytes a lane");                             \
-    cylray_status cylray_leaf_prepare##m(cylray_leaf##m *out, const cylray_cylinder *cyl,      \
-                                         const uint32_t *ids, size_t n)                        \
-    {                                                                                          \
-        return leaf_prepare(out, m, sizeof *out, cyl, ids, n);                                 \
-    }
-LEAF_PREPARE_(4)
-LEAF_PREPARE_(8)
-LEAF_PREPARE_(16)
 
 /* The sign of the exact sum of x[0..n) (n <= 24), by growing a nonoverlapping
  * expansion (Shewchuk): the sign of a nonoverlapping expansion is its largest term's. */

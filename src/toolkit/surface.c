@@ -1,5 +1,6 @@
 /* SPDX-License-Identifier: MIT */
-/* surface.c - surface coordinates (u, v) and their derivatives at a point of a cylinder. */
+/* toolkit/surface.c - surface coordinates (u, v) and their derivatives at a point of a
+ * cylinder. */
 #include "cylray_internal.h"
 #include "internal/dd.h"
 
@@ -212,14 +213,12 @@ SURFACE_LINKAGE_ void SURFACE_AT_(const surf_cyl *s, const float p[3], int32_t p
 }
 
 #ifndef CYLRAY_SURFACE_FMA
-/* The FMA instance where the chosen kernels are AVX2 or AVX-512 (the CPU has FMA, and
- * CYLRAY_ISA did not ask for less). */
+/* The FMA instance where the dispatch says it goes with the path chosen. */
 static void surface_at(const surf_cyl *s, const float p[3], int32_t part, float uv[2],
                        float dpdu[3], float dpdv[3])
 {
 #ifdef CYLRAY_HAVE_SURFACE_FMA
-    const cylray_isa isa = cylray_kernels_best()->isa;
-    if (isa == CYLRAY_ISA_AVX2 || isa == CYLRAY_ISA_AVX512) {
+    if (cylray_surface_fma_()) {
         cylray_surface_at_fma_(s, p, part, uv, dpdu, dpdv);
         return;
     }

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* cpu.c - which ISAs this CPU and OS can run: cpuid for the instructions, xgetbv for
+/* api/cpu.c - which ISAs this CPU and OS can run: cpuid for the instructions, xgetbv for
  * the OS's promise to save the wide registers across context switches. */
 #include "cylray_internal.h"
 

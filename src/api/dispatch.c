@@ -1,12 +1,14 @@
 /* SPDX-License-Identifier: MIT */
-/* dispatch.c - choosing a path once, and the plain entry points that use it.
+/* api/dispatch.c - the one place a path is chosen: its table (with the store policy the
+ * path takes), through which api/entries.c sends every plain entry point, and the
+ * toolkit's instance that goes with it.
  *
  * The choice is made on the first call and kept in an atomic pointer: threads racing
  * on that first call compute the same answer, so the race is harmless. */
 #include "cylray_internal.h"
 
 #if defined(__AVX__) || defined(__AVX2__) || defined(__AVX512F__)
-#error "dispatch.c runs before the CPU is known: compile it without AVX"
+#error "api/dispatch.c runs before the CPU is known: compile it without AVX"
 #endif
 
 #include <stdatomic.h>
@@ -51,7 +53,6 @@ const char *cylray_isa_name(cylray_isa isa)
  * the blends on every CPU; CYLRAY_STORES=masked|blend|lanes forces one on both (to
  * test each on any CPU; masked stores as lanes on SSE; another value is ignored).
  * Threads racing on the first call compute the same answer. */
-#if defined(CYLRAY_HAVE_SSE41) || defined(CYLRAY_HAVE_AVX2)
 static atomic_uint stores_chosen; /* 1 + AVX2's policy + 4 SSE4.1's; 0: not yet */
 static unsigned store_policies(void)
 {
@@ -68,15 +69,14 @@ static unsigned store_policies(void)
     atomic_store_explicit(&stores_chosen, p + 1u, memory_order_relaxed);
     return p;
 }
-#endif
 
-/* An ISA's table, with its store policy where it has several. */
-static const cylray_kernels *with_stores(cylray_isa isa)
+/* An ISA's table with the store policy p (store_policies' encoding) where it has
+ * several. The policy travels in the table: its intersect entry points pass it down
+ * (kernel/entries.h), so no kernel reads it from anywhere else. */
+static const cylray_kernels *with_stores(cylray_isa isa, unsigned p)
 {
-#if defined(CYLRAY_HAVE_SSE41) || defined(CYLRAY_HAVE_AVX2)
-    const unsigned p = store_policies(), avx = p % 4u, sse = p / 4u;
-    (void)avx, (void)sse; /* one of them, where one ISA alone is built */
-#endif
+    const unsigned avx = p % 4u, sse = p / 4u;
+    (void)avx, (void)sse; /* one of them, or neither, where fewer x86 ISAs are built */
 #ifdef CYLRAY_HAVE_SSE41
     if (isa == CYLRAY_ISA_SSE41)
         return sse == CYLRAY_STORE_BLEND ? &cylray_kernels_sse41_blend_
@@ -91,11 +91,16 @@ static const cylray_kernels *with_stores(cylray_isa isa)
     return built[isa];
 }
 
-const cylray_kernels *cylray_kernels_for(cylray_isa isa)
+static const cylray_kernels *kernels_for(cylray_isa isa, unsigned p)
 {
     if ((unsigned)isa >= CYLRAY_ISA_COUNT || !built[isa] || !cylray_cpu_has_(isa))
         return NULL;
-    return with_stores(isa);
+    return with_stores(isa, p);
+}
+
+const cylray_kernels *cylray_kernels_for(cylray_isa isa)
+{
+    return kernels_for(isa, store_policies());
 }
 
 /* The warning, as one line from one fprintf call; a name that is no path at all (a
@@ -114,11 +119,13 @@ static void warn_isa(const char *want, int known, const char *used)
             used);
 }
 
+/* The path and its store policy, chosen together. */
 static const cylray_kernels *choose(void)
 {
+    const unsigned stores = store_policies();
     const cylray_kernels *best = built[CYLRAY_ISA_SCALAR];
     for (int i = CYLRAY_ISA_COUNT - 1; i > CYLRAY_ISA_SCALAR; i--) {
-        const cylray_kernels *k = cylray_kernels_for((cylray_isa)i);
+        const cylray_kernels *k = kernels_for((cylray_isa)i, stores);
         if (k) {
             best = k;
             break;
@@ -129,7 +136,7 @@ static const cylray_kernels *choose(void)
         int known = 0;
         for (int i = 0; i < CYLRAY_ISA_COUNT; i++) {
             if (strcmp(want, names[i]) == 0) {
-                const cylray_kernels *k = cylray_kernels_for((cylray_isa)i);
+                const cylray_kernels *k = kernels_for((cylray_isa)i, stores);
                 if (k)
                     return k;
                 known = 1;
@@ -155,58 +162,11 @@ const cylray_kernels *cylray_kernels_best(void)
     return k;
 }
 
-uint32_t cylray_intersect4(const cylray_prepared *cyl, cylray_ray4 *ray, cylray_hit4 *hit,
-                           uint32_t active, unsigned flags)
+/* The toolkit's surface coordinates take their FMA instance (toolkit/surface.c) where
+ * the path chosen is AVX2 or AVX-512: the CPU has FMA, and CYLRAY_ISA did not ask for
+ * less. */
+int cylray_surface_fma_(void)
 {
-    return cylray_kernels_best()->intersect4(cyl, ray, hit, active, flags);
+    const cylray_isa isa = cylray_kernels_best()->isa;
+    return isa == CYLRAY_ISA_AVX2 || isa == CYLRAY_ISA_AVX512;
 }
-uint32_t cylray_intersect8(const cylray_prepared *cyl, cylray_ray8 *ray, cylray_hit8 *hit,
-                           uint32_t active, unsigned flags)
-{
-    return cylray_kernels_best()->intersect8(cyl, ray, hit, active, flags);
-}
-uint32_t cylray_intersect16(const cylray_prepared *cyl, cylray_ray16 *ray, cylray_hit16 *hit,
-                            uint32_t active, unsigned flags)
-{
-    return cylray_kernels_best()->intersect16(cyl, ray, hit, active, flags);
-}
-uint32_t cylray_occluded4(const cylray_prepared *cyl, const cylray_ray4 *ray, uint32_t active,
-                          unsigned flags)
-{
-    return cylray_kernels_best()->occluded4(cyl, ray, active, flags);
-}
-uint32_t cylray_occluded8(const cylray_prepared *cyl, const cylray_ray8 *ray, uint32_t active,
-                          unsigned flags)
-{
-    return cylray_kernels_best()->occluded8(cyl, ray, active, flags);
-}
-uint32_t cylray_occluded16(const cylray_prepared *cyl, const cylray_ray16 *ray, uint32_t active,
-                           unsigned flags)
-{
-    return cylray_kernels_best()->occluded16(cyl, ray, active, flags);
-}
-size_t cylray_intersect_stream(const cylray_prepared *cyl, const cylray_rays *rays,
-                               const cylray_hits *hits, size_t n, unsigned flags)
-{
-    return cylray_kernels_best()->intersect_stream(cyl, rays, hits, n, flags);
-}
-size_t cylray_occluded_stream(const cylray_prepared *cyl, const cylray_rays *rays,
-                              uint8_t *occluded, size_t n, unsigned flags)
-{
-    return cylray_kernels_best()->occluded_stream(cyl, rays, occluded, n, flags);
-}
-
-#define LEAF_ENTRY_(m)                                                                         \
-    int cylray_leaf_intersect##m(const cylray_leaf##m *leaf, cylray_ray1 *ray,                 \
-                                 cylray_hit1 *hit, unsigned flags)                             \
-    {                                                                                          \
-        return cylray_kernels_best()->leaf_intersect##m(leaf, ray, hit, flags);                \
-    }                                                                                          \
-    int cylray_leaf_occluded##m(const cylray_leaf##m *leaf, const cylray_ray1 *ray,            \
-                                unsigned flags)                                                \
-    {                                                                                          \
-        return cylray_kernels_best()->leaf_occluded##m(leaf, ray, flags);                      \
-    }
-LEAF_ENTRY_(4)
-LEAF_ENTRY_(8)
-LEAF_ENTRY_(16)

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* kernel/lanes.h - the state of one vector's lanes, and how the stages read their
+/* kernel/state.h - the state of one vector's lanes, and how the stages read their
  * inputs. */
 
 /* The kernel for one vector of rays, in stages. KFN(block) below runs them in order;

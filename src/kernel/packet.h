@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* kernel/drivers.h - the rare instance, the one place the drivers fall back to it,
+/* kernel/packet.h - the rare instance, the one place the drivers fall back to it,
  * and the packet drivers. */
 
 static const cylray_hits KFN(no_hits) = {NULL, NULL, NULL, NULL, NULL}; /* occlusion */
@@ -76,52 +76,6 @@ CYLRAY_INLINE uint32_t KFN(packet1)(const cylray_prepared *P, float *ray, float 
     const cylray_rays R = cylray_packet_rays_(P, ray, VW, aligned);
     const cylray_hits H = occ ? KFN(no_hits) : cylray_packet_hits_(P, hit, VW, aligned);
     return KFN(vector)(P, &R, &H, 0, active, rt, FL, NULL, 0, 1, ray, hit, VW).hit[0];
-}
-
-/* The last lanes of a stream (fewer than a vector: all of a short stream) as one packet
- * of VW lanes, copied in and out: nothing beyond the caller's arrays is read or
- * written. `one` is the stream's own table slot's one-vector packet function, whose
- * kernel is specialised as the stream's is; the streams with flags read at run time
- * pass NULL and get the packet driver with those flags. The views are the stream's,
- * renamed for an aligned cylinder; the packet function renames its packet itself, so
- * the lanes go in and out in the caller's order. A short stream runs here only, so it
- * is compiled for speed, not as a cold path (docs/performance.md). */
-CYLRAY_OUTLINE size_t KFN(stream_tail)(const cylray_prepared *P, const cylray_rays *R,
-                                       const cylray_hits *H, uint8_t *occluded, size_t n,
-                                       size_t i, unsigned rt, unsigned FL, KFN(packet_fn) one)
-{
-    const int occ = (FL & CYLRAY_KF_OCCLUDED) != 0;
-    const int normal = (FL & CYLRAY_NORMAL) && !occ;
-    const size_t rest = n - i;
-    size_t k[3]; /* the views' component j is the packet's k[j] (cylray_packet_rays_) */
-    cylray_axis_order_(P, (FL & CYLRAY_KF_ALIGNED) != 0, k);
-    CYLRAY_ALIGN(64) float ray[8 * VW] = {0};
-    CYLRAY_ALIGN(64) float hit[5 * VW];
-    const float *src[8] = {R->ox, R->oy, R->oz, R->dx, R->dy, R->dz, R->tmin, R->tmax};
-    const size_t field[8] = {k[0], k[1], k[2], 3 + k[0], 3 + k[1], 3 + k[2], 6, 7};
-    for (size_t f = 0; f < 8; f++)
-        for (size_t j = 0; j < rest; j++)
-            ray[field[f] * VW + j] = src[f][i + j];
-    const uint32_t bits = (uint32_t)((1u << rest) - 1u);
-    float *h = occ ? NULL : hit;
-    uint32_t m = one ? one(P, ray, h, VW, bits, rt) : KFN(packet1)(P, ray, h, bits, rt, FL);
-    const size_t count = CYLRAY_POPCOUNT(m);
-    for (; m; m &= m - 1) {
-        const size_t j = CYLRAY_CTZ(m);
-        if (occ) {
-            occluded[i + j] = 1;
-            continue;
-        }
-        H->t[i + j] = hit[j];
-        R->tmax[i + j] = ray[7 * VW + j];
-        memcpy(&H->part[i + j], &hit[4 * VW + j], sizeof H->part[0]);
-        if (normal) {
-            H->nx[i + j] = hit[(1 + k[0]) * VW + j];
-            H->ny[i + j] = hit[(1 + k[1]) * VW + j];
-            H->nz[i + j] = hit[(1 + k[2]) * VW + j];
-        }
-    }
-    return count;
 }
 
 /* A packet of several vectors, one vector at a time. Two in flight, as the streams

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* spawn/lanes.h - lanes in memory: loads and stores of the batched forms */
+/* spawn/batch.h - lanes in memory: loads and stores of the batched forms */
 
 /* ---- lanes in memory ---------------------------------------------------------- */
 

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
-/* spawn/entry.h - one ISA's batched secondary-ray forms, from the spawn/spawn.h
+/* spawn/entries.h - one ISA's batched secondary-ray forms, from the spawn/spawn.h
  * instances its translation unit made, as the slots of its cylray_kernels table
- * (KSPAWN_SLOTS, which isa/entry.h appends).
+ * (KSPAWN_SLOTS, which isa/table.h appends).
  *
  * Parameters: KISA, and SPW4, SPW8, SPW16 (the instance serving each packet width: DW
  * at most the width), SPWS (the one serving streams and leaves in bulk). */

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
-/* spawn.c - secondary rays: the hit point moved onto the surface with a bound on its
+/* spawn/one_ray.c - secondary rays: the hit point moved onto the surface with a bound on its
  * distance to it, and the origin from which a new ray leaves that surface; the scalar
- * entry points, and the batched ones dispatched to the path in use.
+ * entry points (the batched ones are dispatched: api/entries.c).
  *
  * Everything is evaluated in double from float inputs, in spawn/spawn.h: one source,
  * compiled per ISA and width against a vocabulary of double vectors (simd/f64_*.h), whose
@@ -111,7 +111,7 @@ void cylray_spawn_origin_side(const cylray_prepared *cyl, const float p[3], floa
     DFN(spawn1)(&g, p, err, part, outward ? 1 : -1, w, out);
 }
 
-/* Leaves: the lane the hit names; in bulk, the path in use. */
+/* Leaves: the lane the hit names. */
 #define CYLRAY_SPAWN_LEAF_(m)                                                                  \
     void cylray_leaf_hit_point##m(const cylray_leaf##m *leaf, const cylray_ray1 *ray,          \
                                   const cylray_hit1 *hit, float p[3], float *err)              \
@@ -146,90 +146,8 @@ void cylray_spawn_origin_side(const cylray_prepared *cyl, const float p[3], floa
         DFN(geo) g;                                                                            \
         DFN(leaf_geo)(&g, &geom, hit, m, 1);                                                   \
         DFN(spawn1)(&g, p, err, hit->part, outward ? 1 : -1, w, out);                          \
-    }                                                                                          \
-    void cylray_leaf_hit_points##m(const cylray_leaf##m *const *leaf, const cylray_ray1 *ray,  \
-                                   const cylray_hit1 *hit, const cylray_points *pts, size_t n) \
-    {                                                                                          \
-        cylray_kernels_best()->leaf_hit_points##m(leaf, ray, hit, pts, n);                     \
-    }                                                                                          \
-    void cylray_leaf_hit_points_normal##m(const cylray_leaf##m *const *leaf,                   \
-                                          const cylray_ray1 *ray, const cylray_hit1 *hit,      \
-                                          const cylray_points *pts, size_t n)                  \
-    {                                                                                          \
-        cylray_kernels_best()->leaf_hit_points_normal##m(leaf, ray, hit, pts, n);              \
-    }                                                                                          \
-    void cylray_leaf_spawn_origins##m(                                                         \
-        const cylray_leaf##m *const *leaf, const cylray_hit1 *hit, const cylray_points *pts,   \
-        const cylray_points *dirs, const cylray_points *origins, size_t n)                     \
-    {                                                                                          \
-        cylray_kernels_best()->leaf_spawn_origins##m(leaf, hit, pts, dirs, origins, n);        \
-    }                                                                                          \
-    void cylray_leaf_spawn_origins_side##m(const cylray_leaf##m *const *leaf,                  \
-                                           const cylray_hit1 *hit, const cylray_points *pts,   \
-                                           const uint8_t *outward, const cylray_points *dirs,  \
-                                           const cylray_points *origins, size_t n)             \
-    {                                                                                          \
-        cylray_kernels_best()->leaf_spawn_origins_side##m(leaf, hit, pts, outward, dirs,       \
-                                                          origins, n);                         \
     }
 CYLRAY_SPAWN_LEAF_(4)
 CYLRAY_SPAWN_LEAF_(8)
 CYLRAY_SPAWN_LEAF_(16)
 #undef CYLRAY_SPAWN_LEAF_
-
-/* ---- the batched forms: the path in use ------------------------------------- */
-
-#define CYLRAY_SPAWN_PACKET_(n)                                                                \
-    void cylray_hit_points##n(const cylray_prepared *cyl, const cylray_ray##n *ray,            \
-                              const cylray_hit##n *hit, uint32_t mask, cylray_points##n *pts)  \
-    {                                                                                          \
-        cylray_kernels_best()->hit_points##n(cyl, ray, hit, mask, pts);                        \
-    }                                                                                          \
-    void cylray_hit_points_normal##n(const cylray_prepared *cyl, const cylray_ray##n *ray,     \
-                                     const cylray_hit##n *hit, uint32_t mask,                  \
-                                     cylray_points##n *pts)                                    \
-    {                                                                                          \
-        cylray_kernels_best()->hit_points_normal##n(cyl, ray, hit, mask, pts);                 \
-    }                                                                                          \
-    void cylray_spawn_rays##n(const cylray_prepared *cyl, const cylray_points##n *pts,         \
-                              const cylray_hit##n *hit, uint32_t mask, cylray_ray##n *out)     \
-    {                                                                                          \
-        cylray_kernels_best()->spawn_rays##n(cyl, pts, hit, mask, out);                        \
-    }                                                                                          \
-    void cylray_spawn_rays_side##n(const cylray_prepared *cyl, const cylray_points##n *pts,    \
-                                   const cylray_hit##n *hit, uint32_t mask, uint32_t outward,  \
-                                   cylray_ray##n *out)                                         \
-    {                                                                                          \
-        cylray_kernels_best()->spawn_rays_side##n(cyl, pts, hit, mask, outward, out);          \
-    }
-CYLRAY_SPAWN_PACKET_(4)
-CYLRAY_SPAWN_PACKET_(8)
-CYLRAY_SPAWN_PACKET_(16)
-#undef CYLRAY_SPAWN_PACKET_
-
-size_t cylray_hit_points_stream(const cylray_prepared *cyl, const cylray_rays *rays,
-                                const cylray_hits *hits, const cylray_points *pts, size_t n)
-{
-    return cylray_kernels_best()->hit_points_stream(cyl, rays, hits, pts, n);
-}
-
-size_t cylray_hit_points_normal_stream(const cylray_prepared *cyl, const cylray_rays *rays,
-                                       const cylray_hits *hits, const cylray_points *pts,
-                                       size_t n)
-{
-    return cylray_kernels_best()->hit_points_normal_stream(cyl, rays, hits, pts, n);
-}
-
-void cylray_spawn_stream(const cylray_prepared *cyl, const cylray_points *pts,
-                         const int32_t *part, const cylray_points *dirs,
-                         const cylray_points *origins, size_t n)
-{
-    cylray_kernels_best()->spawn_stream(cyl, pts, part, dirs, origins, n);
-}
-
-void cylray_spawn_stream_side(const cylray_prepared *cyl, const cylray_points *pts,
-                              const int32_t *part, const uint8_t *outward,
-                              const cylray_points *dirs, const cylray_points *origins, size_t n)
-{
-    cylray_kernels_best()->spawn_stream_side(cyl, pts, part, outward, dirs, origins, n);
-}
