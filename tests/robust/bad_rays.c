@@ -135,7 +135,7 @@ static void put(gbatch *b, size_t i, const float r[G_NFIELD])
 }
 
 /* The range the kernel works in. cylray_prepare refuses cylinders with coordinates
- * beyond 2^62 (src/prepare.c); an origin 2^62 from the center overflows the float
+ * beyond 2^62 (src/api/prepare.c); an origin 2^62 from the center overflows the float
  * products. Such a ray may miss: cylray.h does not promise more. Any finite nonzero
  * direction is in range (the kernels scale it by a power of two), as long as the
  * answer's t is a float. Out of range, a ray must still never hit falsely. */
