@@ -217,7 +217,7 @@ run_tests() {
         >"$dir.test.log" 2>&1 || true
     grep -E '^ *[0-9]+/[0-9]+ ' "$dir.test.log" | sed 's/^/   /' || true
     local log p f
-    log=$(ls -t "$dir"/meson-logs/testlog*.json 2>/dev/null | head -1)
+    log=$(ls -t "$dir"/meson-logs/testlog*.json 2>/dev/null | head -1 || true)
     if [ -z "$log" ] || [ ! -s "$log" ]; then
         note "$cfg" 0 1 $(($(date +%s) - t0)) "FAILED: no test results ($dir.test.log)"
         return
@@ -339,7 +339,7 @@ config_estimates() {
         rm -f "$dir"/meson-logs/testlog*.json
         meson test -C "$dir" --no-rebuild --print-errorlogs "${tests[@]}" >"$dir.test.log" 2>&1 || true
 
-        log=$(ls -t "$dir"/meson-logs/testlog*.json 2>/dev/null | head -1)
+        log=$(ls -t "$dir"/meson-logs/testlog*.json 2>/dev/null | head -1 || true)
         if [ -z "$log" ]; then
             echo "   $v: no test results ($dir.test.log)"
             f=$((f + 1))
@@ -485,7 +485,7 @@ config_embree-extra() {
                     --buildtype=$type --werror -Dbench=false -Dembree=enabled \
                     -Dembree_prefix="$mirror"; then
                     targets=$(ninja -C "$dir" -t targets all | sed -n -E \
-                        's#^(src/(embree/)?lib[^/ ]*\.(so[.0-9]*|a)|tests/install/readme_example[0-9]+): .*#\1#p')
+                        's#^(src/(embree/)?lib[^/ ]*\.(so[.0-9]*|a)|tests/install/readme_example[0-9]+|tests/embree/test_embree_[a-z_]+): .*#\1#p')
                     # shellcheck disable=SC2086 # one target a word
                     if ninja -C "$dir" $targets >>"$dir.build.log" 2>&1; then
                         grep -h 'cylray_embree:' "$dir.setup.log" | sed 's/^ */   /'
