@@ -2,7 +2,7 @@
 /* embree/spawn.c - what a renderer asks about a hit Embree reported: its part, its
  * point, its surface frame, and secondary rays from it (cylray's hit point and spawned
  * origin), the part read back from the hit's normal. */
-#include "ceb.h"
+#include "hit.h"
 
 #include <math.h>
 
@@ -100,11 +100,9 @@ static void lane_of(const void *rh, unsigned N, unsigned i, float o[3], float d[
                     float Ng[3], unsigned *prim)
 {
     const float *hb = (const float *)rh + (size_t)R_NFIELDS * N;
-    for (int k = 0; k < 3; k++) {
-        o[k] = RF(rh, N, R_OX + k, i);
-        d[k] = RF(rh, N, R_DX + k, i);
+    ray_of(rh, N, i, o, d);
+    for (int k = 0; k < 3; k++)
         Ng[k] = RF(hb, N, H_NGX + k, i);
-    }
     *t = RF(rh, N, R_TFAR, i);
     *prim = RU(hb, N, H_PRIM, i);
 }
