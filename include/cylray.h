@@ -160,6 +160,23 @@ typedef struct CYLRAY_ALIGN(64) cylray_prepared {
  * returns 0 and writes nothing. */
 CYLRAY_API cylray_status cylray_prepare(cylray_prepared *out, const cylray_cylinder *in);
 
+/* ---- spheres ------------------------------------------------------------- */
+
+/* A sphere: the float center and radius given are the exact geometry. */
+typedef struct cylray_sphere {
+    float center[3];
+    float radius; /* in world units */
+} cylray_sphere;
+
+/* Checks *in and prepares it as cylray_prepare does a cylinder: a prepared sphere goes
+ * wherever a prepared cylinder goes (packets, streams, occluded, the secondary-ray
+ * calls, bounds, surface coordinates) with the same flags and the same guarantee. Its
+ * hits report part CYLRAY_SIDE, with CYLRAY_BACKFACE from inside. Returns CYLRAY_OK, or
+ * CYLRAY_EINVAL (leaving *out untouched) when a pointer is NULL, a center coordinate is
+ * NaN, infinite or beyond 2^62 in magnitude, or the radius lies outside [2^-60, 2^62]
+ * (NaN is refused). */
+CYLRAY_API cylray_status cylray_prepare_sphere(cylray_prepared *out, const cylray_sphere *in);
+
 /* ---- hit output ----------------------------------------------------------- */
 
 #define CYLRAY_MISS 0
@@ -284,6 +301,16 @@ CYLRAY_API cylray_status cylray_leaf_prepare8(cylray_leaf8 *out, const cylray_cy
                                               const uint32_t *ids, size_t n);
 CYLRAY_API cylray_status cylray_leaf_prepare16(cylray_leaf16 *out, const cylray_cylinder *cyl,
                                                const uint32_t *ids, size_t n);
+/* The same for a leaf of spheres (the rules of cylray_prepare_sphere); queried, bounded
+ * and used for secondary rays by the same calls as a leaf of cylinders. A leaf holds
+ * cylinders or spheres, not both. */
+CYLRAY_API cylray_status cylray_leaf_prepare_spheres4(cylray_leaf4 *out, const cylray_sphere *s,
+                                                      const uint32_t *ids, size_t n);
+CYLRAY_API cylray_status cylray_leaf_prepare_spheres8(cylray_leaf8 *out, const cylray_sphere *s,
+                                                      const uint32_t *ids, size_t n);
+CYLRAY_API cylray_status cylray_leaf_prepare_spheres16(cylray_leaf16 *out,
+                                                       const cylray_sphere *s,
+                                                       const uint32_t *ids, size_t n);
 
 /* The closest hit over the leaf's cylinders in [tmin, tmax]: returns 1, writes *hit
  * and sets ray->tmax = t; of cylinders hit at the same t the lowest lane wins.

@@ -40,5 +40,6 @@ int cylray_surface_fma_(void);
 /* Whether cylray_prepare takes the cylinder (api/prepare.c): what it checks before it
  * derives anything, for cylray_cylinder_from_endpoints, which refuses what it refuses. */
 int cylray_cylinder_ok_(const cylray_cylinder *in);
+int cylray_sphere_ok_(const cylray_sphere *in);
 
 #endif

@@ -1,15 +1,29 @@
 /* SPDX-License-Identifier: MIT */
-/* api/leaves.c - building leaves of cylinders: each lane a prepared cylinder's fields. */
+/* api/leaves.c - building leaves of cylinders or of spheres: each lane a prepared
+ * shape's fields. */
 #include "cylray_internal.h"
 
 #include <string.h>
 
-/* Fills a leaf of m lanes (the geom_, meta_ and id_ arrays of cylray_leafM, given as
- * one array of (CYLRAY_LF_COUNT + 2) m words) from cyl[0..n), all or nothing. */
-static cylray_status leaf_prepare(void *out, size_t m, size_t bytes, const cylray_cylinder *cyl,
-                                  const uint32_t *ids, size_t n)
+/* Prepares shape k of n (cylinders or spheres, as the leaf holds). */
+typedef cylray_status (*prepare_fn)(cylray_prepared *, const void *shapes, size_t k);
+static cylray_status prepare_cylinder(cylray_prepared *p, const void *shapes, size_t k)
 {
-    if (!out || n > m || (n && !cyl))
+    return cylray_prepare(p, (const cylray_cylinder *)shapes + k);
+}
+static cylray_status prepare_sphere(cylray_prepared *p, const void *shapes, size_t k)
+{
+    return cylray_prepare_sphere(p, (const cylray_sphere *)shapes + k);
+}
+
+/* Fills a leaf of m lanes (the geom_, meta_ and id_ arrays of cylray_leafM, given as
+ * one array of (CYLRAY_LF_COUNT + 2) m words) from shapes[0..n), all or nothing. A
+ * sphere's lane has no axis and a zero half height (a finite lane); its bit is set in
+ * meta_[CYLRAY_LM_SPHERE]. */
+static cylray_status leaf_prepare(void *out, size_t m, size_t bytes, const void *shapes,
+                                  prepare_fn prep, const uint32_t *ids, size_t n)
+{
+    if (!out || n > m || (n && !shapes))
         return CYLRAY_EINVAL;
     float geom[CYLRAY_LF_COUNT][16];
     uint32_t meta[16] = {0}, id[16] = {0};
@@ -18,7 +32,7 @@ static cylray_status leaf_prepare(void *out, size_t m, size_t bytes, const cylra
         geom[CYLRAY_LF_BOUND2][k] = -1.0f; /* padding: no ray passes the sphere test */
     for (size_t k = 0; k < n; k++) {
         cylray_prepared p;
-        if (cylray_prepare(&p, &cyl[k]) != CYLRAY_OK)
+        if (prep(&p, shapes, k) != CYLRAY_OK)
             return CYLRAY_EINVAL;
         const float f[CYLRAY_LF_COUNT] = {
             [CYLRAY_LF_CX] = p.c[0],
@@ -43,6 +57,8 @@ static cylray_status leaf_prepare(void *out, size_t m, size_t bytes, const cylra
             meta[CYLRAY_LM_LO] |= 1u << k;
         if (p.caps & CYLRAY_CAPPED_HI)
             meta[CYLRAY_LM_HI] |= 1u << k;
+        if (p.kind == CYLRAY_KIND_SPHERE)
+            meta[CYLRAY_LM_SPHERE] |= 1u << k;
         id[k] = ids ? ids[k] : (uint32_t)k;
     }
     unsigned char *o = out;
@@ -60,7 +76,12 @@ static cylray_status leaf_prepare(void *out, size_t m, size_t bytes, const cylra
     cylray_status cylray_leaf_prepare##m(cylray_leaf##m *out, const cylray_cylinder *cyl,      \
                                          const uint32_t *ids, size_t n)                        \
     {                                                                                          \
-        return leaf_prepare(out, m, sizeof *out, cyl, ids, n);                                 \
+        return leaf_prepare(out, m, sizeof *out, cyl, prepare_cylinder, ids, n);               \
+    }                                                                                          \
+    cylray_status cylray_leaf_prepare_spheres##m(cylray_leaf##m *out, const cylray_sphere *s,  \
+                                                 const uint32_t *ids, size_t n)                \
+    {                                                                                          \
+        return leaf_prepare(out, m, sizeof *out, s, prepare_sphere, ids, n);                   \
     }
 LEAF_PREPARE_(4)
 LEAF_PREPARE_(8)

@@ -124,3 +124,46 @@ cylray_status cylray_prepare(cylray_prepared *out, const cylray_cylinder *in)
     *out = p;
     return CYLRAY_OK;
 }
+
+int cylray_sphere_ok_(const cylray_sphere *in)
+{
+    const double R = in->radius;
+    for (int k = 0; k < 3; k++)
+        if (!coord_ok(in->center[k]))
+            return 0;
+    return R >= CYLRAY_MIN_RADIUS && R <= CYLRAY_MAX_COORD;
+}
+
+/* A sphere is prepared as the kernels' sphere branches read it (kernel/kmath.h): the
+ * center, R^2 (also in rr_vv, v.v being 1 there), 1 / R for the normal, a bounding
+ * sphere with the cylinder's margin, and the same 2^-j scaling of the discriminant for
+ * a radius far from 1; no axis. */
+cylray_status cylray_prepare_sphere(cylray_prepared *out, const cylray_sphere *in)
+{
+    if (!out || !in || !cylray_sphere_ok_(in))
+        return CYLRAY_EINVAL;
+    const double R = in->radius;
+    cylray_prepared p;
+    memset(&p, 0, sizeof p);
+    for (int k = 0; k < 3; k++)
+        p.c[k] = in->center[k];
+    p.rr = (float)(R * R);
+    p.rr_vv = p.rr;
+    p.inv_vv = 1.0f;
+    const int j = abs(ilogb(R)) > 20 ? ilogb(R) : 0;
+    p.rr_d = (float)ldexp(R * R, -2 * j);
+    p.g_s = (float)ldexp(1.0, -j);
+    p.sqrt_vv = 1.0f;
+    p.h_v = 0.0f;
+    p.nscale = (float)(1.0 / R);
+    p.bound2 = (float)(R * R * (1.0 + 0x1p-12));
+    p.radius = in->radius;
+    p.half_height = 0.0f;
+    p.kind = CYLRAY_KIND_SPHERE;
+    for (unsigned k = 0; k < 3; k++)
+        p.order[k] = (uint8_t)k;
+    p.variant = (uint8_t)cylray_variant_of_(p.kind, 0u, j != 0, 0u);
+    p.magic = CYLRAY_MAGIC;
+    *out = p;
+    return CYLRAY_OK;
+}

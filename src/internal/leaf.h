@@ -25,9 +25,10 @@ enum {
     CYLRAY_LF_COUNT
 };
 /* meta_ holds lane masks (bit k: lane k): [0] the lanes in use, [1] those whose low
- * disc is part of the surface, [2] those whose high disc is; [3] is 0. The leaf
- * starts with the fields a kernel reads, so it is passed to one as a float pointer. */
-enum { CYLRAY_LM_USED, CYLRAY_LM_LO, CYLRAY_LM_HI };
+ * disc is part of the surface, [2] those whose high disc is, [3] those that are
+ * spheres (a leaf holds cylinders or spheres: [3] is 0 or [0]). The leaf starts with
+ * the fields a kernel reads, so it is passed to one as a float pointer. */
+enum { CYLRAY_LM_USED, CYLRAY_LM_LO, CYLRAY_LM_HI, CYLRAY_LM_SPHERE };
 static inline unsigned cylray_leaf_caps_(const uint32_t *meta, unsigned lane)
 {
     return ((meta[CYLRAY_LM_LO] >> lane) & 1u ? CYLRAY_CAPPED_LO : 0u) |

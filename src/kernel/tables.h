@@ -63,8 +63,8 @@
 #define KLEAFOCCANY_(b) KLEAFDRV_(lo_##b, leaf_any, KLFL_(CYLRAY_OCC_SPEC_KF_(b)))
 #define K8_(X, k) X(k, 0) X(k, 1) X(k, 2) X(k, 3) X(k, 4) X(k, 5) X(k, 6) X(k, 7)
 #define K4_(X, k) X(k, 0) X(k, 1) X(k, 2) X(k, 3)
-#define KALL8_(X) K8_(X, 0) K8_(X, 1) K8_(X, 2) K8_(X, 3) K8_(X, 4) K8_(X, 5)
-#define KALL4_(X) K4_(X, 0) K4_(X, 1) K4_(X, 2) K4_(X, 3) K4_(X, 4) K4_(X, 5)
+#define KALL8_(X) K8_(X, 0) K8_(X, 1) K8_(X, 2) K8_(X, 3) K8_(X, 4) K8_(X, 5) K8_(X, 6)
+#define KALL4_(X) K4_(X, 0) K4_(X, 1) K4_(X, 2) K4_(X, 3) K4_(X, 4) K4_(X, 5) K4_(X, 6)
 
 /* b = 6, 7 (occluded: 3) are FAST with REFINE. Lists of definitions: clang-format reads
  * them as one long expression and breaks them differently from version to version. */
@@ -74,7 +74,7 @@
     KISECT_(k, 1) KISECT_(k, 2) KISECT_(k, 3) KISECT_(k, 4) KISECT_(k, 5) KISECTANY_(k, 6)     \
         KISECTANY_(k, 7) KOCC_(k, 0) KOCC_(k, 1) KOCC_(k, 2) KOCCANY_(k, 3)
 KKIND_(0)
-KKIND_(1) KKIND_(2) KKIND_(3) KKIND_(4) KKIND_(5) KLEAF_(0) KLEAF_(1) KLEAF_(2) KLEAF_(3)
+KKIND_(1) KKIND_(2) KKIND_(3) KKIND_(4) KKIND_(5) KKIND_(6) KLEAF_(0) KLEAF_(1) KLEAF_(2) KLEAF_(3)
     KLEAF_(4) KLEAF_(5) KLEAFANY_(6) KLEAFANY_(7) KLEAFOCC_(0) KLEAFOCC_(1) KLEAFOCC_(2)
         KLEAFOCCANY_(3)
 /* clang-format on */
