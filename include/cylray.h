@@ -144,6 +144,10 @@ typedef struct CYLRAY_ALIGN(64) cylray_prepared {
     float radius;           /* R, as given */
     float half_height;      /* H, as given */
     uint32_t caps;          /* CYLRAY_CAPPED_LO | CYLRAY_CAPPED_HI of a finite cylinder */
+    float r0, r1;           /* a cone: the radii at p0 (axial -H) and p1 (+H), as given */
+    float rm;               /* a cone: (r0 + r1) / 2, the radius at the center */
+    float kap;              /* a cone: (r1 - r0) / (2 H |v|), the radius's slope per v.p */
+    float cnrm;             /* a cone: 1 / sqrt(1 + ((r1 - r0) / 2H)^2) */
 } cylray_prepared;
 
 /* Checks *in and derives what the kernels need into *out. Returns CYLRAY_OK, or
@@ -159,6 +163,30 @@ typedef struct CYLRAY_ALIGN(64) cylray_prepared {
  * Never aborts. A kernel given a cylray_prepared this did not fill (a zeroed one, say)
  * returns 0 and writes nothing. */
 CYLRAY_API cylray_status cylray_prepare(cylray_prepared *out, const cylray_cylinder *in);
+
+/* ---- cones --------------------------------------------------------------- */
+
+/* A truncated cone: the disc of radius r0 centred at p0 and the disc of radius r1 at
+ * p1, the side joining their rims. flags: CYLRAY_CAPPED_LO (the disc at p0, part
+ * CYLRAY_CAP_LO), CYLRAY_CAPPED_HI (at p1, CYLRAY_CAP_HI), CYLRAY_CAPPED, or 0. */
+typedef struct cylray_cone {
+    float p0[3], p1[3];
+    float r0, r1;   /* in world units; one may be 0 (a tip), not both */
+    unsigned flags; /* CYLRAY_CAPPED, CYLRAY_CAPPED_LO, CYLRAY_CAPPED_HI or 0 */
+} cylray_cone;
+
+/* Checks *in and prepares it as cylray_prepare does a cylinder: a prepared cone goes
+ * wherever a prepared cylinder goes, with the same flags and the same guarantee for the
+ * cone of the float inputs. The axis p1 - p0 and the center (p0 + p1) / 2 are each
+ * rounded once to float, as cylray_cylinder_from_endpoints rounds them, so the ends
+ * the kernels see lie within about one float ulp of p0 and p1. r0 == r1 prepares the
+ * cylinder of that radius (and runs as fast as one). Parts: CYLRAY_SIDE, CYLRAY_CAP_LO
+ * (the disc at p0), CYLRAY_CAP_HI (at p1), with CYLRAY_BACKFACE from inside the solid.
+ * Returns CYLRAY_EINVAL (leaving *out untouched) when a pointer is NULL, a coordinate
+ * is NaN, infinite or beyond 2^62 in magnitude, p0 == p1 (or p1 - p0 rounds to a zero
+ * or subnormal vector), a radius is neither 0 nor in [2^-60, 2^62] (NaN is refused),
+ * both radii are 0, or a flag bit is not CYLRAY_CAPPED_LO or CYLRAY_CAPPED_HI. */
+CYLRAY_API cylray_status cylray_prepare_cone(cylray_prepared *out, const cylray_cone *in);
 
 /* ---- spheres ------------------------------------------------------------- */
 
@@ -301,9 +329,17 @@ CYLRAY_API cylray_status cylray_leaf_prepare8(cylray_leaf8 *out, const cylray_cy
                                               const uint32_t *ids, size_t n);
 CYLRAY_API cylray_status cylray_leaf_prepare16(cylray_leaf16 *out, const cylray_cylinder *cyl,
                                                const uint32_t *ids, size_t n);
-/* The same for a leaf of spheres (the rules of cylray_prepare_sphere); queried, bounded
- * and used for secondary rays by the same calls as a leaf of cylinders. A leaf holds
- * cylinders or spheres, not both. */
+/* The same for a leaf of spheres (the rules of cylray_prepare_sphere), and for a leaf of
+ * cones (those of cylray_prepare_cone); queried, bounded and used for secondary rays by
+ * the same calls as a leaf of cylinders. A leaf holds cylinders, cones or spheres; a
+ * leaf of cones may hold cylinders too, as cones with r0 == r1 (a leaf of cylinders
+ * alone is faster). */
+CYLRAY_API cylray_status cylray_leaf_prepare_cones4(cylray_leaf4 *out, const cylray_cone *c,
+                                                    const uint32_t *ids, size_t n);
+CYLRAY_API cylray_status cylray_leaf_prepare_cones8(cylray_leaf8 *out, const cylray_cone *c,
+                                                    const uint32_t *ids, size_t n);
+CYLRAY_API cylray_status cylray_leaf_prepare_cones16(cylray_leaf16 *out, const cylray_cone *c,
+                                                     const uint32_t *ids, size_t n);
 CYLRAY_API cylray_status cylray_leaf_prepare_spheres4(cylray_leaf4 *out, const cylray_sphere *s,
                                                       const uint32_t *ids, size_t n);
 CYLRAY_API cylray_status cylray_leaf_prepare_spheres8(cylray_leaf8 *out, const cylray_sphere *s,

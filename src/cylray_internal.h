@@ -41,5 +41,6 @@ int cylray_surface_fma_(void);
  * derives anything, for cylray_cylinder_from_endpoints, which refuses what it refuses. */
 int cylray_cylinder_ok_(const cylray_cylinder *in);
 int cylray_sphere_ok_(const cylray_sphere *in);
+int cylray_cone_ok_(const cylray_cone *in);
 
 #endif

@@ -15,6 +15,17 @@ static cylray_status prepare_sphere(cylray_prepared *p, const void *shapes, size
 {
     return cylray_prepare_sphere(p, (const cylray_sphere *)shapes + k);
 }
+/* A leaf of cones takes every lane as a cone: r0 == r1 too (a cylinder, slope 0). */
+static cylray_status prepare_cone(cylray_prepared *p, const void *shapes, size_t k)
+{
+    const cylray_cone *c = (const cylray_cone *)shapes + k;
+    cylray_status st = cylray_prepare_cone(p, c);
+    if (st == CYLRAY_OK && p->kind != CYLRAY_KIND_CONE) {
+        p->kind = CYLRAY_KIND_CONE;
+        p->r0 = c->r0, p->r1 = c->r1, p->rm = c->r0, p->kap = 0.0f, p->cnrm = 1.0f;
+    }
+    return st;
+}
 
 /* Fills a leaf of m lanes (the geom_, meta_ and id_ arrays of cylray_leafM, given as
  * one array of (CYLRAY_LF_COUNT + 2) m words) from shapes[0..n), all or nothing. A
@@ -34,6 +45,7 @@ static cylray_status leaf_prepare(void *out, size_t m, size_t bytes, const void 
         cylray_prepared p;
         if (prep(&p, shapes, k) != CYLRAY_OK)
             return CYLRAY_EINVAL;
+        const int cone = p.kind == CYLRAY_KIND_CONE;
         const float f[CYLRAY_LF_COUNT] = {
             [CYLRAY_LF_CX] = p.c[0],
             [CYLRAY_LF_CY] = p.c[1],
@@ -41,13 +53,13 @@ static cylray_status leaf_prepare(void *out, size_t m, size_t bytes, const void 
             [CYLRAY_LF_VX] = p.v[0],
             [CYLRAY_LF_VY] = p.v[1],
             [CYLRAY_LF_VZ] = p.v[2],
-            [CYLRAY_LF_R] = p.radius,
+            [CYLRAY_LF_R] = cone ? p.rm : p.radius,
             [CYLRAY_LF_H] = p.half_height,
-            [CYLRAY_LF_RRVV] = p.rr_vv,
+            [CYLRAY_LF_RRVV] = cone ? p.kap : p.rr_vv,
             [CYLRAY_LF_HV] = p.h_v,
             [CYLRAY_LF_SQS] = p.sqrt_vv / p.g_s, /* an exact power-of-two scaling */
             [CYLRAY_LF_GS] = p.g_s,
-            [CYLRAY_LF_NSCALE] = p.nscale,
+            [CYLRAY_LF_NSCALE] = cone ? p.cnrm : p.nscale,
             [CYLRAY_LF_BOUND2] = p.bound2,
         };
         for (int j = 0; j < CYLRAY_LF_COUNT; j++)
@@ -59,6 +71,8 @@ static cylray_status leaf_prepare(void *out, size_t m, size_t bytes, const void 
             meta[CYLRAY_LM_HI] |= 1u << k;
         if (p.kind == CYLRAY_KIND_SPHERE)
             meta[CYLRAY_LM_SPHERE] |= 1u << k;
+        if (cone)
+            meta[CYLRAY_LM_SPHERE] |= 1u << (CYLRAY_LM_CONE_SHIFT + k);
         id[k] = ids ? ids[k] : (uint32_t)k;
     }
     unsigned char *o = out;
@@ -82,6 +96,11 @@ static cylray_status leaf_prepare(void *out, size_t m, size_t bytes, const void 
                                                  const uint32_t *ids, size_t n)                \
     {                                                                                          \
         return leaf_prepare(out, m, sizeof *out, s, prepare_sphere, ids, n);                   \
+    }                                                                                          \
+    cylray_status cylray_leaf_prepare_cones##m(cylray_leaf##m *out, const cylray_cone *c,      \
+                                               const uint32_t *ids, size_t n)                  \
+    {                                                                                          \
+        return leaf_prepare(out, m, sizeof *out, c, prepare_cone, ids, n);                     \
     }
 LEAF_PREPARE_(4)
 LEAF_PREPARE_(8)

@@ -167,3 +167,61 @@ cylray_status cylray_prepare_sphere(cylray_prepared *out, const cylray_sphere *i
     *out = p;
     return CYLRAY_OK;
 }
+
+static int cone_radius_ok(double r)
+{
+    return r == 0 || (r >= CYLRAY_MIN_RADIUS && r <= CYLRAY_MAX_COORD);
+}
+
+int cylray_cone_ok_(const cylray_cone *in)
+{
+    for (int k = 0; k < 3; k++)
+        if (!coord_ok(in->p0[k]) || !coord_ok(in->p1[k]))
+            return 0;
+    return cone_radius_ok(in->r0) && cone_radius_ok(in->r1) && (in->r0 > 0 || in->r1 > 0) &&
+           !(in->flags & ~CYLRAY_CAPPED);
+}
+
+/* A cone is prepared as the capped cylinder of its larger radius around the same axis
+ * (the endpoint form's center, axis and half height, whose bounding sphere and scaling
+ * serve the cone as they are), and then the radius as a function of the axial
+ * coordinate z = p.v: r = rm + kap z, with kap = (r1 - r0) / (2 H |v|), so that r is r0
+ * at z = -H |v| and r1 at +H |v|. The normal's length, 1 / sqrt(1 + slope^2), and v / v.v
+ * for its radial part (kernel/store.h). */
+cylray_status cylray_prepare_cone(cylray_prepared *out, const cylray_cone *in)
+{
+    if (!out || !in || !cylray_cone_ok_(in))
+        return CYLRAY_EINVAL;
+    const double rmax = fmax(in->r0, in->r1);
+    cylray_cylinder cyl;
+    if (cylray_cylinder_from_endpoints(&cyl, in->p0, in->p1, (float)rmax, in->flags) !=
+        CYLRAY_OK)
+        return CYLRAY_EINVAL;
+    cylray_prepared p;
+    if (cylray_prepare(&p, &cyl) != CYLRAY_OK)
+        return CYLRAY_EINVAL;
+    if (in->r0 == in->r1) { /* a cylinder, and its own kernels */
+        *out = p;
+        return CYLRAY_OK;
+    }
+    /* the general kernels: a cone has no coordinate-axis variant */
+    if (p.axis_id) { /* v is a unit step already, and serves the general kernel */
+        p.axis_id = 0;
+        for (unsigned k = 0; k < 3; k++)
+            p.order[k] = (uint8_t)k;
+    }
+    const double vv =
+        (double)p.v[0] * p.v[0] + (double)p.v[1] * p.v[1] + (double)p.v[2] * p.v[2];
+    const double H = cyl.half_height, sv = sqrt(vv),
+                 slope = ((double)in->r1 - in->r0) / (2 * H);
+    p.kind = CYLRAY_KIND_CONE;
+    p.r0 = in->r0, p.r1 = in->r1;
+    p.rm = (float)(0.5 * ((double)in->r0 + in->r1));
+    p.kap = (float)(slope / sv);
+    p.cnrm = (float)(1.0 / sqrt(1.0 + slope * slope));
+    for (int k = 0; k < 3; k++)
+        p.vk[k] = (float)(p.v[k] / vv);
+    p.variant = (uint8_t)cylray_variant_of_(p.kind, 0u, p.g_s != 1.0f, p.caps);
+    *out = p;
+    return CYLRAY_OK;
+}

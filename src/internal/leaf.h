@@ -26,9 +26,23 @@ enum {
 };
 /* meta_ holds lane masks (bit k: lane k): [0] the lanes in use, [1] those whose low
  * disc is part of the surface, [2] those whose high disc is, [3] those that are
- * spheres (a leaf holds cylinders or spheres: [3] is 0 or [0]). The leaf starts with
- * the fields a kernel reads, so it is passed to one as a float pointer. */
+ * spheres in its low 16 bits and those that are cones in its high 16 (bit 16 + k). A
+ * leaf holds cylinders, spheres, or cones (cylinders among them as cones of equal
+ * radii). The leaf starts with the fields a kernel reads, so it is passed to one as a
+ * float pointer.
+ *
+ * A cone's lane reads some rows otherwise: CYLRAY_LF_R is its radius at the center
+ * rm, CYLRAY_LF_RRVV its slope kap and CYLRAY_LF_NSCALE its cnrm (cylray_prepared). */
 enum { CYLRAY_LM_USED, CYLRAY_LM_LO, CYLRAY_LM_HI, CYLRAY_LM_SPHERE };
+#define CYLRAY_LM_CONE_SHIFT 16
+static inline uint32_t cylray_leaf_spheres_(const uint32_t *meta)
+{
+    return meta[CYLRAY_LM_SPHERE] & 0xffffu;
+}
+static inline uint32_t cylray_leaf_cones_(const uint32_t *meta)
+{
+    return meta[CYLRAY_LM_SPHERE] >> CYLRAY_LM_CONE_SHIFT;
+}
 static inline unsigned cylray_leaf_caps_(const uint32_t *meta, unsigned lane)
 {
     return ((meta[CYLRAY_LM_LO] >> lane) & 1u ? CYLRAY_CAPPED_LO : 0u) |

@@ -14,6 +14,7 @@
 #define CYLRAY_KIND_COUNT 3u
 #define CYLRAY_KIND_LEAF 3u   /* in the kernel flags only: a leaf's lanes, of any kind */
 #define CYLRAY_KIND_SPHERE 4u /* cylray_prepared.kind of a sphere (CYLRAY_KF_SPHERE) */
+#define CYLRAY_KIND_CONE 5u   /* cylray_prepared.kind of a cone (CYLRAY_KF_CONE) */
 
 #define CYLRAY_MAGIC 0x63796c72u /* "cylr" */
 
@@ -30,6 +31,9 @@
 /* A sphere (the kind bits then 0): the stages that differ from the cylinder's take
  * their sphere branch; the drivers, stores and tables are the cylinder's. */
 #define CYLRAY_KF_SPHERE 0x10000u
+/* A cone (the kind bits then those of a capped cylinder, whose slab logic it runs): the
+ * side's quadratic and its normal take the cone's branch. */
+#define CYLRAY_KF_CONE 0x20000u
 /* How the x86 kernels store a hit vector (docs/performance.md, "Stores by vendor"):
  * the policy is a property of the kernel table the dispatch chose for the CPU, whose
  * entry points pass it down with the run-time flags.
@@ -55,13 +59,17 @@
  * CYLRAY_VARIANT_GENERIC on (its kind's offset from there, a sphere's 3), and runs the
  * generic kernel, which reads its flags at run time. */
 #define CYLRAY_VARIANT_SPHERE (2u * CYLRAY_KIND_COUNT)
-#define CYLRAY_VARIANT_GENERIC (CYLRAY_VARIANT_SPHERE + 1u)
+#define CYLRAY_VARIANT_CONE (CYLRAY_VARIANT_SPHERE + 1u)
+#define CYLRAY_VARIANT_GENERIC (CYLRAY_VARIANT_CONE + 1u)
 static inline unsigned cylray_variant_of_(unsigned kind, unsigned axis_id, int radius_scaled,
                                           unsigned caps)
 {
     if (kind == CYLRAY_KIND_SPHERE)
         return radius_scaled ? CYLRAY_VARIANT_GENERIC + CYLRAY_KIND_COUNT
                              : CYLRAY_VARIANT_SPHERE;
+    if (kind == CYLRAY_KIND_CONE) /* a cone with one disc or none: the generic one */
+        return radius_scaled || caps != CYLRAY_CAPPED ? CYLRAY_VARIANT_GENERIC + 4u
+                                                      : CYLRAY_VARIANT_CONE;
     if (radius_scaled || (kind == CYLRAY_KIND_CAPPED && caps != CYLRAY_CAPPED))
         return CYLRAY_VARIANT_GENERIC + kind;
     return kind + (axis_id ? CYLRAY_KIND_COUNT : 0u);
@@ -74,8 +82,10 @@ static inline int cylray_generic_(const cylray_prepared *p)
  * and whether its axis is a coordinate axis; a constant expression, for the tables. */
 #define CYLRAY_VARIANT_KF_(v)                                                                  \
     ((v) == CYLRAY_VARIANT_SPHERE ? CYLRAY_KF_SPHERE                                           \
-                                  : (((v) % CYLRAY_KIND_COUNT) << CYLRAY_KF_KIND_SHIFT |       \
-                                     ((v) >= CYLRAY_KIND_COUNT ? CYLRAY_KF_ALIGNED : 0u)))
+     : (v) == CYLRAY_VARIANT_CONE                                                              \
+         ? CYLRAY_KF_CONE | CYLRAY_KIND_CAPPED << CYLRAY_KF_KIND_SHIFT                         \
+         : (((v) % CYLRAY_KIND_COUNT) << CYLRAY_KF_KIND_SHIFT |                                \
+            ((v) >= CYLRAY_KIND_COUNT ? CYLRAY_KF_ALIGNED : 0u)))
 /* The kernel flags of a generic variant, which the generic drivers read at run time:
  * the kind, one disc or two, and the public flags that select the kernel's branches. */
 static inline unsigned cylray_generic_kf_(const cylray_prepared *P, unsigned flags, int occ)
@@ -84,6 +94,11 @@ static inline unsigned cylray_generic_kf_(const cylray_prepared *P, unsigned fla
         return CYLRAY_KF_SPHERE | (occ ? CYLRAY_KF_OCCLUDED : 0u) |
                (flags & ((occ ? 0u : CYLRAY_NORMAL) | CYLRAY_REFINE | CYLRAY_FAST)) |
                CYLRAY_KF_SCALED;
+    if (P->kind == CYLRAY_KIND_CONE)
+        return CYLRAY_KF_CONE | CYLRAY_KIND_CAPPED << CYLRAY_KF_KIND_SHIFT |
+               (occ ? CYLRAY_KF_OCCLUDED : 0u) |
+               (flags & ((occ ? 0u : CYLRAY_NORMAL) | CYLRAY_REFINE | CYLRAY_FAST)) |
+               (P->caps != CYLRAY_CAPPED ? CYLRAY_KF_ONE_END : 0u) | CYLRAY_KF_SCALED;
     return P->kind << CYLRAY_KF_KIND_SHIFT | (occ ? CYLRAY_KF_OCCLUDED : 0u) |
            (flags & ((occ ? 0u : CYLRAY_NORMAL) | CYLRAY_REFINE | CYLRAY_FAST)) |
            (P->kind == CYLRAY_KIND_CAPPED && P->caps != CYLRAY_CAPPED ? CYLRAY_KF_ONE_END
@@ -124,8 +139,8 @@ static inline unsigned cylray_occ_index_(unsigned variant, unsigned flags)
  * so whole vectors may be stored there; stores: the store policy (CYLRAY_STORE_*). */
 typedef struct {
     unsigned kind;
-    int sphere, leaf, capped, finite, one_end, aligned, scaled, occ, normal, cull, ff, refine,
-        fast;
+    int sphere, cone, leaf, capped, finite, one_end, aligned, scaled, occ, normal, cull, ff,
+        refine, fast;
     int scratch;
     unsigned stores;
 } cylray_kflags_;
@@ -136,6 +151,7 @@ CYLRAY_INLINE cylray_kflags_ cylray_kflags_of_(unsigned FL, unsigned rt)
     cylray_kflags_ F;
     F.kind = (FL >> CYLRAY_KF_KIND_SHIFT) & 3u;
     F.sphere = (FL & CYLRAY_KF_SPHERE) != 0;
+    F.cone = (FL & CYLRAY_KF_CONE) != 0;
     F.leaf = F.kind == CYLRAY_KIND_LEAF;
     /* A leaf's lanes are cylinders of any kind: each runs the capped solid's logic with
      * its own discs (an open tube has none, an infinite one an infinite slab). */
@@ -160,8 +176,9 @@ CYLRAY_INLINE cylray_kflags_ cylray_kflags_of_(unsigned FL, unsigned rt)
 static inline int cylray_prepared_ok_(const cylray_prepared *p)
 {
     return p != 0 && p->magic == CYLRAY_MAGIC &&
-           (p->kind < CYLRAY_KIND_COUNT || p->kind == CYLRAY_KIND_SPHERE) && p->axis_id <= 3u &&
-           (p->caps & ~CYLRAY_CAPPED) == 0 &&
+           (p->kind < CYLRAY_KIND_COUNT || p->kind == CYLRAY_KIND_SPHERE ||
+            p->kind == CYLRAY_KIND_CONE) &&
+           p->axis_id <= 3u && (p->caps & ~CYLRAY_CAPPED) == 0 &&
            p->variant == cylray_variant_of_(p->kind, p->axis_id, p->g_s != 1.0f, p->caps);
 }
 

@@ -44,7 +44,22 @@ CYLRAY_INLINE void KFN(ends)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_
         /* The solid is the infinite one cut by the slab |z| <= H: inside on [max of the
          * entries, min of the exits]. The rim is then shared, not tested twice. A ray
          * parallel to the axis inside the tube is inside the side everywhere. */
-        st->side_lo = vsel(st->inpar, vneg(inf), tn), st->side_hi = vsel(st->inpar, inf, tf);
+        vf lo = tn, hi = tf;
+        if (F.cone) {
+            /* The double cone's inside on the ray: [tn, tf] where A > 0, on one nappe
+             * (the cone's where its radius there is not negative); where A < 0 the two
+             * half-lines beyond the roots, one on each nappe, of which the cone's is the
+             * one whose root has a radius not negative. The slab keeps the other nappe
+             * out exactly; these choices only keep rounding near a tip from passing a
+             * sliver of it. */
+            const vm neg = vlt(st->A, zero);
+            const vm far = vge(vfma(st->ca, tf, st->cr), zero);
+            lo = vsel(neg, vsel(far, tf, vneg(inf)), tn);
+            hi = vsel(neg, vsel(far, inf, tn), tf);
+            const vf mid = vmul(vset1(0.5f), vadd(tn, tf));
+            st->side = mandn(st->side, mandn(vlt(vfma(st->ca, mid, st->cr), zero), neg));
+        }
+        st->side_lo = vsel(st->inpar, vneg(inf), lo), st->side_hi = vsel(st->inpar, inf, hi);
         const vf hv = KFN(both_in)(k, F, offsetof(cylray_prepared, h_v), CYLRAY_LF_HV);
         /* Two divisions rather than one reciprocal: a cap hit is then as exact as
          * the plane's offset, and dv = 0 gives the infinities the slab wants. */

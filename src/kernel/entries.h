@@ -100,9 +100,10 @@ static size_t KI_(occluded_stream)(const cylray_prepared *P, const cylray_rays *
     {                                                                                          \
         if (!leaf || !ray || !hit)                                                             \
             return 0;                                                                          \
-        const KW_(leaf_fn, KL##m) *t = leaf->meta_[CYLRAY_LM_SPHERE]                           \
-                                           ? KW_(leaf_sphere_table, KL##m)                     \
-                                           : KW_(leaf_table, KL##m);                           \
+        const KW_(leaf_fn, KL##m) *t =                                                         \
+            cylray_leaf_spheres_(leaf->meta_) ? KW_(leaf_sphere_table, KL##m)                  \
+            : cylray_leaf_cones_(leaf->meta_) ? KW_(leaf_cone_table, KL##m)                    \
+                                              : KW_(leaf_table, KL##m);                        \
         return t[cylray_spec_(flags)](leaf->geom_[0], m, ray, hit,                             \
                                       flags & CYLRAY_FLAGS_ALL & CYLRAY_KF_RUNTIME);           \
     }                                                                                          \
@@ -113,9 +114,10 @@ static size_t KI_(occluded_stream)(const cylray_prepared *P, const cylray_rays *
             return 0;                                                                          \
         /* the occluded kernels read the ray and never write through this pointer */           \
         cylray_ray1 *r = (cylray_ray1 *)(uintptr_t)ray;                                        \
-        const KW_(leaf_fn, KL##m) *t = leaf->meta_[CYLRAY_LM_SPHERE]                           \
-                                           ? KW_(leaf_sphere_occ_table, KL##m)                 \
-                                           : KW_(leaf_occ_table, KL##m);                       \
+        const KW_(leaf_fn, KL##m) *t =                                                         \
+            cylray_leaf_spheres_(leaf->meta_) ? KW_(leaf_sphere_occ_table, KL##m)              \
+            : cylray_leaf_cones_(leaf->meta_) ? KW_(leaf_cone_occ_table, KL##m)                \
+                                              : KW_(leaf_occ_table, KL##m);                    \
         return t[cylray_occ_spec_(flags)](leaf->geom_[0], m, r, NULL,                          \
                                           flags & CYLRAY_CULL_BACK);                           \
     }

@@ -118,6 +118,10 @@ CYLRAY_INLINE int KFN(reject)(KFN(lanes) *st, const cylray_kat_ *k, const cylray
         g0 = KDOT(st->ex, st->ey, st->ez, whx, why, whz);
     }
     st->A = A;
+    if (F.cone) { /* no tube: the cone's side is no cylinder's */
+        st->act = act;
+        return many(act);
+    }
     /* The ray's line passes at |g| / sqrt(A) from the axis (g = e.w moves neither with
      * the shift nor along the axis). g0 is off from the exact g by less than
      * 2^-21 sqrt(A ww); beyond that margin the line misses the tube. A vector whose

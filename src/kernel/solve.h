@@ -84,13 +84,60 @@ CYLRAY_INLINE int KFN(sphere_side)(KFN(lanes) *st, const cylray_kat_ *k, const c
     return many(st->side);
 }
 
+/* Stage 4 of a cone, whose radius at the axial coordinate z = p.v is r = rm + kap z:
+ * with f = v x p and e = d x v as the cylinder's, r0 = rm + kap (p.v) the radius at the
+ * shifted origin's level and a = kap (d.v) its rate along the ray, the side of the
+ * double cone is |f - t e|^2 = v.v (r0 + a t)^2, so
+ *   A = e.e - v.v a^2,  nB = e.f + v.v a r0,  C = f.f - v.v r0^2,
+ * and Lagrange's identity turns B^2 - A C into v.v (|r0 e + a f|^2 - g^2), g = e.p as
+ * the cylinder's (whose r0 e is R e and a 0). The roots of either sign of A are the
+ * cylinder's; the slab of the ends (kernel/ends.h) then keeps the nappe the cone is on.
+ * Returns whether any lane can still hit. */
+CYLRAY_INLINE int KFN(cone_side)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
+{
+    const vf zero = vzero(), dx = st->dx, dy = st->dy, dz = st->dz;
+    const vf vx = st->vx, vy = st->vy, vz = st->vz, px = st->px, py = st->py, pz = st->pz;
+    const vf ex = st->ex, ey = st->ey, ez = st->ez;
+    const vf fx = vfms(vy, pz, vmul(vz, py)), fy = vfms(vz, px, vmul(vx, pz)),
+             fz = vfms(vx, py, vmul(vy, px));
+    st->fx = fx, st->fy = fy, st->fz = fz;
+    const vf kap = KFN(both_in)(k, F, offsetof(cylray_prepared, kap), CYLRAY_LF_RRVV);
+    const vf rm = KFN(both_in)(k, F, offsetof(cylray_prepared, rm), CYLRAY_LF_R);
+    const vf vv = KDOT(vx, vy, vz, vx, vy, vz);
+    const vf r0 = vfma(kap, KDOT(px, py, pz, vx, vy, vz), rm);
+    const vf a = vmul(kap, KDOT(dx, dy, dz, vx, vy, vz));
+    const vf va = vmul(vv, a);
+    st->cr = r0, st->ca = a;
+    st->A = vfnma(va, a, st->A); /* e.e - v.v a^2 */
+    st->nB = vfma(va, r0, KDOT(ex, ey, ez, fx, fy, fz));
+    st->C = vsumsq_x(fx, fy, fz, vmul(vmul(vv, r0), r0));
+    vf g = KDOT(ex, ey, ez, px, py, pz);
+    vf ux = vfma(r0, ex, vmul(a, fx)), uy = vfma(r0, ey, vmul(a, fy)),
+       uz = vfma(r0, ez, vmul(a, fz));
+    if (F.scaled || F.leaf) { /* 2^-2j, as the cylinder's */
+        const vf gs = KFN(both_in)(k, F, offsetof(cylray_prepared, g_s), CYLRAY_LF_GS);
+        ux = vmul(ux, gs), uy = vmul(uy, gs), uz = vmul(uz, gs), g = vmul(g, gs);
+    }
+    st->g = g;
+    st->AR2 = KDOT(ux, uy, uz, ux, uy, uz);
+    st->D = vfnma(g, g, st->AR2);
+    const vm act = mand(st->act, veq(vfma(st->C, zero, vmul(st->D, zero)), zero));
+    const vm neg = vlt(st->A, zero);
+    st->side = mand(act, vge(st->D, zero));
+    st->inpar = mandn(mand(act, neg), st->side); /* no roots, and inside everywhere */
+    return many(mor(st->side, st->inpar));
+}
+
 /* Stage 4, the side's quadratic and its discriminant, in Lagrange's form. Returns
  * whether any lane can still hit. */
 CYLRAY_INLINE int KFN(side)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
 {
     const vf zero = vzero(), dx = st->dx, dy = st->dy;
+    st->cr = st->ca = zero; /* a cone's */
     if (F.sphere)
         return KFN(sphere_side)(st, k, F);
+    if (F.cone)
+        return KFN(cone_side)(st, k, F);
     st->g = zero;
     if (F.aligned) {
         /* g = w x d, in the plane: it does not change along the ray, and Kahan's
@@ -177,7 +224,7 @@ CYLRAY_INLINE void KFN(roots)(KFN(lanes) *st, const cylray_kat_ *k, const cylray
     if (many(tangent))
         r2 = vsel(tangent, vdiv(vsub(nB, vxorsign(sq, nB)), A), r2);
     st->tn = vmin(r1, r2), st->tf = vmax(r1, r2);
-    if (F.refine && many(side)) {
+    if (F.refine && !F.cone && many(side)) {
         /* Both roots are polished before anything is decided from them, so that the
          * entry test, the clip and the range test all see the t that is reported: a
          * call with tmax set to a reported t then reports it again. */

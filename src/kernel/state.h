@@ -20,7 +20,10 @@ typedef struct {
     vf wlx, wly, wlz, px, py, pz;
     /* side: the quadratic A t^2 - 2 nB t + C, f = v x p, and its discriminant */
     vf fx, fy, fz, nB, C, D, AR2;
-    vm side, inpar; /* the side's roots exist; parallel inside the tube */
+    vm side, inpar; /* the side's roots exist; parallel inside the tube (a cone: the
+                     * whole line inside its double cone) */
+    vf cr, ca;      /* a cone: its radius at the origin's level, and the radius's rate
+                     * along the ray */
     /* roots, ends: the side's roots, and entry and exit relative to p */
     vf tn, tf, z0, dv, side_lo, side_hi, t_in, t_out;
     vm ok_in, ok_out;

@@ -72,6 +72,22 @@ CYLRAY_INLINE void KFN(normals)(const KFN(lanes) *st, const cylray_kat_ *k,
         nx = vmul(vfma(tr, st->dx, st->px), kn);
         ny = vmul(vfma(tr, st->dy, st->py), kn);
         nz = zero;
+    } else if (F.cone) {
+        /* The gradient of |x_perp|^2 - r^2: p_perp - r slope n_axis, of length
+         * r / cnrm on the side; p_perp = v x (p x v) / v.v as the cylinder's, and
+         * slope n_axis = kap v. */
+        const vf rvv = KRCP(F, KDOT(st->vx, st->vy, st->vz, st->vx, st->vy, st->vz));
+        const vf kx = KFN(cyl_in)(k, F, offsetof(cylray_prepared, vk[0]), vmul(st->vx, rvv)),
+                 ky = KFN(cyl_in)(k, F, offsetof(cylray_prepared, vk[1]), vmul(st->vy, rvv)),
+                 kz = KFN(cyl_in)(k, F, offsetof(cylray_prepared, vk[2]), vmul(st->vz, rvv));
+        const vf kap = KFN(both_in)(k, F, offsetof(cylray_prepared, kap), CYLRAY_LF_RRVV);
+        const vf cn = KFN(both_in)(k, F, offsetof(cylray_prepared, cnrm), CYLRAY_LF_NSCALE);
+        const vf r = vfma(st->ca, tr, st->cr), rk = vmul(r, kap), sc = vdiv(cn, r);
+        vf ux = vfms(tr, st->ex, st->fx), uy = vfms(tr, st->ey, st->fy),
+           uz = vfms(tr, st->ez, st->fz);
+        nx = vmul(vfnma(rk, st->vx, vfms(ky, uz, vmul(kz, uy))), sc);
+        ny = vmul(vfnma(rk, st->vy, vfms(kz, ux, vmul(kx, uz))), sc);
+        nz = vmul(vfnma(rk, st->vz, vfms(kx, uy, vmul(ky, ux))), sc);
     } else {
         /* v x (p x v) = v.v p_perp, with p x v = f + t e already perpendicular, so
          * no axial magnitude leaks in; vk = v / (R v.v) makes it unit length. */
@@ -88,7 +104,10 @@ CYLRAY_INLINE void KFN(normals)(const KFN(lanes) *st, const cylray_kat_ *k,
     if (F.capped) {
         vm cap = mandn(hit, on_side);
         vf sgn = vsel(cap_hi, one, vset1(-1.0f));
-        if (F.leaf) /* 1 / |v| = R |v| / (R v.v) */
+        if (F.leaf && F.cone) /* 1 / |v| = 1 / ((|v| / g_s) g_s) */
+            sgn = vdiv(
+                sgn, vmul(KFN(leaf_in)(k, F, CYLRAY_LF_SQS), KFN(leaf_in)(k, F, CYLRAY_LF_GS)));
+        else if (F.leaf) /* 1 / |v| = R |v| / (R v.v) */
             sgn = vmul(sgn, vmul(vmul(KFN(leaf_in)(k, F, CYLRAY_LF_NSCALE), st->rad),
                                  vmul(KFN(leaf_in)(k, F, CYLRAY_LF_SQS),
                                       KFN(leaf_in)(k, F, CYLRAY_LF_GS))));

@@ -3,8 +3,8 @@
  * index. */
 
 /* The specialisations, where a tracer spends its time: for each kind of cylinder
- * (infinite, open, capped; the same three along a coordinate axis), the sphere, and a
- * leaf of cylinders or of spheres, the
+ * (infinite, open, capped; the same three along a coordinate axis), the sphere, the
+ * capped cone, and a leaf of cylinders, spheres or cones, the
  * intersect kernels with and without normals, each plain, with CYLRAY_FAST or with
  * CYLRAY_REFINE, and the occluded ones likewise. FAST and REFINE together (an odd
  * pair: one trades accuracy away, the other buys it) take the drivers that read their
@@ -60,20 +60,26 @@
     }
 #define KLEAF_(b)                                                                              \
     KLEAFDRV_(lf_##b, leaf, KLFL_(CYLRAY_SPEC_KF_(b)))                                         \
-    KLEAFDRV_(sf_##b, leaf, KLFL_(CYLRAY_SPEC_KF_(b)) | CYLRAY_KF_SPHERE)
+    KLEAFDRV_(sf_##b, leaf, KLFL_(CYLRAY_SPEC_KF_(b)) | CYLRAY_KF_SPHERE)                      \
+    KLEAFDRV_(cf_##b, leaf, KLFL_(CYLRAY_SPEC_KF_(b)) | CYLRAY_KF_CONE)
 #define KLEAFOCC_(b)                                                                           \
     KLEAFDRV_(lo_##b, leaf, KLFL_(CYLRAY_OCC_SPEC_KF_(b)))                                     \
-    KLEAFDRV_(so_##b, leaf, KLFL_(CYLRAY_OCC_SPEC_KF_(b)) | CYLRAY_KF_SPHERE)
+    KLEAFDRV_(so_##b, leaf, KLFL_(CYLRAY_OCC_SPEC_KF_(b)) | CYLRAY_KF_SPHERE)                  \
+    KLEAFDRV_(co_##b, leaf, KLFL_(CYLRAY_OCC_SPEC_KF_(b)) | CYLRAY_KF_CONE)
 #define KLEAFANY_(b)                                                                           \
     KLEAFDRV_(lf_##b, leaf_any, KLFL_(CYLRAY_SPEC_KF_(b)))                                     \
-    KLEAFDRV_(sf_##b, leaf_any, KLFL_(CYLRAY_SPEC_KF_(b)) | CYLRAY_KF_SPHERE)
+    KLEAFDRV_(sf_##b, leaf_any, KLFL_(CYLRAY_SPEC_KF_(b)) | CYLRAY_KF_SPHERE)                  \
+    KLEAFDRV_(cf_##b, leaf_any, KLFL_(CYLRAY_SPEC_KF_(b)) | CYLRAY_KF_CONE)
 #define KLEAFOCCANY_(b)                                                                        \
     KLEAFDRV_(lo_##b, leaf_any, KLFL_(CYLRAY_OCC_SPEC_KF_(b)))                                 \
-    KLEAFDRV_(so_##b, leaf_any, KLFL_(CYLRAY_OCC_SPEC_KF_(b)) | CYLRAY_KF_SPHERE)
+    KLEAFDRV_(so_##b, leaf_any, KLFL_(CYLRAY_OCC_SPEC_KF_(b)) | CYLRAY_KF_SPHERE)              \
+    KLEAFDRV_(co_##b, leaf_any, KLFL_(CYLRAY_OCC_SPEC_KF_(b)) | CYLRAY_KF_CONE)
 #define K8_(X, k) X(k, 0) X(k, 1) X(k, 2) X(k, 3) X(k, 4) X(k, 5) X(k, 6) X(k, 7)
 #define K4_(X, k) X(k, 0) X(k, 1) X(k, 2) X(k, 3)
-#define KALL8_(X) K8_(X, 0) K8_(X, 1) K8_(X, 2) K8_(X, 3) K8_(X, 4) K8_(X, 5) K8_(X, 6)
-#define KALL4_(X) K4_(X, 0) K4_(X, 1) K4_(X, 2) K4_(X, 3) K4_(X, 4) K4_(X, 5) K4_(X, 6)
+#define KALL8_(X)                                                                              \
+    K8_(X, 0) K8_(X, 1) K8_(X, 2) K8_(X, 3) K8_(X, 4) K8_(X, 5) K8_(X, 6) K8_(X, 7)
+#define KALL4_(X)                                                                              \
+    K4_(X, 0) K4_(X, 1) K4_(X, 2) K4_(X, 3) K4_(X, 4) K4_(X, 5) K4_(X, 6) K4_(X, 7)
 
 /* b = 6, 7 (occluded: 3) are FAST with REFINE. Lists of definitions: clang-format reads
  * them as one long expression and breaks them differently from version to version. */
@@ -83,7 +89,7 @@
     KISECT_(k, 1) KISECT_(k, 2) KISECT_(k, 3) KISECT_(k, 4) KISECT_(k, 5) KISECTANY_(k, 6)     \
         KISECTANY_(k, 7) KOCC_(k, 0) KOCC_(k, 1) KOCC_(k, 2) KOCCANY_(k, 3)
 KKIND_(0)
-KKIND_(1) KKIND_(2) KKIND_(3) KKIND_(4) KKIND_(5) KKIND_(6) KLEAF_(0) KLEAF_(1) KLEAF_(2) KLEAF_(3)
+KKIND_(1) KKIND_(2) KKIND_(3) KKIND_(4) KKIND_(5) KKIND_(6) KKIND_(7) KLEAF_(0) KLEAF_(1) KLEAF_(2) KLEAF_(3)
     KLEAF_(4) KLEAF_(5) KLEAFANY_(6) KLEAFANY_(7) KLEAFOCC_(0) KLEAFOCC_(1) KLEAFOCC_(2)
         KLEAFOCCANY_(3)
 /* clang-format on */
@@ -114,6 +120,11 @@ CYLRAY_MAYBE_UNUSED static const KFN(leaf_fn) KFN(leaf_sphere_table)[] = {
     KFN(sf_0), KFN(sf_1), KFN(sf_2), KFN(sf_3), KFN(sf_4), KFN(sf_5), KFN(sf_6), KFN(sf_7)};
 CYLRAY_MAYBE_UNUSED static const KFN(leaf_fn)
     KFN(leaf_sphere_occ_table)[] = {KFN(so_0), KFN(so_1), KFN(so_2), KFN(so_3)};
+/* And for a leaf of cones. */
+CYLRAY_MAYBE_UNUSED static const KFN(leaf_fn) KFN(leaf_cone_table)[] = {
+    KFN(cf_0), KFN(cf_1), KFN(cf_2), KFN(cf_3), KFN(cf_4), KFN(cf_5), KFN(cf_6), KFN(cf_7)};
+CYLRAY_MAYBE_UNUSED static const KFN(leaf_fn)
+    KFN(leaf_cone_occ_table)[] = {KFN(co_0), KFN(co_1), KFN(co_2), KFN(co_3)};
 /* Every table holds exactly what its index reaches (cylray_isect_index_,
  * cylray_occ_index_, cylray_spec_, cylray_occ_spec_): one entry per specialised variant
  * and flag encoding. */
@@ -128,6 +139,8 @@ KTABLE_SIZE_(leaf_table, CYLRAY_SPECS);
 KTABLE_SIZE_(leaf_occ_table, CYLRAY_OCC_SPECS);
 KTABLE_SIZE_(leaf_sphere_table, CYLRAY_SPECS);
 KTABLE_SIZE_(leaf_sphere_occ_table, CYLRAY_OCC_SPECS);
+KTABLE_SIZE_(leaf_cone_table, CYLRAY_SPECS);
+KTABLE_SIZE_(leaf_cone_occ_table, CYLRAY_OCC_SPECS);
 
 #undef KDOT
 #undef KRCP
