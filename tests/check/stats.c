@@ -14,12 +14,17 @@ static const char *const mode_names[MODE_COUNT] = {"plain", "refine", "fast"};
 
 const char *cat_name(int category)
 {
-    return category == CAT_REGRESS ? "regress" : cylgen_category_name(category);
+    return category == CAT_REGRESS   ? "regress"
+           : cat_is_sphere(category) ? sphgen_category_name(category - CAT_SPHERE)
+                                     : cylgen_category_name(category);
 }
 
 int cat_find(const char *name)
 {
-    return name && strcmp(name, "regress") == 0 ? CAT_REGRESS : cylgen_category_find(name);
+    if (name && strcmp(name, "regress") == 0)
+        return CAT_REGRESS;
+    int s = sphgen_category_find(name);
+    return s >= 0 ? CAT_SPHERE + s : cylgen_category_find(name);
 }
 
 stat_cell *stat_at(int isa, int category, int mode)
@@ -68,6 +73,42 @@ static void print_ulps(double u)
         printf(" %8.1e", u);
 }
 
+/* One row per ISA and mode over every sphere category but sph-surface (whose hits lie
+ * near t = 0, where an ulp of t is no measure) and sph-bad (no hits): the sphere
+ * kernel's accuracy at a glance. */
+static void spheres_report(void)
+{
+    int header = 0;
+    for (int isa = 0; isa < CYLRAY_ISA_COUNT; isa++)
+        for (int m = 0; m < MODE_COUNT; m++) {
+            stat_cell all = {0};
+            long unexc = 0, beyond = 0;
+            for (int cat = CAT_SPHERE; cat < CAT_COUNT; cat++) {
+                const stat_cell *s = &cells[isa][cat][m];
+                unexc += s->hm_unexcused + s->part_unexcused;
+                beyond += s->t_beyond;
+                if (cat == CAT_SPHERE + SPHGEN_SURFACE || cat == CAT_SPHERE + SPHGEN_BAD)
+                    continue;
+                all.lanes += s->lanes;
+                for (size_t i = 0; i < s->n_ulps; i++)
+                    stat_add_ulps(&all, s->ulps[i]);
+            }
+            if (!all.lanes) {
+                free(all.ulps);
+                continue;
+            }
+            if (!header++)
+                printf("spheres, every category but sph-surface and sph-bad: t error in ulps; "
+                       "unexcused disagreements and t beyond the band over all of them\n");
+            printf("%-7s %-13s %-6s %7ld lanes %7zu hits  p50 %6.3g  p99 %6.3g  max %6.3g  "
+                   "unexcused %ld  >band %ld\n",
+                   cylray_isa_name((cylray_isa)isa), "spheres", mode_names[m], all.lanes,
+                   all.n_ulps, stat_percentile(&all, 0.5), stat_percentile(&all, 0.99),
+                   stat_percentile(&all, 1.0), unexc, beyond);
+            free(all.ulps);
+        }
+}
+
 void stats_report(void)
 {
     printf("\naccuracy: t error in float ulps against the exact answer (hits with the exact "
@@ -99,6 +140,7 @@ void stats_report(void)
                     printf(" %7s", "-");
                 printf("\n");
             }
+    spheres_report();
     printf("(normal angle beyond the band's own spread, worst per ISA and mode:");
     for (int isa = 0; isa < CYLRAY_ISA_COUNT; isa++)
         for (int m = 0; m < MODE_COUNT; m++) {

@@ -297,8 +297,8 @@ static void gen_case(int cat, cylgen_rng *r, const ball *b, cylgen_rng *cam, siz
 }
 
 static const char *const names[SPHGEN_COUNT] = {
-    "sph-ordinary", "sph-far",  "sph-grazing",      "sph-surface", "sph-inside",
-    "sph-tiny",     "sph-huge", "sph-unnormalized", "sph-camera",  "sph-bad"};
+    "sph-ordinary", "sph-far",  "sph-grazing", "sph-surface", "sph-inside",
+    "sph-tiny",     "sph-huge", "sph-unnorm",  "sph-camera",  "sph-bad"};
 
 static const char *const descriptions[SPHGEN_COUNT] = {
     "sphere: from 1.5-10 R at a point within 1.2 R",

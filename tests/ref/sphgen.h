@@ -27,7 +27,7 @@ enum {
     SPHGEN_INSIDE,       /* "sph-inside": origin inside */
     SPHGEN_TINY,         /* "sph-tiny": R 1e-4..1e-3, center around 1e4 */
     SPHGEN_HUGE,         /* "sph-huge": R 1e4..1e6, center around 1e5..1e6 */
-    SPHGEN_UNNORMALIZED, /* "sph-unnormalized": |d| 2^-30..2^30 */
+    SPHGEN_UNNORMALIZED, /* "sph-unnorm": |d| 2^-30..2^30 */
     SPHGEN_CAMERA,       /* "sph-camera": a 4 x 4 pixel block of a pinhole camera */
     SPHGEN_BAD,          /* "sph-bad": NaN/Inf/zero lanes among ordinary ones */
     SPHGEN_COUNT
