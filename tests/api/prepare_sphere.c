@@ -46,8 +46,8 @@ static void refusals(void)
 {
     char what[128];
     const float bad_coord[] = {
-        NAN,     -NAN, INFINITY, -INFINITY, 0x1p63f, -0x1p63f, nextafterf(0x1p62f, INFINITY),
-        -FLT_MAX};
+        NAN,      -NAN, INFINITY, -INFINITY, 0x1p63f, -0x1p63f, nextafterf(0x1p62f, INFINITY),
+        -FLT_MAX, 1e30f};
     for (int k = 0; k < 3; k++)
         for (size_t b = 0; b < sizeof bad_coord / sizeof bad_coord[0]; b++) {
             cylray_sphere s = good;
@@ -79,7 +79,7 @@ static void refusals(void)
 
     const cylray_sphere edges[] = {
         {{0x1p62f, -0x1p62f, 0}, 0x1p-60f}, {{0, 0, 0}, 0x1p62f},    {{-0.0f, 0, 0}, 1},
-        {{FLT_TRUE_MIN, 0, -FLT_MIN}, 2},   {{1e30f, 0, 0}, 1e-10f}, {{0, 0, 0}, 0x1p-60f}};
+        {{FLT_TRUE_MIN, 0, -FLT_MIN}, 2},   {{4e18f, 0, 0}, 1e-10f}, {{0, 0, 0}, 0x1p-60f}};
     for (size_t i = 0; i < sizeof edges / sizeof edges[0]; i++) {
         snprintf(what, sizeof what, "edge sphere %zu", i);
         expect(&edges[i], CYLRAY_OK, what);
@@ -205,11 +205,12 @@ static void edge_answers(void)
         cylray_sphere s;
         float rays[4][8]; /* ox oy oz dx dy dz tmin tmax */
     } cases[] = {
+        /* Origins within 2^62 of the center in each coordinate (the working range). */
         {{{0, 0, 0}, 0x1p62f},
-         {{-0x1p63f, 0, 0, 1, 0, 0, 0, I},
+         {{-0x1p62f, -0x1p62f, 0, 1, 1, 0, 0, I},
           {0, 0, 0, 0, 1, 0, 0, I},
-          {-0x1p63f, 0x1p62f, 0, 1, 0, 0, 0, I},
-          {0, 0, -0x1p64f, 0, 0x1p-30f, 0x1p30f, 0, I}}},
+          {-0x1p62f, 0x1p61f, -0x1p62f, 1, 0, 1, 0, I},
+          {-0x1p62f, 0, -0x1p62f, 0x1p-30f, 0, 0x1p30f, 0, I}}},
         {{{0, 0, 0}, 0x1p-60f},
          {{-1, 0, 0, 1, 0, 0, 0, I},
           {-1, 0x1p-61f, 0, 1, 0, 0, 0, I},
