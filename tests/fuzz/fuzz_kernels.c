@@ -22,6 +22,7 @@
 #include "cylray.h"
 #include "fuzz_input.h"
 #include "fuzz_leaf.h"
+#include "fuzz_sphere.h"
 #ifdef HAVE_SPAWN
 #include "fuzz_spawn.h"
 #endif
@@ -64,6 +65,10 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
 static void dump(const fz_case *c, const char *what)
 {
     char s[512];
+    if (c->sphere)
+        fprintf(stderr, "cylray-fuzz: sphere center (%a, %a, %a) radius %a\n",
+                (double)c->sph.center[0], (double)c->sph.center[1], (double)c->sph.center[2],
+                (double)c->sph.radius);
     fprintf(stderr,
             "cylray-fuzz: %s\n  %s\n  width %s n %zu active %#x misalign %u flags %#x\n", what,
             g_cyl_str(&c->cyl, s, sizeof s), g_width_name(c->width), c->n, c->active,
@@ -87,6 +92,12 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     fz_decode(data, size, &c);
     const cylray_kernels *isas[CYLRAY_ISA_COUNT];
     const int nisa = g_isas(isas);
+    if (c.sphere) {
+        char why[768];
+        if (fz_sphere(&c, isas, nisa, why, sizeof why))
+            FAIL_("sphere: %s", why);
+        return 0;
+    }
 
     cylray_prepared P;
     const int valid = cylray_prepare(&P, &c.cyl) == CYLRAY_OK;
