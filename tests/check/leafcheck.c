@@ -57,6 +57,7 @@ static float fbits(uint32_t u)
 /* Lanes from random categories; the ray is the one made for a random lane. */
 static void make_leaf(leaf_case *lc, int m, cylgen_rng *r, uint64_t seed)
 {
+    memset(lc, 0, sizeof *lc);
     lc->m = m;
     uint64_t u = cylgen_next(r);
     lc->n = (u & 3) == 0 ? (int)((u >> 8) % (unsigned)(m + 1)) : m;
@@ -86,6 +87,7 @@ static void make_leaf(leaf_case *lc, int m, cylgen_rng *r, uint64_t seed)
  * one lane's sphere in a later lane, so that two lanes hit at exactly the same t. */
 static void make_sphere_leaf(leaf_case *lc, int m, cylgen_rng *r, uint64_t seed)
 {
+    memset(lc, 0, sizeof *lc);
     lc->m = m;
     lc->spheres = 1;
     uint64_t u = cylgen_next(r);

@@ -46,6 +46,9 @@ static void report(void)
             "; SIMD/scalar differences excused near a boundary: %lu, by the exact "
             "reference: %lu\n",
             fz_excused_geometric, fz_excused_exact);
+    fprintf(stderr,
+            "cylray-fuzz: spheres: %lu inputs, %lu lanes judged against the exact band\n",
+            fz_sphere_cases, fz_sphere_lanes);
 #ifdef HAVE_SPAWN
     fprintf(stderr,
             "cylray-fuzz: spawn: %lu hits through hit point and origin, %lu spawned "

@@ -11,6 +11,8 @@
 #include "sphref.h"
 #endif
 
+unsigned long fz_sphere_cases, fz_sphere_lanes;
+
 #ifdef HAVE_CYLREF
 /* cylray.h's working range: the origin within 2^62 of the center in each coordinate;
  * beyond it a lane may miss, and is not judged against the reference. The exact t
@@ -28,6 +30,7 @@ static int in_range(const cylray_sphere *s, const float *ray)
 int fz_sphere(const fz_case *c, const cylray_kernels *const *isas, int nisa, char *why,
               size_t whylen)
 {
+    fz_sphere_cases++;
     cylray_prepared P;
     const int valid = cylray_prepare_sphere(&P, &c->sph) == CYLRAY_OK;
     if (!valid)
@@ -78,6 +81,7 @@ int fz_sphere(const fz_case *c, const cylray_kernels *const *isas, int nisa, cha
             if (!judged[i] || (c->width != G_STREAM && !((c->active >> i) & 1u)))
                 continue;
             const cylref_band *b = &band[cull][i];
+            fz_sphere_lanes++;
             const int hit = (int)((res.hit >> i) & 1u);
             double ub = 0;
             const int v = sphref_judge(b, hit, hit ? res.part[i] : 0, hit ? res.t[i] : 0, &ub);

@@ -11,6 +11,9 @@
 
 #include "fuzz_input.h"
 
+/* Sphere inputs run, and lanes judged against the exact band (for the summary). */
+extern unsigned long fz_sphere_cases, fz_sphere_lanes;
+
 /* 0: all held; 1: `why` says what did not. */
 int fz_sphere(const fz_case *c, const cylray_kernels *const *isas, int nisa, char *why,
               size_t whylen);

@@ -258,6 +258,36 @@ static double angle3(const double a[3], const double b[3])
                  a[0] * b[0] + a[1] * b[1] + a[2] * b[2]);
 }
 
+/* How far the normal at a hit may turn over the box, from the geometry: the ray's line
+ * moves sideways by up to db (w by 2 ulps of its largest component in each, d likewise
+ * over the distance t |d|, R by 2 ulps), so the impact parameter b = |w x d| / |d| lies
+ * in [b - db, b + db], and the hit point's height above the plane through the center
+ * across the ray, sqrt(R^2 - b^2), in the matching range. Where the samples above
+ * stop hitting (a ray that only just grazes, or a sphere far smaller than the ulps of
+ * the ray), they cannot see how far a hit's normal may turn; this bound can. */
+static double box_turn(const sin_q *q, double t)
+{
+    double w[3], d[3], wm = 0, dm = 0, dd = 0, x2 = 0;
+    for (int k = 0; k < 3; k++) {
+        w[k] = (double)q->w[k];
+        d[k] = (double)q->d[k];
+        wm = fmax(wm, fabs(w[k]));
+        dm = fmax(dm, fabs(d[k]));
+        dd += d[k] * d[k];
+    }
+    for (int k = 0; k < 3; k++) {
+        double x = w[(k + 1) % 3] * d[(k + 2) % 3] - w[(k + 2) % 3] * d[(k + 1) % 3];
+        x2 += x * x;
+    }
+    const double R = (double)q->R, b = fmin(R, sqrt(x2 / dd));
+    const double db = 2 * sqrt(3.0) * (ref_float_ulp(wm) + fabs(t) * ref_float_ulp(dm)) +
+                      2 * ref_float_ulp(R);
+    const double h0 = sqrt(R * R - b * b), bl = fmax(0, b - db), bh = fmin(R, b + db);
+    const double dh = fmax(h0 - sqrt(R * R - bh * bh), sqrt(R * R - bl * bl) - h0);
+    const double chord = sqrt(db * db + dh * dh) / R;
+    return 2 * asin(fmin(1, chord / 2));
+}
+
 void sphref_band_eval(const cylray_sphere *s, const float o[3], const float d[3], float tmin,
                       float tmax, unsigned flags, cylref_band *out)
 {
@@ -402,7 +432,7 @@ void sphref_band_eval(const cylray_sphere *s, const float o[3], const float d[3]
     out->hit_unstable = hits > 0 && misses > 0;
     out->part_unstable = hits > 1;
     out->decision_unstable = out->hit_unstable || out->part_unstable;
-    out->n_spread = fmax(nsum, nmax);
+    out->n_spread = fmax(fmax(nsum, nmax), x0 != SO_MISS ? box_turn(&base, out->exact.t) : 0);
 }
 
 int sphref_judge(const cylref_band *b, int hit, int part, float t, double *ulps_beyond)
