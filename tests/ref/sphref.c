@@ -99,7 +99,7 @@ static void s_eval(const sin_q *q, cylq tmin, cylq tmax, srec *r)
     r->mw[S_FLE] = widen(q_max(q_abs(r->tf), q_abs(tmax)));
 }
 
-static int s_decide(const srec *r, const unsigned char b[S_COUNT], int cull)
+static int s_decide(const unsigned char b[S_COUNT], int cull)
 {
     if (!b[S_DISC])
         return SO_MISS;
@@ -107,7 +107,6 @@ static int s_decide(const srec *r, const unsigned char b[S_COUNT], int cull)
         return SO_NEAR;
     if (!cull && b[S_FGE] && b[S_FLE])
         return SO_FAR;
-    (void)r;
     return SO_MISS;
 }
 
@@ -166,7 +165,7 @@ int sphref_intersect(const cylray_sphere *s, const float o[3], const float d[3],
     s_eval(&q, tmin, tmax, &r);
     unsigned char b[S_COUNT];
     s_bools(&r, b);
-    int x = s_decide(&r, b, (flags & CYLRAY_CULL_BACK) != 0);
+    int x = s_decide(b, (flags & CYLRAY_CULL_BACK) != 0);
     if (x == SO_MISS)
         return 0;
     out->hit = 1;
@@ -309,7 +308,7 @@ void sphref_band_eval(const cylray_sphere *s, const float o[3], const float d[3]
     s_eval(&base, tmin, tmax, &r0);
     unsigned char b0[S_COUNT], b[S_COUNT];
     s_bools(&r0, b0);
-    const int x0 = s_decide(&r0, b0, cull);
+    const int x0 = s_decide(b0, cull);
     const int p0 = x0 == SO_MISS ? 0 : s_part(&r0, x0);
     out->evals = 1;
     double n0[3] = {0, 0, 0};
@@ -341,7 +340,7 @@ void sphref_band_eval(const cylray_sphere *s, const float o[3], const float d[3]
             dt[i] = q_isfinite(dd) ? (double)dd : 0;
         }
         s_bools(&r, b);
-        int x = s_decide(&r, b, cull);
+        int x = s_decide(b, cull);
         int p = x == SO_MISS ? 0 : s_part(&r, x);
         s_add(&set, x, p, x == SO_MISS ? NAN : (double)s_t(&r, x));
         if (x0 != SO_MISS && x == x0 && p == p0) {
@@ -373,7 +372,7 @@ void sphref_band_eval(const cylray_sphere *s, const float o[3], const float d[3]
         s_eval(&q, tmin, tmax, &r);
         out->evals++;
         s_bools(&r, b);
-        int x = s_decide(&r, b, cull);
+        int x = s_decide(b, cull);
         int p = x == SO_MISS ? 0 : s_part(&r, x);
         s_add(&set, x, p, x == SO_MISS ? NAN : (double)s_t(&r, x));
         if (x0 != SO_MISS && x == x0 && p == p0) {
@@ -397,7 +396,7 @@ void sphref_band_eval(const cylray_sphere *s, const float o[3], const float d[3]
         for (int j = 0; j < nu; j++)
             if (combo >> j & 1)
                 b[undecided[j]] = !b[undecided[j]];
-        int x = s_decide(&r0, b, cull);
+        int x = s_decide(b, cull);
         /* A replayed far root is a back face even at a tangency: the perturbation
          * that makes the far root the answer also separates the two. */
         int p = x == SO_MISS ? 0 : x == SO_FAR ? CYLRAY_SIDE | CYLRAY_BACKFACE : CYLRAY_SIDE;
