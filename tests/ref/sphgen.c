@@ -96,6 +96,14 @@ static void make_sphere(int cat, cylgen_rng *r, cylray_sphere *s)
         R = uni(r, 1e4, 1e6);
         span = uni(r, 1e5, 1e6);
         break;
+    case SPHGEN_SCALED: {
+        /* Beyond 2^+-20 the kernel scales its discriminant: both sides of that. */
+        int e = 21 + (int)(cylgen_next(r) % 30);
+        double k = ldexp(1.0, chance(r, 0.5) ? e : -e);
+        R = uni(r, 0.1, 10) * k;
+        span = 10 * k;
+        break;
+    }
     default:
         R = uni(r, 0.1, 10);
         span = 10;
@@ -289,6 +297,20 @@ static void gen_case(int cat, cylgen_rng *r, const ball *b, cylgen_rng *cam, siz
     case SPHGEN_BAD:
         gen_bad(r, b, c);
         break;
+    case SPHGEN_SCALED: {
+        if (chance(r, 0.3))
+            gen_grazing(r, b, c);
+        else
+            towards(r, b, b->R * uni(r, 1.5, 10), 1.2, c);
+        double s = ldexp(uni(r, 1, 2), (int)(cylgen_next(r) % 41) - 20);
+        for (int k = 0; k < 3; k++)
+            c->d[k] = (float)((double)c->d[k] * s);
+        if (c->tmin != 0)
+            c->tmin = (float)((double)c->tmin / s);
+        if (c->tmax != INFINITY && c->tmax != FLT_MAX)
+            c->tmax = (float)((double)c->tmax / s);
+        break;
+    }
     case SPHGEN_ORDINARY:
     default:
         towards(r, b, b->R * uni(r, 1.5, 10), 1.2, c);
@@ -297,8 +319,8 @@ static void gen_case(int cat, cylgen_rng *r, const ball *b, cylgen_rng *cam, siz
 }
 
 static const char *const names[SPHGEN_COUNT] = {
-    "sph-ordinary", "sph-far",  "sph-grazing", "sph-surface", "sph-inside",
-    "sph-tiny",     "sph-huge", "sph-unnorm",  "sph-camera",  "sph-bad"};
+    "sph-ordinary", "sph-far",    "sph-grazing", "sph-surface", "sph-inside", "sph-tiny",
+    "sph-huge",     "sph-unnorm", "sph-camera",  "sph-bad",     "sph-scaled"};
 
 static const char *const descriptions[SPHGEN_COUNT] = {
     "sphere: from 1.5-10 R at a point within 1.2 R",
@@ -310,7 +332,8 @@ static const char *const descriptions[SPHGEN_COUNT] = {
     "sphere: R 1e4..1e6, center around 1e5..1e6",
     "sphere: |d| 2^-30..2^30",
     "sphere: 4 x 4 pixel blocks of a pinhole camera",
-    "sphere: NaN, Inf, zero-direction and empty-interval lanes among good ones"};
+    "sphere: NaN, Inf, zero-direction and empty-interval lanes among good ones",
+    "sphere: ordinary and grazing scenes scaled by 2^+-(21..50), |d| 2^-20..2^20"};
 
 const char *sphgen_category_name(int category)
 {

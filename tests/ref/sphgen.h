@@ -30,6 +30,7 @@ enum {
     SPHGEN_UNNORMALIZED, /* "sph-unnorm": |d| 2^-30..2^30 */
     SPHGEN_CAMERA,       /* "sph-camera": a 4 x 4 pixel block of a pinhole camera */
     SPHGEN_BAD,          /* "sph-bad": NaN/Inf/zero lanes among ordinary ones */
+    SPHGEN_SCALED,       /* "sph-scaled": ordinary scenes scaled by 2^+-(21..50), |d| 2^+-20 */
     SPHGEN_COUNT
 };
 
