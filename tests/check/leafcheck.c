@@ -33,6 +33,9 @@
 #define TOL_ANGLE 1e-6
 #define POISON 0x7fa5c3e1u
 
+/* Calls where one sphere sits in two lanes and the ray hits it: the ties judged. */
+static long ties_seen;
+
 typedef struct lane_ref {
     cylray_cylinder cyl;
     cylray_sphere sph;   /* the lane's shape in a leaf of spheres */
@@ -109,9 +112,11 @@ static void make_sphere_leaf(leaf_case *lc, int m, cylgen_rng *r, uint64_t seed)
             lc->tmax = c.tmax;
         }
     }
+    /* The copy is of the lane the ray was made for, which it most likely hits, into a
+     * lane below or above it. */
     if (lc->n > 1 && (u >> 24) % 3 == 0) {
-        int from = (int)((u >> 32) % (unsigned)lc->n), to = (int)((u >> 40) % (unsigned)lc->n);
-        lc->lane[to].sph = lc->lane[from].sph;
+        int to = (int)((u >> 40) % (unsigned)(lc->n - 1));
+        lc->lane[to >= aim ? to + 1 : to].sph = lc->lane[aim].sph;
     }
     for (int k = 0; k < lc->n; k++)
         for (int cull = 0; cull < 2; cull++)
@@ -234,6 +239,12 @@ static void judge(const cylray_kernels *k, const leaf_case *lc, const void *leaf
             CHECK(h->id == lc->id[L], "%s leaf%d: id %#x for lane %d (%#x)", k->name, lc->m,
                   h->id, L, lc->id[L]);
             /* The same sphere in a lower lane hits at the same t: it must win the tie. */
+            for (int j = 0; lc->spheres && j < lc->n; j++)
+                if (j != L &&
+                    memcmp(&lc->lane[j].sph, &lc->lane[L].sph, sizeof lc->lane[L].sph) == 0) {
+                    ties_seen++;
+                    break;
+                }
             for (int j = 0; lc->spheres && j < L; j++)
                 CHECK(memcmp(&lc->lane[j].sph, &lc->lane[L].sph, sizeof lc->lane[L].sph) != 0,
                       "%s leaf%d flags %#x: lane %d won a tie with the same sphere in lane %d",
@@ -446,7 +457,8 @@ int main(int argc, char **argv)
         bad_input(isas[i], &c.cyl);
         bad_sphere_input(isas[i], &sc.sph);
     }
-    printf("leafcheck: %ld leaf calls, %ld exact lane hits (%ld on spheres)\n", calls, hits,
-           sphere_hits);
+    printf("leafcheck: %ld leaf calls, %ld exact lane hits (%ld on spheres), %ld calls hit a "
+           "sphere held in two lanes\n",
+           calls, hits, sphere_hits, ties_seen);
     return tc_report("leafcheck");
 }
