@@ -73,8 +73,7 @@ static void ref_closest(const workload *w, size_t i, ref_answer *out)
         cylref_hit h;
         int got = w->sph ? sphref_intersect(&w->sph[c], o, d, tmin, tmax, &h)
                          : cylref_intersect(&w->cyl[c], o, d, tmin, tmax, 0, &h);
-        if (got == 1 &&
-            (!out->hit || h.t < out->t)) {
+        if (got == 1 && (!out->hit || h.t < out->t)) {
             out->hit = 1;
             out->t = h.t;
             out->part = h.part;

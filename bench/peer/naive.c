@@ -155,8 +155,8 @@ size_t TB_CAT(tb_sphere_stream_, TB_VARIANT)(const tb_sphere *sp, const cylray_r
         const float mx = (wx + best * dx) * inv_r;
         const float my = (wy + best * dy) * inv_r;
         const float mz = (wz + best * dz) * inv_r;
-        const int32_t p = dx * mx + dy * my + dz * mz > 0 ? CYLRAY_SIDE | CYLRAY_BACKFACE
-                                                          : CYLRAY_SIDE;
+        const int32_t p =
+            dx * mx + dy * my + dz * mz > 0 ? CYLRAY_SIDE | CYLRAY_BACKFACE : CYLRAY_SIDE;
         t[i] = best;
         tmax[i] = best < hi ? best : hi;
         nx[i] = mx;
@@ -181,7 +181,8 @@ uint32_t TB_CAT(tb_sphere_run_, TB_VARIANT)(const tb_sphere *sp, int n, cylray_r
     uint32_t found = 0;
     for (int k = 0; k < n; k++) {
         const tb_sphere *q = &sp[k];
-        const float wx = ray->o[0] - q->c[0], wy = ray->o[1] - q->c[1], wz = ray->o[2] - q->c[2];
+        const float wx = ray->o[0] - q->c[0], wy = ray->o[1] - q->c[1],
+                    wz = ray->o[2] - q->c[2];
         const float b = dx * wx + dy * wy + dz * wz;
         const float c = wx * wx + wy * wy + wz * wz - q->rr;
         const float disc = b * b - dd * c;
@@ -200,11 +201,13 @@ uint32_t TB_CAT(tb_sphere_run_, TB_VARIANT)(const tb_sphere *sp, int n, cylray_r
     }
     if (found && !occluded) {
         const tb_sphere *q = &sp[found - 1];
-        const float wx = ray->o[0] - q->c[0], wy = ray->o[1] - q->c[1], wz = ray->o[2] - q->c[2];
+        const float wx = ray->o[0] - q->c[0], wy = ray->o[1] - q->c[1],
+                    wz = ray->o[2] - q->c[2];
         const float mx = (wx + hi * dx) * q->inv_r, my = (wy + hi * dy) * q->inv_r,
                     mz = (wz + hi * dz) * q->inv_r;
         hit->t = hi;
-        hit->part = dx * mx + dy * my + dz * mz > 0 ? CYLRAY_SIDE | CYLRAY_BACKFACE : CYLRAY_SIDE;
+        hit->part =
+            dx * mx + dy * my + dz * mz > 0 ? CYLRAY_SIDE | CYLRAY_BACKFACE : CYLRAY_SIDE;
         if (flags & CYLRAY_NORMAL) {
             hit->n[0] = mx;
             hit->n[1] = my;

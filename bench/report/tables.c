@@ -281,8 +281,8 @@ static void print_leaf(FILE *f, const result_list *l, const leaf_report *lr)
             "scalar loop over the same spheres\n   (textbook-loop), its time over this one's. "
             "Answers that differ from the scalar loop's: %zu\n",
             lr->diff[2]);
-    fprintf(f, "%-11s %-14s %-3s %10s %10s %10s | %8s %9s %11s %9s\n", "data", "path", "M",
-            "t", "normal", "occluded", "x loop", "x 1-lane", "occ/normal", "x tb-loop");
+    fprintf(f, "%-11s %-14s %-3s %10s %10s %10s | %8s %9s %11s %9s\n", "data", "path", "M", "t",
+            "normal", "occluded", "x loop", "x 1-lane", "occ/normal", "x tb-loop");
     for (int isa = 0; isa < CYLRAY_ISA_COUNT; isa++)
         for (int w = BW_4; w < BW_STREAM; w++)
             print_leaf_row(f, l, tag[2], bench_isa_name(isa), w, bench_width_name[w],

@@ -283,7 +283,8 @@ static uint64_t pass_textbook(const leaf_scene *s, const leaf_cfg *c, uint32_t *
         cylray_ray1 r = s->ray[j];
         cylray_hit1 h;
         const uint32_t first = s->run[j] * LEAF_RUN;
-        uint32_t k = tb_sphere_run_scalar(s->tbs + first, LEAF_RUN, &r, &h, fl, c->op == OP_OCC);
+        uint32_t k =
+            tb_sphere_run_scalar(s->tbs + first, LEAF_RUN, &r, &h, fl, c->op == OP_OCC);
         uint32_t res = c->op == OP_OCC ? k != 0 : k ? first + k : 0;
         acc += res;
         if (out)
