@@ -15,7 +15,7 @@
 
 #define VW 8
 #define KFN(n) CYLRAY_CAT(n, _avx2_8)
-#define KPAIRS(F) (!(F).sphere)
+#define KPAIRS(F) 1 /* streams keep two vectors in flight (docs/performance.md) */
 #include "simd/x86.h"
 #include "simd/x86_stores.h"
 #include "kernel/kernel.h"
