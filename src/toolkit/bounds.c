@@ -248,8 +248,7 @@ static size_t split_count(const cylray_prepared *cyl)
  * z): slice i of k lies between the planes z = c_z + R q_i and c_z + R q_(i+1), q_i as
  * for a cylinder, and spans c_x, c_y -+ R sqrt(1 - q^2) at the q of its range nearest 0
  * (R where the range holds 0). */
-static void sphere_slices(const cylray_prepared *cyl, size_t k, float (*lo)[3],
-                          float (*hi)[3])
+static void sphere_slices(const cylray_prepared *cyl, size_t k, float (*lo)[3], float (*hi)[3])
 {
     const double R = cyl->radius;
     const cylray_dd z = dd_make(0.0, 0.0);
