@@ -357,8 +357,8 @@ CYLRAY_API cylray_status cylray_cylinder_from_endpoints(cylray_cylinder *out, co
  * the surface of that part where that pays), and *err, a bound on the distance from p
  * to the exact surface of that part. A sphere (any part is taken for its side): p is
  * c + R (x - c) / |x - c| with x = o + t d, evaluated in double and rounded to float,
- * and *err p's distance from the exact sphere, evaluated with its rounding error and
- * rounded up: within a few 2^-50 R of the true distance. */
+ * and *err p's distance from the exact sphere, evaluated with its rounding error (less
+ * than 2^-50 R) and rounded up to float. */
 CYLRAY_API void cylray_hit_point(const cylray_prepared *cyl, const float o[3], const float d[3],
                                  float t, int32_t part, float p[3], float *err);
 /* The same, given also the normal n the kernel returned for that hit (CYLRAY_NORMAL;

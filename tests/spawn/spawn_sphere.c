@@ -346,6 +346,7 @@ static int run_spawns(int side_form)
     const long N = scaled(side_form ? 8000 : 24000); /* groups of 16 rays a path */
     long spawns[CYLRAY_ISA_COUNT] = {0}, self[CYLRAY_ISA_COUNT] = {0};
     long wrong_side = 0, along_plane = 0, disagree = 0, hits_back = 0, too_big = 0;
+    long same_as_plain = 0;
     double far = 0; /* the largest |sigma(x0)| over ulp(max|x0_k|) + ulp(R) */
     cylgen_rng rng;
     cylgen_seed(&rng, side_form ? 4303 : 4202);
@@ -437,6 +438,17 @@ static int run_spawns(int side_form)
                         cylray_spawn_origin(&P, p, pe[i], part[i], w[i], xs);
                     if (!sref_same3(xs, x0[i]))
                         disagree++;
+                    /* the side asked for being w's side: the plain form's origin */
+                    if (side_form && want[i] == w_side(&s, p, w[i])) {
+                        float xp[3];
+                        cylray_spawn_origin(&P, p, pe[i], part[i], w[i], xp);
+                        same_as_plain++;
+                        if (!sref_same3(xp, xs)) {
+                            disagree++;
+                            fail("side", &s,
+                                 "not the plain form's origin where the side is w's", 0, 0);
+                        }
+                    }
                     double mv = 0;
                     for (int k = 0; k < 3; k++)
                         mv += ((double)x0[i][k] - p[k]) * ((double)x0[i][k] - p[k]);
@@ -493,6 +505,9 @@ static int run_spawns(int side_form)
             }
         }
     }
+    if (side_form)
+        printf("side: %ld origins where the side asked for is w's: the plain form's\n",
+               same_as_plain);
     long total_self = 0;
     for (int ki = 0; ki < nisa; ki++) {
         printf("%s: %s: %ld spawns, %ld self-intersections\n", side_form ? "side" : "self",
