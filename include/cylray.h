@@ -394,7 +394,8 @@ CYLRAY_API void cylray_spawn_origin(const cylray_prepared *cyl, const float p[3]
  * the exact ray from that origin can (half that distance at the least): a ray sent
  * back into the surface meets it where the geometry says, never at its own origin.
  * Where the side requested is w's side of the exact normal at p, the origin is
- * cylray_spawn_origin's, bit for bit. */
+ * cylray_spawn_origin's, bit for bit. A sphere: its one surface is the part, cleared to
+ * the side asked for by the rules of the side (a w that dips back into it included). */
 CYLRAY_API void cylray_spawn_origin_side(const cylray_prepared *cyl, const float p[3],
                                          float err, int32_t part, int outward, const float w[3],
                                          float out[3]);
