@@ -5,7 +5,7 @@
 /* One cylinder or sphere per lane, and what the derivation reads of it. A sphere is
  * the side of a cylinder with no axis (v = 0, H = 0, no discs): with 1/(v.v), 1/|v|,
  * tilt and nv zero there, its axial coordinate s is 0, r = q, and the side's rules read
- * as the sphere's (spawn/one_ray.c). */
+ * as the sphere's (docs/secondary-rays.md, "Spheres"). */
 typedef struct DFN(geo) {
     vd c[3], v[3];
     vd sv, inv_vv, inv_sv; /* |v|, 1/(v.v), 1/|v| */
