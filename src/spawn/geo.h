@@ -18,6 +18,13 @@ typedef struct DFN(geo) {
     vdm lo, hi;            /* the discs that are part of the surface */
     vdm sph;               /* the lanes that are spheres */
     int any_sph;           /* some lane is */
+    /* A cone's lane: radius rm + kz s at the axial parameter s (kz = kap v.v), rlo and
+     * rhi at s = -+hs (never below 0), kk = dr/dz per unit length along the axis and
+     * cn = 1/sqrt(1 + kk^2); R is then max(rlo, rhi). A cylinder's lane: rm = rlo = rhi
+     * = R, kz = kk = 0, cn = 1. */
+    vdm cone;
+    int any_cone;
+    vd rm, kz, rlo, rhi, kk, cn;
 } DFN(geo);
 
 /* The spacing of floats at the float f (as a double): its exponent (dexpo drops the
@@ -62,9 +69,11 @@ static inline vd DFN(l1)(const vd a[3])
 }
 
 /* The cylinders' derived values, from their floats (c, v, R, H and the discs); sph: the
- * lanes that are spheres (v = 0, H = 0, no discs). */
+ * lanes that are spheres (v = 0, H = 0, no discs); cone: the lanes that are cones, whose
+ * R is read as rm and kap as their slope (both as cylray_prepared holds them), so that a
+ * prepared cone and its leaf lane derive the same values. */
 CYLRAY_INLINE void DFN(geo_make)(DFN(geo) *g, const vd c[3], const vd v[3], vd R, vd H, vdm lo,
-                                 vdm hi, vdm sph)
+                                 vdm hi, vdm sph, vdm cone, vd kap)
 {
     const vd one = dset1(1.0), zero = dset1(0.0);
     for (int k = 0; k < 3; k++) {
@@ -73,6 +82,23 @@ CYLRAY_INLINE void DFN(geo_make)(DFN(geo) *g, const vd c[3], const vd v[3], vd R
     }
     const vd vv = DFN(dot3)(v, v);
     g->sv = dsqrt(vv);
+    /* a cone of slope 0 (a leaf's lane with r0 == r1) is the cylinder it prepares as */
+    cone = dmandn(cone, deq(kap, zero));
+    g->cone = cone;
+    g->any_cone = dmbits(cone) != 0;
+    g->rm = R;
+    g->kz = g->kk = dset1(0.0);
+    g->cn = one;
+    g->rlo = g->rhi = R;
+    if (g->any_cone) {
+        const vd hs = dmul(H, ddiv(one, g->sv));
+        g->kz = dsel(cone, dmul(kap, vv), zero);
+        g->kk = dmul(g->kz, ddiv(one, g->sv));
+        g->cn = ddiv(one, dsqrt(dadd(one, dmul(g->kk, g->kk))));
+        g->rlo = dmax(zero, dsub(R, dmul(g->kz, hs)));
+        g->rhi = dmax(zero, dadd(R, dmul(g->kz, hs)));
+        R = dsel(cone, dmax(g->rlo, g->rhi), R);
+    }
     g->sph = sph;
     g->any_sph = dmbits(sph) != 0;
     /* zero for a sphere, whose v is 0: then s = 0, nv = 0, hs = 0 and tilt = 0 */
@@ -120,9 +146,11 @@ static inline void DFN(geo_prepared)(DFN(geo) *g, const cylray_prepared *P)
         v[k] = dset1((double)P->v[k]);
     }
     const vd zero = dset1(0.0);
+    const int cone = P->kind == CYLRAY_KIND_CONE;
     DFN(geo_make)
-    (g, c, v, dset1((double)P->radius), dset1((double)P->half_height),
+    (g, c, v, dset1((double)(cone ? P->rm : P->radius)), dset1((double)P->half_height),
      dgt(dset1((P->caps & CYLRAY_CAPPED_LO) ? 1.0 : 0.0), zero),
      dgt(dset1((P->caps & CYLRAY_CAPPED_HI) ? 1.0 : 0.0), zero),
-     dgt(dset1(P->kind == CYLRAY_KIND_SPHERE ? 1.0 : 0.0), zero));
+     dgt(dset1(P->kind == CYLRAY_KIND_SPHERE ? 1.0 : 0.0), zero),
+     dgt(dset1(P->kind == CYLRAY_KIND_CONE ? 1.0 : 0.0), zero), dset1((double)P->kap));
 }

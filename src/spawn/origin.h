@@ -20,16 +20,20 @@ typedef struct DFN(surf) {
  * into a hit, and a hit at half the distance into one much nearer. Clear of the tangency
  * (c <= 0.85 dt) a clearance of 3b keeps the nearer hit beyond half the exact one
  * (1 - sqrt(1 - 2u/3) >= (1 - sqrt(1 - u)) / 2 for u <= 0.9); nearer to it, the origin
- * goes out to dt + 2b, where the exact ray and every ray the box admits miss. */
-CYLRAY_INLINE vd DFN(dip_clearance)(const DFN(geo) *g, const vd r[3], const vd w[3], vd c, vd m)
+ * goes out to dt + 2b, where the exact ray and every ray the box admits miss. A cone's
+ * side reads as the cylinder with its ruling nv, its normal r and, for R, the radius of
+ * curvature of its section across the ruling, r(z) / cos (Meusnier's theorem; cos =
+ * cn, the tilt of the normal from the radial direction). */
+CYLRAY_INLINE vd DFN(dip_clearance)(const vd R, const vd nv[3], const vd r[3], const vd w[3],
+                                    vd c, vd m)
 {
     const vd zero = dset1(0.0), one = dset1(1.0);
-    const vd wr = DFN(dot3)(r, w), wv = DFN(dot3)(g->nv, w);
+    const vd wr = DFN(dot3)(r, w), wv = DFN(dot3)(nv, w);
     const vd wp2 = dsub(DFN(dot3)(w, w), dmul(wv, wv));
     /* sin^2 of the dip; a w along the axis (wp2 = 0) runs along the side: no dip */
     const vd s2 = dsel(dgt(wp2, zero), dmin(one, ddiv(dmul(wr, wr), wp2)), zero);
     const vd co = dsqrt(dsub(one, s2));
-    const vd dt = ddiv(dmul(g->R, s2), dmul(dadd(one, co), co)); /* INFINITY at co = 0 */
+    const vd dt = ddiv(dmul(R, s2), dmul(dadd(one, co), co)); /* INFINITY at co = 0 */
     const vd ch = dadd(c, dmul(dset1(0.5), m));
     return dsel(dle(ch, dmul(dset1(0.85), dt)), ch, dmax(ch, dadd(dt, m)));
 }
@@ -55,6 +59,21 @@ CYLRAY_INLINE void DFN(spawn)(const DFN(geo) *g, const vd p[3], vd err, vd part,
     for (int k = 0; k < 3; k++)
         r[k] = dsel(off_axis, dmul(r[k], ir), g->pu[k]);
     rho = dsel(off_axis, rho, zero);
+    /* A cone's side: radius rz at p's axial coordinate, outward normal nc = (r - kk nv)
+     * cn (the gradient of rho - r(z)), its ruling gc = (nv + kk r) cn; a cylinder's lanes
+     * keep r and nv. */
+    vd nc[3], gc[3], rz = g->R;
+    for (int k = 0; k < 3; k++) {
+        nc[k] = r[k];
+        gc[k] = g->nv[k];
+    }
+    if (g->any_cone) {
+        rz = dsel(g->cone, dmax(zero, dadd(g->rm, dmul(g->kz, s))), g->R);
+        for (int k = 0; k < 3; k++) {
+            nc[k] = dsel(g->cone, dmul(dsub(r[k], dmul(g->kk, g->nv[k])), g->cn), r[k]);
+            gc[k] = dsel(g->cone, dmul(dadd(g->nv[k], dmul(g->kk, r[k])), g->cn), g->nv[k]);
+        }
+    }
     const vd e_d = dmul(dset1(0x1p-47), dadd(dadd(DFN(l1)(q), g->R), g->Hf));
     const vd qmax = DFN(max3)(dabs(q[0]), dabs(q[1]), dabs(q[2]));
     const vd pmax = DFN(max3)(dabs(p[0]), dabs(p[1]), dabs(p[2]));
@@ -73,19 +92,25 @@ CYLRAY_INLINE void DFN(spawn)(const DFN(geo) *g, const vd p[3], vd err, vd part,
      * one computation for both (a negation is exact; a zero's sign changes no test and
      * no sum below, whose partial sums start at +0 and so are never -0). */
     DFN(surf) S[3];
-    S[0].sigma = dsub(rho, g->R);
+    /* a cone's: the distance from its (infinite) side along nc */
+    S[0].sigma = g->any_cone ? dsel(g->cone, dmul(dsub(rho, rz), g->cn), dsub(rho, g->R))
+                             : dsub(rho, g->R);
     S[1].sigma = dsub(dsub(zero, z), g->H);
     S[2].sigma = dsub(z, g->H);
     const vdm here[3] = {deq(part, dset1(CYLRAY_SIDE)), deq(part, dset1(CYLRAY_CAP_LO)),
                          deq(part, dset1(CYLRAY_CAP_HI))};
     const vdm exists[3] = {deq(zero, zero), dmor(here[1], g->lo), dmor(here[2], g->hi)};
     const vd wv = DFN(dot3)(g->nv, w);
-    const vdm wpos[3] = {dgt(DFN(dot3)(r, w), zero), dlt(wv, zero), dgt(wv, zero)};
+    const vdm wpos[3] = {dgt(DFN(dot3)(nc, w), zero), dlt(wv, zero), dgt(wv, zero)};
     /* the margin at p, for the test of reach; refined below at the origin */
     const vd u2 = dmul(dset1(2.0), DFN(ulp_f)(dmax(qmax, pmax)));
-    const vd l1r = DFN(l1)(r);
+    const vd l1r = DFN(l1)(nc);
+    /* a cone's side moves with its half height (the slope) and its tilt moves z too:
+     * kk (2 ulp(H) + rho tilt) more */
+    const vd uRc =
+        g->any_cone ? dadd(uRt, dmul(dabs(g->kk), dadd(g->uH2, dmul(rho, g->tilt)))) : uRt;
     S[0].m =
-        dmul(dset1(CYLRAY_SPAWN_SAFETY), dadd(dadd(dmul(u2, l1r), dmul(az, g->tilt)), uRt));
+        dmul(dset1(CYLRAY_SPAWN_SAFETY), dadd(dadd(dmul(u2, l1r), dmul(az, g->tilt)), uRc));
     S[1].m = S[2].m =
         dmul(dset1(CYLRAY_SPAWN_SAFETY), dadd(dadd(dmul(u2, g->l1v), dmul(rho, g->tilt)), uHt));
     vd move = zero, count = zero;
@@ -129,20 +154,33 @@ CYLRAY_INLINE void DFN(spawn)(const DFN(geo) *g, const vd p[3], vd err, vd part,
         const DFN(surf) *x = &S[i];
         if (!x->any)
             continue;
+        const vd uRm =
+            g->any_cone ? dadd(uRt, dmul(dabs(g->kk), dadd(g->uH2, dmul(rmax, g->tilt)))) : uRt;
         const vd m = i == 0 ? dmul(dset1(CYLRAY_SPAWN_SAFETY),
-                                   dadd(dadd(dmul(v2, l1r), dmul(zmax, g->tilt)), uRt))
+                                   dadd(dadd(dmul(v2, l1r), dmul(zmax, g->tilt)), uRm))
                             : m2c;
         vd a = dadd(dadd(dadd(x->base, e_d), m), rim);
-        if (i == 0) /* inward from the side: the rounding's tangential part */
-            a = dadd(a, dsel(x->pos, zero, dmul(dmul(dmul(dset1(2.0), rnd), rnd), g->inv_R)));
-        if (i == 0 && ndip)
-            a = dsel(dip,
-                     dadd(x->base, DFN(dip_clearance)(g, r, w, dadd(dadd(e_d, m), rim), m)), a);
+        if (i == 0) { /* inward from the side: the rounding's tangential part */
+            vd tang = dmul(dmul(dmul(dset1(2.0), rnd), rnd), g->inv_R);
+            /* a cone's radius shrinks to 0 at a tip; the tangential part moves the
+             * point by rnd at most, whatever the radius */
+            if (g->any_cone)
+                tang = dsel(g->cone, dmin(dmul(dset1(2.0), rnd), ddiv(dmul(tang, g->R), rz)),
+                            tang);
+            a = dadd(a, dsel(x->pos, zero, tang));
+        }
+        if (i == 0 && ndip) {
+            const vd Rc = g->any_cone ? dsel(g->cone, ddiv(rz, g->cn), g->R) : g->R;
+            a = dsel(
+                dip,
+                dadd(x->base, DFN(dip_clearance)(Rc, gc, nc, w, dadd(dadd(e_d, m), rim), m)),
+                a);
+        }
         a = dmul(dmul(a, dset1(1 + 0x1p-20)), x->sgn);
         if (i == 0) {
             /* r may be NaN where p is not finite: the lanes left out add +0 */
             for (int k = 0; k < 3; k++)
-                delta[k] = dadd(delta[k], dsel(x->in, dmul(a, r[k]), zero));
+                delta[k] = dadd(delta[k], dsel(x->in, dmul(a, nc[k]), zero));
         } else {
             /* along nv, finite: the lanes left out add a zero */
             a = dsel(x->in, i == 1 ? dsub(zero, a) : a, zero);

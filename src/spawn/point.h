@@ -18,6 +18,46 @@ static inline vd DFN(sphere_err)(const DFN(geo) *g, const vd p[3])
     return dmul(ddiv(num, den), dset1(1 + 0x1p-40));
 }
 
+/* The nearest point of a cone's part to the point at axial coordinate z and distance
+ * rho from the axis, in the half plane through the axis that holds it (the nearest point
+ * of a surface of revolution lies in that half plane): the side is the segment from
+ * (rlo, -H) to (rhi, H), a disc the segment from its center to its rim. Out: the
+ * nearest point's (rho, z). A parameter off by rounding still names a point of the
+ * segment (it is clamped), so a distance measured to it is never short. */
+static inline void DFN(cone_foot)(const DFN(geo) *g, vd rho, vd z, vdm side, vdm chi, vd *frho,
+                                  vd *fz)
+{
+    const vd zero = dset1(0.0), one = dset1(1.0), two_h = dmul(dset1(2.0), g->H);
+    const vd dR = dsub(g->rhi, g->rlo);
+    const vd num = dadd(dmul(dsub(rho, g->rlo), dR), dmul(dadd(z, g->H), two_h));
+    const vd t = dmin(one, dmax(zero, ddiv(num, dadd(dmul(dR, dR), dmul(two_h, two_h)))));
+    const vd Rd = dsel(chi, g->rhi, g->rlo);
+    *frho = dsel(side, dadd(g->rlo, dmul(t, dR)), dmin(rho, Rd));
+    *fz = dsel(side, dadd(dsub(zero, g->H), dmul(t, two_h)), dsel(chi, g->H, dsub(zero, g->H)));
+}
+
+/* A cone's bound: the distance of the float point p from its part, evaluated as in
+ * cone_foot. a = p - c, z, rho and the segment's ends are each within about 30u (|a| +
+ * R + H) of their exact values (u = 2^-53), far inside env = 2^-44 (|a|_1 + R + H); the
+ * distance is 1-Lipschitz in them and measured to a point of the part (cone_foot), so
+ * the evaluated distance plus env, with (1 + 2^-40) for its own roundings, bounds it. */
+static inline vd DFN(cone_err)(const DFN(geo) *g, const vd p[3], vdm side, vdm chi)
+{
+    vd a[3], r[3];
+    for (int k = 0; k < 3; k++)
+        a[k] = dsub(p[k], g->c[k]);
+    const vd s = dmul(DFN(dot3)(a, g->v), g->inv_vv);
+    for (int k = 0; k < 3; k++)
+        r[k] = dsub(a[k], dmul(s, g->v[k]));
+    const vd rho = dsqrt(DFN(dot3)(r, r)), z = dmul(s, g->sv);
+    vd fr, fz;
+    DFN(cone_foot)(g, rho, z, side, chi, &fr, &fz);
+    const vd x = dsub(rho, fr), y = dsub(z, fz);
+    const vd d = dsqrt(dadd(dmul(x, x), dmul(y, y)));
+    const vd env = dmul(dset1(0x1p-44), dadd(dadd(DFN(l1)(a), g->R), g->H));
+    return dmul(dadd(d, env), dset1(1 + 0x1p-40));
+}
+
 /* THE HIT POINT of the rays o + t d at t on `part` (as doubles of its low bits): the
  * point p (doubles of floats) and the bound err (likewise). */
 CYLRAY_INLINE void DFN(hit_point)(const DFN(geo) *g, const vd o[3], const vd d[3], vd t,
@@ -54,11 +94,15 @@ CYLRAY_INLINE void DFN(hit_point)(const DFN(geo) *g, const vd o[3], const vd d[3
         const vdm dpos = dgt(dn, zero), bk = dgt(back, zero);
         const vdm flip = dmor(dmand(clear, dmor(dmandn(dpos, bk), dmandn(bk, dpos))),
                               dmandn(dlt(DFN(dot3)(rn, qr), zero), clear));
-        const vd gn = ddiv(dsel(flip, dsub(zero, g->R), g->R), rl);
+        /* a cone's radius at the kernel's axial coordinate */
+        const vd Rn =
+            g->any_cone ? dsel(g->cone, dmax(zero, dadd(g->rm, dmul(g->kz, s0))), g->R) : g->R;
+        const vd gn = ddiv(dsel(flip, dsub(zero, Rn), Rn), rl);
         for (int k = 0; k < 3; k++)
             q[k] = dsel(valid, dadd(dmul(s0, g->v[k]), dmul(gn, rn[k])), q[k]);
     }
     vd s = dmul(DFN(dot3)(q, g->v), g->inv_vv);
+    const vd s0q = s;
     for (int k = 0; k < 3; k++)
         r[k] = dsub(q[k], dmul(s, g->v[k]));
     const vd qn = DFN(l1)(q); /* |q|_1 >= |q|: the bound's terms in |q| stay bounds */
@@ -75,8 +119,18 @@ CYLRAY_INLINE void DFN(hit_point)(const DFN(geo) *g, const vd o[3], const vd d[3
     const vd gain_cap = dsel(dgt(L, g->R), dmul(g->R, inv_L), one);
     const vd nhs = dsub(zero, g->hs);
     const vd s_side = dsel(dlt(s, nhs), nhs, dsel(dgt(s, g->hs), g->hs, s));
+    const vd rho = dsel(on_axis, zero, L);
     s = dsel(on_cap, s_cap, s_side);
-    const vd gain = dsel(on_cap, gain_cap, dmul(g->R, inv_L));
+    vd gain = dsel(on_cap, gain_cap, dmul(g->R, inv_L));
+    if (g->any_cone) {
+        /* a cone: to the nearest point of its part in p's half plane (the side's foot
+         * of the perpendicular, which pays where the side is steep and where it is flat
+         * alike) */
+        vd fr, fz;
+        DFN(cone_foot)(g, rho, dmul(s0q, g->sv), side, chi, &fr, &fz);
+        s = dsel(g->cone, dmul(fz, g->inv_sv), s);
+        gain = dsel(g->cone, dmul(fr, inv_L), gain);
+    }
     const vd rad = dsel(on_cap, dmul(L, gain_cap), g->R);
     vd Pd[3];
     for (int k = 0; k < 3; k++) {
@@ -107,6 +161,8 @@ CYLRAY_INLINE void DFN(hit_point)(const DFN(geo) *g, const vd o[3], const vd d[3
     vd bound = dmul(dadd(dist, dmul(dset1(3.0), env)), dset1(1 + 0x1p-40));
     if (g->any_sph) /* a sphere's point is measured against it directly */
         bound = dsel(g->sph, DFN(sphere_err)(g, p), bound);
+    if (g->any_cone) /* so is a cone's, against its part */
+        bound = dsel(g->cone, DFN(cone_err)(g, p, side, chi), bound);
     /* rounded up: bound >= 0, so the float above f is one spacing up */
     const vd f = dround_f(bound);
     const vdm push = dlt(f, bound);
