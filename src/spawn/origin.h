@@ -106,9 +106,11 @@ CYLRAY_INLINE void DFN(spawn)(const DFN(geo) *g, const vd p[3], vd err, vd part,
     const vd u2 = dmul(dset1(2.0), DFN(ulp_f)(dmax(qmax, pmax)));
     const vd l1r = DFN(l1)(nc);
     /* a cone's side moves with its half height (the slope) and its tilt moves z too:
-     * kk (2 ulp(H) + rho tilt) more */
+     * kk cn (2 ulp(H) + rho tilt) more along nc */
     const vd uRc =
-        g->any_cone ? dadd(uRt, dmul(dabs(g->kk), dadd(g->uH2, dmul(rho, g->tilt)))) : uRt;
+        g->any_cone
+            ? dadd(uRt, dmul(dmul(dabs(g->kk), g->cn), dadd(g->uH2, dmul(rho, g->tilt))))
+            : uRt;
     S[0].m =
         dmul(dset1(CYLRAY_SPAWN_SAFETY), dadd(dadd(dmul(u2, l1r), dmul(az, g->tilt)), uRc));
     S[1].m = S[2].m =
@@ -142,7 +144,7 @@ CYLRAY_INLINE void DFN(spawn)(const DFN(geo) *g, const vd p[3], vd err, vd part,
     const vd rnd = dmul(dset1(CYLRAY_SQRT3), DFN(ulp_f)(xmax));
     const vd v2 = dmul(dset1(2.0), DFN(ulp_f)(dmax(wmax, xmax)));
     const vd rim = dsel(dgt(count, one), rnd, zero);
-    vd delta[3] = {zero, zero, zero};
+    vd delta[3] = {zero, zero, zero}, a_side = zero, a_cap = zero;
     /* Outward from the side along a w that dips back into it (the side form only) */
     const vdm dip = dmandn(dmand(S[0].in, S[0].pos), wpos[0]);
     const int ndip = S[0].any && dmbits(dip) != 0;
@@ -155,7 +157,9 @@ CYLRAY_INLINE void DFN(spawn)(const DFN(geo) *g, const vd p[3], vd err, vd part,
         if (!x->any)
             continue;
         const vd uRm =
-            g->any_cone ? dadd(uRt, dmul(dabs(g->kk), dadd(g->uH2, dmul(rmax, g->tilt)))) : uRt;
+            g->any_cone
+                ? dadd(uRt, dmul(dmul(dabs(g->kk), g->cn), dadd(g->uH2, dmul(rmax, g->tilt))))
+                : uRt;
         const vd m = i == 0 ? dmul(dset1(CYLRAY_SPAWN_SAFETY),
                                    dadd(dadd(dmul(v2, l1r), dmul(zmax, g->tilt)), uRm))
                             : m2c;
@@ -181,12 +185,26 @@ CYLRAY_INLINE void DFN(spawn)(const DFN(geo) *g, const vd p[3], vd err, vd part,
             /* r may be NaN where p is not finite: the lanes left out add +0 */
             for (int k = 0; k < 3; k++)
                 delta[k] = dadd(delta[k], dsel(x->in, dmul(a, nc[k]), zero));
+            a_side = dsel(x->in, a, zero);
         } else {
             /* along nv, finite: the lanes left out add a zero */
             a = dsel(x->in, i == 1 ? dsub(zero, a) : a, zero);
             for (int k = 0; k < 3; k++)
                 delta[k] = dadd(delta[k], dmul(a, g->nv[k]));
+            a_cap = dadd(a_cap, a);
         }
+    }
+    /* A cone's rim: its side's normal is not perpendicular to the disc's (nc.nv = -kk
+     * cn), so the sum of the moves would shorten each along the other's normal (at a
+     * sharp rim cancel them). The move alpha nc + beta nv meets both exactly: alpha +
+     * beta c = a_side, alpha c + beta = a_cap, with 1 - c^2 = cn^2. */
+    if (g->any_cone && S[0].any && (S[1].any | S[2].any)) {
+        const vdm both = dmand(g->cone, dmand(S[0].in, dmor(S[1].in, S[2].in)));
+        const vd c = dsub(zero, dmul(g->kk, g->cn)), den = dmul(g->cn, g->cn);
+        const vd al = ddiv(dsub(a_side, dmul(c, a_cap)), den);
+        const vd be = ddiv(dsub(a_cap, dmul(c, a_side)), den);
+        for (int k = 0; k < 3; k++)
+            delta[k] = dsel(both, dadd(dmul(al, nc[k]), dmul(be, g->nv[k])), delta[k]);
     }
     for (int k = 0; k < 3; k++) {
         const vd f = dround_f(dadd(p[k], delta[k])), moved = dsub(f, p[k]);
