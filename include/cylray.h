@@ -394,7 +394,10 @@ CYLRAY_API cylray_status cylray_cylinder_from_endpoints(cylray_cylinder *out, co
  * to the exact surface of that part. A sphere (any part is taken for its side): p is
  * c + R (x - c) / |x - c| with x = o + t d, evaluated in double and rounded to float,
  * and *err p's distance from the exact sphere, evaluated with its rounding error (less
- * than 2^-50 R) and rounded up to float. */
+ * than 2^-50 R) and rounded up to float. A cone: p is the nearest point of the part hit
+ * (the side, or the disc of radius r0 or r1) to x, in the half plane through the axis
+ * that holds x, and *err p's distance from that part evaluated likewise (the cone being
+ * the prepared one: radius rm + kap z between its discs). */
 CYLRAY_API void cylray_hit_point(const cylray_prepared *cyl, const float o[3], const float d[3],
                                  float t, int32_t part, float p[3], float *err);
 /* The same, given also the normal n the kernel returned for that hit (CYLRAY_NORMAL;
@@ -405,7 +408,8 @@ CYLRAY_API void cylray_hit_point(const cylray_prepared *cyl, const float o[3], c
  * azimuth, so that the exact normal at p is n's to within float rounding, and a tracer
  * that shades, face-forwards and picks the spawn side with n stays consistent with p.
  * err is a bound as above. A tracer that asks for normals should use this form. A
- * sphere: p is c + R n / |n|, n taken outward as on the side, and *err as above. */
+ * sphere: p is c + R n / |n|, n taken outward as on the side, and *err as above. A
+ * cone's side: the kernel's azimuth and axial coordinate, then as cylray_hit_point. */
 CYLRAY_API void cylray_hit_point_normal(const cylray_prepared *cyl, const float o[3],
                                         const float d[3], float t, int32_t part,
                                         const float n[3], float p[3], float *err);
@@ -413,7 +417,12 @@ CYLRAY_API void cylray_hit_point_normal(const cylray_prepared *cyl, const float 
  * tmin = 0: strictly on w's side of every surface of cyl that passes within err of p
  * (at a rim, of both). A sphere has one surface: the origin is moved along the radius
  * through p by the rule of the side, its margin the kernels' tolerance for the sphere
- * (2 ulps of the origin's coordinates and of R), doubled. */
+ * (2 ulps of the origin's coordinates and of R), doubled. A cone's side is moved along
+ * its tilted normal (the gradient of |x_perp| - r(z)), its margin also counting the
+ * slope's tolerance; at a rim the move meets the side's and the disc's margins both
+ * (the two normals are not perpendicular there). At the apex of a tip cone the normal
+ * is that of an arbitrary azimuth: an origin there is cleared of that azimuth's side
+ * only (docs/secondary-rays.md, "Cones"). */
 CYLRAY_API void cylray_spawn_origin(const cylray_prepared *cyl, const float p[3], float err,
                                     int32_t part, const float w[3], float out[3]);
 /* The spawn side the tracer chooses. A tracer picks reflection or transmission (or
@@ -431,7 +440,9 @@ CYLRAY_API void cylray_spawn_origin(const cylray_prepared *cyl, const float p[3]
  * back into the surface meets it where the geometry says, never at its own origin.
  * Where the side requested is w's side of the exact normal at p, the origin is
  * cylray_spawn_origin's, bit for bit. A sphere: its one surface is the part, cleared to
- * the side asked for by the rules of the side (a w that dips back into it included). */
+ * the side asked for by the rules of the side (a w that dips back into it included). A
+ * cone: as cylray_spawn_origin for cones; its side's dip rule reads the cone as the
+ * cylinder along its ruling with radius r(z) / cos(tilt). */
 CYLRAY_API void cylray_spawn_origin_side(const cylray_prepared *cyl, const float p[3],
                                          float err, int32_t part, int outward, const float w[3],
                                          float out[3]);

@@ -379,10 +379,12 @@ static int run_self(void)
                 const cylq rw = q.rlo > q.rhi ? q.rlo : q.rhi, zw = q.rlo > q.rhi ? -q.H : q.H;
                 const int sharp = 2 * q.H < (cylq)0.01 * q_abs(q.rhi - q.rlo) &&
                                   q_abs(rho - rw) + q_abs(z - zw) < (cylq)1e-3 * rw;
-                /* or a solid of a few hundred ulps across: inward margins cross it */
+                /* or a solid (or an apex's cross-section) a few hundred ulps across:
+                 * inward margins cross it */
                 const double pm = fmax(fabs(p[i][0]), fmax(fabs(p[i][1]), fabs(p[i][2])));
                 const int thin = 2 * (double)q.H < 0x1p-13 * pm;
-                if (rz < (cylq)1e-4 * (cylq)P.radius || sharp || thin) {
+                if (rz < (cylq)1e-4 * (cylq)P.radius || rz < (cylq)(0x1p-13 * pm) || sharp ||
+                    thin) {
                     apex++;
                 } else if (inward++, q_side(&q, xi, pt) != -1) {
                     wrong_in++;
@@ -405,6 +407,10 @@ static int run_self(void)
                 if (m2 >> i & 1u) {
                     kself++;
                     fail("self-intersection", &c, (double)t2[i], (double)part2[i]);
+                    printf("  %s: part %d, p=(%a, %a, %a) w=(%a, %a, %a) origin=(%a, %a, %a)\n",
+                           K->name, (int)part[i], (double)p[i][0], (double)p[i][1],
+                           (double)p[i][2], (double)w[i][0], (double)w[i][1], (double)w[i][2],
+                           (double)x0[i][0], (double)x0[i][1], (double)x0[i][2]);
                 }
         }
         printf("self %s: %ld spawns, %ld hit their cone\n", K->name, ks, kself);
