@@ -138,6 +138,43 @@ static void sphere_box(const float c[3], double R, float lo[3], float hi[3])
     }
 }
 
+/* The float at or below (dir -1) or above (dir 1) the double x. */
+static float round_out(double x, int dir)
+{
+    const float f = (float)x;
+    if (dir < 0 ? (double)f > x : (double)f < x)
+        return nextafterf(f, dir < 0 ? -INFINITY : INFINITY);
+    return f;
+}
+
+/* The box of a cone (radius rm + kap z at z = (x - c).v, its ends at z = -+H|v|): the
+ * frustum is the hull of its two discs, and a disc of radius r about d with unit normal
+ * n spans d_k -+ r sqrt(1 - n_k^2) along axis k. Evaluated in double (each product and
+ * quotient to a few units of 2^-53 relative), each face lies within a few units of 2^-53
+ * of (|c_k| + H + r) of its exact value; 2^-48 of that is taken off outward before the
+ * face is rounded outward to float (at most an ulp more than the smallest box). */
+static void cone_box(const float c[3], const float v[3], double rm, double kap, double H,
+                     float lo[3], float hi[3])
+{
+    const double vv = (double)v[0] * v[0] + (double)v[1] * v[1] + (double)v[2] * v[2];
+    const double sv = sqrt(vv), dk = kap * H * sv;
+    const double r[2] = {fmax(0.0, rm - dk), fmax(0.0, rm + dk)};
+    for (int k = 0; k < 3; k++) {
+        /* sqrt(1 - n_k^2) from the other two components: no cancellation near n_k = 1 */
+        const double a = v[(k + 1) % 3], b = v[(k + 2) % 3];
+        const double n = v[k] / sv, s = sqrt(a * a + b * b) / sv;
+        double l = INFINITY, h = -INFINITY;
+        for (int e = 0; e < 2; e++) {
+            const double d = c[k] + (e ? H : -H) * n;
+            l = fmin(l, d - r[e] * s);
+            h = fmax(h, d + r[e] * s);
+        }
+        const double slack = 0x1p-48 * (fabs(c[k]) + H + fmax(r[0], r[1]));
+        lo[k] = round_out(l - slack, -1);
+        hi[k] = round_out(h + slack, 1);
+    }
+}
+
 cylray_status cylray_bounds(const cylray_prepared *cyl, float lo[3], float hi[3])
 {
     if (!cylray_prepared_ok_(cyl) || !lo || !hi || cyl->kind == CYLRAY_KIND_INFINITE)
@@ -145,6 +182,8 @@ cylray_status cylray_bounds(const cylray_prepared *cyl, float lo[3], float hi[3]
     float l[3], h[3];
     if (cyl->kind == CYLRAY_KIND_SPHERE)
         sphere_box(cyl->c, cyl->radius, l, h);
+    else if (cyl->kind == CYLRAY_KIND_CONE)
+        cone_box(cyl->c, cyl->v, cyl->rm, cyl->kap, cyl->half_height, l, h);
     else
         cyl_box(cyl->c, cyl->v, cyl->radius, cyl->half_height, l, h);
     memcpy(lo, l, sizeof l);
@@ -175,6 +214,8 @@ static cylray_status leaf_bounds(const float *geom, const uint32_t *meta, unsign
             return CYLRAY_EINVAL;
         if ((meta[CYLRAY_LM_SPHERE] >> i) & 1u)
             sphere_box(c, geom[CYLRAY_LF_R * m + i], bl, bh);
+        else if ((cylray_leaf_cones_(meta) >> i) & 1u) /* R is rm, RRVV the slope */
+            cone_box(c, v, geom[CYLRAY_LF_R * m + i], geom[CYLRAY_LF_RRVV * m + i], H, bl, bh);
         else
             cyl_box(c, v, geom[CYLRAY_LF_R * m + i], H, bl, bh);
         for (int k = 0; k < 3; k++) {
