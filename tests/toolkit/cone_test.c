@@ -6,6 +6,9 @@
  *                   floats of it; points of the exact surface inside; leaves of 4, 8
  *                   and 16 cones: the union of their prepared boxes (lanes with r0 ==
  *                   r1, prepared as cylinders, only contained)
+ *   cone_test split cylray_split_boxes: k = 0 gives its count; each of k slices on the
+ *                   outer side of the exact hull of its two end discs and within 2 floats
+ *                   of it; points of the exact surface inside the box of their slice
  *
  * The exact cone is the prepared one: radius rm + kap z between its discs, its ends at
  * z = -+H|v|. CYLRAY_TEST_QUICK=1 shrinks the counts tenfold. */
@@ -153,6 +156,111 @@ static int run_box(long N)
     return boxes > 0 && outside == 0 && loose == 0 && leaf_bad == 0;
 }
 
+/* The exact box of the slice of P between t = H qa and H qb (the hull of its discs). */
+static void exact_slice(const cylray_prepared *P, double qa, double qb, cylq lo[3], cylq hi[3])
+{
+    cylq vv = 0;
+    for (int k = 0; k < 3; k++)
+        vv += (cylq)P->v[k] * P->v[k];
+    const cylq sv = q_sqrt(vv), H = P->half_height, dk = (cylq)P->kap * H * sv;
+    const cylq q[2] = {qa, qb};
+    for (int k = 0; k < 3; k++) {
+        const cylq a = P->v[(k + 1) % 3], b = P->v[(k + 2) % 3];
+        const cylq n = (cylq)P->v[k] / sv, s = q_sqrt(a * a + b * b) / sv;
+        lo[k] = 1e300, hi[k] = -1e300;
+        for (int e = 0; e < 2; e++) {
+            const cylq r = q_max(0, (cylq)P->rm + dk * q[e]), d = (cylq)P->c[k] + H * q[e] * n;
+            lo[k] = q_min(lo[k], d - r * s);
+            hi[k] = q_max(hi[k], d + r * s);
+        }
+    }
+}
+
+static int run_split(long N)
+{
+    long slices = 0, outside = 0, loose = 0, points = 0, uncovered = 0;
+    cylgen_rng rng;
+    cylgen_seed(&rng, 6202);
+    for (long g = 0; g < N; g++) {
+        cylray_cone c;
+        cylray_prepared P;
+        make_cone(&rng, (int)(g % 4), &c);
+        if (cylray_prepare_cone(&P, &c) != CYLRAY_OK || P.kap == 0)
+            continue;
+        size_t k = cylray_split_boxes(&P, 0, NULL, NULL);
+        if (g & 1)
+            k += (size_t)(g % 7);
+        if (k == 0 || k > 64) {
+            outside++;
+            continue;
+        }
+        float lo[64][3], hi[64][3];
+        if (cylray_split_boxes(&P, k, lo, hi) != k) {
+            outside++;
+            continue;
+        }
+        double qa = -1;
+        for (size_t i = 0; i < k; i++) {
+            const double qb = ((double)(i + 1) * 2.0 - (double)k) / (double)k;
+            cylq el[3], eh[3];
+            exact_slice(&P, qa, qb, el, eh);
+            slices++;
+            for (int j = 0; j < 3; j++) {
+                if (!((cylq)lo[i][j] <= el[j] && (cylq)hi[i][j] >= eh[j]) && outside++ < 10)
+                    printf("FAIL slice %zu of %zu axis %d: [%a, %a] vs exact [%a, %a]\n", i, k,
+                           j, (double)lo[i][j], (double)hi[i][j], (double)el[j], (double)eh[j]);
+                const float l2 = nextafterf(nextafterf((float)el[j], -INFINITY), -INFINITY);
+                const float h2 = nextafterf(nextafterf((float)eh[j], INFINITY), INFINITY);
+                if ((lo[i][j] < l2 || hi[i][j] > h2) && loose++ < 10)
+                    printf("FAIL loose slice %zu of %zu axis %d: [%a, %a] vs exact [%a, %a]\n",
+                           i, k, j, (double)lo[i][j], (double)hi[i][j], (double)el[j],
+                           (double)eh[j]);
+            }
+            qa = qb;
+        }
+        /* points of the side, in the box of their slice (a float margin of the slice's
+         * own rounding: the point itself is evaluated in double) */
+        double v[3], vv = 0, e1[3], e2[3];
+        for (int j = 0; j < 3; j++)
+            v[j] = P.v[j], vv += v[j] * v[j];
+        const double sv = sqrt(vv), H = P.half_height, dk = (double)P.kap * H * sv;
+        double t[3] = {v[1], -v[0], 0};
+        if (fabs(v[2]) > fabs(v[0]))
+            t[0] = 0, t[1] = v[2], t[2] = -v[1];
+        const double tl = sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
+        for (int j = 0; j < 3; j++)
+            e1[j] = t[j] / tl;
+        e2[0] = (v[1] * e1[2] - v[2] * e1[1]) / sv;
+        e2[1] = (v[2] * e1[0] - v[0] * e1[2]) / sv;
+        e2[2] = (v[0] * e1[1] - v[1] * e1[0]) / sv;
+        for (int n = 0; n < 50; n++) {
+            const double q = uni(&rng, -1, 1), ph = uni(&rng, 0, 6.283185307179586);
+            const double r = fmax(0.0, P.rm + dk * q);
+            size_t i = (size_t)((q + 1) / 2 * (double)k);
+            if (i >= k)
+                i = k - 1;
+            int in = 0;
+            for (size_t ii = i ? i - 1 : 0; ii <= i + 1 && ii < k && !in; ii++) {
+                int all = 1;
+                for (int j = 0; j < 3; j++) {
+                    const double x =
+                        P.c[j] + H * q * v[j] / sv + r * (cos(ph) * e1[j] + sin(ph) * e2[j]);
+                    const double slack = 0x1p-50 * (fabs(P.c[j]) + H + r);
+                    all &= x >= (double)lo[ii][j] - slack && x <= (double)hi[ii][j] + slack;
+                }
+                in = all;
+            }
+            points++;
+            if (!in)
+                uncovered++;
+        }
+    }
+    printf("split: %ld slices, %ld not containing the exact one, %ld more than 2 floats out; "
+           "%ld points of the side, %ld in no box near their slice\n",
+           slices, outside, loose, points, uncovered);
+    return slices > 0 && outside == 0 && loose == 0 && uncovered == 0;
+}
+
 int main(int argc, char **argv)
 {
     const long N = tc_quick() ? 300 : 3000;
@@ -160,8 +268,10 @@ int main(int argc, char **argv)
     int ok;
     if (strcmp(mode, "box") == 0)
         ok = run_box(N);
+    else if (strcmp(mode, "split") == 0)
+        ok = run_split(N);
     else {
-        fprintf(stderr, "usage: cone_test box\n");
+        fprintf(stderr, "usage: cone_test box|split\n");
         return 2;
     }
     printf("%s: %s\n", mode, ok ? "ok" : "FAILED");
