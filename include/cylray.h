@@ -759,6 +759,8 @@ CYLRAY_API const char *cylray_isa_name(cylray_isa isa);
  * exact one (the smallest float box). Returns CYLRAY_EINVAL and writes nothing for an
  * infinite cylinder (it has no box), a NULL pointer, or a cyl cylray_prepare did not fill. */
 CYLRAY_API cylray_status cylray_bounds(const cylray_prepared *cyl, float lo[3], float hi[3]);
+/* A cone's box is its frustum's, the hull of its two discs (radius rm -+ kap H |v|, as
+ * prepared), each face within 2 floats of the exact one, on its outer side. */
 /* The box of a leaf's used lanes (the union of their cylray_bounds boxes); CYLRAY_EINVAL
  * and nothing written when a lane is infinite or no lane is used. */
 CYLRAY_API cylray_status cylray_leaf_bounds4(const cylray_leaf4 *leaf, float lo[3],
@@ -789,7 +791,10 @@ CYLRAY_API cylray_status cylray_leaf_bounds16(const cylray_leaf16 *leaf, float l
  * A sphere is cut across z, the axis of its surface coordinates: slice i lies between
  * the planes z = center_z + R q_i and center_z + R q_(i+1), its box spanning center_x
  * and center_y -+ R sqrt(1 - q^2) at the q of [q_i, q_(i+1)] nearest 0, rounded
- * outward as above. k = 0 gives 1: the box of cylray_bounds. */
+ * outward as above. k = 0 gives 1: the box of cylray_bounds.
+ *
+ * A cone is cut as a cylinder of radius max(r0, r1) is (k = 0: the same rule), each
+ * slice's box that of its two discs, of the cone's radius at their axial coordinates. */
 #define CYLRAY_SPLIT_MAX 32
 CYLRAY_API size_t cylray_split_boxes(const cylray_prepared *cyl, size_t k, float (*lo)[3],
                                      float (*hi)[3]);
