@@ -835,7 +835,12 @@ CYLRAY_API size_t cylray_split_boxes(const cylray_prepared *cyl, size_t k, float
  * theta / pi, theta = acos(z / R): 0 at the -z pole, 1 at +z; dpdu = 2pi (-y, x, 0) (0
  * at the poles); dpdv = pi (-z cos(phi), -z sin(phi), R sin(theta)). u and v within
  * one float ulp of their exact values at p, dpdu and dpdv within 2^-20 of their length.
- * Only the side: nothing is written for another part. */
+ * Only the side: nothing is written for another part.
+ *
+ * A cone: u and v as a cylinder's (u = 0 at p0, 1 at p1; v the azimuth about p1 - p0 in
+ * the frame above); the discs as a cylinder's, R the disc's radius; on the side dpdu =
+ * 2H n + (r1 - r0) (cos(phi) b1 + sin(phi) b2), along the cone's ruling, and dpdv =
+ * 2pi r(z) (-sin(phi) b1 + cos(phi) b2), r(z) the radius at p's axial coordinate. */
 CYLRAY_API void cylray_surface(const cylray_prepared *cyl, const float p[3], int32_t part,
                                float uv[2], float dpdu[3], float dpdv[3]);
 /* The same for the hit a leaf query returned (hit->lane and hit->part name the cylinder

@@ -272,6 +272,46 @@ static void surface_at(const surf_cyl *s, const float p[3], int32_t part, float 
     surface_at_plain(s, p, part, uv, dpdu, dpdv);
 }
 
+/* A cone (radius rm + dk z / H at axial coordinate z, dk = kap H |v|): its u and v are
+ * the cylinder's, and so are its derivatives with R the radius where they are taken (a
+ * disc's own; on the side the radius at p's axial coordinate, for dpdv), except the
+ * side's dpdu, which follows the slope: 2H n + (r1 - r0) e_r, e_r = cos(phi) b1 +
+ * sin(phi) b2 the radial direction at p (b1 on the axis, where phi = 0). All in double:
+ * e_r is good to 2^-50 |r| / rho, within 2^-20 where the cylinder's derivatives are. */
+static void cone_surface(surf_cyl *s, double rm, double kap, const float p[3], int32_t part,
+                         float uv[2], float dpdu[3], float dpdv[3])
+{
+    double n[3], r[3], vv = 0, z = 0;
+    for (int k = 0; k < 3; k++)
+        vv += (double)s->v[k] * s->v[k];
+    const double sv = sqrt(vv), H = s->H, dk = kap * H * sv;
+    for (int k = 0; k < 3; k++) {
+        n[k] = s->v[k] / sv;
+        r[k] = (double)p[k] - s->c[k];
+        z += r[k] * n[k];
+    }
+    const double rlo = fmax(0.0, rm - dk), rhi = fmax(0.0, rm + dk);
+    s->R = part == CYLRAY_CAP_LO   ? rlo
+           : part == CYLRAY_CAP_HI ? rhi
+                                   : fmax(0.0, rm + dk * fmin(1.0, fmax(-1.0, z / H)));
+    surface_at(s, p, part, uv, dpdu, dpdv);
+    if (!dpdu || part != CYLRAY_SIDE)
+        return;
+    double e[3], l = 0;
+    for (int k = 0; k < 3; k++) {
+        e[k] = r[k] - z * n[k];
+        l += e[k] * e[k];
+    }
+    l = sqrt(l);
+    if (!(l > 0)) { /* on the axis: b1 of the frame (Duff et al.) */
+        const double sg = n[2] >= 0 ? 1.0 : -1.0, a = -1.0 / (sg + n[2]);
+        e[0] = 1 + sg * n[0] * n[0] * a, e[1] = sg * n[0] * n[1] * a, e[2] = -sg * n[0];
+        l = 1;
+    }
+    for (int k = 0; k < 3; k++)
+        dpdu[k] = (float)(2 * H * n[k] + (rhi - rlo) * e[k] / l);
+}
+
 void cylray_surface(const cylray_prepared *cyl, const float p[3], int32_t part, float uv[2],
                     float dpdu[3], float dpdv[3])
 {
@@ -288,7 +328,10 @@ void cylray_surface(const cylray_prepared *cyl, const float p[3], int32_t part, 
     }
     s.R = cyl->radius;
     s.H = cyl->kind == CYLRAY_KIND_INFINITE ? INFINITY : cyl->half_height;
-    surface_at(&s, p, part, uv, dpdu, dpdv);
+    if (cyl->kind == CYLRAY_KIND_CONE)
+        cone_surface(&s, cyl->rm, cyl->kap, p, part, uv, dpdu, dpdv);
+    else
+        surface_at(&s, p, part, uv, dpdu, dpdv);
 }
 
 static void leaf_surface(const float *geom, const uint32_t *meta, unsigned m,
@@ -311,7 +354,12 @@ static void leaf_surface(const float *geom, const uint32_t *meta, unsigned m,
     }
     s.R = geom[CYLRAY_LF_R * m + i];
     s.H = geom[CYLRAY_LF_H * m + i];
-    surface_at(&s, p, hit->part, uv, dpdu, dpdv);
+    const float kap = geom[CYLRAY_LF_RRVV * m + i];
+    /* a cone's lane: R is rm, RRVV its slope (slope 0: the cylinder it prepares as) */
+    if (((cylray_leaf_cones_(meta) >> i) & 1u) && kap != 0)
+        cone_surface(&s, s.R, kap, p, hit->part, uv, dpdu, dpdv);
+    else
+        surface_at(&s, p, hit->part, uv, dpdu, dpdv);
 }
 
 #define LEAF_SURFACE_(m)                                                                       \

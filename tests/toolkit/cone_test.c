@@ -9,6 +9,9 @@
  *   cone_test split cylray_split_boxes: k = 0 gives its count; each of k slices on the
  *                   outer side of the exact hull of its two end discs and within 2 floats
  *                   of it; points of the exact surface inside the box of their slice
+ *   cone_test surface u, v, dpdu, dpdv at points of the side and discs against the same
+ *                   formulas in double: u and v within 2^-20, the derivatives within
+ *                   2^-18 of their length; the leaf form equals the prepared one
  *
  * The exact cone is the prepared one: radius rm + kap z between its discs, its ends at
  * z = -+H|v|. CYLRAY_TEST_QUICK=1 shrinks the counts tenfold. */
@@ -261,6 +264,109 @@ static int run_split(long N)
     return slices > 0 && outside == 0 && loose == 0 && uncovered == 0;
 }
 
+static double rel3(const float a[3], const double b[3])
+{
+    double d = 0, l = 0;
+    for (int k = 0; k < 3; k++)
+        d += (a[k] - b[k]) * (a[k] - b[k]), l += b[k] * b[k];
+    return sqrt(d) / fmax(sqrt(l), 1e-300);
+}
+
+static int run_surface(long N)
+{
+    long points = 0, bad_uv = 0, bad_d = 0, leaf_differ = 0;
+    cylgen_rng rng;
+    cylgen_seed(&rng, 6303);
+    for (long g = 0; g < N; g++) {
+        cylray_cone c[4];
+        cylray_prepared P[4];
+        int ok = 1;
+        for (int j = 0; j < 4 && ok; j++) {
+            make_cone(&rng, (int)((g + j) % 4), &c[j]);
+            c[j].flags = CYLRAY_CAPPED;
+            ok = cylray_prepare_cone(&P[j], &c[j]) == CYLRAY_OK && P[j].kap != 0;
+        }
+        cylray_leaf4 leaf;
+        if (!ok || cylray_leaf_prepare_cones4(&leaf, c, NULL, 4) != CYLRAY_OK)
+            continue;
+        for (int j = 0; j < 4; j++) {
+            const cylray_prepared *Q = &P[j];
+            double n[3], vv = 0;
+            for (int k = 0; k < 3; k++)
+                vv += (double)Q->v[k] * Q->v[k];
+            const double sv = sqrt(vv), H = Q->half_height, dk = (double)Q->kap * H * sv;
+            for (int k = 0; k < 3; k++)
+                n[k] = Q->v[k] / sv;
+            const double sg = n[2] >= 0 ? 1.0 : -1.0, a = -1.0 / (sg + n[2]),
+                         b = n[0] * n[1] * a;
+            const double b1[3] = {1 + sg * n[0] * n[0] * a, sg * b, -sg * n[0]};
+            const double b2[3] = {b, sg + n[1] * n[1] * a, -n[1]};
+            const double rlo = fmax(0.0, Q->rm - dk), rhi = fmax(0.0, Q->rm + dk);
+            for (int t = 0; t < 8; t++) {
+                const int part = t < 4 ? CYLRAY_SIDE : t < 6 ? CYLRAY_CAP_LO : CYLRAY_CAP_HI;
+                const double ph = uni(&rng, 0.01, 6.27), co = cos(ph), si = sin(ph);
+                double u = part == CYLRAY_SIDE     ? uni(&rng, 0.01, 0.99)
+                           : part == CYLRAY_CAP_LO ? 0
+                                                   : 1;
+                double rr = rlo + (rhi - rlo) * u;
+                if (part != CYLRAY_SIDE && !(rr > 1e-3 * (rlo + rhi)))
+                    continue; /* a tip's disc (radius 0 up to rounding): no azimuth */
+                if (part != CYLRAY_SIDE)
+                    rr *= uni(&rng, 0.05, 1);
+                float p[3];
+                for (int k = 0; k < 3; k++)
+                    p[k] = (float)(Q->c[k] + (2 * u - 1) * H * n[k] +
+                                   rr * (co * b1[k] + si * b2[k]));
+                /* the reference at the float point */
+                double r[3], z = 0, x1 = 0, x2 = 0;
+                for (int k = 0; k < 3; k++) {
+                    r[k] = (double)p[k] - Q->c[k];
+                    z += r[k] * n[k], x1 += r[k] * b1[k], x2 += r[k] * b2[k];
+                }
+                double phi = atan2(x2, x1);
+                if (phi < 0)
+                    phi += 6.283185307179586;
+                const double cph = cos(phi), sph = sin(phi), rho = sqrt(x1 * x1 + x2 * x2);
+                const double ue = part == CYLRAY_SIDE ? (z + H) / (2 * H) : u;
+                const double rz = part == CYLRAY_SIDE ? rlo + (rhi - rlo) * fmin(1, fmax(0, ue))
+                                  : part == CYLRAY_CAP_LO ? rlo
+                                                          : rhi;
+                double du[3], dv[3];
+                for (int k = 0; k < 3; k++) {
+                    const double er = cph * b1[k] + sph * b2[k],
+                                 ep = -sph * b1[k] + cph * b2[k];
+                    du[k] = part == CYLRAY_SIDE ? 2 * H * n[k] + (rhi - rlo) * er : rz * er;
+                    dv[k] = 6.283185307179586 * (part == CYLRAY_SIDE ? rz : rho) * ep;
+                }
+                float uv[2], pu[3], pv[3], luv[2], lpu[3], lpv[3];
+                cylray_surface(Q, p, part, uv, pu, pv);
+                cylray_hit1 h;
+                memset(&h, 0, sizeof h);
+                h.part = part, h.lane = (uint32_t)j;
+                cylray_leaf_surface4(&leaf, &h, p, luv, lpu, lpv);
+                points++;
+                const double dvv = fabs(uv[1] - phi / 6.283185307179586);
+                if (fabs(uv[0] - ue) > 0x1p-20 || fmin(dvv, 1 - dvv) > 0x1p-20) {
+                    if (bad_uv++ < 10)
+                        printf("FAIL uv: part %d: (%a, %a) vs (%a, %a)\n", part, (double)uv[0],
+                               (double)uv[1], ue, phi / 6.283185307179586);
+                }
+                if (rel3(pu, du) > 0x1p-18 || rel3(pv, dv) > 0x1p-18) {
+                    if (bad_d++ < 10)
+                        printf("FAIL derivatives: part %d: %g %g\n", part, rel3(pu, du),
+                               rel3(pv, dv));
+                }
+                if (memcmp(uv, luv, sizeof uv) || memcmp(pu, lpu, sizeof pu) ||
+                    memcmp(pv, lpv, sizeof pv))
+                    leaf_differ++;
+            }
+        }
+    }
+    printf("surface: %ld points, %ld uv off, %ld derivatives off, %ld leaf forms differ\n",
+           points, bad_uv, bad_d, leaf_differ);
+    return points > 0 && bad_uv == 0 && bad_d == 0 && leaf_differ == 0;
+}
+
 int main(int argc, char **argv)
 {
     const long N = tc_quick() ? 300 : 3000;
@@ -270,8 +376,10 @@ int main(int argc, char **argv)
         ok = run_box(N);
     else if (strcmp(mode, "split") == 0)
         ok = run_split(N);
+    else if (strcmp(mode, "surface") == 0)
+        ok = run_surface(N);
     else {
-        fprintf(stderr, "usage: cone_test box|split\n");
+        fprintf(stderr, "usage: cone_test box|split|surface\n");
         return 2;
     }
     printf("%s: %s\n", mode, ok ? "ok" : "FAILED");
