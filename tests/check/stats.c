@@ -16,6 +16,7 @@ const char *cat_name(int category)
 {
     return category == CAT_REGRESS   ? "regress"
            : cat_is_sphere(category) ? sphgen_category_name(category - CAT_SPHERE)
+           : cat_is_cone(category)   ? congen_category_name(category - CAT_CONE)
                                      : cylgen_category_name(category);
 }
 
@@ -23,6 +24,9 @@ int cat_find(const char *name)
 {
     if (name && strcmp(name, "regress") == 0)
         return CAT_REGRESS;
+    int k = congen_category_find(name);
+    if (k >= 0)
+        return CAT_CONE + k;
     int s = sphgen_category_find(name);
     return s >= 0 ? CAT_SPHERE + s : cylgen_category_find(name);
 }
@@ -86,7 +90,7 @@ static void spheres_report(void)
         for (int m = 0; m < MODE_COUNT; m++) {
             stat_cell all = {0};
             long unexc = 0, beyond = 0;
-            for (int cat = CAT_SPHERE; cat < CAT_COUNT; cat++) {
+            for (int cat = CAT_SPHERE; cat < CAT_CONE; cat++) {
                 const stat_cell *s = &cells[isa][cat][m];
                 unexc += s->hm_unexcused + s->part_unexcused;
                 beyond += s->t_beyond;

@@ -500,20 +500,23 @@ void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], 
     double lo[K_COUNT], hi[K_COUNT];
     for (int kand = 0; kand < K_COUNT; kand++) {
         int allowed = present(vflags, kand);
-        int und = 0;
+        /* und: some margin may flip; flips: every failing margin may. */
+        int und = 0, flips = 1;
         if (r0.exists[kand])
             for (int g = 0; g < G_COUNT; g++) {
                 if (!q_isfinite(r0.m[kand][g]))
                     continue;
                 double mag = (double)q_abs(r0.m[kand][g]);
-                if (mag <= sum_m[kand][g] + (double)r0.mw[kand][g] ||
-                    !(sum_m[kand][g] < INFINITY))
-                    und = 1;
+                int u = mag <= sum_m[kand][g] + (double)r0.mw[kand][g] ||
+                        !(sum_m[kand][g] < INFINITY);
+                und |= u;
+                if (r0.m[kand][g] < 0 && !u)
+                    flips = 0;
             }
         may_take[kand] =
             allowed &&
             (v0[kand] || tr[kand].seen_valid ||
-             (und && r0.exists[kand] && !((vflags & CYLRAY_CULL_BACK) && r0.back[kand])));
+             (flips && r0.exists[kand] && !((vflags & CYLRAY_CULL_BACK) && r0.back[kand])));
         may_drop[kand] = !v0[kand] || tr[kand].seen_invalid || und;
         double t = (double)r0.t[kand];
         lo[kand] = fmin(tr[kand].lo, t - sum_t[kand]);
