@@ -39,7 +39,7 @@ static void usage(FILE *f)
                "  --seed=N         the generators' seed (default: from the clock, printed)\n"
                "  --quick          small counts (sanitizers, qemu); also CYLRAY_TEST_QUICK=1\n"
                "  --report         the accuracy table per ISA x category x mode\n"
-               "  --n=N            packet rays per category (multiple of 16; spheres, cones N/4)\n"
+               "  --n=N            packet rays per category (16k; spheres and cones N/4)\n"
                "  --flags=F        only this kernel flag combination (0..31)\n"
                "  --case=I         only this case of the category (from a failure's repro)\n"
                "  --max-print=N    failures printed in full (default 12)\n"
