@@ -169,8 +169,9 @@ static double normal_of(const ref_case *rc, const lane_out *o, int ff, double n[
             n[k] *= sg;
         if (part != CYLRAY_SIDE)
             return 0;
+        /* Near the apex the normal may turn all the way round the axis. */
         const double un = 4 * cylref_float_ulp(fmax(sqrt(ww), sqrt(td)));
-        return asin(fmin(1, un / len));
+        return 2 * asin(fmin(1, un / len));
     }
     double v[3], p[3], vv = 0, pv = 0, len = 0;
     for (int k = 0; k < 3; k++) {

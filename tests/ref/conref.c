@@ -575,6 +575,27 @@ void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], 
     /* The gradient samples turn the normal by 2 ulps of one input each; the box's
      * corners by all at once: twice the worst sample bounds a sum of a few. */
     out->n_spread = 2 * nmax;
+    if (x0 == K_FRONT || x0 == K_BACK) {
+        /* Near the apex the side's normal turns all the way round it: its direction
+         * across the axis is that of x_perp, which the box moves by about delta. Where
+         * the samples do not happen to straddle the axis, this bound does. */
+        double dm = 0, am = 0, xp = 0;
+        const cylq t = r0.t[x0];
+        for (int k = 0; k < 3; k++) {
+            dm = fmax(dm, fabs((double)base.d[k]));
+            am = fmax(am, fabs((double)base.a[k]));
+            const double x = (double)(r0.wp[k] + t * r0.dp[k]);
+            xp += x * x;
+        }
+        const double zr = fabs((double)(r0.zw + t * r0.zd)) / (double)r0.L;
+        const double delta =
+            8 * ((double)step[IN_W] + fabs((double)t) * ref_float_ulp(dm) +
+                 (1 + zr) * ref_float_ulp(am) * fmax(1, fabs((double)t) * dm / am) +
+                 ref_float_ulp(fmax(c->r0, c->r1)));
+        xp = sqrt(xp);
+        out->n_spread =
+            fmax(out->n_spread, xp > delta ? 2 * asin(delta / xp) : 3.14159265358979323846);
+    }
 }
 
 int conref_judge(const cylref_band *b, int hit, int part, float t, double *ulps_beyond)
