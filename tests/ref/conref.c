@@ -596,6 +596,7 @@ void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], 
         out->n_spread =
             fmax(out->n_spread, xp > delta ? 2 * asin(delta / xp) : 3.14159265358979323846);
     }
+    out->n_spread = fmin(out->n_spread, 3.14159265358979323846); /* opposite at most */
 }
 
 int conref_judge(const cylref_band *b, int hit, int part, float t, double *ulps_beyond)

@@ -238,7 +238,7 @@ static int ld_solve(const congen_case *c, unsigned flags, long double *t, int *p
 
 static void test_independent(void)
 {
-    enum { N = 512 };
+    enum { N = 160 };
     static congen_case cs[N];
     const int cats[] = {CONGEN_ORDINARY, CONGEN_INSIDE, CONGEN_CAMERA, CONGEN_FLAT,
                         CONGEN_APEX};
@@ -270,7 +270,7 @@ static void test_independent(void)
             }
         }
     }
-    CHECK(compared > 2000, "only %ld stable cases compared", compared);
+    CHECK(compared > 1000, "only %ld stable cases compared", compared);
 }
 
 /* Every category: valid cones, batches, prefix stability, and the exact answer inside
