@@ -193,8 +193,11 @@ cylray_status cylray_prepare_cone(cylray_prepared *out, const cylray_cone *in)
     if (!out || !in || !cylray_cone_ok_(in))
         return CYLRAY_EINVAL;
     const double rmax = fmax(in->r0, in->r1);
+    /* the disc of a radius-0 end is a point, no surface: that end is open */
+    const unsigned caps = in->flags & (in->r0 > 0 ? CYLRAY_CAPPED : CYLRAY_CAPPED_HI) &
+                          (in->r1 > 0 ? CYLRAY_CAPPED : CYLRAY_CAPPED_LO);
     cylray_cylinder cyl;
-    if (cylray_cylinder_from_endpoints(&cyl, in->p0, in->p1, (float)rmax, in->flags) !=
+    if (cylray_cylinder_from_endpoints(&cyl, in->p0, in->p1, (float)rmax, caps) !=
         CYLRAY_OK)
         return CYLRAY_EINVAL;
     cylray_prepared p;

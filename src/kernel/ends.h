@@ -48,12 +48,13 @@ CYLRAY_INLINE void KFN(ends)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_
         if (F.cone) {
             /* The double cone's inside on the ray: [tn, tf] where A > 0, on one nappe
              * (the cone's where its radius there is not negative); where A < 0 the two
-             * half-lines beyond the roots, one on each nappe, of which the cone's is the
-             * one whose root has a radius not negative. The slab keeps the other nappe
-             * out exactly; these choices only keep rounding near a tip from passing a
-             * sliver of it. */
+             * half-lines beyond the roots, one on each side of the apex's plane, of
+             * which the cone's runs the way the radius grows (the sign of a, exact,
+             * rather than that of the radius at a root, which is 0 at a root near the
+             * apex). The slab keeps the other nappe out; these choices keep rounding
+             * near a tip from passing a sliver of it. */
             const vm neg = vlt(st->A, zero);
-            const vm far = vge(vfma(st->ca, tf, st->cr), zero);
+            const vm far = vgt(st->ca, zero);
             lo = vsel(neg, vsel(far, tf, vneg(inf)), tn);
             hi = vsel(neg, vsel(far, inf, tn), tf);
             const vf mid = vmul(vset1(0.5f), vadd(tn, tf));

@@ -21,6 +21,8 @@
  *   operation serves (CYLRAY_FAST).
  * KM_TANGENT: D below 2^-18 A R^2, some 32 ulps of its larger term, is near a tangency,
  *   where only the direct form of the second root is safe (see there).
+ * KM_GENERATOR: a cone's A below 2^-8 e.e is the cancellation of a ray nearly along a
+ *   generator line, not a tangency (kernel/solve.h, the roots).
  * KM_NORMAL_OFF: a normal whose squared length is off 1 by more than 2^-10 (a hit point
  *   that rounding moved well off a tiny radius) is normalised exactly; below that one
  *   Newton step of 1/sqrt takes the error to rounding level. */
@@ -32,4 +34,5 @@
 #define KM_TINY 0x1p-100f
 #define KM_NORMAL_OFF 0x1p-10f
 #define KM_TANGENT 0x1p-18f
+#define KM_GENERATOR 0x1p-8f
 #endif

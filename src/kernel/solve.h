@@ -203,6 +203,11 @@ CYLRAY_INLINE void KFN(roots)(KFN(lanes) *st, const cylray_kat_ *k, const cylray
     vf q = vadd(nB, vxorsign(sq, nB)); /* -(B + sign(B) sqrt(disc)); sq >= 0 */
     /* A sphere's A is d.d, whose reciprocal the shift has formed. */
     vf r1 = F.sphere ? vmul(q, st->rdd) : F.fast ? vmul(q, vrcp_fast(A)) : vdiv(q, A);
+    if (F.cone && F.fast) { /* A of a ray along a generator line can be 0 or tiny */
+        vm small = mand(side, vlt(vabs(A), tiny));
+        if (many(small))
+            r1 = vsel(small, vdiv(q, A), r1);
+    }
     vf r2;
     if (F.fast) {
         r2 = vmul(C, vrcp_fast(q));
@@ -221,8 +226,16 @@ CYLRAY_INLINE void KFN(roots)(KFN(lanes) *st, const cylray_kat_ *k, const cylray
      * the origin (a ray leaving the surface reported as hitting it from inside). The
      * direct form (nB - sign sq) / A errs by the error of sq alone. */
     vm tangent = mand(side, vlt(D, vmul(st->AR2, vset1(KM_TANGENT))));
-    if (many(tangent))
+    if (many(tangent)) {
+        /* A cone's A also vanishes off a tangency, for a ray along a generator line
+         * (e.e = v.v a^2): the direct form would divide by the rounding of A, and C / q
+         * (q about 2 nB there) is the accurate root. */
+        if (F.cone)
+            tangent = mand(
+                tangent, vgt(vabs(A), vmul(KDOT(st->ex, st->ey, st->ez, st->ex, st->ey, st->ez),
+                                           vset1(KM_GENERATOR))));
         r2 = vsel(tangent, vdiv(vsub(nB, vxorsign(sq, nB)), A), r2);
+    }
     st->tn = vmin(r1, r2), st->tf = vmax(r1, r2);
     if (F.refine && !F.cone && many(side)) {
         /* Both roots are polished before anything is decided from them, so that the

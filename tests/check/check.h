@@ -8,6 +8,8 @@
 #include <stdint.h>
 
 #include "cylray.h"
+#include "congen.h"
+#include "conref.h"
 #include "cylref.h"
 #include "gen.h"
 #include "sphgen.h"
@@ -33,13 +35,19 @@
 #define HEADLINE_FAR_MAX_ULPS 2.0
 
 /* Categories: the cylinder generators' (gen.h), the fixed regression cases (regress.c),
- * then the sphere generators' (sphgen.h), CAT_SPHERE + SPHGEN_*. */
+ * then the sphere generators' (sphgen.h), CAT_SPHERE + SPHGEN_*, then the cone
+ * generators' (congen.h), CAT_CONE + CONGEN_*. */
 #define CAT_REGRESS CYLGEN_COUNT
 #define CAT_SPHERE (CYLGEN_COUNT + 1)
-#define CAT_COUNT (CAT_SPHERE + SPHGEN_COUNT)
+#define CAT_CONE (CAT_SPHERE + SPHGEN_COUNT)
+#define CAT_COUNT (CAT_CONE + CONGEN_COUNT)
 static inline int cat_is_sphere(int category)
 {
-    return category >= CAT_SPHERE;
+    return category >= CAT_SPHERE && category < CAT_CONE;
+}
+static inline int cat_is_cone(int category)
+{
+    return category >= CAT_CONE && category < CAT_COUNT;
 }
 const char *cat_name(int category);
 int cat_find(const char *name); /* -1 when unknown */
@@ -59,6 +67,8 @@ typedef struct ref_case {
     cylgen_case c; /* the ray; its cylinder unless `sphere` */
     int sphere;    /* the shape is sph, c.cyl is unused */
     cylray_sphere sph;
+    int cone; /* the shape is con, c.cyl is unused */
+    cylray_cone con;
     cylref_band band[2]; /* [0]: flags without CULL_BACK, [1]: with */
     int index;           /* within its category's case list */
 } ref_case;

@@ -12,8 +12,9 @@
  *   - occluded agrees with intersect;
  *   - a leaf with a bad cylinder (or too many) is refused and left untouched; a ray
  *     with a NaN or infinite field misses.
- * Then the same for leaves of spheres (tests/ref/sphgen.h categories), some holding one
- * sphere in two lanes: of those equal hits the lower lane must win.
+ * Then the same for leaves of spheres (tests/ref/sphgen.h categories) and of cones
+ * (tests/ref/congen.h, some lanes cylinders given as cones with r0 == r1), some holding
+ * one shape in two lanes: of those equal hits the lower lane must win.
  * Usage: leafcheck [--isa=NAME] [--quick] [--seed=S]. Exit 0 ok, 1 failures, 77 no
  * such ISA here. */
 #include <math.h>
@@ -21,6 +22,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "conref.h"
+#include "congen.h"
 #include "cylray.h"
 #include "cylref.h"
 #include "gen.h"
@@ -39,12 +42,14 @@ static long ties_seen;
 typedef struct lane_ref {
     cylray_cylinder cyl;
     cylray_sphere sph;   /* the lane's shape in a leaf of spheres */
+    cylray_cone con;     /* the lane's shape in a leaf of cones */
     cylref_band band[2]; /* without, with CYLRAY_CULL_BACK */
 } lane_ref;
 
 typedef struct leaf_case {
     int n, m;
     int spheres; /* a leaf of spheres */
+    int cones;   /* a leaf of cones */
     lane_ref lane[16];
     uint32_t id[16];
     float o[3], d[3], tmin, tmax;
@@ -124,6 +129,54 @@ static void make_sphere_leaf(leaf_case *lc, int m, cylgen_rng *r, uint64_t seed)
                              cull ? CYLRAY_CULL_BACK : 0u, &lc->lane[k].band[cull]);
 }
 
+/* A leaf of cones from random cone categories, about one lane in four a cylinder (r1
+ * set to r0), and as for spheres about one leaf in three repeating the aimed lane. */
+static void make_cone_leaf(leaf_case *lc, int m, cylgen_rng *r, uint64_t seed)
+{
+    memset(lc, 0, sizeof *lc);
+    lc->m = m;
+    lc->cones = 1;
+    uint64_t u = cylgen_next(r);
+    lc->n = (u & 3) == 0 ? (int)((u >> 8) % (unsigned)(m + 1)) : m;
+    if (lc->n == 0)
+        lc->n = 1;
+    const int aim = (int)((u >> 16) % (unsigned)lc->n);
+    for (int k = 0; k < lc->n; k++) {
+        /* cone-bad's rays would make every lane miss: it is the last category. */
+        int cat = (int)(cylgen_next(r) % CONGEN_BAD);
+        congen_case c;
+        congen_make(cat, seed + cylgen_next(r), 1, &c);
+        if (cylgen_next(r) % 4 == 0 && c.cone.r0 > 0)
+            c.cone.r1 = c.cone.r0;
+        lc->lane[k].con = c.cone;
+        lc->id[k] = (uint32_t)cylgen_next(r);
+        if (k == aim) {
+            memcpy(lc->o, c.o, sizeof c.o);
+            memcpy(lc->d, c.d, sizeof c.d);
+            lc->tmin = c.tmin;
+            lc->tmax = c.tmax;
+        }
+    }
+    if (lc->n > 1 && (u >> 24) % 3 == 0) {
+        int to = (int)((u >> 40) % (unsigned)(lc->n - 1));
+        lc->lane[to >= aim ? to + 1 : to].con = lc->lane[aim].con;
+    }
+    for (int k = 0; k < lc->n; k++)
+        for (int cull = 0; cull < 2; cull++)
+            conref_band_eval(&lc->lane[k].con, lc->o, lc->d, lc->tmin, lc->tmax,
+                             cull ? CYLRAY_CULL_BACK : 0u, &lc->lane[k].band[cull]);
+}
+
+/* Lanes j and L hold the same shape (spheres and cones only). */
+static int same_shape(const leaf_case *lc, int j, int L)
+{
+    if (lc->spheres)
+        return memcmp(&lc->lane[j].sph, &lc->lane[L].sph, sizeof lc->lane[L].sph) == 0;
+    if (lc->cones)
+        return memcmp(&lc->lane[j].con, &lc->lane[L].con, sizeof lc->lane[L].con) == 0;
+    return 0;
+}
+
 /* The latest t at which lane k surely hits, or INFINITY where it may miss. */
 static double sure_hit_by(const cylref_band *b)
 {
@@ -144,6 +197,16 @@ static void print_leaf(const leaf_case *lc)
         const cylray_cylinder *c = &lc->lane[k].cyl;
         const cylray_sphere *s = &lc->lane[k].sph;
         const cylref_hit *e = &lc->lane[k].band[0].exact;
+        if (lc->cones) {
+            const cylray_cone *q = &lc->lane[k].con;
+            fprintf(stderr,
+                    "    lane %d: cone p0 (%a, %a, %a) p1 (%a, %a, %a) r0 %a r1 %a flags %u: "
+                    "exact %s t %.9g part %d\n",
+                    k, (double)q->p0[0], (double)q->p0[1], (double)q->p0[2], (double)q->p1[0],
+                    (double)q->p1[1], (double)q->p1[2], (double)q->r0, (double)q->r1, q->flags,
+                    e->hit ? "hit" : "miss", e->t, e->part);
+            continue;
+        }
         if (lc->spheres) {
             fprintf(stderr,
                     "    lane %d: sphere c (%a, %a, %a) R %a: exact %s t %.9g part %d\n", k,
@@ -238,16 +301,15 @@ static void judge(const cylray_kernels *k, const leaf_case *lc, const void *leaf
                 b->exact.hit ? "hit" : "miss", b->exact.t, b->exact.part, ub);
             CHECK(h->id == lc->id[L], "%s leaf%d: id %#x for lane %d (%#x)", k->name, lc->m,
                   h->id, L, lc->id[L]);
-            /* The same sphere in a lower lane hits at the same t: it must win the tie. */
-            for (int j = 0; lc->spheres && j < lc->n; j++)
-                if (j != L &&
-                    memcmp(&lc->lane[j].sph, &lc->lane[L].sph, sizeof lc->lane[L].sph) == 0) {
+            /* The same shape in a lower lane hits at the same t: it must win the tie. */
+            for (int j = 0; j < lc->n; j++)
+                if (j != L && same_shape(lc, j, L)) {
                     ties_seen++;
                     break;
                 }
-            for (int j = 0; lc->spheres && j < L; j++)
-                CHECK(memcmp(&lc->lane[j].sph, &lc->lane[L].sph, sizeof lc->lane[L].sph) != 0,
-                      "%s leaf%d flags %#x: lane %d won a tie with the same sphere in lane %d",
+            for (int j = 0; j < L; j++)
+                CHECK(!same_shape(lc, j, L),
+                      "%s leaf%d flags %#x: lane %d won a tie with the same shape in lane %d",
                       k->name, lc->m, flags, L, j);
             CHECK(memcmp(&io.ray.tmax, &h->t, 4) == 0, "%s leaf%d: tmax %a, t %a", k->name,
                   lc->m, (double)io.ray.tmax, (double)h->t);
@@ -403,24 +465,30 @@ int main(int argc, char **argv)
     static const int sizes[3] = {4, 8, 16};
     cylgen_rng r;
     cylgen_seed(&r, seed);
-    long calls = 0, hits = 0, sphere_hits = 0;
+    long calls = 0, hits = 0, sphere_hits = 0, cone_hits = 0;
     /* Spheres: a quarter as many leaves (their kernel is a subset of the cylinder's). */
-    const int sphere_leaves = leaves / 4;
+    const int sphere_leaves = leaves / 4, cone_leaves = leaves / 4;
     for (int si = 0; si < 3; si++) {
         const int m = sizes[si];
-        for (int li = 0; li < leaves + sphere_leaves; li++) {
+        for (int li = 0; li < leaves + sphere_leaves + cone_leaves; li++) {
             leaf_case lc;
-            const int sph = li >= leaves;
-            if (sph)
+            const int con = li >= leaves + sphere_leaves;
+            const int sph = li >= leaves && !con;
+            if (con)
+                make_cone_leaf(&lc, m, &r,
+                               (seed ^ 0x434f4e45ull) + (uint64_t)li * 131 + (uint64_t)m);
+            else if (sph)
                 make_sphere_leaf(&lc, m, &r,
                                  (seed ^ 0x5350484552ull) + (uint64_t)li * 131 + (uint64_t)m);
             else
                 make_leaf(&lc, m, &r, seed + (uint64_t)li * 131 + (uint64_t)m);
             cylray_cylinder cyl[16];
             cylray_sphere sp[16];
+            cylray_cone co[16];
             for (int j = 0; j < lc.n; j++) {
                 cyl[j] = lc.lane[j].cyl;
                 sp[j] = lc.lane[j].sph;
+                co[j] = lc.lane[j].con;
             }
             union {
                 cylray_leaf4 l4;
@@ -429,7 +497,10 @@ int main(int argc, char **argv)
             } leaf;
             const size_t n = (size_t)lc.n;
             cylray_status st =
-                sph      ? (m == 4   ? cylray_leaf_prepare_spheres4(&leaf.l4, sp, lc.id, n)
+                con      ? (m == 4   ? cylray_leaf_prepare_cones4(&leaf.l4, co, lc.id, n)
+                            : m == 8 ? cylray_leaf_prepare_cones8(&leaf.l8, co, lc.id, n)
+                                     : cylray_leaf_prepare_cones16(&leaf.l16, co, lc.id, n))
+                : sph    ? (m == 4   ? cylray_leaf_prepare_spheres4(&leaf.l4, sp, lc.id, n)
                             : m == 8 ? cylray_leaf_prepare_spheres8(&leaf.l8, sp, lc.id, n)
                                      : cylray_leaf_prepare_spheres16(&leaf.l16, sp, lc.id, n))
                 : m == 4 ? cylray_leaf_prepare4(&leaf.l4, cyl, lc.id, n)
@@ -446,6 +517,7 @@ int main(int argc, char **argv)
             for (int j = 0; j < lc.n; j++) {
                 hits += lc.lane[j].band[0].exact.hit;
                 sphere_hits += sph && lc.lane[j].band[0].exact.hit;
+                cone_hits += con && lc.lane[j].band[0].exact.hit;
             }
         }
     }
@@ -457,8 +529,8 @@ int main(int argc, char **argv)
         bad_input(isas[i], &c.cyl);
         bad_sphere_input(isas[i], &sc.sph);
     }
-    printf("leafcheck: %ld leaf calls, %ld exact lane hits (%ld on spheres), %ld calls hit a "
-           "sphere held in two lanes\n",
-           calls, hits, sphere_hits, ties_seen);
+    printf("leafcheck: %ld leaf calls, %ld exact lane hits (%ld on spheres, %ld on cones), "
+           "%ld calls hit a shape held in two lanes\n",
+           calls, hits, sphere_hits, cone_hits, ties_seen);
     return tc_report("leafcheck");
 }

@@ -16,6 +16,7 @@ const char *cat_name(int category)
 {
     return category == CAT_REGRESS   ? "regress"
            : cat_is_sphere(category) ? sphgen_category_name(category - CAT_SPHERE)
+           : cat_is_cone(category)   ? congen_category_name(category - CAT_CONE)
                                      : cylgen_category_name(category);
 }
 
@@ -23,6 +24,9 @@ int cat_find(const char *name)
 {
     if (name && strcmp(name, "regress") == 0)
         return CAT_REGRESS;
+    int k = congen_category_find(name);
+    if (k >= 0)
+        return CAT_CONE + k;
     int s = sphgen_category_find(name);
     return s >= 0 ? CAT_SPHERE + s : cylgen_category_find(name);
 }
@@ -86,7 +90,7 @@ static void spheres_report(void)
         for (int m = 0; m < MODE_COUNT; m++) {
             stat_cell all = {0};
             long unexc = 0, beyond = 0;
-            for (int cat = CAT_SPHERE; cat < CAT_COUNT; cat++) {
+            for (int cat = CAT_SPHERE; cat < CAT_CONE; cat++) {
                 const stat_cell *s = &cells[isa][cat][m];
                 unexc += s->hm_unexcused + s->part_unexcused;
                 beyond += s->t_beyond;
@@ -110,6 +114,45 @@ static void spheres_report(void)
             printf("%-7s %-13s %-6s %7ld lanes %7zu hits  p50 %6.3g  p99 %6.3g  max %6.3g  "
                    "unexcused %ld  >band %ld\n",
                    cylray_isa_name((cylray_isa)isa), "spheres", mode_names[m], all.lanes,
+                   all.n_ulps, stat_percentile(&all, 0.5), stat_percentile(&all, 0.99),
+                   stat_percentile(&all, 1.0), unexc, beyond);
+            free(all.ulps);
+        }
+}
+
+/* The same for cones: their well-conditioned categories (ordinary, far, tiny, huge,
+ * unnormalized, camera, long, nearly-cylinders). */
+static void cones_report(void)
+{
+    int header = 0;
+    for (int isa = 0; isa < CYLRAY_ISA_COUNT; isa++)
+        for (int m = 0; m < MODE_COUNT; m++) {
+            stat_cell all = {0};
+            long unexc = 0, beyond = 0;
+            for (int cat = CAT_CONE; cat < CAT_COUNT; cat++) {
+                const stat_cell *s = &cells[isa][cat][m];
+                unexc += s->hm_unexcused + s->part_unexcused;
+                beyond += s->t_beyond;
+                const int c = cat - CAT_CONE;
+                if (c != CONGEN_ORDINARY && c != CONGEN_FAR && c != CONGEN_TINY &&
+                    c != CONGEN_HUGE && c != CONGEN_UNNORM && c != CONGEN_CAMERA &&
+                    c != CONGEN_LONG && c != CONGEN_NEARCYL)
+                    continue;
+                all.lanes += s->lanes;
+                for (size_t i = 0; i < s->n_ulps; i++)
+                    stat_add_ulps(&all, s->ulps[i]);
+            }
+            if (!all.lanes) {
+                free(all.ulps);
+                continue;
+            }
+            if (!header++)
+                printf("cones, t error in ulps over cone-ordinary, far, tiny, huge, unnorm, "
+                       "camera, long and nearcyl; unexcused disagreements and t beyond the "
+                       "band over every cone category\n");
+            printf("%-7s %-13s %-6s %7ld lanes %7zu hits  p50 %6.3g  p99 %6.3g  max %6.3g  "
+                   "unexcused %ld  >band %ld\n",
+                   cylray_isa_name((cylray_isa)isa), "cones", mode_names[m], all.lanes,
                    all.n_ulps, stat_percentile(&all, 0.5), stat_percentile(&all, 0.99),
                    stat_percentile(&all, 1.0), unexc, beyond);
             free(all.ulps);
@@ -148,6 +191,7 @@ void stats_report(void)
                 printf("\n");
             }
     spheres_report();
+    cones_report();
     printf("(normal angle beyond the band's own spread, worst per ISA and mode:");
     for (int isa = 0; isa < CYLRAY_ISA_COUNT; isa++)
         for (int m = 0; m < MODE_COUNT; m++) {

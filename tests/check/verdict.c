@@ -40,7 +40,12 @@ void print_case(const ref_case *rc, unsigned flags)
 {
     const cylgen_case *c = &rc->c;
     const cylray_cylinder *y = &c->cyl;
-    if (rc->sphere)
+    if (rc->cone)
+        printf("    cone: p0 {%a, %a, %a} p1 {%a, %a, %a} r0 %a r1 %a flags %#x\n",
+               (double)rc->con.p0[0], (double)rc->con.p0[1], (double)rc->con.p0[2],
+               (double)rc->con.p1[0], (double)rc->con.p1[1], (double)rc->con.p1[2],
+               (double)rc->con.r0, (double)rc->con.r1, rc->con.flags);
+    else if (rc->sphere)
         printf("    sphere: center {%a, %a, %a} radius %a\n", (double)rc->sph.center[0],
                (double)rc->sph.center[1], (double)rc->sph.center[2], (double)rc->sph.radius);
     else
@@ -132,6 +137,41 @@ static double normal_of(const ref_case *rc, const lane_out *o, int ff, double n[
             n[k] *= s;
         const double u = 4 * cylref_float_ulp(fmax(sqrt(ww), sqrt(td)));
         return asin(fmin(1, u / len));
+    }
+    if (rc->cone) {
+        /* A cone's side: the gradient of |x_perp|^2 - r(z)^2 at the kernel's point,
+         * x_perp - r(z) k u; its discs: -+u. */
+        double u[3], x[3], L = 0, z = 0, ww = 0, td = 0, l2 = 0;
+        for (int k = 0; k < 3; k++) {
+            u[k] = (double)rc->con.p1[k] - rc->con.p0[k];
+            L += u[k] * u[k];
+        }
+        L = sqrt(L);
+        for (int k = 0; k < 3; k++) {
+            u[k] /= L;
+            const double w = (double)c->o[k] - rc->con.p0[k];
+            x[k] = w + (double)o->t * c->d[k];
+            z += x[k] * u[k];
+            ww += w * w;
+            td += (double)o->t * c->d[k] * ((double)o->t * c->d[k]);
+        }
+        const double kk = ((double)rc->con.r1 - rc->con.r0) / L, rz = rc->con.r0 + kk * z;
+        const int part = o->part & CYLRAY_PART_MASK;
+        for (int k = 0; k < 3; k++) {
+            n[k] = part == CYLRAY_SIDE     ? x[k] - z * u[k] - rz * kk * u[k]
+                   : part == CYLRAY_CAP_LO ? -u[k]
+                                           : u[k];
+            l2 += n[k] * n[k];
+        }
+        const double len = sqrt(l2);
+        const double sg = ((o->part & CYLRAY_BACKFACE) && ff) ? -1 / len : 1 / len;
+        for (int k = 0; k < 3; k++)
+            n[k] *= sg;
+        if (part != CYLRAY_SIDE)
+            return 0;
+        /* Near the apex the normal may turn all the way round the axis. */
+        const double un = 4 * cylref_float_ulp(fmax(sqrt(ww), sqrt(td)));
+        return 2 * asin(fmin(1, un / len));
     }
     double v[3], p[3], vv = 0, pv = 0, len = 0;
     for (int k = 0; k < 3; k++) {

@@ -12,6 +12,7 @@
 static int failures;
 
 int test_sphref(void); /* test_sphref.c */
+int test_conref(void); /* test_conref.c */
 
 #define CHECK(cond, ...)                                                                       \
     do {                                                                                       \
@@ -795,6 +796,7 @@ int main(void)
     test_membership();
     test_band();
     failures += test_sphref();
+    failures += test_conref();
     if (failures) {
         printf("%d failures\n", failures);
         return 1;

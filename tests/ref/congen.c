@@ -1,0 +1,539 @@
+/* SPDX-License-Identifier: MIT */
+/* congen.c - the cone stress-ray generators.
+ *
+ * The cone is drawn in double, rounded to float, and every ray is then built in double
+ * from the float cone (the values the kernel is given), so that "a surface point" or
+ * "a rim" is one of the float cone, off only by the rounding of o and d. */
+#include "congen.h"
+
+#include <float.h>
+#include <math.h>
+#include <string.h>
+
+typedef struct {
+    double x[3];
+} v3;
+
+static v3 mk(double a, double b, double c)
+{
+    v3 v = {{a, b, c}};
+    return v;
+}
+static v3 axpy(v3 y, double s, v3 a) /* y + s a */
+{
+    return mk(y.x[0] + s * a.x[0], y.x[1] + s * a.x[1], y.x[2] + s * a.x[2]);
+}
+static double dot(v3 a, v3 b)
+{
+    return a.x[0] * b.x[0] + a.x[1] * b.x[1] + a.x[2] * b.x[2];
+}
+static v3 cross(v3 a, v3 b)
+{
+    return mk(a.x[1] * b.x[2] - a.x[2] * b.x[1], a.x[2] * b.x[0] - a.x[0] * b.x[2],
+              a.x[0] * b.x[1] - a.x[1] * b.x[0]);
+}
+static v3 unit(v3 a)
+{
+    double s = 1.0 / sqrt(dot(a, a));
+    return mk(a.x[0] * s, a.x[1] * s, a.x[2] * s);
+}
+static v3 neg(v3 a)
+{
+    return mk(-a.x[0], -a.x[1], -a.x[2]);
+}
+
+static double uni(cylgen_rng *r, double a, double b)
+{
+    return a + (b - a) * cylgen_uniform(r);
+}
+
+static int chance(cylgen_rng *r, double p)
+{
+    return cylgen_uniform(r) < p;
+}
+
+static double logu(cylgen_rng *r, int ea, int eb)
+{
+    int e = ea + (int)(cylgen_next(r) % (uint64_t)(eb - ea));
+    double m = uni(r, 1, 2);
+    return ldexp(m, e);
+}
+
+static v3 rand_dir(cylgen_rng *r)
+{
+    for (;;) {
+        double x = uni(r, -1, 1), y = uni(r, -1, 1), z = uni(r, -1, 1);
+        double l = x * x + y * y + z * z;
+        if (l > 1e-4 && l <= 1)
+            return mk(x / sqrt(l), y / sqrt(l), z / sqrt(l));
+    }
+}
+
+static v3 rand_perp(cylgen_rng *r, v3 a)
+{
+    for (;;) {
+        v3 u = rand_dir(r);
+        v3 p = axpy(u, -dot(u, a), a);
+        if (dot(p, p) > 1e-4)
+            return unit(p);
+    }
+}
+
+static void to_f(float f[3], v3 a)
+{
+    for (int k = 0; k < 3; k++)
+        f[k] = (float)a.x[k];
+}
+
+/* ---- cones --------------------------------------------------------------------- */
+
+static float radius_f(double r)
+{
+    float f = (float)r;
+    return f < 0x1p-60f ? 0x1p-60f : f;
+}
+
+void congen_cone(int cat, cylgen_rng *r, cylray_cone *out)
+{
+    double R = uni(r, 0.1, 10), span = 10, L = R * uni(r, 0.3, 6);
+    switch (cat) {
+    case CONGEN_FLAT:
+        L = R * logu(r, -10, -3);
+        break;
+    case CONGEN_LONG:
+        L = R * uni(r, 0.5e4, 2e4);
+        span = L;
+        break;
+    case CONGEN_TINY:
+        R = uni(r, 1e-4, 1e-3);
+        /* Float ends 1e4 out are 2^-10 apart at best: at least ten of those long. */
+        L = R * uni(r, 0.3, 6) + 0.01;
+        span = 1e4;
+        break;
+    case CONGEN_HUGE:
+        R = uni(r, 1e4, 1e6);
+        L = R * uni(r, 0.3, 6);
+        span = uni(r, 1e5, 1e6);
+        break;
+    case CONGEN_SCALED: {
+        int e = 21 + (int)(cylgen_next(r) % 30);
+        double k = ldexp(1.0, chance(r, 0.5) ? e : -e);
+        R *= k;
+        L *= k;
+        span *= k;
+        break;
+    }
+    default:
+        break;
+    }
+    v3 c, u = rand_dir(r);
+    for (int k = 0; k < 3; k++) {
+        c.x[k] = uni(r, -span, span);
+        if (cat == CONGEN_TINY)
+            c.x[k] = (chance(r, 0.5) ? -1 : 1) * uni(r, 0.5 * span, span);
+    }
+    to_f(out->p0, axpy(c, -L / 2, u));
+    to_f(out->p1, axpy(c, L / 2, u));
+    if (cat == CONGEN_TINY) {
+        /* A center that rounds is a shift of the whole cone by up to half an ulp of
+         * 1e4, more than the cone: keep (p0 + p1) / 2 a float so the band stays tight. */
+        for (int k = 0; k < 3; k++)
+            for (int i = 0; i < 4; i++) {
+                double m = ((double)out->p0[k] + (double)out->p1[k]) / 2;
+                if ((double)(float)m == m)
+                    break;
+                out->p1[k] = nextafterf(out->p1[k], out->p0[k]);
+            }
+    }
+    double r0 = R * uni(r, 0.05, 1), r1 = R * uni(r, 0.05, 1);
+    if (cat == CONGEN_APEX || chance(r, 0.1)) {
+        if (chance(r, 0.5))
+            r0 = 0;
+        else
+            r1 = 0;
+    }
+    out->r0 = r0 == 0 ? 0 : radius_f(r0);
+    out->r1 = r1 == 0 ? 0 : radius_f(r1);
+    if (cat == CONGEN_NEARCYL) {
+        out->r1 = out->r0 = radius_f(R);
+        int steps = 1 + (int)(cylgen_next(r) % 6);
+        for (int i = 0; i < steps; i++)
+            out->r1 = nextafterf(out->r1, chance(r, 0.5) ? INFINITY : 0);
+    }
+    static const unsigned modes[4] = {0, CYLRAY_CAPPED_LO, CYLRAY_CAPPED_HI, CYLRAY_CAPPED};
+    out->flags = modes[cylgen_next(r) % 4];
+}
+
+/* The float cone in double. */
+typedef struct {
+    v3 p0, u;
+    double L, r0, r1, R;
+} cgeo;
+
+static cgeo geo_of(const cylray_cone *c)
+{
+    cgeo g;
+    v3 a = mk((double)c->p1[0] - c->p0[0], (double)c->p1[1] - c->p0[1],
+              (double)c->p1[2] - c->p0[2]);
+    g.p0 = mk(c->p0[0], c->p0[1], c->p0[2]);
+    g.L = sqrt(dot(a, a));
+    g.u = unit(a);
+    g.r0 = c->r0;
+    g.r1 = c->r1;
+    g.R = fmax(fmax(g.r0, g.r1), g.L / 2);
+    return g;
+}
+
+static double rad_at(const cgeo *g, double z)
+{
+    return g->r0 + (g->r1 - g->r0) * (z / g->L);
+}
+
+/* A point of the side at height z, direction e (perpendicular to u) from the axis. */
+static v3 side_point(const cgeo *g, double z, v3 e)
+{
+    return axpy(axpy(g->p0, z, g->u), rad_at(g, z), e);
+}
+
+/* The outward normal of the side at direction e. */
+static v3 side_normal(const cgeo *g, v3 e)
+{
+    double k = (g->r1 - g->r0) / g->L;
+    return unit(axpy(e, -k, g->u));
+}
+
+static v3 point_in(cylgen_rng *r, const cgeo *g, double slack)
+{
+    double z = uni(r, 0, g->L);
+    v3 e = rand_perp(r, g->u);
+    double s = sqrt(cylgen_uniform(r)) * slack;
+    return axpy(axpy(g->p0, z, g->u), s * rad_at(g, z), e);
+}
+
+static void pick_interval(cylgen_rng *r, double dist, congen_case *c)
+{
+    double u = cylgen_uniform(r);
+    c->tmin = 0.0f;
+    c->tmax = INFINITY;
+    if (u < 0.12)
+        c->tmax = (float)(dist * uni(r, 0.5, 1.5));
+    else if (u < 0.22)
+        c->tmin = (float)(dist * uni(r, 0.3, 1.2));
+    else if (u < 0.27)
+        c->tmax = FLT_MAX;
+}
+
+static void aim(cylgen_rng *r, v3 target, v3 d, double dist, congen_case *c)
+{
+    to_f(c->o, axpy(target, -dist, d));
+    to_f(c->d, d);
+    pick_interval(r, dist, c);
+}
+
+static void towards(cylgen_rng *r, const cgeo *g, double dist, double slack, congen_case *c)
+{
+    aim(r, point_in(r, g, slack), rand_dir(r), dist, c);
+}
+
+static void gen_grazing(cylgen_rng *r, const cgeo *g, congen_case *c)
+{
+    v3 e = rand_perp(r, g->u), n = side_normal(g, e);
+    v3 p = side_point(g, uni(r, 0, g->L), e);
+    v3 d = rand_perp(r, n);
+    double eps = logu(r, -23, -7) * (chance(r, 0.5) ? 1 : -1);
+    aim(r, axpy(p, g->R * eps, n), d, g->R * uni(r, 2, 10), c);
+}
+
+static void gen_surface(cylgen_rng *r, const cgeo *g, const cylray_cone *cone, congen_case *c)
+{
+    v3 e = rand_perp(r, g->u), p, n;
+    unsigned caps = cone->flags;
+    int where = (int)(cylgen_next(r) % 3);
+    if (where == 1 && (caps & CYLRAY_CAPPED_LO) && g->r0 > 0) {
+        p = axpy(g->p0, g->r0 * sqrt(cylgen_uniform(r)), e);
+        n = neg(g->u);
+    } else if (where == 2 && (caps & CYLRAY_CAPPED_HI) && g->r1 > 0) {
+        p = axpy(axpy(g->p0, g->L, g->u), g->r1 * sqrt(cylgen_uniform(r)), e);
+        n = g->u;
+    } else {
+        p = side_point(g, uni(r, 0, g->L), e);
+        n = side_normal(g, e);
+    }
+    v3 d = rand_dir(r);
+    if ((dot(d, n) > 0) != chance(r, 0.5))
+        d = neg(d);
+    to_f(c->o, p);
+    to_f(c->d, d);
+    c->tmin = 0.0f;
+    c->tmax = INFINITY;
+}
+
+static void gen_rim(cylgen_rng *r, const cgeo *g, congen_case *c)
+{
+    v3 e = rand_perp(r, g->u);
+    int hi = chance(r, 0.5);
+    if ((hi ? g->r1 : g->r0) == 0)
+        hi = !hi;
+    v3 p = side_point(g, hi ? g->L : 0, e);
+    if (chance(r, 0.5))
+        p = axpy(p, g->R * logu(r, -24, -10) * (chance(r, 0.5) ? 1 : -1), rand_dir(r));
+    aim(r, p, rand_dir(r), g->R * uni(r, 1.5, 10), c);
+}
+
+static void gen_apex(cylgen_rng *r, const cgeo *g, congen_case *c)
+{
+    v3 apex = axpy(g->p0, g->r0 == 0 ? 0 : g->L, g->u);
+    if (g->r0 != 0 && g->r1 != 0) {
+        towards(r, g, g->R * uni(r, 1.5, 10), 1.2, c);
+        return;
+    }
+    double off = chance(r, 0.3) ? 0 : g->R * logu(r, -24, -4);
+    aim(r, axpy(apex, off, rand_dir(r)), rand_dir(r), g->R * uni(r, 1.5, 10), c);
+}
+
+static void gen_axial(cylgen_rng *r, const cgeo *g, congen_case *c)
+{
+    if (chance(r, 0.5)) {
+        /* Along the axis, from the axis or off it within the larger radius. */
+        v3 d = chance(r, 0.5) ? g->u : neg(g->u);
+        double off = chance(r, 0.3) ? 0 : uni(r, 0, 1.2) * fmax(g->r0, g->r1);
+        v3 o = axpy(axpy(g->p0, g->L / 2, g->u), off, rand_perp(r, g->u));
+        aim(r, o, d, g->L * uni(r, 1, 5), c);
+        return;
+    }
+    /* Along a generator line, on it or slightly out or in. */
+    v3 e = rand_perp(r, g->u);
+    v3 a = side_point(g, 0, e), b = side_point(g, g->L, e);
+    v3 d = unit(axpy(b, -1, a));
+    if (chance(r, 0.5))
+        d = neg(d);
+    double off = chance(r, 0.3) ? 0 : g->R * logu(r, -24, -6) * (chance(r, 0.5) ? 1 : -1);
+    v3 mid = axpy(side_point(g, g->L / 2, e), off, side_normal(g, e));
+    aim(r, mid, d, g->R * uni(r, 2, 10), c);
+}
+
+static void gen_camera(const cgeo *g, cylgen_rng *cam, size_t index, congen_case *c)
+{
+    v3 fwd = rand_dir(cam);
+    double dist = g->R * uni(cam, 3, 50);
+    v3 ctr = axpy(g->p0, g->L / 2, g->u);
+    v3 eye = axpy(ctr, -dist, fwd);
+    v3 right = rand_perp(cam, fwd), up = cross(fwd, right);
+    double half = 0.8 * g->R / dist, px = uni(cam, -0.5, 0.5), py = uni(cam, -0.5, 0.5);
+    double sx = ((double)(index % 4) - 1.5 + px) / 1.5 * half,
+           sy = ((double)(index / 4 % 4) - 1.5 + py) / 1.5 * half;
+    to_f(c->o, eye);
+    to_f(c->d, axpy(axpy(fwd, sx, right), sy, up));
+    c->tmin = 0.0f;
+    c->tmax = INFINITY;
+}
+
+static void gen_bad(cylgen_rng *r, const cgeo *g, congen_case *c)
+{
+    towards(r, g, g->R * uni(r, 1.5, 10), 1.2, c);
+    const float nan = NAN, inf = INFINITY;
+    uint64_t u = cylgen_next(r);
+    int k = (int)((u >> 8) % 3);
+    switch (u % 12) {
+    case 0:
+        c->o[k] = nan;
+        break;
+    case 1:
+        c->d[k] = nan;
+        break;
+    case 2:
+        c->o[k] = (u >> 16) & 1 ? inf : -inf;
+        break;
+    case 3:
+        c->d[k] = (u >> 16) & 1 ? inf : -inf;
+        break;
+    case 4:
+        c->d[0] = c->d[1] = c->d[2] = 0;
+        break;
+    case 5:
+        c->tmin = nan;
+        break;
+    case 6:
+        c->tmax = nan;
+        break;
+    case 7:
+        c->tmin = inf;
+        break;
+    case 8:
+        c->tmax = -inf;
+        break;
+    case 9:
+        c->tmin = 2 * c->tmax;
+        c->tmax = 1;
+        c->tmin = c->tmin > 2 ? c->tmin : 2;
+        break;
+    default:
+        break;
+    }
+}
+
+static void scale_d(cylgen_rng *r, int span, congen_case *c)
+{
+    double s = ldexp(uni(r, 1, 2), (int)(cylgen_next(r) % (uint64_t)(2 * span + 1)) - span);
+    for (int k = 0; k < 3; k++)
+        c->d[k] = (float)((double)c->d[k] * s);
+    if (c->tmin != 0)
+        c->tmin = (float)((double)c->tmin / s);
+    if (c->tmax != INFINITY && c->tmax != FLT_MAX)
+        c->tmax = (float)((double)c->tmax / s);
+}
+
+void congen_ray(int cat, cylgen_rng *r, cylgen_rng *cam, size_t index, const cylray_cone *cone,
+                congen_case *c)
+{
+    const cgeo gg = geo_of(cone), *g = &gg;
+    memset(c, 0, sizeof *c);
+    c->cone = *cone;
+    switch (cat) {
+    case CONGEN_FAR:
+        towards(r, g, g->R * logu(r, 10, 20), 1.1, c);
+        break;
+    case CONGEN_GRAZING:
+        gen_grazing(r, g, c);
+        break;
+    case CONGEN_SURFACE:
+        gen_surface(r, g, cone, c);
+        break;
+    case CONGEN_INSIDE:
+        to_f(c->o, point_in(r, g, 0.99));
+        to_f(c->d, rand_dir(r));
+        pick_interval(r, g->R, c);
+        break;
+    case CONGEN_RIM:
+        gen_rim(r, g, c);
+        break;
+    case CONGEN_APEX:
+        gen_apex(r, g, c);
+        break;
+    case CONGEN_AXIAL:
+        gen_axial(r, g, c);
+        break;
+    case CONGEN_TINY:
+    case CONGEN_HUGE:
+        towards(r, g, g->R * uni(r, 1.05, cat == CONGEN_TINY ? 100 : 3), 1.2, c);
+        break;
+    case CONGEN_UNNORM:
+        towards(r, g, g->R * uni(r, 1.5, 10), 1.2, c);
+        scale_d(r, 30, c);
+        break;
+    case CONGEN_CAMERA:
+        gen_camera(g, cam, index, c);
+        break;
+    case CONGEN_BAD:
+        gen_bad(r, g, c);
+        break;
+    case CONGEN_SCALED:
+        if (chance(r, 0.3))
+            gen_grazing(r, g, c);
+        else if (chance(r, 0.2))
+            gen_rim(r, g, c);
+        else
+            towards(r, g, g->R * uni(r, 1.5, 10), 1.2, c);
+        scale_d(r, 20, c);
+        break;
+    case CONGEN_NEARCYL:
+    case CONGEN_FLAT:
+    case CONGEN_LONG: {
+        uint64_t u = cylgen_next(r) % 4;
+        if (u == 0)
+            gen_grazing(r, g, c);
+        else if (u == 1)
+            gen_rim(r, g, c);
+        else
+            towards(r, g, g->R * uni(r, 1.5, 10), 1.2, c);
+        break;
+    }
+    case CONGEN_ORDINARY:
+    default:
+        towards(r, g, g->R * uni(r, 1.5, 10), 1.2, c);
+        break;
+    }
+}
+
+static const char *const names[CONGEN_COUNT] = {
+    "cone-ordinary", "cone-far",     "cone-grazing", "cone-surface", "cone-inside", "cone-rim",
+    "cone-apex",     "cone-nearcyl", "cone-flat",    "cone-long",    "cone-tiny",   "cone-huge",
+    "cone-unnorm",   "cone-axial",   "cone-camera",  "cone-bad",     "cone-scaled"};
+
+static const char *const descriptions[CONGEN_COUNT] = {
+    "cone: from 1.5-10 R at a point within 1.2 r(z)",
+    "cone: origin 1e3-1e6 R away",
+    "cone: tangent to the side, 1e-7-1e-2 R off",
+    "cone: origin a float-rounded point of the side or a present disc, tmin 0",
+    "cone: origin inside",
+    "cone: aimed at a rim, on it or 2^-24..2^-10 R off",
+    "cone: tip cones, aimed at the apex or 2^-24..2^-4 R off",
+    "cone: r0 and r1 1-6 ulps apart",
+    "cone: length 2^-10..2^-3 of the radius",
+    "cone: length 1e4 radii",
+    "cone: radii 1e-4..1e-3, center around 1e4 (a float)",
+    "cone: radii 1e4..1e6, center around 1e5..1e6",
+    "cone: |d| 2^-30..2^30",
+    "cone: along the axis and along generator lines",
+    "cone: 4 x 4 pixel blocks of a pinhole camera",
+    "cone: NaN, Inf, zero-direction and empty-interval lanes among good ones",
+    "cone: scenes scaled by 2^+-(21..50), |d| 2^-20..2^20"};
+
+const char *congen_category_name(int category)
+{
+    return category >= 0 && category < CONGEN_COUNT ? names[category] : NULL;
+}
+
+const char *congen_category_description(int category)
+{
+    return category >= 0 && category < CONGEN_COUNT ? descriptions[category] : NULL;
+}
+
+int congen_category_find(const char *name)
+{
+    for (int c = 0; name && c < CONGEN_COUNT; c++)
+        if (strcmp(name, names[c]) == 0)
+            return c;
+    return -1;
+}
+
+static void rng_for(cylgen_rng *r, uint64_t seed, int cat, uint64_t index, uint64_t role)
+{
+    uint64_t h = seed ^ 0x636f6e6573ull; /* apart from the other shapes' draws */
+    h ^= cylgen_splitmix64(&h) + (uint64_t)(cat + 1) * 0xd1b54a32d192ed03u;
+    h ^= cylgen_splitmix64(&h) + index * 0x9e3779b97f4a7c15u;
+    h ^= cylgen_splitmix64(&h) + role;
+    cylgen_seed(r, h);
+}
+
+static void make_range(int cat, uint64_t seed, size_t n, congen_case *out, int shared)
+{
+    if (cat < 0 || cat >= CONGEN_COUNT)
+        cat = CONGEN_ORDINARY;
+    cylray_cone cone;
+    memset(&cone, 0, sizeof cone);
+    size_t batch = (size_t)-1;
+    for (size_t i = 0; i < n; i++) {
+        size_t b = shared ? 0 : i / CYLGEN_BATCH;
+        if (b != batch) {
+            cylgen_rng sr;
+            rng_for(&sr, seed, cat, b, 1);
+            congen_cone(cat, &sr, &cone);
+            batch = b;
+        }
+        cylgen_rng r, cam;
+        rng_for(&r, seed, cat, i, 2);
+        rng_for(&cam, seed, cat, i / 16, 3);
+        congen_ray(cat, &r, &cam, i, &cone, &out[i]);
+    }
+}
+
+void congen_make(int category, uint64_t seed, size_t n, congen_case *out)
+{
+    make_range(category, seed, n, out, 0);
+}
+
+void congen_make_shared(int category, uint64_t seed, size_t n, congen_case *out)
+{
+    make_range(category, seed, n, out, 1);
+}

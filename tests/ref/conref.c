@@ -1,0 +1,605 @@
+/* SPDX-License-Identifier: MIT */
+/* conref.c - the exact ray/cone intersection and its tolerance band.
+ *
+ * Frame: u = a / |a| with a = p1 - p0, w = o - c with c = (p0 + p1) / 2, z measured
+ * from p0: z(t) = zw + t zd with zw = w.u + L/2, zd = d.u, L = |a|. The radius
+ * r(z) = r0 + k z, k = (r1 - r0) / L, and with x_perp = w_perp + t d_perp the side
+ * |x_perp|^2 - r(z)^2 = 0 is A t^2 + 2 B t + C = 0:
+ *   A = d_perp.d_perp - k^2 zd^2,  B = w_perp.d_perp - k zd r(zw),  C = |w_perp|^2 - r(zw)^2.
+ * Half the gradient of |x_perp|^2 - r(z)^2 along d is A t + B = +-sqrt(B^2 - A C), so
+ * the root with +sqrt is where the ray leaves (a back face) whatever the sign of A.
+ * Inside the slab 0 <= z <= L, r(z) lies between r0 and r1 and is >= 0, so the slab
+ * alone keeps the mirror nappe out. The solid is convex, so along a line its entry
+ * precedes its exit and dropping back faces before or after taking the first hit is
+ * the same. A disc of radius 0 (a tip) is a point, no surface. */
+#include "conref.h"
+
+#include "exact.h"
+#include "quad.h"
+
+#include "../support/rng.h"
+
+#include <stdint.h>
+#include <string.h>
+
+/* The candidates. */
+enum { K_FRONT, K_BACK, K_LO, K_HI, K_COUNT };
+/* Each candidate's margins, true when >= 0: [0] the discriminant (side) or the disc
+ * (caps), [1] [2] the slab's two planes (side only), [3] t - tmin, [4] tmax - t. */
+enum { G_MEET, G_ZLO, G_ZHI, G_GE, G_LE, G_COUNT };
+
+typedef struct cin_q {
+    cylq w[3], d[3], a[3], r0, r1;
+} cin_q;
+
+typedef struct crec {
+    int exists[K_COUNT]; /* a root or plane crossing at a finite t */
+    cylq t[K_COUNT];
+    int back[K_COUNT];
+    cylq m[K_COUNT][G_COUNT], mw[K_COUNT][G_COUNT];
+    cylq u[3], wp[3], dp[3], zw, zd, k, L, r0;
+} crec;
+
+static int present(unsigned flags, int kand)
+{
+    return kand < K_LO || (flags & (kand == K_LO ? CYLRAY_CAPPED_LO : CYLRAY_CAPPED_HI));
+}
+
+int conref_valid(const cylray_cone *c)
+{
+    if (!c)
+        return 0;
+    int big = 0;
+    for (int k = 0; k < 3; k++) {
+        if (!(fabsf(c->p0[k]) <= 0x1p62f) || !(fabsf(c->p1[k]) <= 0x1p62f))
+            return 0;
+        float a = c->p1[k] - c->p0[k];
+        big |= fabsf(a) >= 0x1p-126f;
+    }
+    if (!big)
+        return 0;
+    const float r[2] = {c->r0, c->r1};
+    for (int i = 0; i < 2; i++)
+        if (!(r[i] == 0 || (r[i] >= 0x1p-60f && r[i] <= 0x1p62f)))
+            return 0;
+    if (c->r0 == 0 && c->r1 == 0)
+        return 0;
+    return (c->flags & ~(unsigned)CYLRAY_CAPPED) == 0;
+}
+
+static int ray_ok(const float o[3], const float d[3])
+{
+    for (int k = 0; k < 3; k++)
+        if (!isfinite(o[k]) || !isfinite(d[k]))
+            return 0;
+    return d[0] != 0 || d[1] != 0 || d[2] != 0;
+}
+
+static cylq dot3(const cylq a[3], const cylq b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static cylq widen(cylq mag)
+{
+    return (cylq)(4 * ref_float_ulp((double)q_abs(mag)));
+}
+
+static void range_margins(crec *r, int kand, cylq tmin, cylq tmax)
+{
+    const cylq t = r->t[kand];
+    r->m[kand][G_GE] = t - tmin;
+    r->mw[kand][G_GE] = widen(q_max(q_abs(t), q_abs(tmin)));
+    r->m[kand][G_LE] = tmax - t;
+    r->mw[kand][G_LE] = widen(q_max(q_abs(t), q_abs(tmax)));
+}
+
+static void c_eval(const cin_q *q, cylq tmin, cylq tmax, crec *r)
+{
+    memset(r, 0, sizeof *r);
+    const cylq L = q_sqrt(dot3(q->a, q->a));
+    for (int k = 0; k < 3; k++)
+        r->u[k] = q->a[k] / L;
+    const cylq zc = dot3(q->w, r->u), zd = dot3(q->d, r->u), zw = zc + L / 2;
+    for (int k = 0; k < 3; k++) {
+        r->wp[k] = q->w[k] - zc * r->u[k];
+        r->dp[k] = q->d[k] - zd * r->u[k];
+    }
+    const cylq kk = (q->r1 - q->r0) / L, rw = q->r0 + kk * zw;
+    r->zw = zw;
+    r->zd = zd;
+    r->k = kk;
+    r->L = L;
+    r->r0 = q->r0;
+    const cylq dd = dot3(r->dp, r->dp), kz = kk * zd;
+    const cylq A = dd - kz * kz, B = dot3(r->wp, r->dp) - kz * rw;
+    const cylq C = dot3(r->wp, r->wp) - rw * rw;
+    const cylq D = B * B - A * C;
+    const cylq rmax = q_max(q->r0, q->r1);
+    const cylq sq = q_sqrt(q_max(D, 0));
+    /* The stable pair: q / A and C / q are the roots with -sgn(B) sqrt and +sgn(B) sqrt
+     * in A t + B; sqrt(max(D, 0)) keeps them continuous through a tangency. */
+    const cylq qq = -(B + q_copysign(sq, B));
+    cylq t_minus, t_plus; /* A t + B = -sqrt(D), +sqrt(D) */
+    cylq ra = A != 0 ? qq / A : (cylq)INFINITY, rc = qq != 0 ? C / qq : ra;
+    if (B >= 0) {
+        t_minus = ra;
+        t_plus = rc;
+    } else {
+        t_minus = rc;
+        t_plus = ra;
+    }
+    if (A == 0 && B == 0) {
+        /* d along a generator line through the apex's line: no isolated root. */
+        t_minus = t_plus = (cylq)INFINITY;
+    }
+    const cylq tt[2] = {t_minus, t_plus};
+    for (int s = 0; s < 2; s++) {
+        const int kand = s ? K_BACK : K_FRONT;
+        r->t[kand] = tt[s];
+        r->exists[kand] = q_isfinite(tt[s]);
+        r->back[kand] = s == 1 && D > 0;
+        r->m[kand][G_MEET] = D;
+        r->mw[kand][G_MEET] = widen(q_max(q_abs(dd), kz * kz) * rmax * rmax);
+        if (!r->exists[kand])
+            continue;
+        const cylq z = zw + tt[s] * zd;
+        const cylq zmag = q_max(q_max(L, q_abs(zw)), q_abs(tt[s] * zd));
+        r->m[kand][G_ZLO] = z;
+        r->mw[kand][G_ZLO] = widen(zmag);
+        r->m[kand][G_ZHI] = L - z;
+        r->mw[kand][G_ZHI] = widen(zmag);
+        range_margins(r, kand, tmin, tmax);
+    }
+    for (int e = 0; e < 2; e++) {
+        const int kand = e ? K_HI : K_LO;
+        const cylq rad = e ? q->r1 : q->r0;
+        r->back[kand] = e ? zd > 0 : zd < 0;
+        r->exists[kand] = zd != 0 && rad > 0;
+        if (!r->exists[kand])
+            continue;
+        const cylq t = ((e ? L : 0) - zw) / zd;
+        r->t[kand] = t;
+        cylq x[3];
+        for (int k = 0; k < 3; k++)
+            x[k] = r->wp[k] + t * r->dp[k];
+        r->m[kand][G_MEET] = rad * rad - dot3(x, x);
+        r->mw[kand][G_MEET] = widen(rad * rad);
+        r->m[kand][G_ZLO] = r->m[kand][G_ZHI] = 1;
+        range_margins(r, kand, tmin, tmax);
+    }
+}
+
+/* valid[kand]: 1 taken, 0 dropped. Returns the first taken candidate by t, or -1. */
+static int c_first(const crec *r, const unsigned char valid[K_COUNT])
+{
+    int best = -1;
+    for (int kand = 0; kand < K_COUNT; kand++)
+        if (valid[kand] && (best < 0 || r->t[kand] < r->t[best]))
+            best = kand;
+    return best;
+}
+
+static void c_valid(const crec *r, unsigned flags, unsigned char valid[K_COUNT])
+{
+    for (int kand = 0; kand < K_COUNT; kand++) {
+        int v = r->exists[kand] && present(flags, kand) &&
+                !((flags & CYLRAY_CULL_BACK) && r->back[kand]);
+        for (int g = 0; g < G_COUNT && v; g++)
+            v = r->m[kand][g] >= 0;
+        valid[kand] = (unsigned char)v;
+    }
+}
+
+static int c_part(const crec *r, int kand)
+{
+    int p = kand == K_LO ? CYLRAY_CAP_LO : kand == K_HI ? CYLRAY_CAP_HI : CYLRAY_SIDE;
+    return p | (r->back[kand] ? CYLRAY_BACKFACE : 0);
+}
+
+static void c_normal(const crec *r, int kand, int ff, double n[3])
+{
+    cylq g[3];
+    if (kand == K_LO || kand == K_HI) {
+        for (int k = 0; k < 3; k++)
+            g[k] = kand == K_LO ? -r->u[k] : r->u[k];
+    } else {
+        const cylq t = r->t[kand], rz = r->r0 + r->k * (r->zw + t * r->zd);
+        for (int k = 0; k < 3; k++)
+            g[k] = r->wp[k] + t * r->dp[k] - rz * r->k * r->u[k];
+    }
+    cylq len = q_sqrt(dot3(g, g));
+    n[0] = n[1] = n[2] = 0;
+    if (!(len > 0))
+        return;
+    cylq s = (ff && r->back[kand]) ? -1 / len : 1 / len;
+    for (int k = 0; k < 3; k++)
+        n[k] = (double)(g[k] * s);
+}
+
+static void c_in(const cylray_cone *c, const float o[3], const float d[3], cin_q *q)
+{
+    for (int k = 0; k < 3; k++) {
+        const cylq ctr = ((cylq)c->p0[k] + (cylq)c->p1[k]) / 2;
+        q->w[k] = (cylq)o[k] - ctr;
+        q->d[k] = d[k];
+        q->a[k] = (cylq)c->p1[k] - (cylq)c->p0[k];
+    }
+    q->r0 = c->r0;
+    q->r1 = c->r1;
+}
+
+int conref_intersect(const cylray_cone *c, const float o[3], const float d[3], float tmin,
+                     float tmax, unsigned flags, cylref_hit *out)
+{
+    memset(out, 0, sizeof *out);
+    if (!conref_valid(c))
+        return -1;
+    if (!o || !d || !ray_ok(o, d) || tmin != tmin || tmax != tmax)
+        return 0;
+    cin_q q;
+    c_in(c, o, d, &q);
+    crec r;
+    c_eval(&q, tmin, tmax, &r);
+    unsigned char v[K_COUNT];
+    c_valid(&r, c->flags | (flags & CYLRAY_CULL_BACK), v);
+    int x = c_first(&r, v);
+    if (x < 0)
+        return 0;
+    out->hit = 1;
+    out->t = (double)r.t[x];
+    out->part = c_part(&r, x);
+    c_normal(&r, x, (flags & CYLRAY_FACE_FORWARD) != 0, out->n);
+    return 1;
+}
+
+void conref_as_cylinder(const cylray_cone *c, cylray_cylinder *out)
+{
+    memset(out, 0, sizeof *out);
+    for (int k = 0; k < 3; k++) {
+        out->center[k] = (float)(((double)c->p0[k] + (double)c->p1[k]) / 2);
+        out->axis[k] = c->p1[k] - c->p0[k];
+    }
+    double aa = 0;
+    for (int k = 0; k < 3; k++)
+        aa += (double)out->axis[k] * out->axis[k];
+    out->radius = c->r0;
+    out->half_height = (float)(sqrt(aa) / 2);
+    out->flags = c->flags;
+}
+
+/* ---- the band ----------------------------------------------------------------------- */
+
+enum { IN_W = 0, IN_D = 3, IN_A = 6, IN_R0 = 9, IN_R1 = 10, IN_COUNT = 11 };
+#define RANDOM_VERTICES 8
+
+typedef struct {
+    int part; /* -1: the miss */
+    double lo, hi;
+} c_outcome;
+
+typedef struct {
+    c_outcome v[2 * K_COUNT + 1];
+    int n;
+} c_set;
+
+static void c_add(c_set *set, int part, double t)
+{
+    for (int i = 0; i < set->n; i++) {
+        c_outcome *x = &set->v[i];
+        if (x->part == part) {
+            if (part >= 0) {
+                x->lo = fmin(x->lo, t);
+                x->hi = fmax(x->hi, t);
+            }
+            return;
+        }
+    }
+    if (set->n == (int)(sizeof set->v / sizeof *set->v))
+        return;
+    c_outcome *x = &set->v[set->n++];
+    x->part = part;
+    x->lo = x->hi = part < 0 ? NAN : t;
+}
+
+static void c_add_range(c_set *set, int part, double lo, double hi)
+{
+    c_add(set, part, lo);
+    c_add(set, part, hi);
+}
+
+static cylq vec_step(const cylq a[3])
+{
+    cylq m = q_max(q_abs(a[0]), q_max(q_abs(a[1]), q_abs(a[2])));
+    return (cylq)ref_float_ulp((double)m);
+}
+
+static void c_perturb(const cin_q *base, const cylq step[IN_COUNT],
+                      const signed char k[IN_COUNT], cin_q *out)
+{
+    *out = *base;
+    for (int i = 0; i < IN_COUNT; i++) {
+        cylq s = step[i] * k[i];
+        if (i < IN_D)
+            out->w[i] += s;
+        else if (i < IN_A)
+            out->d[i - IN_D] += s;
+        else if (i < IN_R0)
+            out->a[i - IN_A] += s;
+        else if (i == IN_R0)
+            out->r0 = base->r0 > 0 ? q_max(base->r0 + s, base->r0 / 2) : 0;
+        else
+            out->r1 = base->r1 > 0 ? q_max(base->r1 + s, base->r1 / 2) : 0;
+    }
+}
+
+static double qdiff(cylq x, cylq y)
+{
+    if (x == y)
+        return 0;
+    cylq d = x - y;
+    return q_isfinite(d) ? (double)q_abs(d) : INFINITY;
+}
+
+static uint32_t fbits(float f)
+{
+    uint32_t u;
+    memcpy(&u, &f, sizeof u);
+    return u;
+}
+
+static double angle3(const double a[3], const double b[3])
+{
+    double c[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
+                   a[0] * b[1] - a[1] * b[0]};
+    return atan2(sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]),
+                 a[0] * b[0] + a[1] * b[1] + a[2] * b[2]);
+}
+
+/* Per candidate over the evaluations: its t range (where it exists), the parts it
+ * showed, and whether its validity was seen both ways. */
+typedef struct {
+    double lo, hi;
+    int seen_valid, seen_invalid, parts_back, parts_front;
+} c_track;
+
+static void track(c_track tr[K_COUNT], const crec *r, const unsigned char v[K_COUNT])
+{
+    for (int kand = 0; kand < K_COUNT; kand++) {
+        c_track *x = &tr[kand];
+        if (v[kand]) {
+            x->seen_valid = 1;
+            double t = (double)r->t[kand];
+            x->lo = fmin(x->lo, t);
+            x->hi = fmax(x->hi, t);
+            if (r->back[kand])
+                x->parts_back = 1;
+            else
+                x->parts_front = 1;
+        } else {
+            x->seen_invalid = 1;
+        }
+    }
+}
+
+void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], float tmin,
+                      float tmax, unsigned flags, cylref_band *out)
+{
+    memset(out, 0, sizeof *out);
+    out->t_lo = out->t_hi = NAN;
+    if (!conref_valid(c) || !o || !d || !ray_ok(o, d) || tmin != tmin || tmax != tmax)
+        return;
+    const unsigned vflags = c->flags | (flags & CYLRAY_CULL_BACK);
+    const int ff = (flags & CYLRAY_FACE_FORWARD) != 0;
+    cin_q base;
+    c_in(c, o, d, &base);
+    int center_float = 1;
+    cylq cmax = 0;
+    for (int k = 0; k < 3; k++) {
+        const cylq ctr = ((cylq)c->p0[k] + (cylq)c->p1[k]) / 2;
+        center_float &= (cylq)(float)ctr == ctr;
+        cmax = q_max(cmax, q_abs(ctr));
+    }
+    cylq step[IN_COUNT];
+    for (int k = 0; k < 3; k++) {
+        step[IN_W + k] = vec_step(base.w);
+        if (!center_float)
+            step[IN_W + k] += (cylq)ref_float_ulp((double)cmax);
+        step[IN_D + k] = vec_step(base.d);
+        step[IN_A + k] = vec_step(base.a);
+    }
+    step[IN_R0] = (cylq)ref_float_ulp(c->r0);
+    step[IN_R1] = (cylq)ref_float_ulp(c->r1);
+
+    crec r0, r;
+    c_eval(&base, tmin, tmax, &r0);
+    unsigned char v0[K_COUNT], v[K_COUNT];
+    c_valid(&r0, vflags, v0);
+    const int x0 = c_first(&r0, v0);
+    const int p0 = x0 < 0 ? -1 : c_part(&r0, x0);
+    out->evals = 1;
+    double n0[3] = {0, 0, 0};
+    if (x0 >= 0) {
+        out->exact.hit = 1;
+        out->exact.t = (double)r0.t[x0];
+        out->exact.part = p0;
+        c_normal(&r0, x0, ff, n0);
+        memcpy(out->exact.n, n0, sizeof n0);
+    }
+    c_set set = {0};
+    c_add(&set, p0, out->exact.t);
+    c_track tr[K_COUNT];
+    for (int kand = 0; kand < K_COUNT; kand++) {
+        tr[kand].lo = INFINITY;
+        tr[kand].hi = -INFINITY;
+        tr[kand].seen_valid = tr[kand].seen_invalid = 0;
+        tr[kand].parts_back = tr[kand].parts_front = 0;
+    }
+    track(tr, &r0, v0);
+
+    double sum_m[K_COUNT][G_COUNT] = {{0}}, sum_t[K_COUNT] = {0}, dt[IN_COUNT] = {0};
+    double nmax = 0;
+    for (int i = 0; i < IN_COUNT; i++) {
+        signed char k[IN_COUNT] = {0};
+        k[i] = 2;
+        cin_q q;
+        c_perturb(&base, step, k, &q);
+        c_eval(&q, tmin, tmax, &r);
+        out->evals++;
+        for (int kand = 0; kand < K_COUNT; kand++) {
+            for (int g = 0; g < G_COUNT; g++)
+                sum_m[kand][g] += qdiff(r.m[kand][g], r0.m[kand][g]);
+            sum_t[kand] += qdiff(r.t[kand], r0.t[kand]);
+        }
+        if (x0 >= 0) {
+            cylq dd = r.t[x0] - r0.t[x0];
+            dt[i] = q_isfinite(dd) ? (double)dd : 0;
+        }
+        c_valid(&r, vflags, v);
+        track(tr, &r, v);
+        int x = c_first(&r, v);
+        c_add(&set, x < 0 ? -1 : c_part(&r, x), x < 0 ? NAN : (double)r.t[x]);
+        if (x0 >= 0 && x == x0 && c_part(&r, x) == p0) {
+            double n[3];
+            c_normal(&r, x, ff, n);
+            nmax = fmax(nmax, angle3(n, n0));
+        }
+    }
+    uint64_t seed = 0x636f6e65u;
+    for (int k = 0; k < 3; k++)
+        seed = seed * 0x100000001b3u ^ fbits(o[k]) ^ (uint64_t)fbits(d[k]) << 32 ^
+               (uint64_t)fbits(c->p0[k]) << 7 ^ (uint64_t)fbits(c->p1[k]) << 19;
+    seed ^= (uint64_t)fbits(c->r0) << 11 ^ (uint64_t)fbits(c->r1) << 29;
+    for (int vtx = 0; vtx < 2 + RANDOM_VERTICES; vtx++) {
+        signed char k[IN_COUNT];
+        uint64_t bits = rng_splitmix64(&seed);
+        for (int i = 0; i < IN_COUNT; i++) {
+            int sg = (bits >> i) & 1 ? 1 : -1;
+            if (vtx < 2 && x0 >= 0)
+                sg = (dt[i] >= 0 ? 1 : -1) * (vtx == 0 ? 1 : -1);
+            k[i] = (signed char)(2 * sg);
+        }
+        cin_q q;
+        c_perturb(&base, step, k, &q);
+        c_eval(&q, tmin, tmax, &r);
+        out->evals++;
+        c_valid(&r, vflags, v);
+        track(tr, &r, v);
+        int x = c_first(&r, v);
+        c_add(&set, x < 0 ? -1 : c_part(&r, x), x < 0 ? NAN : (double)r.t[x]);
+        if (x0 >= 0 && x == x0 && c_part(&r, x) == p0) {
+            double n[3];
+            c_normal(&r, x, ff, n);
+            nmax = fmax(nmax, angle3(n, n0));
+        }
+    }
+
+    /* Which candidates may be taken, which dropped: a margin within its first-order
+     * spread over the box (or 4 ulps of its terms) of zero, or seen both ways. */
+    int may_take[K_COUNT], may_drop[K_COUNT];
+    double lo[K_COUNT], hi[K_COUNT];
+    for (int kand = 0; kand < K_COUNT; kand++) {
+        int allowed = present(vflags, kand);
+        /* und: some margin may flip; flips: every failing margin may. */
+        int und = 0, flips = 1;
+        if (r0.exists[kand])
+            for (int g = 0; g < G_COUNT; g++) {
+                if (!q_isfinite(r0.m[kand][g]))
+                    continue;
+                double mag = (double)q_abs(r0.m[kand][g]);
+                int u = mag <= sum_m[kand][g] + (double)r0.mw[kand][g] ||
+                        !(sum_m[kand][g] < INFINITY);
+                und |= u;
+                if (r0.m[kand][g] < 0 && !u)
+                    flips = 0;
+            }
+        may_take[kand] =
+            allowed &&
+            (v0[kand] || tr[kand].seen_valid ||
+             (flips && r0.exists[kand] && !((vflags & CYLRAY_CULL_BACK) && r0.back[kand])));
+        may_drop[kand] = !v0[kand] || tr[kand].seen_invalid || und;
+        double t = (double)r0.t[kand];
+        lo[kand] = fmin(tr[kand].lo, t - sum_t[kand]);
+        hi[kand] = fmax(tr[kand].hi, t + sum_t[kand]);
+        const double wdn = 4 * ref_float_ulp(fmax(fabs(lo[kand]), fabs(hi[kand])));
+        lo[kand] -= wdn;
+        hi[kand] += wdn;
+    }
+    /* An outcome j: j taken and every candidate surely before it dropped. */
+    int all_drop = 1;
+    for (int j = 0; j < K_COUNT; j++) {
+        all_drop &= may_drop[j] || !present(vflags, j) || !r0.exists[j];
+        if (!may_take[j] || !r0.exists[j])
+            continue;
+        int ok = 1;
+        for (int i = 0; i < K_COUNT && ok; i++)
+            if (i != j && !may_drop[i] && hi[i] < lo[j])
+                ok = 0;
+        if (!ok)
+            continue;
+        /* At a tangency (or a perturbation that reaches one) the two side roots meet
+         * and either facing may be reported. */
+        const int pp = c_part(&r0, j) & ~CYLRAY_BACKFACE;
+        const int tangent =
+            j < K_LO && (tr[K_FRONT].seen_invalid || !v0[K_FRONT]) &&
+            (r0.m[K_FRONT][G_MEET] <= sum_m[K_FRONT][G_MEET] + (double)r0.mw[K_FRONT][G_MEET]);
+        if (r0.back[j] || tr[j].parts_back || (j == K_BACK && tangent))
+            c_add_range(&set, pp | CYLRAY_BACKFACE, lo[j], hi[j]);
+        if (!r0.back[j] || tr[j].parts_front || (j == K_BACK && tangent))
+            c_add_range(&set, pp, lo[j], hi[j]);
+    }
+    if (all_drop)
+        c_add(&set, -1, NAN);
+
+    int hits = 0, misses = 0;
+    for (int i = 0; i < set.n; i++) {
+        c_outcome *x = &set.v[i];
+        if (x->part < 0) {
+            misses++;
+            continue;
+        }
+        hits++;
+        if (x0 >= 0 && x->part == p0) {
+            out->t_lo = x->lo;
+            out->t_hi = x->hi;
+        } else if (out->n_alt < CYLREF_MAX_ALT) {
+            cylref_alt *a = &out->alt[out->n_alt++];
+            a->part = x->part;
+            a->t_lo = x->lo;
+            a->t_hi = x->hi;
+        }
+    }
+    out->hit_unstable = hits > 0 && misses > 0;
+    out->part_unstable = hits > 1;
+    out->decision_unstable = out->hit_unstable || out->part_unstable;
+    /* The gradient samples turn the normal by 2 ulps of one input each; the box's
+     * corners by all at once: twice the worst sample bounds a sum of a few. */
+    out->n_spread = 2 * nmax;
+    if (x0 == K_FRONT || x0 == K_BACK) {
+        /* Near the apex the side's normal turns all the way round it: its direction
+         * across the axis is that of x_perp, which the box moves by about delta. Where
+         * the samples do not happen to straddle the axis, this bound does. */
+        double dm = 0, am = 0, xp = 0;
+        const cylq t = r0.t[x0];
+        for (int k = 0; k < 3; k++) {
+            dm = fmax(dm, fabs((double)base.d[k]));
+            am = fmax(am, fabs((double)base.a[k]));
+            const double x = (double)(r0.wp[k] + t * r0.dp[k]);
+            xp += x * x;
+        }
+        const double zr = fabs((double)(r0.zw + t * r0.zd)) / (double)r0.L;
+        const double delta =
+            8 * ((double)step[IN_W] + fabs((double)t) * ref_float_ulp(dm) +
+                 (1 + zr) * ref_float_ulp(am) * fmax(1, fabs((double)t) * dm / am) +
+                 ref_float_ulp(fmax(c->r0, c->r1)));
+        xp = sqrt(xp);
+        out->n_spread =
+            fmax(out->n_spread, xp > delta ? 2 * asin(delta / xp) : 3.14159265358979323846);
+    }
+    out->n_spread = fmin(out->n_spread, 3.14159265358979323846); /* opposite at most */
+}
+
+int conref_judge(const cylref_band *b, int hit, int part, float t, double *ulps_beyond)
+{
+    return cylref_judge(b, hit, part, t, ulps_beyond);
+}

@@ -1,0 +1,53 @@
+/* SPDX-License-Identifier: MIT */
+/* conref.h - the exact ray/cone reference (binary128), written apart from the kernels.
+ *
+ * A cone is the double cone through the two rims cut by the slab between the end
+ * planes (the slab leaves out the mirror nappe), with the discs its flags ask for.
+ * Everything is evaluated in binary128 (quad.h) in an orthonormal frame about the exact
+ * axis p1 - p0, measured from the exact center (p0 + p1) / 2: z along the axis, the
+ * radius r(z) linear between r0 and r1, the side |x_perp|^2 = r(z)^2. The answer is the
+ * smallest t in the closed [tmin, tmax] among the side roots inside the slab and the
+ * hits of the discs present; a disc that is absent is no surface (an open end). It
+ * shares cylref's answer, band and judge types. */
+#ifndef CONREF_H
+#define CONREF_H
+
+#include "cylref.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* 1 when cylray_prepare_cone must accept c (cylray.h's refusals, without NULL). */
+int conref_valid(const cylray_cone *c);
+
+/* The exact answer: returns out->hit, or -1 (and a miss) for a cone conref_valid
+ * refuses. Part CYLRAY_SIDE / CAP_LO / CAP_HI, | CYLRAY_BACKFACE when dot(d, n_out) > 0
+ * (a tangency counts as a front face); n outward, or facing the ray with
+ * CYLRAY_FACE_FORWARD; CYLRAY_CULL_BACK drops back-face hits. */
+int conref_intersect(const cylray_cone *c, const float o[3], const float d[3], float tmin,
+                     float tmax, unsigned flags, cylref_hit *out);
+
+/* The tolerance band. The perturbed inputs: the origin relative to the center by 2
+ * ulps of |o - c|, plus 2 ulps of the center's largest coordinate when the center
+ * (p0 + p1) / 2 is not a float (the prepared cone rounds it once); d by 2 ulps of its
+ * largest component; the axis p1 - p0 by 2 ulps of its largest component; each radius
+ * by 2 ulps. Re-evaluated once per input, at the two vertices where t is extreme and at
+ * 8 random ones. A candidate (each side root, each disc) whose validity margins (the
+ * discriminant, the slab, the disc, tmin and tmax) can change sign in the box, or lie
+ * within 4 float ulps of the values compared, may be taken or dropped; candidates whose
+ * t ranges overlap may come in either order; every outcome this allows is kept. */
+void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], float tmin,
+                      float tmax, unsigned flags, cylref_band *out);
+
+/* As cylref_judge. */
+int conref_judge(const cylref_band *b, int hit, int part, float t, double *ulps_beyond);
+
+/* The cylinder a cone with r0 == r1 prepares as (cylray_cylinder_from_endpoints's). */
+void conref_as_cylinder(const cylray_cone *c, cylray_cylinder *out);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* CONREF_H */
