@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
-/* embree/single.c - the callbacks of a geometry of one cylinder a primitive (or one
- * piece of a split one): Embree's N = 1, 4, 8 and 16 lanes through cylray's packet
+/* embree/single.c - the callbacks of a geometry of one cylinder (or one piece of a split
+ * one, or one sphere) a primitive: Embree's N = 1, 4, 8 and 16 lanes through cylray's packet
  * kernels. */
 #include "hit.h"
 
@@ -34,7 +34,7 @@ static int owns(const ceb *g, unsigned prim, uint32_t c, float u)
 {
     if (!g->prim_piece)
         return 1;
-    uint32_t K = g->fr[c].pieces;
+    uint32_t K = g->fr[c].pieces; /* spheres have no prim_piece: never here */
     if (K == 1)
         return 1;
     float x = u * (float)K;
@@ -55,10 +55,11 @@ static int resolve(const ceb *g, const void *a_, int occ, int filt, unsigned i, 
     const void *base = occ ? (const void *)ao->ray : (const void *)ai->rayhit;
     float o[3], d[3];
     ray_of(base, N, i, o, d);
-    /* a cylinder has at most two hits along a ray; the bound only guards the loop */
+    /* a cylinder or sphere has at most two hits along a ray; the bound only guards the
+     * loop */
     for (int tries = 0; tries < 8; tries++) {
         hitrec h = {t, {n[0], n[1], n[2]}, 0, 0, (unsigned)c};
-        hit_uv(&g->fr[c], o, d, t, part, n, &h.u, &h.v);
+        ceb_uv(g, c, o, d, t, part, n, &h.u, &h.v);
         if (owns(g, prim, c, h.u)) {
             if (occ ? (filt ? ceb_filter_occ(ao, i, &h)
                             : (RF(ao->ray, N, R_TFAR, i) = -INFINITY, 1))
@@ -180,9 +181,11 @@ CEB_SINGLE(16)
 static uint32_t cyl_of(const ceb *g, unsigned prim)
 {
     uint32_t c = g->prim_cyl ? g->prim_cyl[prim] : prim;
-    const char *f = (const char *)&g->fr[c];
-    __builtin_prefetch(f);
-    __builtin_prefetch(f + sizeof(frame) - 1);
+    if (g->fr) { /* a sphere's u, v come from its normal alone */
+        const char *f = (const char *)&g->fr[c];
+        __builtin_prefetch(f);
+        __builtin_prefetch(f + sizeof(frame) - 1);
+    }
     return c;
 }
 
