@@ -12,7 +12,7 @@
 #define CYLRAY_KIND_OPEN 1u   /* finite, no end discs: a tube */
 #define CYLRAY_KIND_CAPPED 2u /* finite, closed solid */
 #define CYLRAY_KIND_COUNT 3u
-#define CYLRAY_KIND_LEAF 3u /* in the kernel flags only: a leaf's lanes, of any kind */
+#define CYLRAY_KIND_LEAF 3u   /* in the kernel flags only: a leaf's lanes, of any kind */
 #define CYLRAY_KIND_SPHERE 4u /* cylray_prepared.kind of a sphere (CYLRAY_KF_SPHERE) */
 
 #define CYLRAY_MAGIC 0x63796c72u /* "cylr" */
@@ -73,10 +73,9 @@ static inline int cylray_generic_(const cylray_prepared *p)
 /* The kernel flags of a specialised variant v (below CYLRAY_VARIANT_GENERIC): its kind
  * and whether its axis is a coordinate axis; a constant expression, for the tables. */
 #define CYLRAY_VARIANT_KF_(v)                                                                  \
-    ((v) == CYLRAY_VARIANT_SPHERE                                                              \
-         ? CYLRAY_KF_SPHERE                                                                    \
-         : (((v) % CYLRAY_KIND_COUNT) << CYLRAY_KF_KIND_SHIFT |                                \
-            ((v) >= CYLRAY_KIND_COUNT ? CYLRAY_KF_ALIGNED : 0u)))
+    ((v) == CYLRAY_VARIANT_SPHERE ? CYLRAY_KF_SPHERE                                           \
+                                  : (((v) % CYLRAY_KIND_COUNT) << CYLRAY_KF_KIND_SHIFT |       \
+                                     ((v) >= CYLRAY_KIND_COUNT ? CYLRAY_KF_ALIGNED : 0u)))
 /* The kernel flags of a generic variant, which the generic drivers read at run time:
  * the kind, one disc or two, and the public flags that select the kernel's branches. */
 static inline unsigned cylray_generic_kf_(const cylray_prepared *P, unsigned flags, int occ)
@@ -125,7 +124,8 @@ static inline unsigned cylray_occ_index_(unsigned variant, unsigned flags)
  * so whole vectors may be stored there; stores: the store policy (CYLRAY_STORE_*). */
 typedef struct {
     unsigned kind;
-    int sphere, leaf, capped, finite, one_end, aligned, scaled, occ, normal, cull, ff, refine, fast;
+    int sphere, leaf, capped, finite, one_end, aligned, scaled, occ, normal, cull, ff, refine,
+        fast;
     int scratch;
     unsigned stores;
 } cylray_kflags_;
@@ -139,11 +139,11 @@ CYLRAY_INLINE cylray_kflags_ cylray_kflags_of_(unsigned FL, unsigned rt)
     F.leaf = F.kind == CYLRAY_KIND_LEAF;
     /* A leaf's lanes are cylinders of any kind: each runs the capped solid's logic with
      * its own discs (an open tube has none, an infinite one an infinite slab). */
-    F.capped = F.kind == CYLRAY_KIND_CAPPED || F.leaf;
+    F.capped = (F.kind == CYLRAY_KIND_CAPPED || F.leaf) && !F.sphere;
     /* A sphere runs as an infinite cylinder would (no slab, no ends) but for its bounding
      * sphere, which is itself. */
     F.finite = F.kind != CYLRAY_KIND_INFINITE || F.sphere;
-    F.one_end = F.leaf || (FL & CYLRAY_KF_ONE_END) != 0;
+    F.one_end = (F.leaf || (FL & CYLRAY_KF_ONE_END) != 0) && !F.sphere;
     F.aligned = (FL & CYLRAY_KF_ALIGNED) != 0;
     F.scaled = (FL & CYLRAY_KF_SCALED) != 0;
     F.occ = (FL & CYLRAY_KF_OCCLUDED) != 0;
@@ -160,8 +160,8 @@ CYLRAY_INLINE cylray_kflags_ cylray_kflags_of_(unsigned FL, unsigned rt)
 static inline int cylray_prepared_ok_(const cylray_prepared *p)
 {
     return p != 0 && p->magic == CYLRAY_MAGIC &&
-           (p->kind < CYLRAY_KIND_COUNT || p->kind == CYLRAY_KIND_SPHERE) &&
-           p->axis_id <= 3u && (p->caps & ~CYLRAY_CAPPED) == 0 &&
+           (p->kind < CYLRAY_KIND_COUNT || p->kind == CYLRAY_KIND_SPHERE) && p->axis_id <= 3u &&
+           (p->caps & ~CYLRAY_CAPPED) == 0 &&
            p->variant == cylray_variant_of_(p->kind, p->axis_id, p->g_s != 1.0f, p->caps);
 }
 

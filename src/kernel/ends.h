@@ -35,7 +35,7 @@ CYLRAY_INLINE void KFN(ends)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_
      * third coordinate itself, whatever its sign: the slab is symmetric, and the sign
      * only names the caps. */
     vf z0 = zero, dv = zero;
-    if (F.finite) {
+    if (F.finite && !F.sphere) {
         z0 = F.aligned ? st->pz : KDOT(st->px, st->py, st->pz, st->vx, st->vy, st->vz);
         dv = F.aligned ? st->dz : KDOT(st->dx, st->dy, st->dz, st->vx, st->vy, st->vz);
     }

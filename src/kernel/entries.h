@@ -100,8 +100,11 @@ static size_t KI_(occluded_stream)(const cylray_prepared *P, const cylray_rays *
     {                                                                                          \
         if (!leaf || !ray || !hit)                                                             \
             return 0;                                                                          \
-        return KW_(leaf_table, KL##m)[cylray_spec_(flags)](                                    \
-            leaf->geom_[0], m, ray, hit, flags & CYLRAY_FLAGS_ALL & CYLRAY_KF_RUNTIME);        \
+        const KW_(leaf_fn, KL##m) *t = leaf->meta_[CYLRAY_LM_SPHERE]                           \
+                                           ? KW_(leaf_sphere_table, KL##m)                     \
+                                           : KW_(leaf_table, KL##m);                           \
+        return t[cylray_spec_(flags)](leaf->geom_[0], m, ray, hit,                             \
+                                      flags & CYLRAY_FLAGS_ALL & CYLRAY_KF_RUNTIME);           \
     }                                                                                          \
     static int KI_(leaf_occluded##m)(const cylray_leaf##m *leaf, const cylray_ray1 *ray,       \
                                      unsigned flags)                                           \
@@ -110,8 +113,11 @@ static size_t KI_(occluded_stream)(const cylray_prepared *P, const cylray_rays *
             return 0;                                                                          \
         /* the occluded kernels read the ray and never write through this pointer */           \
         cylray_ray1 *r = (cylray_ray1 *)(uintptr_t)ray;                                        \
-        return KW_(leaf_occ_table, KL##m)[cylray_occ_spec_(flags)](leaf->geom_[0], m, r, NULL, \
-                                                                   flags & CYLRAY_CULL_BACK);  \
+        const KW_(leaf_fn, KL##m) *t = leaf->meta_[CYLRAY_LM_SPHERE]                           \
+                                           ? KW_(leaf_sphere_occ_table, KL##m)                 \
+                                           : KW_(leaf_occ_table, KL##m);                       \
+        return t[cylray_occ_spec_(flags)](leaf->geom_[0], m, r, NULL,                          \
+                                          flags & CYLRAY_CULL_BACK);                           \
     }
 KLEAF_ENTRY_(4)
 KLEAF_ENTRY_(8)

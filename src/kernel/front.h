@@ -47,17 +47,19 @@ CYLRAY_INLINE int KFN(load_ray)(KFN(lanes) *st, const cylray_kat_ *k, const cylr
 }
 
 /* Stage 2, the cheap rejections: the sphere around a finite cylinder and the tube
- * around the axis, from w = o - c rounded. Returns whether any lane is left. */
+ * around the axis, from w = o - c rounded (a sphere: itself, with a margin). Returns
+ * whether any lane is left. */
 CYLRAY_INLINE int KFN(reject)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
 {
     const vf zero = vzero(), inf = vset1(INFINITY);
     const vf dx = st->dx, dy = st->dy, dz = st->dz, dd = st->dd;
-    vf vx = zero, vy = zero;
-    if (!F.aligned)
+    vf vx = zero, vy = zero, vz = zero;
+    if (!F.aligned && !F.sphere)
         vx = KFN(both_in)(k, F, offsetof(cylray_prepared, v[0]), CYLRAY_LF_VX),
         vy = KFN(both_in)(k, F, offsetof(cylray_prepared, v[1]), CYLRAY_LF_VY);
-    const vf vz =
-        F.leaf ? KFN(leaf_in)(k, F, CYLRAY_LF_VZ) : vset1(F.aligned ? k->P->vr : k->P->v[2]);
+    if (!F.sphere)
+        vz = F.leaf ? KFN(leaf_in)(k, F, CYLRAY_LF_VZ)
+                    : vset1(F.aligned ? k->P->vr : k->P->v[2]);
     st->vx = vx, st->vy = vy, st->vz = vz;
     /* A leaf derives what it does not store from what it does (64 bytes a lane). */
     st->rad = KFN(leaf_in)(k, F, CYLRAY_LF_R); /* zero elsewhere */
@@ -94,6 +96,13 @@ CYLRAY_INLINE int KFN(reject)(KFN(lanes) *st, const cylray_kat_ *k, const cylray
                    : vkeep(vgt(vadd(wd2, wd2), ww), s);
     }
     st->rdd = rdd, st->s = s;
+    if (F.sphere) {
+        /* The sphere test above is the sphere itself, with a margin: no tube follows.
+         * The quadratic's A is d.d. */
+        st->ex = st->ey = st->ez = zero;
+        st->A = dd, st->act = act;
+        return many(act);
+    }
 
     /* e = d x v to a relative accuracy that survives a ray almost along the axis.
      * With an aligned axis v = (0, 0, +-1) and e = (dy, -dx, 0) up to the sign of v,

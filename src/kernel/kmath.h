@@ -31,18 +31,21 @@ CYLRAY_INLINE void KFN(side_coefs)(vf rr_vv, int aligned, vf dx, vf dy, vf ex, v
     }
 }
 
-/* Root polishing (CYLRAY_REFINE): the side's quadratic again from the point q at the
- * root r, where C is tiny and the small root C / q2 is a correction of a few ulps; the
+/* Root polishing (CYLRAY_REFINE): the side's quadratic (a sphere's) again from the
+ * point q at the root r, where C is tiny and the small root C / q2 is a correction of a few ulps; the
  * result is then limited by the rounding of q, not by the distance of the shifted
  * origin. Returns the polished root where that helps, r elsewhere. */
-CYLRAY_INLINE vf KFN(polish)(vf rr_vv, vf rr, int aligned, vm side, vf r, vf A, vf dx, vf dy,
-                             vf dz, vf ex, vf ey, vf ez, vf vx, vf vy, vf vz, vf px, vf py,
-                             vf pz)
+CYLRAY_INLINE vf KFN(polish)(vf rr_vv, vf rr, int aligned, int sphere, vm side, vf r, vf A,
+                             vf dx, vf dy, vf dz, vf ex, vf ey, vf ez, vf vx, vf vy, vf vz,
+                             vf px, vf py, vf pz)
 {
     const vf zero = vzero();
     vf qx = vfma_x(r, dx, px), qy = vfma_x(r, dy, py), qz = vfma_x(r, dz, pz);
     vf B2, C2;
-    if (aligned) {
+    if (sphere) {
+        B2 = KDOT(dx, dy, dz, qx, qy, qz);
+        C2 = vsumsq_x(qx, qy, qz, rr_vv);
+    } else if (aligned) {
         B2 = vfma(dx, qx, vmul(dy, qy));
         C2 = vsub(vfma(qx, qx, vmul(qy, qy)), rr_vv);
     } else {

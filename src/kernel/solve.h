@@ -54,11 +54,43 @@ CYLRAY_INLINE void KFN(slide)(KFN(lanes) *st, const cylray_kat_ *k, const cylray
     st->g = vsel(slide, g2, st->g);
 }
 
+/* Stage 4 of a sphere: d.d t^2 - 2 nB t + C with nB = -p.d and C = p.p - R^2 from
+ * the shifted origin p, and the discriminant in Lagrange's form, d.d R^2 - |p x d|^2:
+ * |p x d| is the line's distance from the center times |d|, which no shift changes,
+ * so near a tangency D is as accurate as d.d R^2 and the cross product, not the
+ * difference of two squares of the shifted origin's terms. Returns whether any lane
+ * can still hit. */
+CYLRAY_INLINE int KFN(sphere_side)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
+{
+    const vf zero = vzero(), dx = st->dx, dy = st->dy, dz = st->dz;
+    const vf px = st->px, py = st->py, pz = st->pz;
+    st->fx = st->fy = st->fz = st->g = zero;
+    st->nB = vneg(KDOT(dx, dy, dz, px, py, pz));
+    st->C = vsumsq_x(px, py, pz, st->rr_vv);
+    vf hx = vfms(py, dz, vmul(pz, dy)), hy = vfms(pz, dx, vmul(px, dz)),
+       hz = vfms(px, dy, vmul(py, dx));
+    vf rr = st->rr;
+    if (F.scaled || F.leaf) { /* 2^-2j, as the cylinder's (R 2^-j exact) */
+        const vf gs = KFN(both_in)(k, F, offsetof(cylray_prepared, g_s), CYLRAY_LF_GS);
+        const vf rs = vmul(st->rad, gs);
+        rr = KFN(cyl_in)(k, F, offsetof(cylray_prepared, rr_d), vmul(rs, rs));
+        hx = vmul(hx, gs), hy = vmul(hy, gs), hz = vmul(hz, gs);
+    }
+    st->AR2 = vmul(st->A, rr);
+    st->D = vfms(st->A, rr, KDOT(hx, hy, hz, hx, hy, hz));
+    const vm act = mand(st->act, veq(vfma(st->C, zero, vmul(st->D, zero)), zero));
+    st->side = mand(act, vge(st->D, zero));
+    st->inpar = vlt(vset1(1.0f), zero);
+    return many(st->side);
+}
+
 /* Stage 4, the side's quadratic and its discriminant, in Lagrange's form. Returns
  * whether any lane can still hit. */
 CYLRAY_INLINE int KFN(side)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
 {
     const vf zero = vzero(), dx = st->dx, dy = st->dy;
+    if (F.sphere)
+        return KFN(sphere_side)(st, k, F);
     st->g = zero;
     if (F.aligned) {
         /* g = w x d, in the plane: it does not change along the ray, and Kahan's
@@ -117,11 +149,13 @@ CYLRAY_INLINE void KFN(roots)(KFN(lanes) *st, const cylray_kat_ *k, const cylray
     } else {
         sq = vsqrt(D);
     }
-    if (!F.aligned) /* |v| = 1 there, and j = 0 */
+    /* |v| = 1 along a coordinate axis and on a sphere, and there j = 0 */
+    if (!F.aligned && !(F.sphere && !F.scaled && !F.leaf))
         sq = vmul(sq, F.leaf ? KFN(leaf_in)(k, F, CYLRAY_LF_SQS)
                              : vset1(F.scaled ? k->P->sqrt_vv / k->P->g_s : k->P->sqrt_vv));
     vf q = vadd(nB, vxorsign(sq, nB)); /* -(B + sign(B) sqrt(disc)); sq >= 0 */
-    vf r1 = F.fast ? vmul(q, vrcp_fast(A)) : vdiv(q, A);
+    /* A sphere's A is d.d, whose reciprocal the shift has formed. */
+    vf r1 = F.sphere ? vmul(q, st->rdd) : F.fast ? vmul(q, vrcp_fast(A)) : vdiv(q, A);
     vf r2;
     if (F.fast) {
         r2 = vmul(C, vrcp_fast(q));
@@ -147,11 +181,11 @@ CYLRAY_INLINE void KFN(roots)(KFN(lanes) *st, const cylray_kat_ *k, const cylray
         /* Both roots are polished before anything is decided from them, so that the
          * entry test, the clip and the range test all see the t that is reported: a
          * call with tmax set to a reported t then reports it again. */
-        st->tn =
-            KFN(polish)(st->rr_vv, st->rr, F.aligned, side, st->tn, A, st->dx, st->dy, st->dz,
-                        st->ex, st->ey, st->ez, st->vx, st->vy, st->vz, st->px, st->py, st->pz);
-        st->tf =
-            KFN(polish)(st->rr_vv, st->rr, F.aligned, side, st->tf, A, st->dx, st->dy, st->dz,
-                        st->ex, st->ey, st->ez, st->vx, st->vy, st->vz, st->px, st->py, st->pz);
+        st->tn = KFN(polish)(st->rr_vv, st->rr, F.aligned, F.sphere, side, st->tn, A, st->dx,
+                             st->dy, st->dz, st->ex, st->ey, st->ez, st->vx, st->vy, st->vz,
+                             st->px, st->py, st->pz);
+        st->tf = KFN(polish)(st->rr_vv, st->rr, F.aligned, F.sphere, side, st->tf, A, st->dx,
+                             st->dy, st->dz, st->ex, st->ey, st->ez, st->vx, st->vy, st->vz,
+                             st->px, st->py, st->pz);
     }
 }

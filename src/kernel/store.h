@@ -14,9 +14,10 @@ CYLRAY_INLINE void KFN(renormalize)(const KFN(lanes) *st, const cylray_kflags_ F
         /* A hit point that rounds onto the axis (a radius far below the coordinates'
          * ulp), or one so far from it that the offset is not finite (an origin far
          * beyond the documented 2^62), has no direction of its own: the side then
-         * faces the ray, along -d_perp (v x e = v.v d_perp) on entry. */
-        vf ux = st->dx, uy = st->dy, uz = zero;
-        if (!F.aligned) {
+         * faces the ray, along -d_perp (v x e = v.v d_perp) on entry (a sphere's
+         * along -d). */
+        vf ux = st->dx, uy = st->dy, uz = F.sphere ? st->dz : zero;
+        if (!F.aligned && !F.sphere) {
             ux = vfms(st->vy, st->ez, vmul(st->vz, st->ey));
             uy = vfms(st->vz, st->ex, vmul(st->vx, st->ez));
             uz = vfms(st->vx, st->ey, vmul(st->vy, st->ex));
@@ -60,7 +61,13 @@ CYLRAY_INLINE void KFN(normals)(const KFN(lanes) *st, const cylray_kat_ *k,
     const vf zero = vzero(), one = vset1(1.0f), tr = st->tr;
     const vm hit = st->hit;
     vf nx, ny, nz;
-    if (F.aligned) {
+    if (F.sphere) {
+        /* (p + t d) / R, the hit point relative to the center */
+        const vf kn = KFN(both_in)(k, F, offsetof(cylray_prepared, nscale), CYLRAY_LF_NSCALE);
+        nx = vmul(vfma(tr, st->dx, st->px), kn);
+        ny = vmul(vfma(tr, st->dy, st->py), kn);
+        nz = vmul(vfma(tr, st->dz, st->pz), kn);
+    } else if (F.aligned) {
         const vf kn = vset1(k->P->nscale);
         nx = vmul(vfma(tr, st->dx, st->px), kn);
         ny = vmul(vfma(tr, st->dy, st->py), kn);

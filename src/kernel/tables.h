@@ -3,7 +3,8 @@
  * index. */
 
 /* The specialisations, where a tracer spends its time: for each kind of cylinder
- * (infinite, open, capped; the same three along a coordinate axis; and a leaf) the
+ * (infinite, open, capped; the same three along a coordinate axis), the sphere, and a
+ * leaf of cylinders or of spheres, the
  * intersect kernels with and without normals, each plain, with CYLRAY_FAST or with
  * CYLRAY_REFINE, and the occluded ones likewise. FAST and REFINE together (an odd
  * pair: one trades accuracy away, the other buys it) take the drivers that read their
@@ -57,10 +58,18 @@
     {                                                                                          \
         return KFN(drv)(L, lm, r, h, rt, fl);                                                  \
     }
-#define KLEAF_(b) KLEAFDRV_(lf_##b, leaf, KLFL_(CYLRAY_SPEC_KF_(b)))
-#define KLEAFOCC_(b) KLEAFDRV_(lo_##b, leaf, KLFL_(CYLRAY_OCC_SPEC_KF_(b)))
-#define KLEAFANY_(b) KLEAFDRV_(lf_##b, leaf_any, KLFL_(CYLRAY_SPEC_KF_(b)))
-#define KLEAFOCCANY_(b) KLEAFDRV_(lo_##b, leaf_any, KLFL_(CYLRAY_OCC_SPEC_KF_(b)))
+#define KLEAF_(b)                                                                              \
+    KLEAFDRV_(lf_##b, leaf, KLFL_(CYLRAY_SPEC_KF_(b)))                                         \
+    KLEAFDRV_(sf_##b, leaf, KLFL_(CYLRAY_SPEC_KF_(b)) | CYLRAY_KF_SPHERE)
+#define KLEAFOCC_(b)                                                                           \
+    KLEAFDRV_(lo_##b, leaf, KLFL_(CYLRAY_OCC_SPEC_KF_(b)))                                     \
+    KLEAFDRV_(so_##b, leaf, KLFL_(CYLRAY_OCC_SPEC_KF_(b)) | CYLRAY_KF_SPHERE)
+#define KLEAFANY_(b)                                                                           \
+    KLEAFDRV_(lf_##b, leaf_any, KLFL_(CYLRAY_SPEC_KF_(b)))                                     \
+    KLEAFDRV_(sf_##b, leaf_any, KLFL_(CYLRAY_SPEC_KF_(b)) | CYLRAY_KF_SPHERE)
+#define KLEAFOCCANY_(b)                                                                        \
+    KLEAFDRV_(lo_##b, leaf_any, KLFL_(CYLRAY_OCC_SPEC_KF_(b)))                                 \
+    KLEAFDRV_(so_##b, leaf_any, KLFL_(CYLRAY_OCC_SPEC_KF_(b)) | CYLRAY_KF_SPHERE)
 #define K8_(X, k) X(k, 0) X(k, 1) X(k, 2) X(k, 3) X(k, 4) X(k, 5) X(k, 6) X(k, 7)
 #define K4_(X, k) X(k, 0) X(k, 1) X(k, 2) X(k, 3)
 #define KALL8_(X) K8_(X, 0) K8_(X, 1) K8_(X, 2) K8_(X, 3) K8_(X, 4) K8_(X, 5) K8_(X, 6)
@@ -100,6 +109,11 @@ CYLRAY_MAYBE_UNUSED static const KFN(leaf_fn) KFN(leaf_table)[] = {
     KFN(lf_0), KFN(lf_1), KFN(lf_2), KFN(lf_3), KFN(lf_4), KFN(lf_5), KFN(lf_6), KFN(lf_7)};
 CYLRAY_MAYBE_UNUSED static const KFN(leaf_fn)
     KFN(leaf_occ_table)[] = {KFN(lo_0), KFN(lo_1), KFN(lo_2), KFN(lo_3)};
+/* The same for a leaf of spheres. */
+CYLRAY_MAYBE_UNUSED static const KFN(leaf_fn) KFN(leaf_sphere_table)[] = {
+    KFN(sf_0), KFN(sf_1), KFN(sf_2), KFN(sf_3), KFN(sf_4), KFN(sf_5), KFN(sf_6), KFN(sf_7)};
+CYLRAY_MAYBE_UNUSED static const KFN(leaf_fn)
+    KFN(leaf_sphere_occ_table)[] = {KFN(so_0), KFN(so_1), KFN(so_2), KFN(so_3)};
 /* Every table holds exactly what its index reaches (cylray_isect_index_,
  * cylray_occ_index_, cylray_spec_, cylray_occ_spec_): one entry per specialised variant
  * and flag encoding. */
@@ -112,6 +126,8 @@ KTABLE_SIZE_(occ_table, CYLRAY_VARIANT_GENERIC *CYLRAY_OCC_SPECS);
 KTABLE_SIZE_(occ_stream_table, CYLRAY_VARIANT_GENERIC *CYLRAY_OCC_SPECS);
 KTABLE_SIZE_(leaf_table, CYLRAY_SPECS);
 KTABLE_SIZE_(leaf_occ_table, CYLRAY_OCC_SPECS);
+KTABLE_SIZE_(leaf_sphere_table, CYLRAY_SPECS);
+KTABLE_SIZE_(leaf_sphere_occ_table, CYLRAY_OCC_SPECS);
 
 #undef KDOT
 #undef KRCP
