@@ -462,8 +462,10 @@ static int exact(const char *what, const eb_geom *g, const eb_ref *ref, const eb
         for (int k = 0; k < 3; k++)
             w[0][k] = x.d[k] - 2 * dn * n[k], w[1][k] = x.d[k];
         for (int s = 0; s < 2; s++) {
-            if (cylray_embree_spawn_origin(geo, prim, x.o, x.d, t, ng, w[s], org)) {
-                bad++;
+            if (cylray_embree_spawn_origin(geo, prim, x.o, x.d, t, ng, w[s], org) ||
+                !isfinite(org[0]) || !isfinite(org[1]) || !isfinite(org[2])) {
+                if (bad++ < 3) /* not traced: Embree's debug builds assert on such a ray */
+                    printf("  %s: no usable spawn origin on %#x\n", what, id);
                 continue;
             }
             float st, sn[3];

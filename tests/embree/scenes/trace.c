@@ -298,9 +298,13 @@ static void cosine_dir(eb_rng *g, const float n[3], float w[3])
         w[k] = (float)(ww[k] / sqrt(wl));
 }
 
+/* A ray whose origin is not finite (a spawn helper that cannot place one) stays
+ * invalid: Embree's assertions, where built in, stop on such a ray. */
 static void set_ray(eb_rays *r, size_t i, const float o[3], const float w[3], float tnear,
                     float tfar)
 {
+    if (!isfinite(o[0]) || !isfinite(o[1]) || !isfinite(o[2]))
+        return;
     r->ox[i] = o[0], r->oy[i] = o[1], r->oz[i] = o[2];
     r->dx[i] = w[0], r->dy[i] = w[1], r->dz[i] = w[2];
     r->tnear[i] = tnear;
