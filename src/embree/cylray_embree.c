@@ -62,7 +62,9 @@ static RTCGeometry ceb_finish(ceb *g, RTCDevice device, const cylray_cylinder *c
         for (size_t i = 0; !why && i < g->n; i++)
             ceb_sphere_box(&g->sph[i], &g->box[i]);
     }
-    *st = why == CEB_BAD_INPUT ? CYLRAY_EINVAL : why == CEB_NO_MEMORY ? CYLRAY_ENOMEM : CYLRAY_OK;
+    *st = why == CEB_BAD_INPUT   ? CYLRAY_EINVAL
+          : why == CEB_NO_MEMORY ? CYLRAY_ENOMEM
+                                 : CYLRAY_OK;
     if (why) {
         ceb_free(g);
         return NULL;

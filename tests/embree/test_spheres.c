@@ -20,8 +20,8 @@ enum { W = 48, H = 48, MAXS = 400 };
 
 static const cylray_kernels *K;
 static const eb_scene *S;
-static cylray_prepared PREP[MAXS];                /* the segments, then the spheres */
-static _Alignas(64) cylray_leaf8 LEAF8[MAXS];     /* each shape alone in a leaf */
+static cylray_prepared PREP[MAXS];            /* the segments, then the spheres */
+static _Alignas(64) cylray_leaf8 LEAF8[MAXS]; /* each shape alone in a leaf */
 static _Alignas(64) cylray_leaf4 LEAF4[MAXS];
 static int LEAVES; /* 0: the prepared shapes' kernel; 4 or 8: the one-shape leaves */
 
@@ -195,8 +195,8 @@ static int check(const char *what, const eb_rays *r, const float *tfar0, const u
                 ok = sphere_record_ok(got, o, d, r->tfar[i], ng, r->u[i], r->v[i]);
         }
         if (!ok && bad++ < 5)
-            printf("  %s ray %zu: Embree+cylray %#x t %.9g u %g v %g, cylray %#x t %.9g\n", what,
-                   i, got, r->tfar[i], r->u[i], r->v[i], want, t);
+            printf("  %s ray %zu: Embree+cylray %#x t %.9g u %g v %g, cylray %#x t %.9g\n",
+                   what, i, got, r->tfar[i], r->u[i], r->v[i], want, t);
     }
     return bad;
 }
@@ -416,7 +416,8 @@ static int instance(RTCDevice dev, RTCScene inner, const eb_rays *r)
         uint32_t want = brute(o, d, 0, INFINITY, 0, 3u, &t, n);
         eb_query q;
         eb_query_init(&q, NULL, 0);
-        struct RTCRayHit rh = eb_rayhit1((const float[3]){o[0] + 3, o[1], o[2]}, d, 0, INFINITY);
+        struct RTCRayHit rh =
+            eb_rayhit1((const float[3]){o[0] + 3, o[1], o[2]}, d, 0, INFINITY);
         rh.ray.mask = 3;
         EB_INTERSECT1(outer, &q, &rh);
         uint32_t got = eb_hit_id(rh.hit.geomID, rh.hit.primID);
@@ -558,7 +559,7 @@ static void run(RTCDevice dev, const eb_scene *s, eb_rays *r, float *tfar0, uint
         }
         for (int vi = 0; vi < 2; vi++) {
             eb_variant v = vs[vi];
-            LEAVES = v != EB_LEAF ? 0
+            LEAVES = v != EB_LEAF                                         ? 0
                      : isa == CYLRAY_ISA_AVX2 || isa == CYLRAY_ISA_AVX512 ? 8
                                                                           : 4;
             char vn[96], what[160];

@@ -26,7 +26,7 @@ double eb_range(eb_rng *g, double a, double b)
     return a + (b - a) * eb_unit(g);
 }
 
-static const char *const names[EB_NSCENES] = {"molecule", "pipes",  "far-rods",
+static const char *const names[EB_NSCENES] = {"molecule", "pipes", "far-rods",
                                               "lattice",  "balls", "far-cloud"};
 
 const char *eb_scene_name(int which)

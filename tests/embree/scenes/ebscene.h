@@ -24,8 +24,8 @@ typedef struct eb_scene {
     cylray_cylinder *cyl;
     float (*p0)[3], (*p1)[3]; /* segment s from p0[s] to p1[s], for cylray_embree */
     float radius;
-    size_t nsph;         /* spheres besides the segments (none in the cylinder scenes) */
-    cylray_sphere *sph;  /* their answers carry EB_SPHERE_BIT with the sphere's index */
+    size_t nsph;        /* spheres besides the segments (none in the cylinder scenes) */
+    cylray_sphere *sph; /* their answers carry EB_SPHERE_BIT with the sphere's index */
     float eye[3], look[3], up[3], fov_deg;
     float light[3];
     float scale; /* a typical size of the scene, for the bounce rays' reach */
