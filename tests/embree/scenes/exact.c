@@ -7,6 +7,7 @@
 #include "quad.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -141,16 +142,44 @@ void eb_shape_band(const eb_scene *s, uint32_t id, const float o[3], const float
     const cylq ew = 2 * (cylq)cylref_float_ulp((double)mw),
                ed = 2 * (cylq)cylref_float_ulp((double)md),
                er = 2 * (cylq)cylref_float_ulp(sp->radius);
+    /* the inputs at fraction f of the way to vertex v */
+#define AT(v, f, x)                                                                            \
+    do {                                                                                       \
+        cylq wv[3], dv[3];                                                                     \
+        for (int k = 0; k < 3; k++) {                                                          \
+            wv[k] = w[k] + (f) * ((v) >> k & 1 ? ew : -ew);                                    \
+            dv[k] = dq[k] + (f) * ((v) >> (3 + k) & 1 ? ed : -ed);                             \
+        }                                                                                      \
+        sphere_exact(wv, dv, (cylq)sp->radius + (f) * ((v) >> 6 & 1 ? er : -er), tmin, tmax,   \
+                     x);                                                                       \
+    } while (0)
+    uint8_t hits[128];
     for (unsigned v = 0; v < 128; v++, b->evals++) {
-        cylq wv[3], dv[3];
-        for (int k = 0; k < 3; k++) {
-            wv[k] = w[k] + (v >> k & 1 ? ew : -ew);
-            dv[k] = dq[k] + (v >> (3 + k) & 1 ? ed : -ed);
-        }
         cylref_hit x;
-        sphere_exact(wv, dv, (cylq)sp->radius + (v >> 6 & 1 ? er : -er), tmin, tmax, &x);
+        AT(v, (cylq)1, &x);
         band_add(b, &x);
+        hits[v] = (uint8_t)x.hit;
     }
+    /* Where hit and miss both occur, t runs on inside the box up to where the hit
+     * ends (a tangency, or an origin reaching the surface: t near 0), which no vertex
+     * shows: bisect toward each vertex whose outcome differs for the last hit. */
+    for (unsigned v = 0; b->hit_unstable && v < 128; v++) {
+        if (hits[v] == b->exact.hit)
+            continue;
+        cylq lo = 0, hi = 1; /* lo: the exact outcome; hi: the vertex's */
+        cylref_hit last = b->exact;
+        for (int it = 0; it < 60; it++, b->evals++) {
+            cylq mid = (lo + hi) * (cylq)0.5;
+            cylref_hit x;
+            AT(v, mid, &x);
+            if (x.hit == b->exact.hit)
+                lo = mid, last = x;
+            else
+                hi = mid;
+        }
+        band_add(b, &last);
+    }
+#undef AT
     b->part_unstable = b->n_alt > 0;
     b->decision_unstable = b->hit_unstable || b->part_unstable;
 }

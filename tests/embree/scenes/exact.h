@@ -25,8 +25,9 @@ int eb_shape_intersect(const eb_scene *s, uint32_t id, const float o[3], const f
                        float tmin, float tmax, cylref_hit *h);
 /* Its tolerance band, as cylref_band_eval's (tests/ref/cylref.h) for the same +-2 ulp
  * box of the inputs: a sphere's from the box's 128 vertices (o - c, d and the radius
- * each at either end) and its center, which is where a sphere's t and its hit/miss
- * margin take their extremes but near a tangency (then hit and miss both occur). */
+ * each at either end) and its center, where a sphere's t and its hit/miss margin take
+ * their extremes; where hit and miss both occur, also the last hit toward each vertex
+ * that misses (t there runs to a tangency, or to 0 for an origin on the surface). */
 void eb_shape_band(const eb_scene *s, uint32_t id, const float o[3], const float d[3],
                    float tmin, float tmax, cylref_band *b);
 
