@@ -220,7 +220,7 @@ typedef struct cylray_embree_sphere_desc {
  *   Ng       the unit outward normal (from the center to the hit point)
  *   u        phi / 2pi in [0, 1), phi = atan2(y, x) of the normal (pbrt-v4's full
  *            sphere, as cylray_surface gives it; within 4e-7 of it)
- *   v        0 at the -z pole, 1 at the +z pole (likewise)
+ *   v        1 - theta / pi: 0 at the -z pole, 1 at the +z pole (within 8e-7)
  *   primID   the sphere's index in the caller's arrays; geomID, instID as above
  * Every call below that takes "such a geometry" takes one of spheres too, its part then
  * CYLRAY_SIDE; cylray_embree_cylinder gives the prepared sphere. */
