@@ -241,11 +241,11 @@ CYLRAY_EMBREE_API int cylray_embree_is_cylinders(RTCGeometry geometry);
 /* 1 when geometry was made by cylray_embree_new_spheres, 0 otherwise. */
 CYLRAY_EMBREE_API int cylray_embree_is_spheres(RTCGeometry geometry);
 
-/* How many primitives Embree got from such a geometry: one per cylinder, per split
- * box, or per leaf; 0 for another geometry. */
+/* How many primitives Embree got from such a geometry: one per cylinder (or sphere),
+ * per split box, or per leaf; 0 for another geometry. */
 CYLRAY_EMBREE_API size_t cylray_embree_primitives(RTCGeometry geometry);
 
-/* How many cylinders a leaf of such a geometry holds at most (made with
+/* How many cylinders (or spheres) a leaf of such a geometry holds at most (made with
  * CYLRAY_EMBREE_LEAVES: 8 or 4, by the kernels' path); 0 without leaves or for another
  * geometry. */
 CYLRAY_EMBREE_API unsigned cylray_embree_leaf_size(RTCGeometry geometry);
