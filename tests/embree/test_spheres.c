@@ -6,7 +6,8 @@
  * the leaves a leaf holding that shape alone), bit for bit; and the exact reference's
  * (binary128): no wrong answer outside the 2-ulp band. Also: u and v as pbrt's sphere
  * and Ng outward; the geometry's and the query's filters, every hit offered once;
- * geometry masks; an instance; the descriptions the adapter refuses. */
+ * geometry masks; an instance; the packet spawn origins; the descriptions the adapter
+ * refuses. */
 #include "geom.h"
 #include "judge.h"
 #include "trace.h"
@@ -433,6 +434,64 @@ static int instance(RTCDevice dev, RTCScene inner, const eb_rays *r)
     return bad + (hits == 0);
 }
 
+/* The packet form of the spawn origins on the spheres' geometry, after Embree's own
+ * rtcIntersect8: the one-ray form's origin, bit for bit, on every lane that hit a
+ * sphere, nothing on the others (misses, invalid lanes, the segments' hits). */
+static int packet_spawns(RTCScene sc, RTCGeometry sph, const eb_rays *r, int *lanes)
+{
+    const uint32_t sentinel = 0x7fc0c0deu;
+    int bad = 0;
+    *lanes = 0;
+    for (size_t b = 0; b + 8 <= r->n; b += 8 * 5) {
+        struct RTCRayHit8 rh;
+        memset(&rh, 0, sizeof rh);
+        RTC_ALIGN(32) int valid[8];
+        for (int j = 0; j < 8; j++) {
+            size_t i = b + (size_t)j;
+            rh.ray.org_x[j] = r->ox[i], rh.ray.org_y[j] = r->oy[i], rh.ray.org_z[j] = r->oz[i];
+            rh.ray.dir_x[j] = r->dx[i], rh.ray.dir_y[j] = r->dy[i], rh.ray.dir_z[j] = r->dz[i];
+            rh.ray.tnear[j] = 0, rh.ray.tfar[j] = INFINITY, rh.ray.mask[j] = ~0u;
+            rh.hit.geomID[j] = RTC_INVALID_GEOMETRY_ID;
+            valid[j] = j == 5 ? 0 : -1;
+        }
+#if CYLRAY_EMBREE_RTC_MAJOR >= 4
+        rtcIntersect8(valid, sc, &rh, NULL);
+#else
+        struct RTCIntersectContext ctx;
+        rtcInitIntersectContext(&ctx);
+        rtcIntersect8(valid, sc, &ctx, &rh);
+#endif
+        float w[24], out[24];
+        for (int j = 0; j < 8; j++) {
+            w[j] = rh.hit.Ng_x[j] - 0.5f * rh.ray.dir_x[j];
+            w[8 + j] = rh.hit.Ng_y[j] - 0.5f * rh.ray.dir_y[j];
+            w[16 + j] = rh.hit.Ng_z[j] - 0.5f * rh.ray.dir_z[j];
+        }
+        for (int k = 0; k < 24; k++)
+            memcpy(&out[k], &sentinel, 4);
+        uint32_t got = cylray_embree_spawn_origins(sph, EB_SPHERE_GEOM, valid,
+                                                   (struct RTCRayHitN *)&rh, 8, w, out);
+        for (int j = 0; j < 8; j++) {
+            const int ours =
+                valid[j] && rh.hit.geomID[j] == EB_SPHERE_GEOM && isfinite(rh.ray.tfar[j]);
+            float o[3] = {rh.ray.org_x[j], rh.ray.org_y[j], rh.ray.org_z[j]};
+            float d[3] = {rh.ray.dir_x[j], rh.ray.dir_y[j], rh.ray.dir_z[j]};
+            float ng[3] = {rh.hit.Ng_x[j], rh.hit.Ng_y[j], rh.hit.Ng_z[j]};
+            float wj[3] = {w[j], w[8 + j], w[16 + j]}, want[3];
+            bad += ((got >> j) & 1u) != (uint32_t)ours;
+            if (ours) {
+                (*lanes)++;
+                bad += cylray_embree_spawn_origin(sph, rh.hit.primID[j], o, d, rh.ray.tfar[j],
+                                                  ng, wj, want) != 0;
+            }
+            for (int k = 0; k < 3; k++)
+                bad += ours ? memcmp(&out[8 * k + j], &want[k], 4) != 0
+                            : memcmp(&out[8 * k + j], &sentinel, 4) != 0;
+        }
+    }
+    return bad + (*lanes == 0);
+}
+
 /* The exact reference on camera rays: no unexcused wrong answer; the hit calls on a
  * sphere's hit; secondary rays from the spawn helper never hit their own sphere. */
 static int exact(const char *what, const eb_geom *g, const eb_ref *ref, const eb_rays *cam,
@@ -600,6 +659,10 @@ static void run(RTCDevice dev, const eb_scene *s, eb_rays *r, float *tfar0, uint
                 }
                 snprintf(what, sizeof what, "%s: in an instance", vn);
                 report(instance(dev, sc, r), what);
+                int lanes = 0, bad = packet_spawns(sc, geo[1], r, &lanes);
+                snprintf(what, sizeof what,
+                         "%s: packet spawn origins as the one-ray ones, %d lanes", vn, lanes);
+                report(bad, what);
                 adapter_free(sc, geo);
             }
             if (!sc)
