@@ -29,13 +29,14 @@ static void usage(FILE *f)
             "                   textbook (scalar), auto-sse41, auto-avx2, auto-avx512,\n"
             "                   auto-neon (default: all this CPU runs)\n"
             "  --width=LIST     4,8,16,stream (default: each scenario's own)\n"
-            "  --scenario=LIST  names or groups: main, stream, skips, lanes, stress, leaf,\n"
-            "                   scene, all\n"
+            "  --scenario=LIST  names or groups: main, stream, skips, lanes, spheres, stress,\n"
+            "                   leaf, scene, all\n"
             "                   (main: coherent incoherent shadow bvh-leaf miss-mix hit-mix;\n"
             "                    stream: big-stream; skips: aligned general open infinite\n"
             "                    open-coherent infinite-coherent all-miss all-hit;\n"
             "                    lanes: half-zero half-subnormal;\n"
-            "                    leaf: leaf-l1 leaf-l2;\n"
+            "                    spheres: sphere-incoherent sphere-coherent sphere-far\n"
+            "                    sphere-leaf; leaf: leaf-l1 leaf-l2 sphere-leaf;\n"
             "                    stress: stress-<category of tests/ref/gen.h>)\n"
             "  --quick          fewer and shorter samples, smaller big stream\n"
             "  --flush-subnormals  run with subnormals flushed to zero (x86 DAZ and FTZ,\n"
@@ -407,8 +408,7 @@ int main(int argc, char **argv)
     }
     leaf_report lr;
     memset(&lr, 0, sizeof lr);
-    if (workloads_selected_name(opt.scenarios, "leaf-l1", "leaf") ||
-        workloads_selected_name(opt.scenarios, "leaf-l2", "leaf")) {
+    if (leaf_selected(&opt)) {
         progress(&ctx, "leaf", "leaves against loops");
         leaf_run(&opt, &results, &lr);
         if (!lr.have)

@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
-"""check_png.py - runs the example tracer and checks its image.
+"""check_png.py - runs an example renderer (tracer, molecule) and checks its image.
 
-Usage: check_png.py <tracer> <out.png>
+Usage: check_png.py <program> <out.png>
 
 The PNG must parse (signature, chunk CRCs, zlib stream), have the size asked for, and
 look like a picture: many distinct colours, neither mostly background nor mostly one
@@ -48,11 +48,11 @@ def main():
         return 1
     gw, gh, px = read_png(out)
     distinct = len(set(px))
-    # the background is the sky: blue dominates; the bonds are anything else
+    # the background is the sky: blue dominates; the molecule is anything else
     objects = [p for p in px if not (p[2] > p[0] + 20 and p[2] > p[1])]
     reds = sum(1 for p in objects if p[0] > p[1] + 40 and p[0] > p[2] + 40)
     greys = sum(1 for p in objects if max(p) - min(p) < 20 and max(p) > 40)
-    print('png %dx%d: %d distinct colours, %d of %d pixels on bonds (%d red, %d grey)'
+    print('png %dx%d: %d distinct colours, %d of %d pixels on the molecule (%d red, %d grey)'
           % (gw, gh, distinct, len(objects), len(px), reds, greys))
     ok = (gw, gh) == (w, h) and distinct > 200 and 0.05 * len(px) < len(objects) < 0.95 * len(px) \
         and reds > 50 and greys > 50

@@ -11,6 +11,7 @@
  * prints the time per ray. -c traces camera rays only (shaded by u and the normal);
  * -p traces those in packets of eight (4 x 2 pixels) with cylray_intersect8 at the
  * leaves, for comparison with the single-ray leaf path of -c. */
+#include "bvh.h"
 #include "cylray.h"
 #include "png.h"
 
@@ -20,16 +21,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
-
-#ifndef LEAF_WIDTH
-#define LEAF_WIDTH 8
-#endif
-
-/* The leaf calls of the chosen width. */
-#define LW_CAT_(a, b) a##b
-#define LW_CAT(a, b) LW_CAT_(a, b)
-#define LW(name) LW_CAT(name, LEAF_WIDTH)
-typedef LW(cylray_leaf) leaf_t;
 
 /* ---- the scene: atoms on a branching chain, a bond between neighbours ------------ */
 
@@ -92,219 +83,14 @@ static int make_molecule(int n, atom **atoms_out, bond **bonds_out)
     return nb;
 }
 
-/* ---- a binned-SAH BVH over the cylinders' boxes, with cylray leaves -------------- */
-
-typedef struct node {
-    float lo[3], hi[3];
-    uint32_t index; /* inner: the first child (the second follows); leaf: the leaf */
-    uint32_t count; /* 0 for an inner node, else the number of cylinders in the leaf */
-} node;
-
-typedef struct bvh {
-    node *nodes;
-    leaf_t *leaves;
-    uint32_t *leaf_ids; /* for the packet path: leaf l's ids at l * LEAF_WIDTH + lane */
-    size_t nnodes, nleaves;
-} bvh;
-
-typedef struct item {
-    float lo[3], hi[3], c[3];
-    uint32_t id;
-} item;
-
-static float area(const float lo[3], const float hi[3])
+/* The BVH's leaves: the bonds ids[0..n) of the cylinders ctx. */
+static cylray_status bond_leaf(void *ctx, leaf_t *leaf, const uint32_t *ids, size_t n)
 {
-    float e[3] = {hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]};
-    return e[0] * e[1] + e[1] * e[2] + e[2] * e[0];
-}
-
-static void grow(float lo[3], float hi[3], const float l[3], const float h[3])
-{
-    for (int k = 0; k < 3; k++)
-        lo[k] = fminf(lo[k], l[k]), hi[k] = fmaxf(hi[k], h[k]);
-}
-
-#define NBINS 12
-
-/* Builds the subtree of it[0..n) into node ni; returns 0 on success. */
-static int build(bvh *t, item *it, size_t n, size_t ni, const cylray_cylinder *cyl)
-{
-    node *nd = &t->nodes[ni];
-    float lo[3] = {FLT_MAX, FLT_MAX, FLT_MAX}, hi[3] = {-FLT_MAX, -FLT_MAX, -FLT_MAX};
-    float clo[3] = {FLT_MAX, FLT_MAX, FLT_MAX}, chi[3] = {-FLT_MAX, -FLT_MAX, -FLT_MAX};
-    for (size_t i = 0; i < n; i++) {
-        grow(lo, hi, it[i].lo, it[i].hi);
-        grow(clo, chi, it[i].c, it[i].c);
-    }
-    int best_axis = -1;
-    size_t best_split = 0;
-    float best_cost = INFINITY;
-    if (n > LEAF_WIDTH) {
-        for (int k = 0; k < 3; k++) {
-            float ext = chi[k] - clo[k];
-            if (!(ext > 0))
-                continue;
-            size_t cnt[NBINS] = {0};
-            float blo[NBINS][3], bhi[NBINS][3];
-            for (int b = 0; b < NBINS; b++)
-                for (int j = 0; j < 3; j++)
-                    blo[b][j] = FLT_MAX, bhi[b][j] = -FLT_MAX;
-            for (size_t i = 0; i < n; i++) {
-                int b = (int)((it[i].c[k] - clo[k]) / ext * NBINS);
-                b = b < 0 ? 0 : b >= NBINS ? NBINS - 1 : b;
-                cnt[b]++;
-                grow(blo[b], bhi[b], it[i].lo, it[i].hi);
-            }
-            /* cost of splitting after bin s: area-weighted counts of both sides */
-            float rlo[3] = {FLT_MAX, FLT_MAX, FLT_MAX}, rhi[3] = {-FLT_MAX, -FLT_MAX, -FLT_MAX};
-            float rarea[NBINS];
-            size_t rcnt[NBINS], r = 0;
-            for (int b = NBINS - 1; b > 0; b--) {
-                grow(rlo, rhi, blo[b], bhi[b]);
-                r += cnt[b];
-                rarea[b] = area(rlo, rhi), rcnt[b] = r;
-            }
-            float llo[3] = {FLT_MAX, FLT_MAX, FLT_MAX}, lhi[3] = {-FLT_MAX, -FLT_MAX, -FLT_MAX};
-            size_t l = 0;
-            for (int b = 0; b < NBINS - 1; b++) {
-                grow(llo, lhi, blo[b], bhi[b]);
-                l += cnt[b];
-                if (!l || !rcnt[b + 1])
-                    continue;
-                float cost = area(llo, lhi) * (float)l + rarea[b + 1] * (float)rcnt[b + 1];
-                if (cost < best_cost)
-                    best_cost = cost, best_axis = k, best_split = (size_t)b;
-            }
-        }
-    }
-    if (best_axis < 0 && n > LEAF_WIDTH) { /* all centroids alike: split the list */
-        best_axis = 0;
-        best_split = NBINS;
-    }
-    if (n <= LEAF_WIDTH) {
-        cylray_cylinder c[LEAF_WIDTH];
-        uint32_t ids[LEAF_WIDTH];
-        for (size_t i = 0; i < n; i++)
-            c[i] = cyl[it[i].id], ids[i] = it[i].id;
-        leaf_t *leaf = &t->leaves[t->nleaves];
-        if (LW(cylray_leaf_prepare)(leaf, c, ids, n) != CYLRAY_OK)
-            return -1;
-        /* the leaf's box: one call, rounded outward, exact cylinders inside */
-        if (LW(cylray_leaf_bounds)(leaf, nd->lo, nd->hi) != CYLRAY_OK)
-            return -1;
-        memcpy(&t->leaf_ids[t->nleaves * LEAF_WIDTH], ids, n * sizeof ids[0]);
-        nd->index = (uint32_t)t->nleaves++;
-        nd->count = (uint32_t)n;
-        return 0;
-    }
-    size_t mid = 0;
-    if (best_split == NBINS) {
-        mid = n / 2;
-    } else {
-        int k = best_axis;
-        float ext = chi[k] - clo[k];
-        for (size_t i = 0; i < n; i++) {
-            int b = (int)((it[i].c[k] - clo[k]) / ext * NBINS);
-            b = b < 0 ? 0 : b >= NBINS ? NBINS - 1 : b;
-            if ((size_t)b <= best_split) {
-                item tmp = it[i];
-                it[i] = it[mid];
-                it[mid++] = tmp;
-            }
-        }
-    }
-    memcpy(nd->lo, lo, sizeof lo);
-    memcpy(nd->hi, hi, sizeof hi);
-    size_t first = t->nnodes;
-    t->nnodes += 2;
-    nd->index = (uint32_t)first;
-    nd->count = 0;
-    if (build(t, it, mid, first, cyl))
-        return -1;
-    return build(t, it + mid, n - mid, first + 1, cyl);
-}
-
-static int bvh_build(bvh *t, const cylray_cylinder *cyl, size_t n)
-{
-    item *it = malloc(n * sizeof *it);
-    t->nodes = malloc(2 * n * sizeof *t->nodes);
-    /* leaves need their vector alignment: aligned_alloc, a multiple of it in size */
-    t->leaves = aligned_alloc(_Alignof(leaf_t), n * sizeof(leaf_t));
-    t->leaf_ids = malloc(n * LEAF_WIDTH * sizeof *t->leaf_ids);
-    if (!it || !t->nodes || !t->leaves || !t->leaf_ids)
-        return -1;
-    for (size_t i = 0; i < n; i++) {
-        cylray_prepared p;
-        if (cylray_prepare(&p, &cyl[i]) != CYLRAY_OK || cylray_bounds(&p, it[i].lo, it[i].hi))
-            return -1;
-        for (int k = 0; k < 3; k++)
-            it[i].c[k] = 0.5f * (it[i].lo[k] + it[i].hi[k]);
-        it[i].id = (uint32_t)i;
-    }
-    t->nnodes = 1;
-    t->nleaves = 0;
-    int r = build(t, it, n, 0, cyl);
-    free(it);
-    return r;
-}
-
-/* The slab test: does the ray meet the box within [tmin, tmax]? */
-static int hits_box(const node *nd, const float o[3], const float inv[3], float tmin,
-                    float tmax)
-{
-    for (int k = 0; k < 3; k++) {
-        float t0 = (nd->lo[k] - o[k]) * inv[k], t1 = (nd->hi[k] - o[k]) * inv[k];
-        if (t0 > t1) {
-            float s = t0;
-            t0 = t1, t1 = s;
-        }
-        /* NaN (0 * inf: the origin on a slab of a parallel ray) keeps the bound */
-        tmin = t0 > tmin ? t0 : tmin;
-        tmax = t1 < tmax ? t1 : tmax;
-    }
-    return tmin <= tmax;
-}
-
-/* Closest hit (occlusion when hit is NULL); *leaf_out the leaf of the hit. */
-static int trace(const bvh *t, cylray_ray1 *ray, cylray_hit1 *hit, unsigned flags,
-                 const leaf_t **leaf_out)
-{
-    float inv[3];
-    for (int k = 0; k < 3; k++)
-        inv[k] = 1.0f / ray->d[k];
-    uint32_t stack[64];
-    int sp = 0, found = 0;
-    stack[sp++] = 0;
-    while (sp) {
-        const node *nd = &t->nodes[stack[--sp]];
-        if (!hits_box(nd, ray->o, inv, ray->tmin, ray->tmax))
-            continue;
-        if (nd->count) {
-            const leaf_t *leaf = &t->leaves[nd->index];
-            if (!hit) {
-                if (LW(cylray_leaf_occluded)(leaf, ray, flags))
-                    return 1;
-            } else if (LW(cylray_leaf_intersect)(leaf, ray, hit, flags)) {
-                found = 1; /* ray->tmax is now the hit's t: farther boxes drop out */
-                *leaf_out = leaf;
-            }
-            continue;
-        }
-        /* the nearer child (by the ray's sign on the parent's widest axis) last, so
-         * that it is popped first */
-        int k = 0;
-        for (int j = 1; j < 3; j++)
-            if (nd->hi[j] - nd->lo[j] > nd->hi[k] - nd->lo[k])
-                k = j;
-        uint32_t a = nd->index, b = nd->index + 1;
-        if (ray->d[k] < 0) {
-            uint32_t s = a;
-            a = b, b = s;
-        }
-        stack[sp++] = b;
-        stack[sp++] = a;
-    }
-    return found;
+    const cylray_cylinder *cyl = ctx;
+    cylray_cylinder c[LEAF_WIDTH];
+    for (size_t i = 0; i < n; i++)
+        c[i] = cyl[ids[i]];
+    return LW(cylray_leaf_prepare)(leaf, c, ids, n);
 }
 
 /* ---- shading ----------------------------------------------------------------------- */
@@ -358,7 +144,7 @@ static void radiance(scene *s, const float o[3], const float d[3], float c[3])
     cylray_hit1 hit;
     const leaf_t *leaf = NULL;
     s->rays[0]++;
-    if (!trace(&s->t, &ray, &hit, CYLRAY_NORMAL, &leaf)) {
+    if (!bvh_trace(&s->t, &ray, &hit, CYLRAY_NORMAL, &leaf)) {
         sky(d, c);
         return;
     }
@@ -395,7 +181,7 @@ static void radiance(scene *s, const float o[3], const float d[3], float c[3])
         sh.tmin = 0.0f;
         sh.tmax = dist;
         s->rays[1]++;
-        if (!trace(&s->t, &sh, NULL, 0, NULL))
+        if (!bvh_trace(&s->t, &sh, NULL, 0, NULL))
             direct = cosl;
     }
     /* one diffuse bounce: sky light unless the bounce meets another bond */
@@ -407,7 +193,7 @@ static void radiance(scene *s, const float o[3], const float d[3], float c[3])
     br.tmin = 0.0f;
     br.tmax = INFINITY;
     s->rays[2]++;
-    if (!trace(&s->t, &br, NULL, 0, NULL))
+    if (!bvh_trace(&s->t, &br, NULL, 0, NULL))
         sky(w, bounce);
     for (int k = 0; k < 3; k++)
         c[k] = seam * alb[k] * (0.8f * direct + 0.6f * bounce[k]);
@@ -429,12 +215,12 @@ static uint32_t trace8(const scene *s, cylray_ray8 *r, cylray_hit8 *h, uint32_t 
     int sp = 0;
     stack[sp++] = 0;
     while (sp) {
-        const node *nd = &s->t.nodes[stack[--sp]];
+        const bvh_node *nd = &s->t.nodes[stack[--sp]];
         uint32_t m = 0;
         for (int i = 0; i < 8; i++) {
             const float o[3] = {r->ox[i], r->oy[i], r->oz[i]};
             const float iv[3] = {inv[0][i], inv[1][i], inv[2][i]};
-            m |= (uint32_t)hits_box(nd, o, iv, r->tmin[i], r->tmax[i]) << i;
+            m |= (uint32_t)bvh_hits_box(nd, o, iv, r->tmin[i], r->tmax[i]) << i;
         }
         m &= active;
         if (!m)
@@ -463,7 +249,7 @@ static void camera_only1(scene *s, const float o[3], const float d[3], float c[3
     cylray_hit1 hit;
     const leaf_t *leaf = NULL;
     s->rays[0]++;
-    if (!trace(&s->t, &ray, &hit, CYLRAY_NORMAL, &leaf)) {
+    if (!bvh_trace(&s->t, &ray, &hit, CYLRAY_NORMAL, &leaf)) {
         sky(d, c);
         return;
     }
@@ -558,12 +344,23 @@ int main(int argc, char **argv)
         if (cylray_cylinder_from_endpoints(&cyl[i], atoms[bonds[i].a].p, atoms[bonds[i].b].p,
                                            0.18f, CYLRAY_CAPPED) != CYLRAY_OK)
             return 1;
-        grow(lo, hi, atoms[bonds[i].b].p, atoms[bonds[i].b].p);
+        for (int k = 0; k < 3; k++) {
+            lo[k] = fminf(lo[k], atoms[bonds[i].b].p[k]);
+            hi[k] = fmaxf(hi[k], atoms[bonds[i].b].p[k]);
+        }
     }
     scene s;
     memset(&s, 0, sizeof s);
     s.atoms = atoms, s.bonds = bonds;
-    if (bvh_build(&s.t, cyl, (size_t)nb)) {
+    bvh_item *items = malloc((size_t)nb * sizeof *items);
+    for (int i = 0; items && i < nb; i++) {
+        cylray_prepared p;
+        if (cylray_prepare(&p, &cyl[i]) != CYLRAY_OK ||
+            cylray_bounds(&p, items[i].lo, items[i].hi))
+            return 1;
+        items[i].id = (uint32_t)i;
+    }
+    if (!items || bvh_build(&s.t, items, (size_t)nb, bond_leaf, cyl)) {
         fprintf(stderr, "tracer: BVH build failed\n");
         return 1;
     }
@@ -650,9 +447,8 @@ int main(int argc, char **argv)
     free(cyl);
     free(atoms);
     free(bonds);
-    free(s.t.nodes);
-    free(s.t.leaves);
-    free(s.t.leaf_ids);
+    free(items);
+    bvh_free(&s.t);
     free(s.prep);
     return rc ? 1 : 0;
 }

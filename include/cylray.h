@@ -346,7 +346,7 @@ CYLRAY_API cylray_status cylray_cylinder_from_endpoints(cylray_cylinder *out, co
  * never hits again, on any ISA, the surface it leaves at that point (nor, at a rim, the
  * other surface through it), and it starts strictly on its own side of each of them, by
  * twice the kernels' tested tolerance and no more, whenever that offset is below a
- * quarter of the radius and of the half height. (The side form sending a ray outward
+ * quarter of the radius and of the half height (a sphere: of the radius). (The side form sending a ray outward
  * along a w that dips back into the side starts it up to three tolerances further
  * out: near a tangency, far enough that the exact ray and the kernels miss alike.) The tolerance includes that of t, a
  * float whose spacing at 0 is 2^-149: along a direction w the origin keeps about
@@ -355,7 +355,10 @@ CYLRAY_API cylray_status cylray_cylinder_from_endpoints(cylray_cylinder *out, co
  *
  * For a hit of the ray o + t d at t on `part` of cyl: p, the hit point (moved onto
  * the surface of that part where that pays), and *err, a bound on the distance from p
- * to the exact surface of that part. */
+ * to the exact surface of that part. A sphere (any part is taken for its side): p is
+ * c + R (x - c) / |x - c| with x = o + t d, evaluated in double and rounded to float,
+ * and *err p's distance from the exact sphere, evaluated with its rounding error (less
+ * than 2^-50 R) and rounded up to float. */
 CYLRAY_API void cylray_hit_point(const cylray_prepared *cyl, const float o[3], const float d[3],
                                  float t, int32_t part, float p[3], float *err);
 /* The same, given also the normal n the kernel returned for that hit (CYLRAY_NORMAL;
@@ -365,13 +368,16 @@ CYLRAY_API void cylray_hit_point(const cylray_prepared *cyl, const float o[3], c
  * tube from the hit the kernel found; on the side this form puts p at the kernel's
  * azimuth, so that the exact normal at p is n's to within float rounding, and a tracer
  * that shades, face-forwards and picks the spawn side with n stays consistent with p.
- * err is a bound as above. A tracer that asks for normals should use this form. */
+ * err is a bound as above. A tracer that asks for normals should use this form. A
+ * sphere: p is c + R n / |n|, n taken outward as on the side, and *err as above. */
 CYLRAY_API void cylray_hit_point_normal(const cylray_prepared *cyl, const float o[3],
                                         const float d[3], float t, int32_t part,
                                         const float n[3], float p[3], float *err);
 /* The origin for a new ray that leaves that hit in direction w, to be traced with
  * tmin = 0: strictly on w's side of every surface of cyl that passes within err of p
- * (at a rim, of both). */
+ * (at a rim, of both). A sphere has one surface: the origin is moved along the radius
+ * through p by the rule of the side, its margin the kernels' tolerance for the sphere
+ * (2 ulps of the origin's coordinates and of R), doubled. */
 CYLRAY_API void cylray_spawn_origin(const cylray_prepared *cyl, const float p[3], float err,
                                     int32_t part, const float w[3], float out[3]);
 /* The spawn side the tracer chooses. A tracer picks reflection or transmission (or
@@ -388,7 +394,8 @@ CYLRAY_API void cylray_spawn_origin(const cylray_prepared *cyl, const float p[3]
  * the exact ray from that origin can (half that distance at the least): a ray sent
  * back into the surface meets it where the geometry says, never at its own origin.
  * Where the side requested is w's side of the exact normal at p, the origin is
- * cylray_spawn_origin's, bit for bit. */
+ * cylray_spawn_origin's, bit for bit. A sphere: its one surface is the part, cleared to
+ * the side asked for by the rules of the side (a w that dips back into it included). */
 CYLRAY_API void cylray_spawn_origin_side(const cylray_prepared *cyl, const float p[3],
                                          float err, int32_t part, int outward, const float w[3],
                                          float out[3]);
@@ -475,7 +482,8 @@ CYLRAY_API void cylray_spawn_stream_side(const cylray_prepared *cyl, const cylra
                                          const cylray_points *origins, size_t n);
 
 /* Leaves: the hit a leaf query returned (hit->lane names the cylinder; ray as it came
- * back from the query, whose o and d are unchanged). */
+ * back from the query, whose o and d are unchanged). A leaf of spheres: each lane as the
+ * prepared sphere, bit for bit. */
 CYLRAY_API void cylray_leaf_hit_point4(const cylray_leaf4 *leaf, const cylray_ray1 *ray,
                                        const cylray_hit1 *hit, float p[3], float *err);
 CYLRAY_API void cylray_leaf_hit_point8(const cylray_leaf8 *leaf, const cylray_ray1 *ray,
@@ -700,8 +708,9 @@ CYLRAY_API const char *cylray_isa_name(cylray_isa isa);
  * and each is the nearest float outside it or the next one (the smallest float box,
  * exactly, when the axis lies along a coordinate axis). Only where a face's exact
  * value cancels to below 2^-70 of |center_k| + the extent may it lie further out, by at
- * most 2^-95 of that. Returns CYLRAY_EINVAL and writes nothing for an infinite
- * cylinder (it has no box), a NULL pointer, or a cyl cylray_prepare did not fill. */
+ * most 2^-95 of that. A sphere: center_k -+ R, each face the nearest float outside the
+ * exact one (the smallest float box). Returns CYLRAY_EINVAL and writes nothing for an
+ * infinite cylinder (it has no box), a NULL pointer, or a cyl cylray_prepare did not fill. */
 CYLRAY_API cylray_status cylray_bounds(const cylray_prepared *cyl, float lo[3], float hi[3]);
 /* The box of a leaf's used lanes (the union of their cylray_bounds boxes); CYLRAY_EINVAL
  * and nothing written when a lane is infinite or no lane is used. */
@@ -728,7 +737,12 @@ CYLRAY_API cylray_status cylray_leaf_bounds16(const cylray_leaf16 *leaf, float l
  * twice the rod's width across; at least 1 (a cylinder along a coordinate axis: 1) and
  * at most CYLRAY_SPLIT_MAX. Writes k boxes to lo[0..k), hi[0..k) and returns k; with
  * lo or hi NULL, writes nothing and returns the k it would use. Returns 0 and writes
- * nothing for an infinite cylinder or a cyl cylray_prepare did not fill. */
+ * nothing for an infinite cylinder or a cyl cylray_prepare did not fill.
+ *
+ * A sphere is cut across z, the axis of its surface coordinates: slice i lies between
+ * the planes z = center_z + R q_i and center_z + R q_(i+1), its box spanning center_x
+ * and center_y -+ R sqrt(1 - q^2) at the q of [q_i, q_(i+1)] nearest 0, rounded
+ * outward as above. k = 0 gives 1: the box of cylray_bounds. */
 #define CYLRAY_SPLIT_MAX 32
 CYLRAY_API size_t cylray_split_boxes(const cylray_prepared *cyl, size_t k, float (*lo)[3],
                                      float (*hi)[3]);
@@ -760,11 +774,20 @@ CYLRAY_API size_t cylray_split_boxes(const cylray_prepared *cyl, size_t k, float
  * and dpdv to within 2^-20 of their length (those that turn with phi: where rho >
  * 2^-60 |r|, short of which phi says little). Any of uv, dpdu, dpdv may be NULL: it is not
  * written, and what only it needs is not computed. Nothing is written for a part other
- * than SIDE, CAP_LO and CAP_HI, or a cyl cylray_prepare did not fill. */
+ * than SIDE, CAP_LO and CAP_HI, or a cyl cylray_prepare did not fill.
+ *
+ * A sphere: pbrt-v4's full sphere about the z axis through its center, at the point
+ * (x, y, z) = R r / |r| where the ray from the center through p meets it (r = p -
+ * center; the center itself counts as the -z pole): u = phi / 2pi, phi = atan2(y, x) in
+ * [0, 2pi) (0 on the z axis; a u that rounds to 1 is the float below 1); v = 1 -
+ * theta / pi, theta = acos(z / R): 0 at the -z pole, 1 at +z; dpdu = 2pi (-y, x, 0) (0
+ * at the poles); dpdv = pi (-z cos(phi), -z sin(phi), R sin(theta)). u and v within
+ * one float ulp of their exact values at p, dpdu and dpdv within 2^-20 of their length.
+ * Only the side: nothing is written for another part. */
 CYLRAY_API void cylray_surface(const cylray_prepared *cyl, const float p[3], int32_t part,
                                float uv[2], float dpdu[3], float dpdv[3]);
 /* The same for the hit a leaf query returned (hit->lane and hit->part name the cylinder
- * and the part); nothing is written for a lane the leaf does not use. */
+ * or sphere and the part); nothing is written for a lane the leaf does not use. */
 CYLRAY_API void cylray_leaf_surface4(const cylray_leaf4 *leaf, const cylray_hit1 *hit,
                                      const float p[3], float uv[2], float dpdu[3],
                                      float dpdv[3]);

@@ -68,6 +68,9 @@ typedef struct workload {
     cylray_cylinder *cyl;  /* ncyl */
     cylray_prepared *prep; /* ncyl, 64-byte aligned */
     tb_cylinder *tb;       /* ncyl, for the textbook peer */
+    cylray_sphere *sph;    /* non-NULL: the shapes are ncyl spheres (cyl unused; prep
+                                   and tbs from these) */
+    tb_sphere *tbs;        /* ncyl with sph, for the textbook peer */
     unsigned ops;          /* bit per OP_* measured */
     unsigned widths;       /* bit per BW_* measured (before the --width filter) */
     int textbook;          /* also time and check the textbook peer */

@@ -151,7 +151,7 @@ static uint64_t pass_stream(const runner *x, size_t b)
     return acc;
 }
 
-/* The textbook peer through the same stream contract (single cylinder or grouped). */
+/* The textbook peer through the same stream contract (single shape or grouped). */
 static uint64_t pass_textbook(const runner *x, size_t b)
 {
     const size_t n = x->w->batch, off = b * n;
@@ -162,8 +162,8 @@ static uint64_t pass_textbook(const runner *x, size_t b)
     for (size_t g = off; g < off + n; g += grp) {
         cylray_rays R = stream_rays(x, g);
         cylray_hits H = stream_hits(x, g);
-        const tb_cylinder *tb = &x->w->tb[x->w->grouped ? g / grp : 0];
-        acc += x->tb(tb, &R, &H, grp);
+        const size_t c = x->w->grouped ? g / grp : 0;
+        acc += x->tbs ? x->tbs(&x->w->tbs[c], &R, &H, grp) : x->tb(&x->w->tb[c], &R, &H, grp);
     }
     return acc;
 }
@@ -196,8 +196,11 @@ int runner_init(runner *x, const workload *w, int isa, int width_id, int op)
     x->restore_outside = w->big;
     const raysoa *r = &w->rays;
     if (bench_is_textbook(isa)) {
-        x->tb = tb_variant(isa - BENCH_ISA_TEXTBOOK);
-        if (!x->tb || op != OP_NORMAL || width_id != BW_STREAM)
+        if (w->sph)
+            x->tbs = tb_sphere_variant(isa - BENCH_ISA_TEXTBOOK);
+        else
+            x->tb = tb_variant(isa - BENCH_ISA_TEXTBOOK);
+        if ((!x->tb && !x->tbs) || op != OP_NORMAL || width_id != BW_STREAM)
             return -1;
         x->pass = pass_textbook;
     } else {

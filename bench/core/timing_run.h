@@ -13,6 +13,7 @@ struct runner {
     const workload *w;
     const cylray_kernels *k; /* NULL for the textbook peer */
     tb_stream_fn tb;         /* the textbook peer's build, or NULL */
+    tb_sphere_fn tbs;        /* the same for a workload of spheres */
     int op, width_id, restore_outside;
     unsigned flags;
     pass_fn pass;

@@ -234,6 +234,14 @@ void rays_generate(raysoa *r, ray_kind kind, const cylray_cylinder *cy, double e
             put(r, i, o, d, 0, INFINITY);
         }
         break;
+    case RK_VERY_FAR:
+        /* Where the textbook's b^2 - (d.d) c loses everything: c = |w|^2 - R^2 keeps
+         * no bit of R^2 once |w| passes 2^12 R. */
+        for (size_t i = 0; i < r->n; i++) {
+            aimed_ray(&f, g, f.R * pow(10, rng_range(g, 4, 6)), o, d);
+            put(r, i, o, d, 0, INFINITY);
+        }
+        break;
     case RK_CAMERA: {
         /* 64 pixels wide; pixels ordered in 4x4 tiles so that any 4, 8 or 16
          * consecutive rays form a compact 4x1, 4x2 or 4x4 block of the image. */
@@ -317,6 +325,22 @@ cylray_cylinder cyl_general(int kind)
                          0.75f,
                          kind == 0 ? INFINITY : 1.5f,
                          kind == 2 ? CYLRAY_CAPPED : 0u};
+    return c;
+}
+
+cylray_sphere sph_general(void)
+{
+    const cylray_cylinder c = cyl_general(2);
+    cylray_sphere s = {{c.center[0], c.center[1], c.center[2]}, c.radius};
+    return s;
+}
+
+cylray_cylinder sph_box(const cylray_sphere *s)
+{
+    cylray_cylinder c = cyl_general(2);
+    for (int k = 0; k < 3; k++)
+        c.center[k] = s->center[k];
+    c.radius = c.half_height = s->radius;
     return c;
 }
 

@@ -38,7 +38,8 @@ typedef enum ray_kind {
     RK_ALL_MISS,   /* every ray misses even the infinite cylinder */
     RK_ALL_HIT,    /* every ray hits */
     RK_FAR,        /* origins 1e2..1e5 radii away, aimed at the cylinder's box */
-    RK_CLUSTER     /* random rays through a box holding many cylinders */
+    RK_CLUSTER,    /* random rays through a box holding many cylinders */
+    RK_VERY_FAR    /* origins 1e4..1e6 radii away, aimed at the solid's box */
 } ray_kind;
 
 /* Fills r (already allocated with r->n rays) with rays of that kind for the solid
@@ -52,6 +53,12 @@ void rays_generate(raysoa *r, ray_kind kind, const cylray_cylinder *geom, double
  * 2 capped. */
 cylray_cylinder cyl_general(int kind);
 cylray_cylinder cyl_aligned(int kind);
+
+/* The sphere of the sphere scenarios (center and radius of cyl_general), and the
+ * stand-in solid its rays are drawn for: a cylinder of half height R around it, whose
+ * box is the sphere's. */
+cylray_sphere sph_general(void);
+cylray_cylinder sph_box(const cylray_sphere *s);
 
 /* Rotates a ray set drawn around cyl_aligned(k) into the frame of cyl_general(k):
  * same local rays, general axis (rounded once). */

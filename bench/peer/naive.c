@@ -14,7 +14,8 @@
  * this is the speed a user gets without accuracy.
  *
  * The file is compiled once per ISA into its own static library with the flags a user
- * would pass (bench/meson.build), naming its one function tb_stream_<TB_VARIANT>. */
+ * would pass (bench/meson.build), naming its functions tb_stream_<TB_VARIANT> (the
+ * cylinder), tb_sphere_stream_<TB_VARIANT> and tb_sphere_run_<TB_VARIANT>. */
 #include "textbook.h"
 
 #include <math.h>
@@ -114,4 +115,106 @@ size_t TB_CAT(tb_stream_, TB_VARIANT)(const tb_cylinder *cy, const cylray_rays *
         count += hit;
     }
     return (size_t)count;
+}
+
+/* The textbook sphere, in the same loop form and under the same contract:
+ *
+ *   b = w.d,  c = w.w - R^2,  disc = b^2 - (d.d) c,  t = (-b -/+ sqrt(disc)) / d.d
+ *
+ * the near root when it lies in [tmin, tmax], else the far one (the ray starts inside),
+ * normal (w + t d) / R. Far origins cancel in c and in -b + sqrt(disc) alike. */
+size_t TB_CAT(tb_sphere_stream_, TB_VARIANT)(const tb_sphere *sp, const cylray_rays *rays,
+                                             const cylray_hits *hits, size_t n)
+{
+    const float *restrict ox = rays->ox, *restrict oy = rays->oy, *restrict oz = rays->oz;
+    const float *restrict dxs = rays->dx, *restrict dys = rays->dy, *restrict dzs = rays->dz;
+    const float *restrict tmin = rays->tmin;
+    float *restrict tmax = rays->tmax;
+    float *restrict t = hits->t, *restrict nx = hits->nx, *restrict ny = hits->ny,
+                    *restrict nz = hits->nz;
+    int32_t *restrict part = hits->part;
+    const float cx = sp->c[0], cyy = sp->c[1], cz = sp->c[2];
+    const float rr = sp->rr, inv_r = sp->inv_r;
+    int32_t count = 0;
+
+    TB_INDEPENDENT
+    for (size_t i = 0; i < n; i++) {
+        const float dx = dxs[i], dy = dys[i], dz = dzs[i];
+        const float wx = ox[i] - cx, wy = oy[i] - cyy, wz = oz[i] - cz;
+        const float dd = dx * dx + dy * dy + dz * dz;
+        const float b = dx * wx + dy * wy + dz * wz;
+        const float c = wx * wx + wy * wy + wz * wz - rr;
+        const float disc = b * b - dd * c;
+        const float s = sqrtf(disc); /* NaN when disc < 0: every test below fails */
+        const float t0 = (-b - s) / dd, t1 = (-b + s) / dd;
+        const float lo = tmin[i], hi = tmax[i];
+        const int32_t ok0 = (t0 >= lo) & (t0 <= hi);
+        const int32_t ok1 = (t1 >= lo) & (t1 <= hi);
+        const int32_t hit = ok0 | ok1;
+        const float best = ok0 ? t0 : ok1 ? t1 : INFINITY;
+        const float mx = (wx + best * dx) * inv_r;
+        const float my = (wy + best * dy) * inv_r;
+        const float mz = (wz + best * dz) * inv_r;
+        const int32_t p =
+            dx * mx + dy * my + dz * mz > 0 ? CYLRAY_SIDE | CYLRAY_BACKFACE : CYLRAY_SIDE;
+        t[i] = best;
+        tmax[i] = best < hi ? best : hi;
+        nx[i] = mx;
+        ny[i] = my;
+        nz[i] = mz;
+        part[i] = hit ? p : CYLRAY_MISS;
+        count += hit;
+    }
+    return (size_t)count;
+}
+
+/* One ray against spheres one at a time, closest hit kept through tmax (any hit for
+ * occlusion): the scalar loop over a leaf's spheres a tracer would write. Only the
+ * build without the vectorizer is used (the leaf scenario's textbook loop). Returns the
+ * index + 1 of the sphere hit, 0 for none. */
+uint32_t TB_CAT(tb_sphere_run_, TB_VARIANT)(const tb_sphere *sp, int n, cylray_ray1 *ray,
+                                            cylray_hit1 *hit, unsigned flags, int occluded)
+{
+    const float dx = ray->d[0], dy = ray->d[1], dz = ray->d[2];
+    const float dd = dx * dx + dy * dy + dz * dz, lo = ray->tmin;
+    float hi = ray->tmax;
+    uint32_t found = 0;
+    for (int k = 0; k < n; k++) {
+        const tb_sphere *q = &sp[k];
+        const float wx = ray->o[0] - q->c[0], wy = ray->o[1] - q->c[1],
+                    wz = ray->o[2] - q->c[2];
+        const float b = dx * wx + dy * wy + dz * wz;
+        const float c = wx * wx + wy * wy + wz * wz - q->rr;
+        const float disc = b * b - dd * c;
+        if (!(disc >= 0))
+            continue;
+        const float s = sqrtf(disc);
+        float tt = (-b - s) / dd;
+        if (!(tt >= lo))
+            tt = (-b + s) / dd;
+        if (!(tt >= lo && tt <= hi))
+            continue;
+        found = (uint32_t)k + 1;
+        if (occluded)
+            return found;
+        hi = tt;
+    }
+    if (found && !occluded) {
+        const tb_sphere *q = &sp[found - 1];
+        const float wx = ray->o[0] - q->c[0], wy = ray->o[1] - q->c[1],
+                    wz = ray->o[2] - q->c[2];
+        const float mx = (wx + hi * dx) * q->inv_r, my = (wy + hi * dy) * q->inv_r,
+                    mz = (wz + hi * dz) * q->inv_r;
+        hit->t = hi;
+        hit->part =
+            dx * mx + dy * my + dz * mz > 0 ? CYLRAY_SIDE | CYLRAY_BACKFACE : CYLRAY_SIDE;
+        if (flags & CYLRAY_NORMAL) {
+            hit->n[0] = mx;
+            hit->n[1] = my;
+            hit->n[2] = mz;
+        }
+        hit->lane = found - 1;
+        ray->tmax = hi;
+    }
+    return found;
 }

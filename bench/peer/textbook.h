@@ -18,6 +18,14 @@ typedef struct tb_cylinder {
 
 void tb_prepare(tb_cylinder *out, const cylray_cylinder *in);
 
+/* A sphere as such a loop takes it: center, R^2 and 1 / R. */
+typedef struct tb_sphere {
+    float c[3];
+    float rr, inv_r;
+} tb_sphere;
+
+void tb_prepare_sphere(tb_sphere *out, const cylray_sphere *in);
+
 /* The builds of naive.c: the scalar one (vectorizer off) and one per ISA. */
 enum { TB_SCALAR, TB_SSE41, TB_AVX2, TB_AVX512, TB_NEON, TB_COUNT };
 
@@ -27,8 +35,18 @@ enum { TB_SCALAR, TB_SSE41, TB_AVX2, TB_AVX512, TB_NEON, TB_COUNT };
 typedef size_t (*tb_stream_fn)(const tb_cylinder *cy, const cylray_rays *rays,
                                const cylray_hits *hits, size_t n);
 
+typedef size_t (*tb_sphere_fn)(const tb_sphere *sp, const cylray_rays *rays,
+                               const cylray_hits *hits, size_t n);
+
 /* NULL when that build is absent or this CPU cannot run it. */
 tb_stream_fn tb_variant(int v);
+tb_sphere_fn tb_sphere_variant(int v);
+
+/* One ray against n spheres one at a time with the textbook formula (the scalar build):
+ * the closest hit (t, part, the normal with CYLRAY_NORMAL, lane = its index; ray->tmax
+ * = t), or with `occluded` the first. Returns the sphere's index + 1, or 0. */
+uint32_t tb_sphere_run_scalar(const tb_sphere *sp, int n, cylray_ray1 *ray, cylray_hit1 *hit,
+                              unsigned flags, int occluded);
 /* "textbook" for the scalar build, "auto-<isa>" for the vectorized ones. */
 const char *tb_variant_name(int v);
 

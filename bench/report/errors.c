@@ -32,29 +32,35 @@ static const char *disagree_cell(const result *r, char *buf, size_t n)
     return buf;
 }
 
+/* The groups whose scenarios pit cylray against the peer in this table. */
+static int peer_group(const char *group)
+{
+    return !strcmp(group, "main") || !strcmp(group, "spheres");
+}
+
 void report_peer(FILE *f, const result_list *l)
 {
     int any = 0;
     for (size_t i = 0; i < l->n && !any; i++)
-        any = is_auto(l->r[i].isa_id) && !strcmp(l->r[i].group, "main");
+        any = is_auto(l->r[i].isa_id) && peer_group(l->r[i].group);
     if (!any)
         return;
     fprintf(f,
             "\n== cylray against the textbook loop a user would write (naive.c, built per ISA "
-            "and auto-vectorized): same rays,\n   same capped cylinder, normals, calls of "
-            "%d rays in L1 ==\n",
+            "and auto-vectorized): same rays,\n   same capped cylinder (sphere-*: same "
+            "sphere), normals, calls of %d rays in L1 ==\n",
             BENCH_BATCH);
     fprintf(f, "   M rays/s; x peer: the peer's time over cylray's (>= 1: accuracy for free); "
                "error: p99 ulps, dN hit/miss or part\n   disagreements with the exact "
                "answer, !M of them unexcused by the tolerance band\n");
-    fprintf(f, "%-11s %-7s %9s %9s %-6s %-12s %9s %7s %7s | %-15s %-15s\n", "scenario", "isa",
+    fprintf(f, "%-17s %-7s %9s %9s %-6s %-12s %9s %7s %7s | %-15s %-15s\n", "scenario", "isa",
             "stream", "packet", "width", "peer", "peer", "x peer", "x peer", "cylray error",
             "peer error");
-    fprintf(f, "%-11s %-7s %9s %9s %-6s %-12s %9s %7s %7s |\n", "", "", "", "(best)", "", "",
+    fprintf(f, "%-17s %-7s %9s %9s %-6s %-12s %9s %7s %7s |\n", "", "", "", "(best)", "", "",
             "", "stream", "packet");
     for (size_t i = 0; i < l->n; i++) {
         const result *pr = &l->r[i];
-        if (!bench_is_textbook(pr->isa_id) || strcmp(pr->group, "main"))
+        if (!bench_is_textbook(pr->isa_id) || !peer_group(pr->group))
             continue;
         int isa = pr->isa_id - BENCH_ISA_TEXTBOOK;
         const result *st = find_result(l, pr->scenario, isa, BW_STREAM, OP_NORMAL);
@@ -65,7 +71,7 @@ void report_peer(FILE *f, const result_list *l)
                 pk = q;
         }
         char e1[32], e2[32];
-        fprintf(f, "%-11s %-7s ", pr->scenario, bench_isa_name(isa));
+        fprintf(f, "%-17s %-7s ", pr->scenario, bench_isa_name(isa));
         if (st)
             fprintf(f, "%9.1f ", st->mrays);
         else

@@ -69,6 +69,27 @@ static void log_ticks(FILE *f, double lo, double hi, int vertical)
         }
 }
 
+/* A point's marker by its category: cylinder ordinary (disc), far (square); sphere
+ * ordinary (triangle), far (open triangle). */
+static void marker(FILE *f, int cat, double x, double y, const char *col)
+{
+    if (cat == 0)
+        fprintf(f,
+                "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"5\" fill=\"%s\" fill-opacity=\"0.8\"/>\n",
+                x, y, col);
+    else if (cat == 1)
+        fprintf(f,
+                "<rect x=\"%.1f\" y=\"%.1f\" width=\"10\" height=\"10\" fill=\"none\" "
+                "stroke=\"%s\" stroke-width=\"2\"/>\n",
+                x - 5, y - 5, col);
+    else
+        fprintf(f,
+                "<polygon points=\"%.1f,%.1f %.1f,%.1f %.1f,%.1f\" fill=\"%s\" "
+                "fill-opacity=\"%s\" stroke=\"%s\" stroke-width=\"2\"/>\n",
+                x, y - 6, x - 6, y + 5, x + 6, y + 5, cat == 2 ? col : "none",
+                cat == 2 ? "0.8" : "1", col);
+}
+
 typedef struct point {
     double x, y;
     int variant, cat, isa;
@@ -76,16 +97,20 @@ typedef struct point {
 
 int svg_time_vs_error(const char *path, const result_list *l, const machine_info *m)
 {
-    /* Two stress categories if measured (ordinary and far), else whatever has errors. */
-    const char *cats[2] = {"stress-ordinary", "stress-far"};
-    const char *cat_label[2] = {"ordinary rays", "far origins (1e3-1e6 R)"};
+    /* The cylinder's two stress categories (ordinary and far) and the sphere's pair, if
+     * measured. */
+    enum { NCAT = 4 };
+    const char *cats[NCAT] = {"stress-ordinary", "stress-far", "sphere-incoherent",
+                              "sphere-far"};
+    const char *cat_label[NCAT] = {"ordinary rays", "far origins (1e3-1e6 R)",
+                                   "sphere, ordinary rays", "sphere, far (1e4-1e6 R)"};
     const int ops[3] = {OP_NORMAL, OP_REFINE, OP_FAST};
     const char *var_name[4] = {"default", "REFINE", "FAST", "textbook"};
     const char *var_col[4] = {"#1f77b4", "#2ca02c", "#d62728", "#111111"};
-    point pts[64];
+    point pts[160];
     int np = 0;
     const double floor_ulp = 0.1; /* p99 of 0 ulps is drawn at 0.1 on the log axis */
-    for (int c = 0; c < 2; c++)
+    for (int c = 0; c < NCAT; c++)
         for (int isa = 0; isa < BENCH_NISA; isa++)
             for (int v = 0; v < 3; v++) {
                 const result *r = NULL;
@@ -95,7 +120,7 @@ int svg_time_vs_error(const char *path, const result_list *l, const machine_info
                 } else {
                     r = find_result(l, cats[c], isa, BW_16, ops[v]);
                 }
-                if (!r || !r->have_err || np >= 64)
+                if (!r || !r->have_err || np >= 160)
                     continue;
                 point p = {r->ns.med, r->ulp_p99 > floor_ulp ? r->ulp_p99 : floor_ulp,
                            bench_is_textbook(isa) ? 3 : v, c, isa};
@@ -136,16 +161,7 @@ int svg_time_vs_error(const char *path, const result_list *l, const machine_info
     for (int i = 0; i < np; i++) {
         const point *p = &pts[i];
         double x = lx(p->x, x0, x1), y = ly(p->y, y0, y1);
-        if (p->cat == 0)
-            fprintf(
-                f,
-                "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"5\" fill=\"%s\" fill-opacity=\"0.8\"/>\n",
-                x, y, var_col[p->variant]);
-        else
-            fprintf(f,
-                    "<rect x=\"%.1f\" y=\"%.1f\" width=\"10\" height=\"10\" fill=\"none\" "
-                    "stroke=\"%s\" stroke-width=\"2\"/>\n",
-                    x - 5, y - 5, var_col[p->variant]);
+        marker(f, p->cat, x, y, var_col[p->variant]);
         /* labels staggered by variant, so points at one error level stay readable; the
          * textbook builds share one error level, so they alternate above and below */
         int stagger =
@@ -163,25 +179,22 @@ int svg_time_vs_error(const char *path, const result_list *l, const machine_info
                 "<circle cx=\"%d\" cy=\"%d\" r=\"5\" fill=\"%s\"/><text x=\"%d\" y=\"%d\" "
                 "font-size=\"12\">%s</text>\n",
                 lx0, ly0 + 20 * v, var_col[v], lx0 + 12, ly0 + 20 * v + 4, var_name[v]);
-    fprintf(f,
-            "<circle cx=\"%d\" cy=\"%d\" r=\"5\" fill=\"#999\"/><text x=\"%d\" y=\"%d\" "
-            "font-size=\"12\">%s</text>\n",
-            lx0, ly0 + 100, lx0 + 12, ly0 + 104, cat_label[0]);
-    fprintf(f,
-            "<rect x=\"%d\" y=\"%d\" width=\"10\" height=\"10\" fill=\"none\" stroke=\"#999\" "
-            "stroke-width=\"2\"/><text x=\"%d\" y=\"%d\" font-size=\"12\">%s</text>\n",
-            lx0 - 5, ly0 + 115, lx0 + 12, ly0 + 124, cat_label[1]);
+    for (int c = 0; c < NCAT; c++) {
+        marker(f, c, lx0, ly0 + 100 + 18 * c, "#999");
+        fprintf(f, "<text x=\"%d\" y=\"%d\" font-size=\"12\">%s</text>\n", lx0 + 12,
+                ly0 + 104 + 18 * c, cat_label[c]);
+    }
     fprintf(
         f, "<text x=\"%d\" y=\"%d\" font-size=\"10\" fill=\"#444\">R: REFINE, F: FAST</text>\n",
-        lx0 - 5, ly0 + 150);
+        lx0 - 5, ly0 + 186);
     fprintf(f,
             "<text x=\"%d\" y=\"%d\" font-size=\"10\" fill=\"#444\">textbook: naive.c, "
             "plain float; scalar</text>\n",
-            lx0 - 5, ly0 + 166);
+            lx0 - 5, ly0 + 202);
     fprintf(f,
             "<text x=\"%d\" y=\"%d\" font-size=\"10\" fill=\"#444\">and auto-vectorized "
             "per ISA (streams)</text>\n",
-            lx0 - 5, ly0 + 180);
+            lx0 - 5, ly0 + 216);
     fprintf(f, "</svg>\n");
     return fclose(f) ? -1 : 0;
 }

@@ -197,7 +197,8 @@ static void print_lanes(FILE *f, const result_list *l)
 /* ---- leaves against loops ------------------------------------------------------------- */
 
 static void print_leaf_row(FILE *f, const result_list *l, const char *scen, const char *isa,
-                           int wid, const char *m, const char *loop, const char *lane)
+                           int wid, const char *m, const char *loop, const char *lane,
+                           const char *tbloop)
 {
     const int ops[3] = {OP_T, OP_NORMAL, OP_OCC};
     const result *r[3];
@@ -216,26 +217,16 @@ static void print_leaf_row(FILE *f, const result_list *l, const char *scen, cons
     double xl = ratio(find_named(l, scen, loop, -1, OP_NORMAL), r[1]);
     double x1 = ratio(find_named(l, scen, lane, -1, OP_NORMAL), r[1]);
     double oc = ratio(r[1], r[2]);
-    fprintf(f, " | %7.2fx %8.2fx %10.2fx\n", xl, x1, oc);
+    fprintf(f, " | %7.2fx %8.2fx %10.2fx", xl, x1, oc);
+    if (tbloop)
+        fprintf(f, " %8.2fx", ratio(find_named(l, scen, tbloop, -1, OP_NORMAL), r[1]));
+    fprintf(f, "\n");
 }
 
-static void print_leaf(FILE *f, const result_list *l, const leaf_report *lr)
+static void print_leaf_cyl(FILE *f, const result_list *l, const leaf_report *lr,
+                           const char *lane, const char *sizes, const char *diffs)
 {
-    if (!lr->have)
-        return;
-    char lane[32];
-    snprintf(lane, sizeof lane, "1-lane:%s", lr->best);
-    /* the scene sizes run (a size not selected has no cylinders) */
-    char sizes[96] = "", diffs[96] = "";
     const char *tag[2] = {"leaf-l1", "leaf-l2"};
-    for (int s = 0, ks = 0, kd = 0; s < 2; s++) {
-        if (!lr->ncyl[s])
-            continue;
-        ks += snprintf(sizes + ks, sizeof sizes - (size_t)ks, "%s%d (%s)", ks ? ", " : "",
-                       lr->ncyl[s], tag[s]);
-        kd += snprintf(diffs + kd, sizeof diffs - (size_t)kd, "%s%zu (%s)", kd ? ", " : "",
-                       lr->diff[s], tag[s]);
-    }
     fprintf(f,
             "\n== leaf: one incoherent ray against %d cylinders (molecule bonds, pipes) in "
             "leaves of M; scenes of %s cylinders ==\n",
@@ -250,15 +241,56 @@ static void print_leaf(FILE *f, const result_list *l, const leaf_report *lr)
             lr->best, lr->bytes_per_cyl[0], lr->bytes_per_cyl[1], lr->bytes_per_cyl[2], diffs);
     fprintf(f, "%-8s %-14s %-3s %10s %10s %10s | %8s %9s %11s\n", "data", "path", "M", "t",
             "normal", "occluded", "x loop", "x 1-lane", "occ/normal");
-    const char *scen[2] = {"leaf-l1", "leaf-l2"};
     for (int s = 0; s < 2; s++) {
         for (int isa = 0; isa < CYLRAY_ISA_COUNT; isa++)
             for (int w = BW_4; w < BW_STREAM; w++)
-                print_leaf_row(f, l, scen[s], bench_isa_name(isa), w, bench_width_name[w],
-                               "scalar-loop", lane);
-        print_leaf_row(f, l, scen[s], "scalar-loop", -1, "1", "scalar-loop", lane);
-        print_leaf_row(f, l, scen[s], lane, -1, "1", "scalar-loop", lane);
+                print_leaf_row(f, l, tag[s], bench_isa_name(isa), w, bench_width_name[w],
+                               "scalar-loop", lane, NULL);
+        print_leaf_row(f, l, tag[s], "scalar-loop", -1, "1", "scalar-loop", lane, NULL);
+        print_leaf_row(f, l, tag[s], lane, -1, "1", "scalar-loop", lane, NULL);
     }
+}
+
+static void print_leaf(FILE *f, const result_list *l, const leaf_report *lr)
+{
+    if (!lr->have)
+        return;
+    char lane[32];
+    snprintf(lane, sizeof lane, "1-lane:%s", lr->best);
+    /* the scene sizes run (a size not selected has no cylinders) */
+    char sizes[96] = "", diffs[96] = "";
+    const char *tag[3] = {"leaf-l1", "leaf-l2", "sphere-leaf"};
+    for (int s = 0, ks = 0, kd = 0; s < 2; s++) {
+        if (!lr->ncyl[s])
+            continue;
+        ks += snprintf(sizes + ks, sizeof sizes - (size_t)ks, "%s%d (%s)", ks ? ", " : "",
+                       lr->ncyl[s], tag[s]);
+        kd += snprintf(diffs + kd, sizeof diffs - (size_t)kd, "%s%zu (%s)", kd ? ", " : "",
+                       lr->diff[s], tag[s]);
+    }
+    if (lr->ncyl[0] || lr->ncyl[1])
+        print_leaf_cyl(f, l, lr, lane, sizes, diffs);
+    if (!lr->sphere)
+        return;
+    fprintf(f,
+            "\n== sphere-leaf: one incoherent ray against %d spheres (atoms on a jittered "
+            "lattice) in leaves of M; %d spheres, in L1 ==\n",
+            lr->run, lr->ncyl[2]);
+    fprintf(f,
+            "   as for the cylinders; x tb-loop = the textbook sphere formula in a plain "
+            "scalar loop over the same spheres\n   (textbook-loop), its time over this one's. "
+            "Answers that differ from the scalar loop's: %zu\n",
+            lr->diff[2]);
+    fprintf(f, "%-11s %-14s %-3s %10s %10s %10s | %8s %9s %11s %9s\n", "data", "path", "M", "t",
+            "normal", "occluded", "x loop", "x 1-lane", "occ/normal", "x tb-loop");
+    for (int isa = 0; isa < CYLRAY_ISA_COUNT; isa++)
+        for (int w = BW_4; w < BW_STREAM; w++)
+            print_leaf_row(f, l, tag[2], bench_isa_name(isa), w, bench_width_name[w],
+                           "scalar-loop", lane, "textbook-loop");
+    print_leaf_row(f, l, tag[2], "scalar-loop", -1, "1", "scalar-loop", lane, "textbook-loop");
+    print_leaf_row(f, l, tag[2], lane, -1, "1", "scalar-loop", lane, "textbook-loop");
+    print_leaf_row(f, l, tag[2], "textbook-loop", -1, "1", "scalar-loop", lane,
+                   "textbook-loop");
 }
 
 /* ---- the big stream -------------------------------------------------------------- */
@@ -326,6 +358,9 @@ void report_tables(FILE *f, const result_list *l, const scene_report *sc, const 
 {
     print_group(f, l, "main", "main scenarios: packets of 4, 8, 16 and the stream API");
     print_group(f, l, "skips", "skips: the same work with less to do");
+    print_group(f, l, "spheres",
+                "spheres: one sphere, packets of 4, 8, 16 and the stream API (textbook: the "
+                "textbook sphere in plain float)");
     print_group(f, l, "stress",
                 "stress categories of tests/ref/gen.h (16 rays per cylinder; "
                 "textbook: the textbook formulas in plain float)");

@@ -9,7 +9,11 @@
  * as a BVH's leaves are, and each ray is aimed at a random point of one run's box from a
  * few box sizes away. The closest hit is kept through tmax across the run (occlusion
  * stops at the first hit). The scene is sized so that its leaves sit in L1 (leaf-l1)
- * or in L2 (leaf-l2). Rates are ray-cylinder tests per second: LEAF_RUN per ray. */
+ * or in L2 (leaf-l2). Rates are ray-cylinder tests per second: LEAF_RUN per ray.
+ *
+ * sphere-leaf is the same with atoms (spheres, scenegen.c) in L1, and one more loop for
+ * the same work: the textbook sphere formula over the run's spheres in plain scalar
+ * float (textbook-loop), the loop a tracer would write instead of calling anything. */
 #include "leaf.h"
 
 #include "clock.h"
@@ -24,11 +28,15 @@
 #define LEAF_RUN 32   /* cylinders a ray meets: 8 leaves of 4, 4 of 8, 2 of 16 */
 #define LEAF_RAYS 256 /* rays per pass: 8 KB, beside the leaves in L1 */
 
-enum { LK_LEAF, LK_LOOP, LK_LANE }; /* leaf calls, scalar loop, one-lane packet calls */
+/* leaf calls, scalar loop, one-lane packet calls, the textbook sphere loop */
+enum { LK_LEAF, LK_LOOP, LK_LANE, LK_TB };
 
 typedef struct leaf_scene {
     int ncyl;
-    cylray_cylinder *cyl;
+    cylray_cylinder *cyl; /* for spheres: stand-ins (center, radius, zero height) that
+                                   sort and aim as the spheres */
+    cylray_sphere *sph;   /* NULL: a scene of cylinders */
+    tb_sphere *tbs;
     cylray_prepared *prep;
     cylray_leaf4 *l4;
     cylray_leaf8 *l8;
@@ -47,8 +55,33 @@ static volatile uint64_t leaf_sink;
 
 /* A cylinder the library refuses (the one-end cap flags in a build without them) is
  * capped at both ends instead; 0 when every cylinder is accepted so. */
+static int prepare_spheres(leaf_scene *s)
+{
+    for (int i = 0; i < s->ncyl; i++) {
+        if (cylray_prepare_sphere(&s->prep[i], &s->sph[i]) != CYLRAY_OK)
+            return -1;
+        tb_prepare_sphere(&s->tbs[i], &s->sph[i]);
+    }
+    uint32_t ids[16];
+    for (int i = 0; i < s->ncyl; i += 16) {
+        for (int j = 0; j < 16; j++)
+            ids[j] = (uint32_t)(i + j);
+        for (int j = 0; j < 16; j += 4)
+            if (cylray_leaf_prepare_spheres4(&s->l4[(i + j) / 4], s->sph + i + j, ids + j, 4))
+                return -1;
+        for (int j = 0; j < 16; j += 8)
+            if (cylray_leaf_prepare_spheres8(&s->l8[(i + j) / 8], s->sph + i + j, ids + j, 8))
+                return -1;
+        if (cylray_leaf_prepare_spheres16(&s->l16[i / 16], s->sph + i, ids, 16))
+            return -1;
+    }
+    return 0;
+}
+
 static int prepare_all(leaf_scene *s)
 {
+    if (s->sph)
+        return prepare_spheres(s);
     for (int i = 0; i < s->ncyl; i++)
         if (cylray_prepare(&s->prep[i], &s->cyl[i]) != CYLRAY_OK) {
             s->cyl[i].flags = CYLRAY_CAPPED;
@@ -114,6 +147,8 @@ static void aim_rays(leaf_scene *s, rng *g)
 static void scene_free(leaf_scene *s)
 {
     free(s->cyl);
+    free(s->sph);
+    free(s->tbs);
     bench_free(s->prep);
     bench_free(s->l4);
     bench_free(s->l8);
@@ -123,7 +158,7 @@ static void scene_free(leaf_scene *s)
     memset(s, 0, sizeof *s);
 }
 
-static int scene_build(leaf_scene *s, int ncyl, uint64_t seed)
+static int scene_build(leaf_scene *s, int ncyl, int spheres, uint64_t seed)
 {
     memset(s, 0, sizeof *s);
     s->ncyl = ncyl;
@@ -137,6 +172,30 @@ static int scene_build(leaf_scene *s, int ncyl, uint64_t seed)
     if (!s->cyl || !s->prep || !s->l4 || !s->l8 || !s->l16 || !s->ray || !s->run)
         return -1;
     rng g = {seed};
+    if (spheres) {
+        s->sph = calloc((size_t)ncyl, sizeof *s->sph);
+        s->tbs = calloc((size_t)ncyl, sizeof *s->tbs);
+        if (!s->sph || !s->tbs)
+            return -1;
+        const double base[3] = {0, 0, 0};
+        sg_atoms(s->sph, ncyl, base, &g);
+        for (int i = 0; i < ncyl; i++) {
+            const cylray_sphere *q = &s->sph[i];
+            s->cyl[i] = (cylray_cylinder){
+                {q->center[0], q->center[1], q->center[2]}, {0, 0, 1}, q->radius, 0, 0};
+        }
+        if (sg_morton_sort(s->cyl, ncyl))
+            return -1;
+        for (int i = 0; i < ncyl; i++) {
+            cylray_sphere q = {{s->cyl[i].center[0], s->cyl[i].center[1], s->cyl[i].center[2]},
+                               s->cyl[i].radius};
+            s->sph[i] = q;
+        }
+        if (prepare_all(s))
+            return -1;
+        aim_rays(s, &g);
+        return 0;
+    }
     const int half = ncyl / 2;
     const double size = 1.4 * cbrt(half / 1.5);
     const double mol_base[3] = {0, 0, 0}, pipe_base[3] = {1.1 * size, 0, 0};
@@ -214,8 +273,30 @@ PASS_LEAF(16)
 PASS_LANE(4)
 PASS_LANE(8)
 
+/* The textbook sphere over the run's spheres, one ray at a time, in one call a run (the
+ * formula inlined in its loop, as a tracer would have it). */
+static uint64_t pass_textbook(const leaf_scene *s, const leaf_cfg *c, uint32_t *out)
+{
+    uint64_t acc = 0;
+    const unsigned fl = bench_op_flags[c->op];
+    for (int j = 0; j < LEAF_RAYS; j++) {
+        cylray_ray1 r = s->ray[j];
+        cylray_hit1 h;
+        const uint32_t first = s->run[j] * LEAF_RUN;
+        uint32_t k =
+            tb_sphere_run_scalar(s->tbs + first, LEAF_RUN, &r, &h, fl, c->op == OP_OCC);
+        uint32_t res = c->op == OP_OCC ? k != 0 : k ? first + k : 0;
+        acc += res;
+        if (out)
+            out[j] = res;
+    }
+    return acc;
+}
+
 static uint64_t run_pass(const leaf_scene *s, const leaf_cfg *c, uint32_t *out)
 {
+    if (c->kind == LK_TB)
+        return pass_textbook(s, c, out);
     if (c->kind == LK_LOOP)
         return pass_lane4(s, c, out);
     if (c->kind == LK_LANE)
@@ -266,10 +347,24 @@ static void sample(const leaf_scene *s, const leaf_cfg *c, result *r, const opti
     leaf_sink = leaf_sink + acc;
 }
 
-static const char *const size_name[2] = {"leaf-l1", "leaf-l2"};
+static const char *const size_name[3] = {"leaf-l1", "leaf-l2", "sphere-leaf"};
 /* 256 cylinders: 16 KB of leaves (32 KB as cylray_prepared for the loops), in a 48 KB
- * L1; 8192: 512 KB of leaves (1 MB prepared), past L1 and inside a 2 MB L2. */
-static const int size_cyl[2] = {256, 8192};
+ * L1; 8192: 512 KB of leaves (1 MB prepared), past L1 and inside a 2 MB L2; 256
+ * spheres in L1. */
+static const int size_cyl[3] = {256, 8192, 256};
+
+static int size_selected(const options *opt, int sz)
+{
+    if (!opt->scenarios)
+        return 1;
+    return workloads_selected_name(opt->scenarios, size_name[sz], "leaf") ||
+           (sz == 2 && workloads_selected_name(opt->scenarios, size_name[sz], "spheres"));
+}
+
+int leaf_selected(const options *opt)
+{
+    return size_selected(opt, 0) || size_selected(opt, 1) || size_selected(opt, 2);
+}
 
 int leaf_available(void)
 {
@@ -289,17 +384,17 @@ void leaf_run(const options *opt, result_list *results, leaf_report *rep)
     rep->bytes_per_cyl[1] = (int)(sizeof(cylray_leaf8) / 8);
     rep->bytes_per_cyl[2] = (int)(sizeof(cylray_leaf16) / 16);
     snprintf(rep->best, sizeof rep->best, "%s", best->name);
-    for (int sz = 0; sz < 2; sz++) {
-        if (opt->scenarios && !workloads_selected_name(opt->scenarios, size_name[sz], "leaf"))
+    for (int sz = 0; sz < 3; sz++) {
+        if (!size_selected(opt, sz))
             continue;
         leaf_scene s;
-        if (scene_build(&s, size_cyl[sz], 0x1eaf0000u + (uint64_t)sz)) {
+        if (scene_build(&s, size_cyl[sz], sz == 2, 0x1eaf0000u + (uint64_t)sz)) {
             fprintf(stderr, "cylbench: %s: cannot build the scene; skipped\n", size_name[sz]);
             scene_free(&s);
             continue;
         }
         rep->ncyl[sz] = s.ncyl;
-        leaf_cfg cfg[CYLRAY_ISA_COUNT * 9 + 6];
+        leaf_cfg cfg[CYLRAY_ISA_COUNT * 9 + 9];
         int nc = 0;
         const int ops[3] = {OP_T, OP_NORMAL, OP_OCC};
         for (int o = 0; o < 3; o++) {
@@ -314,6 +409,8 @@ void leaf_run(const options *opt, result_list *results, leaf_report *rep)
                 LK_LOOP, CYLRAY_ISA_SCALAR, 1, ops[o], cylray_kernels_for(CYLRAY_ISA_SCALAR),
                 0};
             cfg[nc++] = (leaf_cfg){LK_LANE, best->isa, 1, ops[o], best, 0};
+            if (s.sph)
+                cfg[nc++] = (leaf_cfg){LK_TB, CYLRAY_ISA_SCALAR, 1, ops[o], NULL, 0};
         }
         for (int i = 0; i < nc; i++) {
             result *r = results_push(results);
@@ -329,6 +426,8 @@ void leaf_run(const options *opt, result_list *results, leaf_report *rep)
                 snprintf(r->isa, sizeof r->isa, "%s", c->k->name);
             else if (c->kind == LK_LOOP)
                 snprintf(r->isa, sizeof r->isa, "scalar-loop");
+            else if (c->kind == LK_TB)
+                snprintf(r->isa, sizeof r->isa, "textbook-loop");
             else
                 snprintf(r->isa, sizeof r->isa, "1-lane:%s", c->k->name);
             snprintf(r->op, sizeof r->op, "%s", bench_op_name[c->op]);
@@ -336,6 +435,8 @@ void leaf_run(const options *opt, result_list *results, leaf_report *rep)
             r->width_id = c->m == 4 ? BW_4 : c->m == 8 ? BW_8 : c->m == 16 ? BW_16 : BW_STREAM;
             r->op_id = c->op;
             r->rays_timed = LEAF_RAYS;
+            if (s.sph)
+                rep->sphere = 1;
             r->ncyl = LEAF_RUN;
         }
         /* rounds over all configurations, as the other scenarios are sampled */

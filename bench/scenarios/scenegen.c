@@ -50,6 +50,22 @@ int sg_molecule(cylray_cylinder *out, int n, const double base[3], rng *g)
     return k;
 }
 
+void sg_atoms(cylray_sphere *out, int n, const double base[3], rng *g)
+{
+    const double a = 1.4;
+    const int side = (int)ceil(cbrt((double)n));
+    int k = 0;
+    for (int i = 0; i < side && k < n; i++)
+        for (int j = 0; j < side && k < n; j++)
+            for (int l = 0; l < side && k < n; l++, k++) {
+                const int idx[3] = {i, j, l};
+                for (int q = 0; q < 3; q++)
+                    out[k].center[q] =
+                        (float)(base[q] + a * (idx[q] + rng_range(g, -0.15, 0.15)));
+                out[k].radius = (float)rng_range(g, 0.3, 0.5);
+            }
+}
+
 int sg_pipes(cylray_cylinder *out, int n, const double base[3], double size, rng *g)
 {
     int k = 0;

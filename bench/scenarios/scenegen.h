@@ -19,6 +19,10 @@ int sg_molecule(cylray_cylinder *out, int n, const double base[3], rng *g);
 /* Pipes: runs of 4-9 straight segments turning by right angles in a box of `size` from
  * `base`, capped only at the two ends of a run, radius 0.15-0.3. Fills out[0..n). */
 int sg_pipes(cylray_cylinder *out, int n, const double base[3], double size, rng *g);
+/* Atoms: spheres on a jittered lattice of spacing 1.4, one a lattice point, radius
+ * 0.3-0.5 (neighbours may touch, as space-filling atoms do). Fills out[0..n) from the
+ * box corner `base`. */
+void sg_atoms(cylray_sphere *out, int n, const double base[3], rng *g);
 /* Sorts the cylinders along a Morton curve of their centers, as a BVH groups them
  * into leaves; -1 when out of memory. */
 int sg_morton_sort(cylray_cylinder *c, int n);

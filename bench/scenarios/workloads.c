@@ -32,6 +32,7 @@ typedef struct scen_def {
     int textbook, big;
     int gen_category; /* S_GEN: the cylgen category */
     int fill;         /* FILL_*: every other lane inactive, holding this */
+    int sphere;       /* the shape is sph_general() instead of a cylinder */
 } scen_def;
 
 #define MAX_SCEN 48
@@ -48,50 +49,59 @@ static void init_table(void)
     const scen_def fixed[] = {
         {"coherent", "main",
          "camera rays in 4x4 pixel tiles at a capped cylinder, general axis", S_PLAIN,
-         RK_CAMERA, 2, ALL_OPS, ALL_WIDTHS, 1, 0, 0, 0},
+         RK_CAMERA, 2, ALL_OPS, ALL_WIDTHS, 1, 0, 0, 0, 0},
         {"incoherent", "main",
          "ordinary rays: random origins 3-6 sizes away at a capped cylinder, general axis",
-         S_PLAIN, RK_INCOHERENT, 2, ALL_OPS, ALL_WIDTHS, 1, 0, 0, 0},
+         S_PLAIN, RK_INCOHERENT, 2, ALL_OPS, ALL_WIDTHS, 1, 0, 0, 0, 0},
         {"shadow", "main", "shadow rays from a floor to a point light past a capped cylinder",
-         S_PLAIN, RK_SHADOW, 2, (1u << OP_OCC) | (1u << OP_T), ALL_WIDTHS, 0, 0, 0, 0},
+         S_PLAIN, RK_SHADOW, 2, (1u << OP_OCC) | (1u << OP_T), ALL_WIDTHS, 0, 0, 0, 0, 0},
         {"bvh-leaf", "main",
          "one packet against 32 capped cylinders (a BVH leaf, all in L1), closest hit; "
          "ns per ray and cylinder",
-         S_CLUSTER, RK_CLUSTER, 2, (1u << OP_T) | occn, ALL_WIDTHS, 0, 0, 0, 0},
+         S_CLUSTER, RK_CLUSTER, 2, (1u << OP_T) | occn, ALL_WIDTHS, 0, 0, 0, 0, 0},
         {"miss-mix", "main", "90% misses and 10% hits, mixed across lanes (capped)", S_PLAIN,
-         RK_MISS_MIX, 2, (int)occn, ALL_WIDTHS, 0, 0, 0, 0},
+         RK_MISS_MIX, 2, (int)occn, ALL_WIDTHS, 0, 0, 0, 0, 0},
         {"hit-mix", "main", "90% hits and 10% misses, mixed across lanes (capped)", S_PLAIN,
-         RK_HIT_MIX, 2, (int)occn, ALL_WIDTHS, 0, 0, 0, 0},
+         RK_HIT_MIX, 2, (int)occn, ALL_WIDTHS, 0, 0, 0, 0, 0},
         {"big-stream", "stream",
          "a stream far larger than the caches (incoherent rays, capped); bytes of rays per "
          "second against memcpy",
-         S_PLAIN, RK_INCOHERENT, 2, (1u << OP_T) | occn, 1u << BW_STREAM, 0, 1, 0, 0},
+         S_PLAIN, RK_INCOHERENT, 2, (1u << OP_T) | occn, 1u << BW_STREAM, 0, 1, 0, 0, 0},
         {"aligned", "skips", "capped cylinder along +z (axis-aligned kernel), incoherent rays",
-         S_ALIGNED, RK_INCOHERENT, 2, 1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0, 0},
+         S_ALIGNED, RK_INCOHERENT, 2, 1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0, 0, 0},
         {"general", "skips", "the same rays and cylinder rotated to a general axis (capped)",
-         S_GENERAL, RK_INCOHERENT, 2, 1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0, 0},
+         S_GENERAL, RK_INCOHERENT, 2, 1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0, 0, 0},
         {"open", "skips", "the `general` rays against the open tube (no caps)", S_GENERAL,
-         RK_INCOHERENT, 1, 1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0, 0},
+         RK_INCOHERENT, 1, 1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0, 0, 0},
         {"infinite", "skips", "the `general` rays against the infinite cylinder", S_GENERAL,
-         RK_INCOHERENT, 0, 1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0, 0},
+         RK_INCOHERENT, 0, 1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0, 0, 0},
         {"open-coherent", "skips", "the `coherent` camera rays against the open tube", S_PLAIN,
-         RK_CAMERA, 1, 1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0, 0},
+         RK_CAMERA, 1, 1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0, 0, 0},
         {"infinite-coherent", "skips",
          "the `coherent` camera rays against the infinite cylinder", S_PLAIN, RK_CAMERA, 0,
-         1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0, 0},
+         1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0, 0, 0},
         {"all-miss", "skips", "every ray misses even the infinite cylinder (capped)", S_PLAIN,
-         RK_ALL_MISS, 2, 1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0, 0},
+         RK_ALL_MISS, 2, 1u << OP_NORMAL, ALL_WIDTHS, 0, 0, 0, 0, 0},
         {"all-hit", "skips", "every ray hits (capped)", S_PLAIN, RK_ALL_HIT, 2, 1u << OP_NORMAL,
-         ALL_WIDTHS, 0, 0, 0, 0},
+         ALL_WIDTHS, 0, 0, 0, 0, 0},
         {"half-zero", "lanes",
          "incoherent rays in every other lane, the others inactive and all zeros (capped)",
          S_PLAIN, RK_INCOHERENT, 2, 1u << OP_NORMAL, (1u << BW_8) | (1u << BW_16), 0, 0, 0,
-         FILL_ZERO},
+         FILL_ZERO, 0},
         {"half-subnormal", "lanes",
          "the same packets with the inactive lanes holding subnormals: a tracer's dead rays "
          "or stack garbage",
          S_PLAIN, RK_INCOHERENT, 2, 1u << OP_NORMAL, (1u << BW_8) | (1u << BW_16), 0, 0, 0,
-         FILL_SUBNORMAL},
+         FILL_SUBNORMAL, 0},
+        {"sphere-incoherent", "spheres",
+         "ordinary rays: random origins 3-6 sizes away at a sphere", S_PLAIN, RK_INCOHERENT, 2,
+         ALL_OPS, ALL_WIDTHS, 1, 0, 0, 0, 1},
+        {"sphere-coherent", "spheres", "camera rays in 4x4 pixel tiles at a sphere", S_PLAIN,
+         RK_CAMERA, 2, ALL_OPS, ALL_WIDTHS, 1, 0, 0, 0, 1},
+        {"sphere-far", "spheres",
+         "origins 1e4-1e6 radii away at a sphere: where the textbook's c = w.w - R^2 "
+         "loses R",
+         S_PLAIN, RK_VERY_FAR, 2, ALL_OPS, ALL_WIDTHS, 1, 0, 0, 0, 1},
     };
     for (size_t i = 0; i < sizeof fixed / sizeof fixed[0]; i++)
         table[ntable++] = fixed[i];
@@ -108,6 +118,7 @@ static void init_table(void)
                       1,
                       0,
                       c,
+                      0,
                       0};
         table[ntable++] = s;
     }
@@ -170,7 +181,8 @@ int workloads_check_list(const char *list)
         int ok = !strcmp(word, "all") || !strcmp(word, "scene") || !strcmp(word, "main") ||
                  !strcmp(word, "stream") || !strcmp(word, "skips") || !strcmp(word, "stress") ||
                  !strcmp(word, "lanes") || !strcmp(word, "leaf") || !strcmp(word, "leaf-l1") ||
-                 !strcmp(word, "leaf-l2");
+                 !strcmp(word, "leaf-l2") || !strcmp(word, "spheres") ||
+                 !strcmp(word, "sphere-leaf");
         for (int i = 0; i < ntable && !ok; i++)
             ok = !strcmp(word, table[i].name);
         if (!ok) {
@@ -226,6 +238,14 @@ int workloads_build(int idx, workload *w, const options *opt)
         if (alloc_cyls(w, 1))
             return -1;
         w->cyl[0] = cyl_general(s->cyl_kind);
+        if (s->sphere) {
+            w->sph = calloc(1, sizeof *w->sph);
+            w->tbs = calloc(1, sizeof *w->tbs);
+            if (!w->sph || !w->tbs)
+                return -1;
+            w->sph[0] = sph_general();
+            w->cyl[0] = sph_box(&w->sph[0]); /* the rays' target; never intersected */
+        }
         rays_generate(&w->rays, s->rays, &w->cyl[0], 0, &g);
         break;
     case S_CLUSTER: {
@@ -288,7 +308,15 @@ int workloads_build(int idx, workload *w, const options *opt)
             r->ox[i] = r->oy[i] = r->oz[i] = r->dx[i] = r->dy[i] = r->dz[i] = r->tmin[i] =
                 r->tmax[i] = v;
     }
-    for (int c = 0; c < w->ncyl; c++) {
+    for (int c = 0; c < w->ncyl && w->sph; c++) {
+        if (cylray_prepare_sphere(&w->prep[c], &w->sph[c]) != CYLRAY_OK) {
+            fprintf(stderr, "cylbench: %s: sphere %d rejected by cylray_prepare_sphere\n",
+                    s->name, c);
+            return -1;
+        }
+        tb_prepare_sphere(&w->tbs[c], &w->sph[c]);
+    }
+    for (int c = 0; c < w->ncyl && !w->sph; c++) {
         if (cylray_prepare(&w->prep[c], &w->cyl[c]) != CYLRAY_OK) {
             fprintf(stderr, "cylbench: %s: cylinder %d rejected by cylray_prepare\n", s->name,
                     c);
@@ -308,5 +336,7 @@ void workloads_free(workload *w)
     free(w->cyl);
     bench_free(w->prep);
     free(w->tb);
+    free(w->sph);
+    free(w->tbs);
     memset(w, 0, sizeof *w);
 }

@@ -1,12 +1,13 @@
 /* SPDX-License-Identifier: MIT */
-/* workloads.h - the scenarios: which rays, which cylinders, which flag sets and widths. */
+/* workloads.h - the scenarios: which rays, which cylinders (or sphere), which flag sets
+ * and widths. */
 #ifndef CYLBENCH_WORKLOADS_H
 #define CYLBENCH_WORKLOADS_H
 
 #include "bench.h"
 
 /* The number of scenarios known, and the i-th one's name and group ("main", "stream",
- * "skips", "stress"). */
+ * "skips", "lanes", "spheres", "stress"). */
 int workloads_count(void);
 const char *workloads_name(int i);
 const char *workloads_group(int i);

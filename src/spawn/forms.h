@@ -156,7 +156,7 @@ CYLRAY_MAYBE_UNUSED static void DFN(spawn_stream)(const cylray_prepared *P,
 CYLRAY_MAYBE_UNUSED static void DFN(leaf_geo)(DFN(geo) *g, const float *const *leaf,
                                               const cylray_hit1 *hit, size_t m, size_t cnt)
 {
-    float f[8][DW], lo[DW], hi[DW];
+    float f[8][DW], lo[DW], hi[DW], sp[DW];
     static const int fields[8] = {CYLRAY_LF_CX, CYLRAY_LF_CY, CYLRAY_LF_CZ, CYLRAY_LF_VX,
                                   CYLRAY_LF_VY, CYLRAY_LF_VZ, CYLRAY_LF_R,  CYLRAY_LF_H};
     for (size_t i = 0; i < DW; i++) {
@@ -165,10 +165,11 @@ CYLRAY_MAYBE_UNUSED static void DFN(leaf_geo)(DFN(geo) *g, const float *const *l
         const size_t lane = hit[j].lane % m;
         for (int k = 0; k < 8; k++)
             f[k][i] = geom[(size_t)fields[k] * m + lane];
-        const unsigned caps = cylray_leaf_caps_(
-            (const uint32_t *)(const void *)(geom + CYLRAY_LF_COUNT * m), (unsigned)lane);
+        const uint32_t *meta = (const uint32_t *)(const void *)(geom + CYLRAY_LF_COUNT * m);
+        const unsigned caps = cylray_leaf_caps_(meta, (unsigned)lane);
         lo[i] = caps & CYLRAY_CAPPED_LO ? 1.0f : 0.0f;
         hi[i] = caps & CYLRAY_CAPPED_HI ? 1.0f : 0.0f;
+        sp[i] = meta[CYLRAY_LM_SPHERE] >> lane & 1u ? 1.0f : 0.0f;
     }
     vd c[3], v[3];
     for (int k = 0; k < 3; k++) {
@@ -177,7 +178,8 @@ CYLRAY_MAYBE_UNUSED static void DFN(leaf_geo)(DFN(geo) *g, const float *const *l
     }
     const vd zero = dset1(0.0);
     DFN(geo_make)
-    (g, c, v, dloadu_f(f[6]), dloadu_f(f[7]), dgt(dloadu_f(lo), zero), dgt(dloadu_f(hi), zero));
+    (g, c, v, dloadu_f(f[6]), dloadu_f(f[7]), dgt(dloadu_f(lo), zero), dgt(dloadu_f(hi), zero),
+     dgt(dloadu_f(sp), zero));
 }
 
 CYLRAY_MAYBE_UNUSED static void DFN(leaf_hit_points)(const float *const *leaf, size_t m,

@@ -1,8 +1,11 @@
 /* SPDX-License-Identifier: MIT */
-/* spawn/geo.h - one cylinder per lane (what the derivation reads of it), and the ulp
- * helpers */
+/* spawn/geo.h - one cylinder or sphere per lane (what the derivation reads of it), and
+ * the ulp helpers */
 
-/* One cylinder per lane, and what the derivation reads of it. */
+/* One cylinder or sphere per lane, and what the derivation reads of it. A sphere is
+ * the side of a cylinder with no axis (v = 0, H = 0, no discs): with 1/(v.v), 1/|v|,
+ * tilt and nv zero there, its axial coordinate s is 0, r = q, and the side's rules read
+ * as the sphere's (docs/secondary-rays.md, "Spheres"). */
 typedef struct DFN(geo) {
     vd c[3], v[3];
     vd sv, inv_vv, inv_sv; /* |v|, 1/(v.v), 1/|v| */
@@ -13,6 +16,8 @@ typedef struct DFN(geo) {
     vd pu[3];              /* the same, of unit length */
     vd nv[3], l1v;         /* v/|v| (the outward normal of the disc at +H), |v/|v||_1 */
     vdm lo, hi;            /* the discs that are part of the surface */
+    vdm sph;               /* the lanes that are spheres */
+    int any_sph;           /* some lane is */
 } DFN(geo);
 
 /* The spacing of floats at the float f (as a double): its exponent (dexpo drops the
@@ -56,9 +61,10 @@ static inline vd DFN(l1)(const vd a[3])
     return dadd(dadd(dabs(a[0]), dabs(a[1])), dabs(a[2]));
 }
 
-/* The cylinders' derived values, from their floats (c, v, R, H and the discs). */
+/* The cylinders' derived values, from their floats (c, v, R, H and the discs); sph: the
+ * lanes that are spheres (v = 0, H = 0, no discs). */
 CYLRAY_INLINE void DFN(geo_make)(DFN(geo) *g, const vd c[3], const vd v[3], vd R, vd H, vdm lo,
-                                 vdm hi)
+                                 vdm hi, vdm sph)
 {
     const vd one = dset1(1.0), zero = dset1(0.0);
     for (int k = 0; k < 3; k++) {
@@ -67,8 +73,11 @@ CYLRAY_INLINE void DFN(geo_make)(DFN(geo) *g, const vd c[3], const vd v[3], vd R
     }
     const vd vv = DFN(dot3)(v, v);
     g->sv = dsqrt(vv);
-    g->inv_vv = ddiv(one, vv);
-    g->inv_sv = ddiv(one, g->sv);
+    g->sph = sph;
+    g->any_sph = dmbits(sph) != 0;
+    /* zero for a sphere, whose v is 0: then s = 0, nv = 0, hs = 0 and tilt = 0 */
+    g->inv_vv = dsel(sph, zero, ddiv(one, vv));
+    g->inv_sv = dsel(sph, zero, ddiv(one, g->sv));
     g->R = R;
     g->inv_R = ddiv(one, R);
     g->H = H;
@@ -85,7 +94,7 @@ CYLRAY_INLINE void DFN(geo_make)(DFN(geo) *g, const vd c[3], const vd v[3], vd R
     g->uR2 = dmul(dset1(2.0), DFN(ulp_f)(R));
     g->uH2 = dmul(dset1(2.0), DFN(ulp_f)(H));
     /* v x e_k, with e_k the coordinate axis along which v is shortest (ties: the first
-     * of the shortest), for points on the axis itself */
+     * of the shortest), for points on the axis itself; a sphere's center: e_x */
     const vdm k0 = dmand(dle(a0, a1), dle(a0, a2));
     const vdm k1 = dmand(dmnot(dle(a0, a1)), dle(a1, a2));
     const vdm k2 = dmnot(dmor(k0, k1));
@@ -93,6 +102,9 @@ CYLRAY_INLINE void DFN(geo_make)(DFN(geo) *g, const vd c[3], const vd v[3], vd R
     g->praw[0] = dsub(dmul(v[1], e2), dmul(v[2], e1));
     g->praw[1] = dsub(dmul(v[2], e0), dmul(v[0], e2));
     g->praw[2] = dsub(dmul(v[0], e1), dmul(v[1], e0));
+    g->praw[0] = dsel(sph, one, g->praw[0]);
+    g->praw[1] = dsel(sph, zero, g->praw[1]);
+    g->praw[2] = dsel(sph, zero, g->praw[2]);
     g->Lp = dsqrt(DFN(dot3)(g->praw, g->praw));
     const vd il = ddiv(one, g->Lp);
     for (int k = 0; k < 3; k++)
@@ -107,10 +119,10 @@ static inline void DFN(geo_prepared)(DFN(geo) *g, const cylray_prepared *P)
         c[k] = dset1((double)P->c[k]);
         v[k] = dset1((double)P->v[k]);
     }
-    const vd yes = dset1(1.0), zero = dset1(0.0);
+    const vd zero = dset1(0.0);
     DFN(geo_make)
     (g, c, v, dset1((double)P->radius), dset1((double)P->half_height),
      dgt(dset1((P->caps & CYLRAY_CAPPED_LO) ? 1.0 : 0.0), zero),
-     dgt(dset1((P->caps & CYLRAY_CAPPED_HI) ? 1.0 : 0.0), zero));
-    (void)yes;
+     dgt(dset1((P->caps & CYLRAY_CAPPED_HI) ? 1.0 : 0.0), zero),
+     dgt(dset1(P->kind == CYLRAY_KIND_SPHERE ? 1.0 : 0.0), zero));
 }

@@ -42,6 +42,7 @@ CYLRAY_INLINE void DFN(spawn)(const DFN(geo) *g, const vd p[3], vd err, vd part,
                               const vd w[3], vd out[3])
 {
     const vd zero = dset1(0.0), one = dset1(1.0);
+    part = dsel(g->sph, dset1(CYLRAY_SIDE), part); /* a sphere has its side only */
     vd q[3], r[3];
     for (int k = 0; k < 3; k++)
         q[k] = dsub(p[k], g->c[k]);

@@ -1,12 +1,30 @@
 /* SPDX-License-Identifier: MIT */
 /* spawn/point.h - the hit point and its error bound */
 
+/* A sphere's bound: the distance of the float point p from it, evaluated. With a_k =
+ * p_k - c_k rounded once and D2 = a.a rounded three times more, D2 is within (1 + u)^5 - 1
+ * <= 5.01u of |p - c|^2 (u = 2^-53; all terms positive), so |p - c| - R = (|p - c|^2 -
+ * R^2) / (|p - c| + R) is at most (|D2 - R^2| + 5.02u D2) / ((1 - 3.6u) sqrt(D2) + R) in
+ * magnitude (R^2 is exact in double). 5.5u and 8u are taken; (1 + 2^-40) covers the
+ * roundings of the quotient itself; the result is rounded up to float. */
+static inline vd DFN(sphere_err)(const DFN(geo) *g, const vd p[3])
+{
+    vd a[3];
+    for (int k = 0; k < 3; k++)
+        a[k] = dsub(p[k], g->c[k]);
+    const vd D2 = DFN(dot3)(a, a);
+    const vd num = dadd(dabs(dsub(D2, dmul(g->R, g->R))), dmul(dset1(0x1.6p-51), D2));
+    const vd den = dadd(dmul(dsqrt(D2), dset1(1 - 0x1p-50)), g->R);
+    return dmul(ddiv(num, den), dset1(1 + 0x1p-40));
+}
+
 /* THE HIT POINT of the rays o + t d at t on `part` (as doubles of its low bits): the
  * point p (doubles of floats) and the bound err (likewise). */
 CYLRAY_INLINE void DFN(hit_point)(const DFN(geo) *g, const vd o[3], const vd d[3], vd t,
                                   vd part, const vd *nk, vd back, vd p[3], vd *err)
 {
     const vd zero = dset1(0.0), one = dset1(1.0);
+    part = dsel(g->sph, dset1(CYLRAY_SIDE), part); /* a sphere has its side only */
     const vdm side = deq(part, dset1(CYLRAY_SIDE)), chi = deq(part, dset1(CYLRAY_CAP_HI));
     const vdm on_cap = dmor(deq(part, dset1(CYLRAY_CAP_LO)), chi);
     vd q[3], r[3];
@@ -86,7 +104,9 @@ CYLRAY_INLINE void DFN(hit_point)(const DFN(geo) *g, const vd o[3], const vd d[3
     const vdm c_cap = dmandn(dle(dadd(rad, el), g->R), side);
     const vd dist = dsel(c_side, dadd(en, dmul(ee, g->inv_R)), dsel(c_cap, en, el));
     /* (1 + 2^-40) covers the few roundings of dist itself */
-    const vd bound = dmul(dadd(dist, dmul(dset1(3.0), env)), dset1(1 + 0x1p-40));
+    vd bound = dmul(dadd(dist, dmul(dset1(3.0), env)), dset1(1 + 0x1p-40));
+    if (g->any_sph) /* a sphere's point is measured against it directly */
+        bound = dsel(g->sph, DFN(sphere_err)(g, p), bound);
     /* rounded up: bound >= 0, so the float above f is one spacing up */
     const vd f = dround_f(bound);
     const vdm push = dlt(f, bound);

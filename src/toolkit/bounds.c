@@ -127,12 +127,26 @@ static void cyl_box(const float c[3], const float v[3], double R, double H, floa
     }
 }
 
+/* The box of a sphere, c_k -+ R: the sum of two floats is exact as a double-double, so
+ * each face is the float next to the exact one on its outer side (the smallest box). */
+static void sphere_box(const float c[3], double R, float lo[3], float hi[3])
+{
+    const cylray_dd z = dd_make(0.0, 0.0);
+    for (int k = 0; k < 3; k++) {
+        lo[k] = face(c[k], dd_make(-R, 0.0), z, 1, -1);
+        hi[k] = face(c[k], dd_make(R, 0.0), z, 1, 1);
+    }
+}
+
 cylray_status cylray_bounds(const cylray_prepared *cyl, float lo[3], float hi[3])
 {
     if (!cylray_prepared_ok_(cyl) || !lo || !hi || cyl->kind == CYLRAY_KIND_INFINITE)
         return CYLRAY_EINVAL;
     float l[3], h[3];
-    cyl_box(cyl->c, cyl->v, cyl->radius, cyl->half_height, l, h);
+    if (cyl->kind == CYLRAY_KIND_SPHERE)
+        sphere_box(cyl->c, cyl->radius, l, h);
+    else
+        cyl_box(cyl->c, cyl->v, cyl->radius, cyl->half_height, l, h);
     memcpy(lo, l, sizeof l);
     memcpy(hi, h, sizeof h);
     return CYLRAY_OK;
@@ -159,7 +173,10 @@ static cylray_status leaf_bounds(const float *geom, const uint32_t *meta, unsign
         double H = geom[CYLRAY_LF_H * m + i];
         if (!isfinite(H))
             return CYLRAY_EINVAL;
-        cyl_box(c, v, geom[CYLRAY_LF_R * m + i], H, bl, bh);
+        if ((meta[CYLRAY_LM_SPHERE] >> i) & 1u)
+            sphere_box(c, geom[CYLRAY_LF_R * m + i], bl, bh);
+        else
+            cyl_box(c, v, geom[CYLRAY_LF_R * m + i], H, bl, bh);
         for (int k = 0; k < 3; k++) {
             l[k] = fminf(l[k], bl[k]);
             h[k] = fmaxf(h[k], bh[k]);
@@ -227,14 +244,49 @@ static size_t split_count(const cylray_prepared *cyl)
     return want >= CYLRAY_SPLIT_MAX ? CYLRAY_SPLIT_MAX : (size_t)want;
 }
 
+/* A sphere's slices are cut across z, as its surface coordinates are measured (v along
+ * z): slice i of k lies between the planes z = c_z + R q_i and c_z + R q_(i+1), q_i as
+ * for a cylinder, and spans c_x, c_y -+ R sqrt(1 - q^2) at the q of its range nearest 0
+ * (R where the range holds 0). */
+static void sphere_slices(const cylray_prepared *cyl, size_t k, float (*lo)[3], float (*hi)[3])
+{
+    const double R = cyl->radius;
+    const cylray_dd z = dd_make(0.0, 0.0);
+    double qa = -1.0;
+    for (size_t i = 0; i < k; i++) {
+        const double qb = ((double)(i + 1) * 2.0 - (double)k) / (double)k;
+        /* R q is exact as a double-double; so is c_z + R q where R q is one double (q =
+         * 0 or +-1 among others: one slice is the box of cylray_bounds), and elsewhere
+         * it is pushed out as disc_box's */
+        const cylray_dd za = dd_two_prod(R, qa), zb = dd_two_prod(R, qb);
+        lo[i][2] = face(cyl->c[2], za, z, za.lo == 0, -1);
+        hi[i][2] = face(cyl->c[2], zb, z, zb.lo == 0, 1);
+        const double m = qa <= 0 && qb >= 0 ? 0.0 : fmin(fabs(qa), fabs(qb));
+        /* (1 - m)(1 + m), its root and the product by R are within 4 units of 2^-53
+         * of themselves; 2^-48 more keeps the half width above the exact one, and the
+         * face at most one float step beyond the nearest */
+        const double w = m == 0 ? R : R * sqrt((1.0 - m) * (1.0 + m)) * (1 + 0x1p-48);
+        const int exact = m == 0;
+        for (int j = 0; j < 2; j++) {
+            lo[i][j] = face(cyl->c[j], dd_make(-w, 0.0), z, exact, -1);
+            hi[i][j] = face(cyl->c[j], dd_make(w, 0.0), z, exact, 1);
+        }
+        qa = qb;
+    }
+}
+
 size_t cylray_split_boxes(const cylray_prepared *cyl, size_t k, float (*lo)[3], float (*hi)[3])
 {
     if (!cylray_prepared_ok_(cyl) || cyl->kind == CYLRAY_KIND_INFINITE)
         return 0;
     if (k == 0)
-        k = split_count(cyl);
+        k = cyl->kind == CYLRAY_KIND_SPHERE ? 1 : split_count(cyl);
     if (!lo || !hi)
         return k;
+    if (cyl->kind == CYLRAY_KIND_SPHERE) {
+        sphere_slices(cyl, k, lo, hi);
+        return k;
+    }
     /* Slice i runs between the discs at t_i = H q_i, q_i = (2i - k) / k rounded once:
      * q_0 = -1 and q_k = 1 exactly and the q_i increase, so neighbouring slices share
      * their disc exactly and together cover the cylinder; H q_i is exact as a

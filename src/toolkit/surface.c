@@ -213,6 +213,52 @@ SURFACE_LINKAGE_ void SURFACE_AT_(const surf_cyl *s, const float p[3], int32_t p
 }
 
 #ifndef CYLRAY_SURFACE_FMA
+/* A sphere, as pbrt-v4's full sphere about the z axis through its center, at the point
+ * where the ray from the center through p meets it: with r = p - c, h = |(r_x, r_y)|
+ * and L = |r|, u = phi / 2pi with phi = atan2(r_y, r_x) in [0, 2pi) (0 on the z axis),
+ * v = atan2(h, -r_z) / pi (pi - theta, theta measured from +z: 0 at the -z pole, 1 at
+ * +z, free of the cancellation of 1 - theta/pi near 0), dpdu = 2pi (-y, x, 0) and dpdv =
+ * pi (-z cos(phi), -z sin(phi), R sin(theta)) at that point. Each is a few double
+ * roundings (and libm's atan2) from its exact value, relative to itself: u and v
+ * round to within a float ulp, the derivatives to a few float ulps. The center itself
+ * is taken for the -z pole. */
+#define PI_ 3.14159265358979323846
+static void sphere_surface(const float c[3], double R, const float p[3], int32_t part,
+                           float uv[2], float dpdu[3], float dpdv[3])
+{
+    if ((part & CYLRAY_PART_MASK) != CYLRAY_SIDE)
+        return;
+    double r[3];
+    for (int k = 0; k < 3; k++)
+        r[k] = (double)p[k] - (double)c[k];
+    /* the coordinates' differences are 0 or at least 2^-149: no square underflows */
+    const double h = sqrt(r[0] * r[0] + r[1] * r[1]);
+    if (h == 0 && r[2] == 0)
+        r[2] = -1.0;
+    const double co = h > 0 ? r[0] / h : 1.0, si = h > 0 ? r[1] / h : 0.0;
+    if (uv) {
+        double t = h > 0 ? atan2(r[1], r[0]) / TWO_PI : 0.0;
+        if (t < 0)
+            t += 1.0;
+        const float f = (float)t + 0.0f; /* + 0: no -0 */
+        uv[0] = f < 1.0f ? f : BELOW_ONE;
+        uv[1] = (float)(atan2(h, -r[2]) / PI_) + 0.0f;
+    }
+    if (!dpdu && !dpdv)
+        return;
+    const double s = R / sqrt(h * h + r[2] * r[2]); /* R / L */
+    if (dpdu) {
+        dpdu[0] = (float)(-TWO_PI * s * r[1]) + 0.0f;
+        dpdu[1] = (float)(TWO_PI * s * r[0]) + 0.0f;
+        dpdu[2] = 0.0f;
+    }
+    if (dpdv) {
+        dpdv[0] = (float)(-PI_ * s * r[2] * co) + 0.0f;
+        dpdv[1] = (float)(-PI_ * s * r[2] * si) + 0.0f;
+        dpdv[2] = (float)(PI_ * s * h);
+    }
+}
+
 /* The FMA instance where the dispatch says it goes with the path chosen. */
 static void surface_at(const surf_cyl *s, const float p[3], int32_t part, float uv[2],
                        float dpdu[3], float dpdv[3])
@@ -231,6 +277,10 @@ void cylray_surface(const cylray_prepared *cyl, const float p[3], int32_t part, 
 {
     if (!cylray_prepared_ok_(cyl) || !p)
         return;
+    if (cyl->kind == CYLRAY_KIND_SPHERE) {
+        sphere_surface(cyl->c, cyl->radius, p, part, uv, dpdu, dpdv);
+        return;
+    }
     surf_cyl s;
     for (int k = 0; k < 3; k++) {
         s.c[k] = cyl->c[k];
@@ -249,6 +299,12 @@ static void leaf_surface(const float *geom, const uint32_t *meta, unsigned m,
         return;
     const unsigned i = hit->lane;
     surf_cyl s;
+    if ((meta[CYLRAY_LM_SPHERE] >> i) & 1u) {
+        for (int k = 0; k < 3; k++)
+            s.c[k] = geom[(CYLRAY_LF_CX + k) * m + i];
+        sphere_surface(s.c, geom[CYLRAY_LF_R * m + i], p, hit->part, uv, dpdu, dpdv);
+        return;
+    }
     for (int k = 0; k < 3; k++) {
         s.c[k] = geom[(CYLRAY_LF_CX + k) * m + i];
         s.v[k] = geom[(CYLRAY_LF_VX + k) * m + i];

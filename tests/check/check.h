@@ -10,6 +10,8 @@
 #include "cylray.h"
 #include "cylref.h"
 #include "gen.h"
+#include "sphgen.h"
+#include "sphref.h"
 
 /* ---- the criteria --------------------------------------------------------------- */
 
@@ -30,9 +32,15 @@
 #define HEADLINE_P99_ULPS 2.5
 #define HEADLINE_FAR_MAX_ULPS 2.0
 
-/* Categories: the generators' (gen.h), then the fixed regression cases (regress.c). */
+/* Categories: the cylinder generators' (gen.h), the fixed regression cases (regress.c),
+ * then the sphere generators' (sphgen.h), CAT_SPHERE + SPHGEN_*. */
 #define CAT_REGRESS CYLGEN_COUNT
-#define CAT_COUNT (CYLGEN_COUNT + 1)
+#define CAT_SPHERE (CYLGEN_COUNT + 1)
+#define CAT_COUNT (CAT_SPHERE + SPHGEN_COUNT)
+static inline int cat_is_sphere(int category)
+{
+    return category >= CAT_SPHERE;
+}
 const char *cat_name(int category);
 int cat_find(const char *name); /* -1 when unknown */
 
@@ -48,10 +56,15 @@ static inline int mode_of(unsigned flags)
 /* ---- cases ---------------------------------------------------------------------- */
 
 typedef struct ref_case {
-    cylgen_case c;
+    cylgen_case c; /* the ray; its cylinder unless `sphere` */
+    int sphere;    /* the shape is sph, c.cyl is unused */
+    cylray_sphere sph;
     cylref_band band[2]; /* [0]: flags without CULL_BACK, [1]: with */
     int index;           /* within its category's case list */
 } ref_case;
+
+/* Prepares the case's shape, cylinder or sphere. */
+cylray_status prepare_case(cylray_prepared *p, const ref_case *rc);
 
 /* One kernel answer for one lane, with what the checks on memory need. */
 typedef struct lane_out {

@@ -23,6 +23,10 @@
 static const size_t stream_full[] = {1,  2,  3,  5,  7,  8,  9,  13,  15,  16,
                                      17, 23, 31, 33, 47, 64, 65, 100, 257, 700};
 static const size_t stream_quick[] = {1, 3, 5, 7, 13, 17, 31, 129};
+/* Spheres run a quarter of the packet rays and fewer streams: their kernel is a subset
+ * of the cylinder's (one quadratic, no caps), and CI's time is shared. */
+static const size_t sphere_full[] = {1, 3, 7, 9, 16, 17, 33, 65, 100};
+static const size_t sphere_quick[] = {1, 5, 17, 33};
 
 static void usage(FILE *f)
 {
@@ -35,7 +39,7 @@ static void usage(FILE *f)
                "  --seed=N         the generators' seed (default: from the clock, printed)\n"
                "  --quick          small counts (sanitizers, qemu); also CYLRAY_TEST_QUICK=1\n"
                "  --report         the accuracy table per ISA x category x mode\n"
-               "  --n=N            packet rays per category (multiple of 16)\n"
+               "  --n=N            packet rays per category (multiple of 16; spheres N/4)\n"
                "  --flags=F        only this kernel flag combination (0..31)\n"
                "  --case=I         only this case of the category (from a failure's repro)\n"
                "  --max-print=N    failures printed in full (default 12)\n"
@@ -152,6 +156,13 @@ int main(int argc, char **argv)
             continue;
         size_t total, npk = opt.n, nl = n_lengths;
         const size_t *ls = lengths;
+        if (cat_is_sphere(cat)) {
+            npk = opt.n / 4 / CYLGEN_BATCH * CYLGEN_BATCH;
+            npk = npk ? npk : CYLGEN_BATCH;
+            ls = opt.quick ? sphere_quick : sphere_full;
+            nl = opt.quick ? sizeof sphere_quick / sizeof *sphere_quick
+                           : sizeof sphere_full / sizeof *sphere_full;
+        }
         ref_case *rc = cat == CAT_REGRESS ? make_regress_cases(&npk, &ls, &nl, &total)
                                           : make_cases(cat, opt.seed, npk, ls, nl, &total);
         /* Segments for the scalar answers: packet batches, then the streams. */

@@ -157,8 +157,8 @@ void drive_packets(const cylray_kernels *k, unsigned flags, int category, const 
         lane_ctx lc = {k, flags, category, wi == 0 ? "4" : wi == 1 ? "8" : "16", 0};
         for (size_t b = 0; b + CYLGEN_BATCH <= n; b += CYLGEN_BATCH) {
             cylray_prepared p;
-            if (cylray_prepare(&p, &cases[b].c.cyl) != CYLRAY_OK) {
-                fail_memory(&lc, &cases[b], "cylray_prepare rejected the cylinder");
+            if (prepare_case(&p, &cases[b]) != CYLRAY_OK) {
+                fail_memory(&lc, &cases[b], "cylray_prepare rejected the shape");
                 continue;
             }
             for (size_t off = 0; off < CYLGEN_BATCH; off += (size_t)W) {
@@ -243,8 +243,8 @@ void drive_streams(const cylray_kernels *k, unsigned flags, int category, const 
         const size_t n = lengths[li];
         const ref_case *rc = &cases[first];
         cylray_prepared p;
-        if (cylray_prepare(&p, &rc[0].c.cyl) != CYLRAY_OK) {
-            fail_memory(&lc, rc, "cylray_prepare rejected the cylinder");
+        if (prepare_case(&p, &rc[0]) != CYLRAY_OK) {
+            fail_memory(&lc, rc, "cylray_prepare rejected the shape");
             continue;
         }
         stream_buf s;
@@ -314,7 +314,7 @@ void scalar_answers(const cylray_kernels *scalar, unsigned flags, const ref_case
         cylray_prepared p;
         for (size_t i = 0; i < n; i++)
             memset(&out[first + i], 0, sizeof out[0]);
-        if (cylray_prepare(&p, &rc[0].c.cyl) != CYLRAY_OK)
+        if (prepare_case(&p, &rc[0]) != CYLRAY_OK)
             continue;
         stream_buf s;
         stream_load(&s, rc, n);

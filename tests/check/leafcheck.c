@@ -12,6 +12,8 @@
  *   - occluded agrees with intersect;
  *   - a leaf with a bad cylinder (or too many) is refused and left untouched; a ray
  *     with a NaN or infinite field misses.
+ * Then the same for leaves of spheres (tests/ref/sphgen.h categories), some holding one
+ * sphere in two lanes: of those equal hits the lower lane must win.
  * Usage: leafcheck [--isa=NAME] [--quick] [--seed=S]. Exit 0 ok, 1 failures, 77 no
  * such ISA here. */
 #include <math.h>
@@ -22,6 +24,8 @@
 #include "cylray.h"
 #include "cylref.h"
 #include "gen.h"
+#include "sphgen.h"
+#include "sphref.h"
 #include "tcheck.h"
 
 #define TOL_ULPS 4.0
@@ -29,13 +33,18 @@
 #define TOL_ANGLE 1e-6
 #define POISON 0x7fa5c3e1u
 
+/* Calls where one sphere sits in two lanes and the ray hits it: the ties judged. */
+static long ties_seen;
+
 typedef struct lane_ref {
     cylray_cylinder cyl;
+    cylray_sphere sph;   /* the lane's shape in a leaf of spheres */
     cylref_band band[2]; /* without, with CYLRAY_CULL_BACK */
 } lane_ref;
 
 typedef struct leaf_case {
     int n, m;
+    int spheres; /* a leaf of spheres */
     lane_ref lane[16];
     uint32_t id[16];
     float o[3], d[3], tmin, tmax;
@@ -51,6 +60,7 @@ static float fbits(uint32_t u)
 /* Lanes from random categories; the ray is the one made for a random lane. */
 static void make_leaf(leaf_case *lc, int m, cylgen_rng *r, uint64_t seed)
 {
+    memset(lc, 0, sizeof *lc);
     lc->m = m;
     uint64_t u = cylgen_next(r);
     lc->n = (u & 3) == 0 ? (int)((u >> 8) % (unsigned)(m + 1)) : m;
@@ -76,6 +86,44 @@ static void make_leaf(leaf_case *lc, int m, cylgen_rng *r, uint64_t seed)
                              cull ? CYLRAY_CULL_BACK : 0u, &lc->lane[k].band[cull]);
 }
 
+/* A leaf of spheres from random sphere categories; about one leaf in three repeats
+ * one lane's sphere in a later lane, so that two lanes hit at exactly the same t. */
+static void make_sphere_leaf(leaf_case *lc, int m, cylgen_rng *r, uint64_t seed)
+{
+    memset(lc, 0, sizeof *lc);
+    lc->m = m;
+    lc->spheres = 1;
+    uint64_t u = cylgen_next(r);
+    lc->n = (u & 3) == 0 ? (int)((u >> 8) % (unsigned)(m + 1)) : m;
+    if (lc->n == 0)
+        lc->n = 1;
+    const int aim = (int)((u >> 16) % (unsigned)lc->n);
+    for (int k = 0; k < lc->n; k++) {
+        /* sph-bad's rays would make every lane miss: its spheres are ordinary ones. */
+        int cat = (int)(cylgen_next(r) % (SPHGEN_COUNT - 1));
+        sphgen_case c;
+        sphgen_make(cat, seed + cylgen_next(r), 1, &c);
+        lc->lane[k].sph = c.sph;
+        lc->id[k] = (uint32_t)cylgen_next(r);
+        if (k == aim) {
+            memcpy(lc->o, c.o, sizeof c.o);
+            memcpy(lc->d, c.d, sizeof c.d);
+            lc->tmin = c.tmin;
+            lc->tmax = c.tmax;
+        }
+    }
+    /* The copy is of the lane the ray was made for, which it most likely hits, into a
+     * lane below or above it. */
+    if (lc->n > 1 && (u >> 24) % 3 == 0) {
+        int to = (int)((u >> 40) % (unsigned)(lc->n - 1));
+        lc->lane[to >= aim ? to + 1 : to].sph = lc->lane[aim].sph;
+    }
+    for (int k = 0; k < lc->n; k++)
+        for (int cull = 0; cull < 2; cull++)
+            sphref_band_eval(&lc->lane[k].sph, lc->o, lc->d, lc->tmin, lc->tmax,
+                             cull ? CYLRAY_CULL_BACK : 0u, &lc->lane[k].band[cull]);
+}
+
 /* The latest t at which lane k surely hits, or INFINITY where it may miss. */
 static double sure_hit_by(const cylref_band *b)
 {
@@ -94,7 +142,15 @@ static void print_leaf(const leaf_case *lc)
             (double)lc->d[2], (double)lc->tmin, (double)lc->tmax);
     for (int k = 0; k < lc->n; k++) {
         const cylray_cylinder *c = &lc->lane[k].cyl;
+        const cylray_sphere *s = &lc->lane[k].sph;
         const cylref_hit *e = &lc->lane[k].band[0].exact;
+        if (lc->spheres) {
+            fprintf(stderr,
+                    "    lane %d: sphere c (%a, %a, %a) R %a: exact %s t %.9g part %d\n", k,
+                    (double)s->center[0], (double)s->center[1], (double)s->center[2],
+                    (double)s->radius, e->hit ? "hit" : "miss", e->t, e->part);
+            continue;
+        }
         fprintf(stderr,
                 "    lane %d: c (%a, %a, %a) v (%a, %a, %a) R %a H %a flags %u: exact %s t "
                 "%.9g part %d\n",
@@ -182,6 +238,17 @@ static void judge(const cylray_kernels *k, const leaf_case *lc, const void *leaf
                 b->exact.hit ? "hit" : "miss", b->exact.t, b->exact.part, ub);
             CHECK(h->id == lc->id[L], "%s leaf%d: id %#x for lane %d (%#x)", k->name, lc->m,
                   h->id, L, lc->id[L]);
+            /* The same sphere in a lower lane hits at the same t: it must win the tie. */
+            for (int j = 0; lc->spheres && j < lc->n; j++)
+                if (j != L &&
+                    memcmp(&lc->lane[j].sph, &lc->lane[L].sph, sizeof lc->lane[L].sph) == 0) {
+                    ties_seen++;
+                    break;
+                }
+            for (int j = 0; lc->spheres && j < L; j++)
+                CHECK(memcmp(&lc->lane[j].sph, &lc->lane[L].sph, sizeof lc->lane[L].sph) != 0,
+                      "%s leaf%d flags %#x: lane %d won a tie with the same sphere in lane %d",
+                      k->name, lc->m, flags, L, j);
             CHECK(memcmp(&io.ray.tmax, &h->t, 4) == 0, "%s leaf%d: tmax %a, t %a", k->name,
                   lc->m, (double)io.ray.tmax, (double)h->t);
             /* No lane surely hits before t, beyond the tolerance. */
@@ -258,6 +325,51 @@ static void bad_input(const cylray_kernels *k, const cylray_cylinder *good)
         }
 }
 
+/* A leaf of spheres refuses too many or a bad sphere, and stays as it was; bad rays
+ * miss it. */
+static void bad_sphere_input(const cylray_kernels *k, const cylray_sphere *good)
+{
+    cylray_leaf8 leaf, copy;
+    memset(&leaf, 0x5a, sizeof leaf);
+    copy = leaf;
+    cylray_sphere s[9];
+    for (int j = 0; j < 9; j++)
+        s[j] = *good;
+    CHECK(cylray_leaf_prepare_spheres8(&leaf, s, NULL, 9) == CYLRAY_EINVAL,
+          "9 spheres in a leaf8");
+    s[5].radius = NAN;
+    CHECK(cylray_leaf_prepare_spheres8(&leaf, s, NULL, 8) == CYLRAY_EINVAL,
+          "a NaN radius accepted");
+    s[5] = *good;
+    s[3].center[1] = INFINITY;
+    CHECK(cylray_leaf_prepare_spheres8(&leaf, s, NULL, 8) == CYLRAY_EINVAL,
+          "an infinite center accepted");
+    CHECK(memcmp(&leaf, &copy, sizeof leaf) == 0, "a refused leaf of spheres was written");
+    s[3] = *good;
+    CHECK(cylray_leaf_prepare_spheres8(&leaf, s, NULL, 8) == CYLRAY_OK, "a good leaf refused");
+    const float bad[] = {NAN, INFINITY, -INFINITY, fbits(0x7f800001u)};
+    for (int f = 0; f < 8; f++)
+        for (size_t v = 0; v < sizeof bad / sizeof bad[0]; v++) {
+            cylray_ray1 ray = {
+                {good->center[0] - 5 * good->radius, good->center[1], good->center[2]},
+                {1, 0.01f, 0.02f},
+                0,
+                INFINITY};
+            float *fld = f < 3    ? &ray.o[f]
+                         : f < 6  ? &ray.d[f - 3]
+                         : f == 6 ? &ray.tmin
+                                  : &ray.tmax;
+            if ((f == 6 && bad[v] == -INFINITY) || (f == 7 && bad[v] == INFINITY))
+                continue; /* legal bounds */
+            *fld = bad[v];
+            cylray_hit1 h;
+            for (unsigned fl = 0; fl <= CYLRAY_FLAGS_ALL; fl++)
+                CHECK(!k->leaf_intersect8(&leaf, &ray, &h, fl) &&
+                          !k->leaf_occluded8(&leaf, &ray, fl),
+                      "%s: a ray with field %d = %a hits a sphere", k->name, f, (double)bad[v]);
+        }
+}
+
 int main(int argc, char **argv)
 {
     const char *want = NULL;
@@ -291,24 +403,38 @@ int main(int argc, char **argv)
     static const int sizes[3] = {4, 8, 16};
     cylgen_rng r;
     cylgen_seed(&r, seed);
-    long calls = 0, hits = 0;
+    long calls = 0, hits = 0, sphere_hits = 0;
+    /* Spheres: a quarter as many leaves (their kernel is a subset of the cylinder's). */
+    const int sphere_leaves = leaves / 4;
     for (int si = 0; si < 3; si++) {
         const int m = sizes[si];
-        for (int li = 0; li < leaves; li++) {
+        for (int li = 0; li < leaves + sphere_leaves; li++) {
             leaf_case lc;
-            make_leaf(&lc, m, &r, seed + (uint64_t)li * 131 + (uint64_t)m);
+            const int sph = li >= leaves;
+            if (sph)
+                make_sphere_leaf(&lc, m, &r,
+                                 (seed ^ 0x5350484552ull) + (uint64_t)li * 131 + (uint64_t)m);
+            else
+                make_leaf(&lc, m, &r, seed + (uint64_t)li * 131 + (uint64_t)m);
             cylray_cylinder cyl[16];
-            for (int j = 0; j < lc.n; j++)
+            cylray_sphere sp[16];
+            for (int j = 0; j < lc.n; j++) {
                 cyl[j] = lc.lane[j].cyl;
+                sp[j] = lc.lane[j].sph;
+            }
             union {
                 cylray_leaf4 l4;
                 cylray_leaf8 l8;
                 cylray_leaf16 l16;
             } leaf;
-            cylray_status st = m == 4 ? cylray_leaf_prepare4(&leaf.l4, cyl, lc.id, (size_t)lc.n)
-                               : m == 8
-                                   ? cylray_leaf_prepare8(&leaf.l8, cyl, lc.id, (size_t)lc.n)
-                                   : cylray_leaf_prepare16(&leaf.l16, cyl, lc.id, (size_t)lc.n);
+            const size_t n = (size_t)lc.n;
+            cylray_status st =
+                sph      ? (m == 4   ? cylray_leaf_prepare_spheres4(&leaf.l4, sp, lc.id, n)
+                            : m == 8 ? cylray_leaf_prepare_spheres8(&leaf.l8, sp, lc.id, n)
+                                     : cylray_leaf_prepare_spheres16(&leaf.l16, sp, lc.id, n))
+                : m == 4 ? cylray_leaf_prepare4(&leaf.l4, cyl, lc.id, n)
+                : m == 8 ? cylray_leaf_prepare8(&leaf.l8, cyl, lc.id, n)
+                         : cylray_leaf_prepare16(&leaf.l16, cyl, lc.id, n);
             CHECK(st == CYLRAY_OK, "leaf of %d refused", lc.n);
             if (st != CYLRAY_OK)
                 continue;
@@ -317,14 +443,22 @@ int main(int argc, char **argv)
                     judge(isas[i], &lc, &leaf, flags);
                     calls++;
                 }
-            for (int j = 0; j < lc.n; j++)
+            for (int j = 0; j < lc.n; j++) {
                 hits += lc.lane[j].band[0].exact.hit;
+                sphere_hits += sph && lc.lane[j].band[0].exact.hit;
+            }
         }
     }
     cylgen_case c;
     cylgen_make(CYLGEN_ORDINARY, seed, 1, &c);
-    for (int i = 0; i < nisa; i++)
+    sphgen_case sc;
+    sphgen_make(SPHGEN_ORDINARY, seed, 1, &sc);
+    for (int i = 0; i < nisa; i++) {
         bad_input(isas[i], &c.cyl);
-    printf("leafcheck: %ld leaf calls, %ld exact lane hits\n", calls, hits);
+        bad_sphere_input(isas[i], &sc.sph);
+    }
+    printf("leafcheck: %ld leaf calls, %ld exact lane hits (%ld on spheres), %ld calls hit a "
+           "sphere held in two lanes\n",
+           calls, hits, sphere_hits, ties_seen);
     return tc_report("leafcheck");
 }

@@ -40,10 +40,15 @@ void print_case(const ref_case *rc, unsigned flags)
 {
     const cylgen_case *c = &rc->c;
     const cylray_cylinder *y = &c->cyl;
-    printf("    cylinder: center {%a, %a, %a} axis {%a, %a, %a} radius %a half_height %a %s\n",
-           (double)y->center[0], (double)y->center[1], (double)y->center[2], (double)y->axis[0],
-           (double)y->axis[1], (double)y->axis[2], (double)y->radius, (double)y->half_height,
-           (y->flags & CYLRAY_CAPPED) ? "CAPPED" : "open");
+    if (rc->sphere)
+        printf("    sphere: center {%a, %a, %a} radius %a\n", (double)rc->sph.center[0],
+               (double)rc->sph.center[1], (double)rc->sph.center[2], (double)rc->sph.radius);
+    else
+        printf("    cylinder: center {%a, %a, %a} axis {%a, %a, %a} radius %a half_height %a "
+               "%s\n",
+               (double)y->center[0], (double)y->center[1], (double)y->center[2],
+               (double)y->axis[0], (double)y->axis[1], (double)y->axis[2], (double)y->radius,
+               (double)y->half_height, (y->flags & CYLRAY_CAPPED) ? "CAPPED" : "open");
     printf("    ray: o {%a, %a, %a} d {%a, %a, %a} tmin %a tmax %a\n", (double)c->o[0],
            (double)c->o[1], (double)c->o[2], (double)c->d[0], (double)c->d[1], (double)c->d[2],
            (double)c->tmin, (double)c->tmax);
@@ -111,6 +116,23 @@ void fail_memory(const lane_ctx *lc, const ref_case *rc, const char *fmt, ...)
 static double normal_of(const ref_case *rc, const lane_out *o, int ff, double n[3])
 {
     const cylgen_case *c = &rc->c;
+    if (rc->sphere) {
+        /* The same for a sphere: the direction from the center to the kernel's point. */
+        double len = 0, ww = 0, td = 0;
+        for (int k = 0; k < 3; k++) {
+            double w = (double)c->o[k] - rc->sph.center[k];
+            n[k] = w + (double)o->t * c->d[k];
+            len += n[k] * n[k];
+            ww += w * w;
+            td += (double)o->t * c->d[k] * ((double)o->t * c->d[k]);
+        }
+        len = sqrt(len);
+        double s = ((o->part & CYLRAY_BACKFACE) && ff) ? -1 / len : 1 / len;
+        for (int k = 0; k < 3; k++)
+            n[k] *= s;
+        const double u = 4 * cylref_float_ulp(fmax(sqrt(ww), sqrt(td)));
+        return asin(fmin(1, u / len));
+    }
     double v[3], p[3], vv = 0, pv = 0, len = 0;
     for (int k = 0; k < 3; k++) {
         v[k] = c->cyl.axis[k];

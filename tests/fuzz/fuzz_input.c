@@ -104,6 +104,14 @@ void fz_decode(const uint8_t *data, size_t size, fz_case *c)
     c->cyl.radius = value(&r);
     c->cyl.half_height = (mode & 0x20) ? INFINITY : value(&r);
     c->cyl.flags = (mode & 0x10) ? CYLRAY_CAPPED : 0u;
+    c->sphere = (mode & 0xc0) == 0xc0;
+    for (int k = 0; k < 3; k++)
+        c->sph.center[k] = c->cyl.center[k];
+    c->sph.radius = c->cyl.radius;
+    /* A sphere's rays aim at its ball: the "cylinder" they aim at is R high. */
+    cylray_cylinder aim = c->cyl;
+    if (c->sphere)
+        aim.half_height = aim.radius;
     for (size_t i = 0; i < c->n; i++) {
         float ray[G_NFIELD];
         const uint8_t tag = byte(&r);
@@ -111,7 +119,7 @@ void fz_decode(const uint8_t *data, size_t size, fz_case *c)
             for (int f = 0; f < G_NFIELD; f++)
                 ray[f] = value(&r);
         } else {
-            aimed(&r, &c->cyl, ray, tag);
+            aimed(&r, &aim, ray, tag);
         }
         for (int f = 0; f < G_NFIELD; f++)
             c->rays.f[f][i] = ray[f];

@@ -5,7 +5,9 @@
  *
  * Layout (all optional; missing bytes read as 0):
  *   byte 0      bits 0-1 width (0: 4, 1: 8, 2: 16, 3: stream), bits 2-3 stream
- *               misalignment in floats, bit 4 capped, bit 5 infinite (half height Inf)
+ *               misalignment in floats, bit 4 capped, bit 5 infinite (half height Inf),
+ *               bits 6 and 7 both set: a sphere (the center and radius below; the
+ *               axis and half height are read and only aim the rays)
  *   byte 1      kernel flags (the low 5 bits: CYLRAY_FLAGS_ALL)
  *   bytes 2-3   active mask, little endian (streams: byte 2 % 50 is the length)
  *   values      center x y z, axis x y z, radius, half height
@@ -28,6 +30,8 @@
 
 typedef struct fz_case {
     cylray_cylinder cyl;
+    int sphere; /* the shape is sph; cyl only aims the rays */
+    cylray_sphere sph;
     unsigned flags;
     int width;         /* 4, 8, 16 or G_STREAM */
     size_t n;          /* rays: the width, or the stream length */

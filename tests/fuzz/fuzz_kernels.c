@@ -22,6 +22,7 @@
 #include "cylray.h"
 #include "fuzz_input.h"
 #include "fuzz_leaf.h"
+#include "fuzz_sphere.h"
 #ifdef HAVE_SPAWN
 #include "fuzz_spawn.h"
 #endif
@@ -45,6 +46,9 @@ static void report(void)
             "; SIMD/scalar differences excused near a boundary: %lu, by the exact "
             "reference: %lu\n",
             fz_excused_geometric, fz_excused_exact);
+    fprintf(stderr,
+            "cylray-fuzz: spheres: %lu inputs, %lu lanes judged against the exact band\n",
+            fz_sphere_cases, fz_sphere_lanes);
 #ifdef HAVE_SPAWN
     fprintf(stderr,
             "cylray-fuzz: spawn: %lu hits through hit point and origin, %lu spawned "
@@ -64,6 +68,10 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
 static void dump(const fz_case *c, const char *what)
 {
     char s[512];
+    if (c->sphere)
+        fprintf(stderr, "cylray-fuzz: sphere center (%a, %a, %a) radius %a\n",
+                (double)c->sph.center[0], (double)c->sph.center[1], (double)c->sph.center[2],
+                (double)c->sph.radius);
     fprintf(stderr,
             "cylray-fuzz: %s\n  %s\n  width %s n %zu active %#x misalign %u flags %#x\n", what,
             g_cyl_str(&c->cyl, s, sizeof s), g_width_name(c->width), c->n, c->active,
@@ -87,6 +95,12 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     fz_decode(data, size, &c);
     const cylray_kernels *isas[CYLRAY_ISA_COUNT];
     const int nisa = g_isas(isas);
+    if (c.sphere) {
+        char why[768];
+        if (fz_sphere(&c, isas, nisa, why, sizeof why))
+            FAIL_("sphere: %s", why);
+        return 0;
+    }
 
     cylray_prepared P;
     const int valid = cylray_prepare(&P, &c.cyl) == CYLRAY_OK;

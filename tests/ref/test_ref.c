@@ -11,6 +11,8 @@
 
 static int failures;
 
+int test_sphref(void); /* test_sphref.c */
+
 #define CHECK(cond, ...)                                                                       \
     do {                                                                                       \
         if (!(cond)) {                                                                         \
@@ -792,6 +794,7 @@ int main(void)
     test_symmetry();
     test_membership();
     test_band();
+    failures += test_sphref();
     if (failures) {
         printf("%d failures\n", failures);
         return 1;

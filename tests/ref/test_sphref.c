@@ -1,0 +1,369 @@
+/* SPDX-License-Identifier: MIT */
+/* test_sphref.c - tests of the exact sphere reference: hand-computed answers, an
+ * independent computation in another precision and algebraic form, the band's
+ * verdicts on a double-precision solver, and the generators. */
+#include "sphgen.h"
+#include "sphref.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+int test_sphref(void);
+
+static int failures;
+
+#define CHECK(cond, ...)                                                                       \
+    do {                                                                                       \
+        if (!(cond)) {                                                                         \
+            failures++;                                                                        \
+            printf("FAIL %s:%d: %s: ", __FILE__, __LINE__, #cond);                             \
+            printf(__VA_ARGS__);                                                               \
+            printf("\n");                                                                      \
+        }                                                                                      \
+    } while (0)
+
+typedef struct {
+    const char *what;
+    cylray_sphere s;
+    float o[3], d[3], tmin, tmax;
+    unsigned flags;
+    int hit;
+    double t;
+    int part;
+    double n[3];
+} hand_case;
+
+static void test_hand(void)
+{
+    const float I = INFINITY;
+    const int S = CYLRAY_SIDE, SB = CYLRAY_SIDE | CYLRAY_BACKFACE;
+    const unsigned FF = CYLRAY_FACE_FORWARD, CB = CYLRAY_CULL_BACK;
+    const cylray_sphere u = {{0, 0, 0}, 1}, big = {{3, 4, 12}, 13};
+    const hand_case cases[] = {
+        {"head on", u, {0, 0, -5}, {0, 0, 1}, 0, I, 0, 1, 4, S, {0, 0, -1}},
+        {"unnormalized d", u, {0, 0, -5}, {0, 0, 2}, 0, I, 0, 1, 2, S, {0, 0, -1}},
+        {"tiny d", u, {0, 0, -5}, {0, 0, 0x1p-30f}, 0, I, 0, 1, 0x1p32, S, {0, 0, -1}},
+        {"from the center", u, {0, 0, 0}, {0, 0, 1}, 0, I, 0, 1, 1, SB, {0, 0, 1}},
+        {"from the center, ff", u, {0, 0, 0}, {0, 0, 1}, 0, I, FF, 1, 1, SB, {0, 0, -1}},
+        {"from the center, culled", u, {0, 0, 0}, {0, 0, 1}, 0, I, CB, 0, 0, 0, {0, 0, 0}},
+        {"front face, ff keeps it", u, {0, -5, 0}, {0, 1, 0}, 0, I, FF, 1, 4, S, {0, -1, 0}},
+        {"tmax short", u, {0, 0, -5}, {0, 0, 1}, 0, 3.9f, 0, 0, 0, 0, {0, 0, 0}},
+        {"tmax closed", u, {0, 0, -5}, {0, 0, 1}, 0, 4, 0, 1, 4, S, {0, 0, -1}},
+        {"tmin closed", u, {0, 0, -5}, {0, 0, 1}, 4, I, 0, 1, 4, S, {0, 0, -1}},
+        {"tmin past the entry", u, {0, 0, -5}, {0, 0, 1}, 4.5f, I, 0, 1, 6, SB, {0, 0, 1}},
+        {"tmin past the entry, culled", u, {0, 0, -5}, {0, 0, 1}, 4.5f, I, CB, 0, 0, 0, {0}},
+        {"behind", u, {0, 0, 5}, {0, 0, 1}, 0, I, 0, 0, 0, 0, {0, 0, 0}},
+        {"negative interval", u, {0, 0, 5}, {0, 0, 1}, -I, 0, 0, 1, -6, S, {0, 0, -1}},
+        {"tangent", u, {1, 0, -5}, {0, 0, 1}, 0, I, 0, 1, 5, S, {1, 0, 0}},
+        {"just outside", u, {1.0000001f, 0, -5}, {0, 0, 1}, 0, I, 0, 0, 0, 0, {0}},
+        {"on the surface, inward", u, {0, 0, -1}, {0, 0, 1}, 0, I, 0, 1, 0, S, {0, 0, -1}},
+        {"on the surface, outward", u, {0, 0, -1}, {0, 0, -1}, 0, I, 0, 1, 0, SB, {0, 0, -1}},
+        /* The world origin lies on this one: roots 0 and 2 from there, 1 and 3 from -c. */
+        {"3-4-12-13",
+         big,
+         {0, 0, 0},
+         {3, 4, 12},
+         0,
+         I,
+         0,
+         1,
+         0,
+         S,
+         {-3 / 13., -4 / 13., -12 / 13.}},
+        {"3-4-12-13, tmin 1",
+         big,
+         {0, 0, 0},
+         {3, 4, 12},
+         1,
+         I,
+         0,
+         1,
+         2,
+         SB,
+         {3 / 13., 4 / 13., 12 / 13.}},
+        {"3-4-12-13 from -c",
+         big,
+         {-3, -4, -12},
+         {3, 4, 12},
+         0,
+         I,
+         0,
+         1,
+         1,
+         S,
+         {-3 / 13., -4 / 13., -12 / 13.}},
+        {"far center",
+         {{0x1p40f, 0, 0}, 0x1p-20f},
+         {0x1p40f, 0, -1},
+         {0, 0, 1},
+         0,
+         I,
+         0,
+         1,
+         1 - 0x1p-20,
+         S,
+         {0, 0, -1}},
+        {"NaN origin", u, {NAN, 0, -5}, {0, 0, 1}, 0, I, 0, 0, 0, 0, {0}},
+        {"Inf direction", u, {0, 0, -5}, {0, 0, I}, 0, I, 0, 0, 0, 0, {0}},
+        {"zero direction", u, {0, 0, -5}, {0, 0, 0}, 0, I, 0, 0, 0, 0, {0}},
+        {"NaN tmax", u, {0, 0, -5}, {0, 0, 1}, 0, NAN, 0, 0, 0, 0, {0}},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        const hand_case *h = &cases[i];
+        cylref_hit r;
+        int ret = sphref_intersect(&h->s, h->o, h->d, h->tmin, h->tmax, h->flags, &r);
+        CHECK(ret == h->hit && r.hit == h->hit, "%s: hit %d (ret %d), want %d", h->what, r.hit,
+              ret, h->hit);
+        if (!h->hit || !r.hit)
+            continue;
+        CHECK(fabs(r.t - h->t) <= 1e-15 * fabs(h->t), "%s: t %.17g want %.17g", h->what, r.t,
+              h->t);
+        CHECK(r.part == h->part, "%s: part %#x want %#x", h->what, r.part, h->part);
+        for (int k = 0; k < 3; k++)
+            CHECK(fabs(r.n[k] - h->n[k]) <= 1e-15, "%s: n[%d] %.17g want %.17g", h->what, k,
+                  r.n[k], h->n[k]);
+    }
+
+    /* Spheres cylray_prepare_sphere refuses. */
+    const cylray_sphere bad[] = {
+        {{NAN, 0, 0}, 1}, {{0, INFINITY, 0}, 1}, {{0, 0, 0x1p63f}, 1},  {{0, 0, 0}, 0},
+        {{0, 0, 0}, -1},  {{0, 0, 0}, NAN},      {{0, 0, 0}, 0x1p-61f}, {{0, 0, 0}, 0x1p63f}};
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        cylref_hit r;
+        const float o[3] = {0, 0, -5}, d[3] = {0, 0, 1};
+        CHECK(sphref_intersect(&bad[i], o, d, 0, INFINITY, 0, &r) == -1 && !r.hit,
+              "bad sphere %zu accepted", i);
+    }
+    const cylray_sphere edge[] = {{{0x1p62f, -0x1p62f, 0}, 0x1p-60f}, {{0, 0, 0}, 0x1p62f}};
+    for (size_t i = 0; i < sizeof edge / sizeof edge[0]; i++)
+        CHECK(sphref_valid(&edge[i]), "edge sphere %zu refused", i);
+}
+
+/* The same question in long double (64 bits on x86, binary128 on AArch64) in another
+ * form: the closest approach s = -(w.d)/(d.d), then t = s -+ sqrt((R^2 - |p|^2)/(d.d))
+ * with p = w + s d. Returns 0 (miss), 1 near, 2 far; *t, *h2 (R^2 - |p|^2). */
+static int ld_solve(const sphgen_case *c, unsigned flags, long double *t, long double *h2)
+{
+    long double w[3], d[3], A = 0, B = 0, pp = 0, R = c->sph.radius;
+    for (int k = 0; k < 3; k++) {
+        w[k] = (long double)c->o[k] - c->sph.center[k];
+        d[k] = c->d[k];
+        A += d[k] * d[k];
+        B += w[k] * d[k];
+    }
+    long double s = -B / A;
+    for (int k = 0; k < 3; k++) {
+        long double p = w[k] + s * d[k];
+        pp += p * p;
+    }
+    *h2 = R * R - pp;
+    if (*h2 < 0)
+        return 0;
+    long double dt = sqrtl(*h2 / A), tn = s - dt, tf = s + dt;
+    if (tn >= c->tmin && tn <= c->tmax) {
+        *t = tn;
+        return 1;
+    }
+    if (!(flags & CYLRAY_CULL_BACK) && tf >= c->tmin && tf <= c->tmax) {
+        *t = tf;
+        return 2;
+    }
+    return 0;
+}
+
+static void test_independent(void)
+{
+    enum { N = 600 };
+    static sphgen_case cs[N];
+    const int cats[] = {SPHGEN_ORDINARY, SPHGEN_FAR,          SPHGEN_INSIDE, SPHGEN_TINY,
+                        SPHGEN_HUGE,     SPHGEN_UNNORMALIZED, SPHGEN_CAMERA};
+    int compared = 0, hits = 0;
+    for (size_t ci = 0; ci < sizeof cats / sizeof cats[0]; ci++) {
+        sphgen_make(cats[ci], 11, N, cs);
+        for (int i = 0; i < N; i++) {
+            const sphgen_case *c = &cs[i];
+            for (unsigned flags = 0; flags <= CYLRAY_CULL_BACK; flags += CYLRAY_CULL_BACK) {
+                long double t = 0, h2;
+                int x = ld_solve(c, flags, &t, &h2);
+                cylref_hit r;
+                sphref_intersect(&c->sph, c->o, c->d, c->tmin, c->tmax, flags, &r);
+                /* Skip what long double cannot decide: near tangency or near an end of
+                 * the interval. */
+                long double R2 = (long double)c->sph.radius * c->sph.radius;
+                if (fabsl(h2) < 1e-9L * R2)
+                    continue;
+                long double dn = sqrtl(fabsl(h2)) / c->sph.radius;
+                (void)dn;
+                if (r.hit && (fabs(r.t - c->tmin) <= 1e-9 * fabs(r.t) ||
+                              fabs(r.t - c->tmax) <= 1e-9 * fabs(r.t)))
+                    continue;
+                compared++;
+                hits += r.hit;
+                CHECK(r.hit == (x != 0), "%s #%d flags %u: ref %d, long double %d",
+                      sphgen_category_name(cats[ci]), i, flags, r.hit, x);
+                if (!r.hit || !x)
+                    continue;
+                CHECK(((r.part & CYLRAY_BACKFACE) != 0) == (x == 2), "%s #%d: part %#x vs %d",
+                      sphgen_category_name(cats[ci]), i, r.part, x);
+                /* The long double form's error grows with |w|/|d| (the shift) and with
+                 * the condition of the root; 1e-3 float ulps of that is far above it. */
+                double scale = 0, dd = 0;
+                for (int k = 0; k < 3; k++) {
+                    double wk = (double)c->o[k] - c->sph.center[k];
+                    scale += wk * wk;
+                    dd += (double)c->d[k] * c->d[k];
+                }
+                scale = fmax(sqrt(scale / dd), fabs(r.t));
+                CHECK(fabs(r.t - (double)t) <= 1e-3 * cylref_float_ulp(scale) + 1e-30,
+                      "%s #%d: t %.17g vs %.17Lg", sphgen_category_name(cats[ci]), i, r.t, t);
+                double len = sqrt(r.n[0] * r.n[0] + r.n[1] * r.n[1] + r.n[2] * r.n[2]);
+                CHECK(fabs(len - 1) < 1e-14, "%s #%d: |n| %.17g",
+                      sphgen_category_name(cats[ci]), i, len);
+            }
+        }
+    }
+    printf("sphref vs long double: %d compared, %d hits\n", compared, hits);
+    CHECK(compared > 3000 && hits > 1000, "too few compared: %d, %d hits", compared, hits);
+}
+
+/* A float kernel that solves in double with the stable formulas and rounds once: it
+ * must be inside every band (the band is not too tight), and one off by 16 ulps
+ * outside it (the band is not too loose). */
+static int dbl_solve(const sphgen_case *c, unsigned flags, float *t, int *part)
+{
+    double w[3], d[3], x[3], A = 0, B = 0, C = 0, R = c->sph.radius;
+    if (c->tmin != c->tmin || c->tmax != c->tmax)
+        return 0;
+    for (int k = 0; k < 3; k++) {
+        if (!isfinite(c->o[k]) || !isfinite(c->d[k]))
+            return 0;
+        w[k] = (double)c->o[k] - c->sph.center[k];
+        d[k] = c->d[k];
+    }
+    for (int k = 0; k < 3; k++)
+        x[k] = w[(k + 1) % 3] * d[(k + 2) % 3] - w[(k + 2) % 3] * d[(k + 1) % 3];
+    for (int k = 0; k < 3; k++) {
+        A += d[k] * d[k];
+        B += w[k] * d[k];
+        C += w[k] * w[k];
+    }
+    double D = A * R * R - (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+    if (!(D >= 0) || !(A > 0))
+        return 0;
+    double sq = sqrt(D), q = -(B + copysign(sq, B));
+    double r1 = q / A, r2 = q != 0 ? (C - R * R) / q : r1;
+    double tn = fmin(r1, r2), tf = fmax(r1, r2);
+    if (tn >= c->tmin && tn <= c->tmax) {
+        *t = (float)tn;
+        *part = CYLRAY_SIDE;
+        return 1;
+    }
+    if (!(flags & CYLRAY_CULL_BACK) && tf >= c->tmin && tf <= c->tmax) {
+        *t = (float)tf;
+        *part = CYLRAY_SIDE | CYLRAY_BACKFACE;
+        return 1;
+    }
+    return 0;
+}
+
+static void test_band(void)
+{
+    enum { N = 192 };
+    static sphgen_case cs[N];
+    for (int cat = 0; cat < SPHGEN_COUNT; cat++) {
+        sphgen_make(cat, 3, N, cs);
+        int hits = 0, unstable = 0, bad = 0, caught = 0, caught_of = 0;
+        double worst = 0, wsum = 0;
+        int wn = 0;
+        for (int i = 0; i < N; i++) {
+            const sphgen_case *c = &cs[i];
+            for (unsigned flags = 0; flags <= CYLRAY_CULL_BACK; flags += CYLRAY_CULL_BACK) {
+                cylref_band b;
+                sphref_band_eval(&c->sph, c->o, c->d, c->tmin, c->tmax, flags, &b);
+                hits += b.exact.hit;
+                if (b.exact.hit) {
+                    wsum += 0.5 * (b.t_hi - b.t_lo) / cylref_float_ulp(b.exact.t);
+                    wn++;
+                }
+                unstable += b.decision_unstable;
+                if (b.exact.hit)
+                    CHECK(b.t_lo <= b.exact.t && b.exact.t <= b.t_hi,
+                          "%s #%d: exact outside its band", sphgen_category_name(cat), i);
+                float t = 0;
+                int part = 0, hit = dbl_solve(c, flags, &t, &part);
+                double ub;
+                int v = sphref_judge(&b, hit, part, t, &ub);
+                if (v || ub > 1) {
+                    bad++;
+                    if (bad < 4)
+                        printf("  %s #%d flags %u: double solver judged %d, %.3g ulps beyond "
+                               "(exact %d t %.9g part %#x, got %d t %.9g part %#x)\n",
+                               sphgen_category_name(cat), i, flags, v, ub, b.exact.hit,
+                               b.exact.t, b.exact.part, hit, (double)t, part);
+                }
+                if (!v && hit)
+                    worst = fmax(worst, ub);
+                /* On a stable hit: 16 ulps past the band, a miss and the other face must
+                 * all be caught. */
+                if (b.exact.hit && !b.decision_unstable) {
+                    float late = (float)(b.t_hi + 16 * cylref_float_ulp(b.t_hi));
+                    double u;
+                    caught_of++;
+                    caught += sphref_judge(&b, 1, b.exact.part, late, &u) == 0 && u > 8;
+                    caught += sphref_judge(&b, 0, 0, 0, &u) == 1;
+                    caught += sphref_judge(&b, 1, b.exact.part ^ CYLRAY_BACKFACE,
+                                           (float)b.exact.t, &u) == 2;
+                }
+            }
+        }
+        printf("sph band %-16s %4d/%d hits, %4d unstable, double solver: %d judged bad, worst "
+               "%.3g ulps beyond; %d/%d defects caught; band +-%.3g ulps on average\n",
+               sphgen_category_name(cat), hits, 2 * N, unstable, bad, worst, caught,
+               3 * caught_of, wn ? wsum / wn : 0.0);
+        CHECK(bad == 0, "%s: the double solver fails its bands %d times",
+              sphgen_category_name(cat), bad);
+        CHECK(caught == 3 * caught_of, "%s: defects missed", sphgen_category_name(cat));
+        if (cat != SPHGEN_BAD && cat != SPHGEN_GRAZING && cat != SPHGEN_SURFACE)
+            CHECK(caught_of > N / 4, "%s: too few stable hits %d", sphgen_category_name(cat),
+                  caught_of);
+        if (cat != SPHGEN_BAD)
+            CHECK(hits > N / 4, "%s: too few hits %d", sphgen_category_name(cat), hits);
+        if (cat == SPHGEN_ORDINARY || cat == SPHGEN_INSIDE || cat == SPHGEN_CAMERA)
+            CHECK(unstable < N / 10, "%s: too many unstable %d", sphgen_category_name(cat),
+                  unstable);
+    }
+}
+
+static void test_generators(void)
+{
+    enum { N = 64 };
+    static sphgen_case a[N], b[N];
+    CHECK(sphgen_category_name(SPHGEN_COUNT) == NULL, "count");
+    for (int cat = 0; cat < SPHGEN_COUNT; cat++) {
+        const char *name = sphgen_category_name(cat);
+        CHECK(name && sphgen_category_find(name) == cat, "name %d", cat);
+        CHECK(sphgen_category_description(cat) != NULL, "description %d", cat);
+        sphgen_make(cat, 5, N, a);
+        sphgen_make(cat, 5, N / 2, b);
+        CHECK(memcmp(a, b, sizeof a[0] * (N / 2)) == 0, "%s: not prefix-stable", name);
+        for (int i = 0; i < N; i++) {
+            CHECK(sphref_valid(&a[i].sph), "%s #%d: invalid sphere", name, i);
+            if (i % CYLGEN_BATCH)
+                CHECK(memcmp(&a[i].sph, &a[i - 1].sph, sizeof a[i].sph) == 0, "%s: batch",
+                      name);
+        }
+    }
+    sphgen_make_shared(SPHGEN_FAR, 5, N, a);
+    for (int i = 1; i < N; i++)
+        CHECK(memcmp(&a[i].sph, &a[0].sph, sizeof a[0].sph) == 0, "shared");
+}
+
+int test_sphref(void)
+{
+    test_hand();
+    test_generators();
+    test_independent();
+    test_band();
+    return failures;
+}
