@@ -1,4 +1,4 @@
-/* cylray_embree.h - cylray's cylinders as an Embree 3 or Embree 4 geometry.
+/* cylray_embree.h - cylray's cylinders and spheres as an Embree 3 or Embree 4 geometry.
  * SPDX-License-Identifier: MIT
  *
  * An optional part of cylray, in its own library (cylray_embree; pkg-config
@@ -195,6 +195,39 @@ CYLRAY_EMBREE_API RTCGeometry cylray_embree_new_geometry(RTCDevice device,
                                                          const cylray_embree_desc *desc,
                                                          cylray_status *status);
 
+/* The caller's spheres: sphere i has its center and radius at
+ *   (const char *)center + i * center_stride    three floats
+ *   (const char *)radius + i * radius_stride    one float
+ * strides in bytes as above (a stride of 0: one radius for all); read during
+ * cylray_embree_new_spheres only. */
+typedef struct cylray_embree_sphere_desc {
+    size_t count;
+    const float *center;
+    size_t center_stride;
+    const float *radius;
+    size_t radius_stride;
+    unsigned options;              /* CYLRAY_EMBREE_LEAVES, _FILTER, _CONTEXT; a sphere's
+                                     * box is tight, so _SPLIT and _NO_SPLIT change nothing */
+    unsigned flags;                /* as cylray_embree_desc.flags */
+    const cylray_kernels *kernels; /* the path to call; NULL: cylray_kernels_best() */
+} cylray_embree_sphere_desc;
+
+/* A new RTCGeometry of spheres, as cylray_embree_new_geometry makes one of cylinders:
+ * the same leaves, callbacks, filters, masks, instancing and Embree 3 / 4 behaviour
+ * (the top of this file), and the same statuses (a sphere refused by the rules of
+ * cylray_prepare_sphere: CYLRAY_EINVAL). Its hits fill Embree's record with
+ *   tfar     the hit distance
+ *   Ng       the unit outward normal (from the center to the hit point)
+ *   u        phi / 2pi in [0, 1), phi = atan2(y, x) of the normal (pbrt-v4's full
+ *            sphere, as cylray_surface gives it; within 4e-7 of it)
+ *   v        1 - theta / pi: 0 at the -z pole, 1 at the +z pole (within 8e-7)
+ *   primID   the sphere's index in the caller's arrays; geomID, instID as above
+ * Every call below that takes "such a geometry" takes one of spheres too, its part then
+ * CYLRAY_SIDE; cylray_embree_cylinder gives the prepared sphere. */
+CYLRAY_EMBREE_API RTCGeometry cylray_embree_new_spheres(RTCDevice device,
+                                                        const cylray_embree_sphere_desc *desc,
+                                                        cylray_status *status);
+
 /* Instead of rtcReleaseGeometry for such a geometry: drops the caller's reference and
  * frees cylray's data, which Embree (3 and 4) gives no way to tie to the geometry's own
  * end (a user geometry holds no buffers, and nothing is called when it goes).
@@ -205,18 +238,20 @@ CYLRAY_EMBREE_API void cylray_embree_release_geometry(RTCGeometry geometry);
 
 /* 1 when geometry was made by cylray_embree_new_geometry, 0 otherwise. */
 CYLRAY_EMBREE_API int cylray_embree_is_cylinders(RTCGeometry geometry);
+/* 1 when geometry was made by cylray_embree_new_spheres, 0 otherwise. */
+CYLRAY_EMBREE_API int cylray_embree_is_spheres(RTCGeometry geometry);
 
-/* How many primitives Embree got from such a geometry: one per cylinder, per split
- * box, or per leaf; 0 for another geometry. */
+/* How many primitives Embree got from such a geometry: one per cylinder (or sphere),
+ * per split box, or per leaf; 0 for another geometry. */
 CYLRAY_EMBREE_API size_t cylray_embree_primitives(RTCGeometry geometry);
 
-/* How many cylinders a leaf of such a geometry holds at most (made with
+/* How many cylinders (or spheres) a leaf of such a geometry holds at most (made with
  * CYLRAY_EMBREE_LEAVES: 8 or 4, by the kernels' path); 0 without leaves or for another
  * geometry. */
 CYLRAY_EMBREE_API unsigned cylray_embree_leaf_size(RTCGeometry geometry);
 
-/* The prepared form of cylinder primID of such a geometry, for cylray's own calls
- * (cylray_hit_point, cylray_spawn_origin, the kernels); NULL when out of range. */
+/* The prepared form of cylinder (or sphere) primID of such a geometry, for cylray's own
+ * calls (cylray_hit_point, cylray_spawn_origin, the kernels); NULL when out of range. */
 CYLRAY_EMBREE_API const cylray_prepared *cylray_embree_cylinder(RTCGeometry geometry,
                                                                 unsigned primID);
 

@@ -6,8 +6,8 @@
  * hit/miss or part disagreement is counted, then judged against the reference's
  * tolerance band (the float inputs perturbed by a few ulps): excused when the exact
  * case is that close to a decision boundary, "unexcused" otherwise. Bands are costly,
- * so they are computed only for rays that disagree, once per ray. Spheres take the
- * bench's own exact sphere (sphref.c) in the same form. */
+ * so they are computed only for rays that disagree, once per ray. Spheres take
+ * tests/ref's exact sphere (sphref.h) in the same form. */
 #include "bench.h"
 #include "timing_run.h"
 
@@ -71,7 +71,7 @@ static void ref_closest(const workload *w, size_t i, ref_answer *out)
     out->part = 0;
     for (int c = c0; c < c1; c++) {
         cylref_hit h;
-        int got = w->sph ? sphref_intersect(&w->sph[c], o, d, tmin, tmax, &h)
+        int got = w->sph ? sphref_intersect(&w->sph[c], o, d, tmin, tmax, 0, &h)
                          : cylref_intersect(&w->cyl[c], o, d, tmin, tmax, 0, &h);
         if (got == 1 && (!out->hit || h.t < out->t)) {
             out->hit = 1;
@@ -119,7 +119,7 @@ static const cylref_band *band_of(const workload *w, size_t i, int c)
     float o[3], d[3], tmin, tmax;
     ray_of(w, i, o, d, &tmin, &tmax);
     if (w->sph)
-        sphref_band_eval(&w->sph[c], o, d, tmin, tmax, b);
+        sphref_band_eval(&w->sph[c], o, d, tmin, tmax, 0, b);
     else
         cylref_band_eval(&w->cyl[c], o, d, tmin, tmax, 0, b);
     if (single)

@@ -1,9 +1,10 @@
 /* SPDX-License-Identifier: MIT */
 /* main.c - cylembree: cylray inside Embree (3 or 4: the one the adapter was built
- * against) against that Embree's own cone curves, on four scenes, time and error side
- * by side.
+ * against) against that Embree's own cone curves and sphere points, on six scenes, time
+ * and error side by side.
  *
- *   cylembree [--quick] [--scene=molecule,pipes,far-rods,lattice] [--isa=best|all|LIST]
+ *   cylembree [--quick] [--scene=molecule,pipes,far-rods,lattice,balls,far-cloud]
+ *             [--isa=best|all|LIST]
  *             [--packet=1,4,8,16] [--threads=N] [--size=WxH]
  *             [--samples=N] [--reps=N] [--clock=wall|cpu] [--out=DIR]
  */
@@ -158,11 +159,48 @@ static void to_float_ray(eb_sample *s, const double o[3], const double d[3])
     s->pixel = SIZE_MAX;
 }
 
+/* The spheres' aimed rays: from the eye along the silhouette (grazing: the rim set), or
+ * from just inside or outside the surface, 1e-7..1e-3 radii from it, in a random
+ * direction (the axis set's counterpart: an origin where o - c is nearly R). */
+static void aimed_sphere(eb_sample *s, const eb_scene *sc, int set, rng *g)
+{
+    const cylray_sphere *sp = &sc->sph[(size_t)(rng_unit(g) * (double)sc->nsph)];
+    double C[3] = {sp->center[0], sp->center[1], sp->center[2]}, R = sp->radius;
+    double ph = rng_range(g, 0, 6.283185307179586), a[3], e1[3], e2[3], l = 0, o[3], d[3];
+    if (set == EB_SET_RIM) {
+        for (int k = 0; k < 3; k++)
+            a[k] = C[k] - sc->eye[k], l += a[k] * a[k];
+        l = sqrt(l);
+        for (int k = 0; k < 3; k++)
+            a[k] /= l;
+        unit_frame(a, e1, e2);
+        double sn = R / l, cs = sqrt(1 - sn * sn);
+        for (int k = 0; k < 3; k++)
+            d[k] = cs * a[k] + sn * (cos(ph) * e1[k] + sin(ph) * e2[k]);
+        to_float_ray(s, (const double[]){sc->eye[0], sc->eye[1], sc->eye[2]}, d);
+        return;
+    }
+    double z = rng_range(g, -1, 1), r = sqrt(1 - z * z);
+    double u[3] = {r * cos(ph), r * sin(ph), z};
+    double gap = (rng_unit(g) < 0.5 ? -1 : 1) * pow(10, rng_range(g, -7, -3));
+    double th = rng_range(g, 0, 6.283185307179586), zz = rng_range(g, -1, 1);
+    double rr = sqrt(1 - zz * zz);
+    for (int k = 0; k < 3; k++)
+        o[k] = C[k] + R * (1 + gap) * u[k];
+    d[0] = rr * cos(th), d[1] = rr * sin(th), d[2] = zz;
+    to_float_ray(s, o, d);
+}
+
 /* Rays from the eye at points of the rim of a closed end (where Embree's curves test
  * side and disc apart), or down the axis: at a closed end from outside, at an open
- * joint from inside the tube, within 1e-7..1e-3 rad of the axis. */
+ * joint from inside the tube, within 1e-7..1e-3 rad of the axis. In a scene with
+ * spheres, half of them (all, without cylinders) are the spheres' counterparts. */
 static void aimed(eb_sample *s, const eb_scene *sc, int set, rng *g)
 {
+    if (sc->nsph && (sc->ns == 0 || rng_unit(g) < 0.5)) {
+        aimed_sphere(s, sc, set, g);
+        return;
+    }
     for (;;) {
         uint32_t id = (uint32_t)(rng_unit(g) * (double)sc->ns);
         const float *p0 = sc->vert[sc->first[id]], *p1 = sc->vert[sc->first[id] + 1];
@@ -299,7 +337,8 @@ static int run_scene(const opts *o, RTCDevice dev, cylray_isa isa, int which, eb
     if (eb_scene_make(&sc, which, 20261201) != 0)
         return -1;
     const cylray_kernels *k = cylray_kernels_for(isa);
-    fprintf(stderr, "cylembree: %s/%s: %zu cylinders\n", cylray_isa_name(isa), sc.name, sc.ns);
+    fprintf(stderr, "cylembree: %s/%s: %zu cylinders, %zu spheres\n", cylray_isa_name(isa),
+            sc.name, sc.ns, sc.nsph);
     size_t npix = (size_t)o->w * (size_t)o->h;
 
     /* the judged rays and their exact answers, shared by the variants */
@@ -353,7 +392,8 @@ static int run_scene(const opts *o, RTCDevice dev, cylray_isa isa, int which, eb
         built[v] = 1;
         r->build_s = geo[v].build_s;
         r->nprim = geo[v].nprim;
-        r->leaf_m = (int)cylray_embree_leaf_size(geo[v].cyl); /* 0 but for leaves */
+        r->nsph = sc.nsph;
+        r->leaf_m = (int)cylray_embree_leaf_size(geo[v].cyl ? geo[v].cyl : geo[v].sph);
         eb_camera_rays(&fr[v].prim, &sc, o->w, o->h);
     }
 

@@ -43,7 +43,8 @@ static void speed(FILE *f, const eb_row *r, size_t n)
 {
     fprintf(f,
             "\nM rays/s (%d threads; packet = rays per Embree call; cylray-leaf: %d "
-            "cylinders a leaf, grouped by Embree's SAH builder)\n",
+            "cylinders or spheres a leaf, grouped by Embree's SAH builder; embree-curve: "
+            "Embree's curves, and its sphere points for spheres)\n",
             r[0].threads, r[EB_LEAF < n ? EB_LEAF : 0].leaf_m);
     fprintf(f, "%-7s %-9s %-16s %8s", "isa", "scene", "variant", "build s");
     for (int p = 0; p < EB_NPHASES; p++)
@@ -134,11 +135,11 @@ static void scaling(FILE *f, const eb_row *r, size_t n)
 static void errors(FILE *f, const eb_row *r, size_t n)
 {
     fprintf(f, "\nError against the exact reference (binary128) on sampled rays:\n"
-               "wrong = unexcused wrong hit/miss or wrong cylinder (leak: went past the true\n"
+               "wrong = unexcused wrong hit/miss or wrong object (leak: went past the true\n"
                "first surface; phantom: a hit where there is none); excused = inside the\n"
                "tolerance band; t in float ulps (beyond: outside the band), normal in\n"
                "radians (up to sign); self =\n"
-               "secondary rays from a front face that hit their own cylinder\n");
+               "secondary rays from a front face that hit their own cylinder or sphere\n");
     fprintf(f, "%-7s %-9s %-16s %-6s %6s %5s %5s %5s %5s %8s %8s %8s %8s %8s %11s\n", "isa",
             "scene", "variant", "set", "rays", "wrong", "leak", "phant", "exc", "t med",
             "t p99", "t max", "beyond", "n p99", "self/sec");
@@ -173,7 +174,7 @@ void eb_report(FILE *f, const eb_row *rows, size_t n, const char *machine)
 
 void eb_report_csv(FILE *f, const eb_row *r, size_t n)
 {
-    fprintf(f, "isa,scene,variant,leaf_m,threads,cylinders,build_s");
+    fprintf(f, "isa,scene,variant,leaf_m,threads,cylinders,spheres,build_s");
     for (int p = 0; p < EB_NPHASES; p++)
         for (int k = 0; k < EB_NPACKETS; k++)
             fprintf(f, ",%s_%d_mrays", phase_name[p], eb_packets[k]);
@@ -188,8 +189,8 @@ void eb_report_csv(FILE *f, const eb_row *r, size_t n)
     for (size_t i = 0; i < n; i++) {
         if (r[i].skipped)
             continue;
-        fprintf(f, "%s,%s,%s,%d,%d,%zu,%.4f", r[i].isa, r[i].scene, r[i].variant, r[i].leaf_m,
-                r[i].threads, r[i].ns, r[i].build_s);
+        fprintf(f, "%s,%s,%s,%d,%d,%zu,%zu,%.4f", r[i].isa, r[i].scene, r[i].variant,
+                r[i].leaf_m, r[i].threads, r[i].ns, r[i].nsph, r[i].build_s);
         for (int p = 0; p < EB_NPHASES; p++)
             for (int k = 0; k < EB_NPACKETS; k++)
                 fprintf(f, ",%.4g", r[i].mrays[p][k]);

@@ -18,7 +18,7 @@ typedef struct eb_row {
     char isa[16], scene[32], variant[16];
     int leaf_m, threads, skipped;
     char why[80];
-    size_t ns, nprim;
+    size_t ns, nsph, nprim; /* cylinders, spheres, Embree's primitives */
     double build_s;
     double mrays[EB_NPHASES][EB_NPACKETS]; /* at `threads` threads; NAN: not run */
     double scaling[EB_MAXT + 1];           /* primary, one ray a call, at 1..threads */

@@ -47,6 +47,34 @@ void ceb_whole_box(const cylray_prepared *p, struct RTCBounds *b)
     ceb_set_box(b, lo, hi, 0);
 }
 
+/* center -+ radius rounded outward, then one float further: the double difference is
+ * itself rounded when the two are far apart in magnitude, and a box one ulp too wide
+ * costs nothing (cylray_bounds of a sphere is not relied on here). */
+void ceb_sphere_box(const cylray_sphere *s, struct RTCBounds *b)
+{
+    float lo[3], hi[3];
+    for (int k = 0; k < 3; k++) {
+        double c = s->center[k], r = s->radius;
+        float l = (float)(c - r), h = (float)(c + r);
+        if ((double)l > c - r)
+            l = nextafterf(l, -INFINITY);
+        if ((double)h < c + r)
+            h = nextafterf(h, INFINITY);
+        lo[k] = nextafterf(l, -INFINITY);
+        hi[k] = nextafterf(h, INFINITY);
+    }
+    ceb_set_box(b, lo, hi, 0);
+}
+
+/* The whole box of shape i of the geometry, cylinder or sphere. */
+void ceb_box_of(const ceb *g, size_t i, struct RTCBounds *b)
+{
+    if (g->sph)
+        ceb_sphere_box(&g->sph[i], b);
+    else
+        ceb_whole_box(&g->prep[i], b);
+}
+
 void *ceb_alloc_aligned(size_t bytes)
 {
     size_t b = (bytes + 63) / 64 * 64;

@@ -35,9 +35,10 @@ typedef struct ceb {
     uint32_t magic;
     const cylray_kernels *k;
     unsigned options, iflags, oflags; /* intersect and occluded kernel flags */
-    size_t n;                         /* cylinders */
+    size_t n;                         /* cylinders or spheres */
     cylray_prepared *prep;            /* n */
-    frame *fr;                        /* n */
+    frame *fr;                        /* n; NULL for spheres, whose u, v need none */
+    cylray_sphere *sph;               /* n spheres (their boxes); NULL for cylinders */
     size_t nprim;                     /* Embree's primitives */
     uint32_t *prim_cyl;               /* split: primitive -> cylinder */
     uint32_t *prim_piece;             /* split: primitive -> its piece of that cylinder */
@@ -56,10 +57,13 @@ typedef struct hitrec {
 void ceb_frame_init(frame *f, const float p0[3], const float p1[3]);
 void ceb_set_box(struct RTCBounds *b, const float lo[3], const float hi[3], float pad);
 void ceb_whole_box(const cylray_prepared *p, struct RTCBounds *b);
+void ceb_sphere_box(const cylray_sphere *s, struct RTCBounds *b);
+void ceb_box_of(const ceb *g, size_t i, struct RTCBounds *b);
 int ceb_make_boxes(ceb *g, const cylray_cylinder *cyl);
 void *ceb_alloc_aligned(size_t bytes);
 
-/* group.c: cylinders grouped into leaves with Embree's SAH builder */
+/* group.c: cylinders (cyl) or spheres (g->sph, cyl NULL) grouped into leaves with
+ * Embree's SAH builder */
 int ceb_group_leaves(ceb *g, RTCDevice dev, const cylray_cylinder *cyl);
 
 /* Why ceb_make_boxes or ceb_group_leaves failed (they return 0 otherwise): the caller

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
-/* cylray_embree.c - cylray's cylinders as an Embree 3 or 4 user geometry: the public calls,
- * a geometry made from its description and its options. The rest of src/embree/: the
+/* cylray_embree.c - cylray's cylinders and spheres as an Embree 3 or 4 user geometry: the
+ * public calls, a geometry made from its description and its options. The rest of src/embree/: the
  * boxes (boxes.c), the grouping into leaves (group.c), the callbacks (single.c,
  * leaves.c), hit records and filters (hit.h, filter.c), secondary rays (spawn.c); what
  * depends on Embree's API version is in rtc.h alone. */
@@ -32,54 +32,18 @@ static void ceb_free(ceb *g)
     free(g->prim_piece);
     free(g->box);
     free(g->leaves);
+    free(g->sph);
     free(g);
 }
 
-RTCGeometry cylray_embree_new_geometry(RTCDevice device, const cylray_embree_desc *desc,
-                                       cylray_status *status)
+/* The geometry made from g's prepared shapes (cylinders: cyl, their frames in g; spheres:
+ * g->sph, cyl NULL): its boxes or leaves, then Embree's user geometry. NULL on failure,
+ * g freed and *st saying why (CYLRAY_OK: Embree refused); else *st is CYLRAY_OK. */
+static RTCGeometry ceb_finish(ceb *g, RTCDevice device, const cylray_cylinder *cyl,
+                              cylray_status *st)
 {
-    cylray_status st = CYLRAY_EINVAL;
-    ceb *g = NULL;
-    cylray_cylinder *cyl = NULL;
     RTCGeometry geo = NULL;
-    if (status)
-        *status = CYLRAY_EINVAL;
-    if (!device || !desc || desc->count == 0 || desc->count > 0xffffffffu || !desc->p0 ||
-        !desc->p1 || !desc->radius || (desc->options & ~CEB_OPTIONS) ||
-        (desc->flags & ~(CEB_KFLAGS | CYLRAY_NORMAL)))
-        return NULL;
-    size_t n = desc->count;
-    st = CYLRAY_ENOMEM;
-    g = calloc(1, sizeof *g);
-    cyl = malloc(n * sizeof *cyl);
-    if (!g || !cyl)
-        goto fail_st;
-    g->magic = CEB_MAGIC;
-    g->k = desc->kernels ? desc->kernels : cylray_kernels_best();
-    g->options = desc->options;
-    g->iflags = CYLRAY_NORMAL | (desc->flags & CEB_KFLAGS);
-    g->oflags = desc->flags & CEB_KFLAGS;
-    g->n = n;
-    g->prep = ceb_alloc_aligned(n * sizeof *g->prep);
-    g->fr = malloc(n * sizeof *g->fr);
-    if (!g->prep || !g->fr)
-        goto fail_st;
-    if (!g->k)
-        goto fail;
-    for (size_t i = 0; i < n; i++) {
-        const float *p0 = elem(desc->p0, desc->p0_stride, i);
-        const float *p1 = elem(desc->p1, desc->p1_stride, i);
-        float r = *(const float *)elem(desc->radius, desc->radius_stride, i);
-        unsigned caps = desc->caps ? *(const unsigned *)elem(desc->caps, desc->caps_stride, i)
-                                   : CYLRAY_CAPPED;
-        if (cylray_cylinder_from_endpoints(&cyl[i], p0, p1, r, caps) != CYLRAY_OK ||
-            cylray_prepare(&g->prep[i], &cyl[i]) != CYLRAY_OK) {
-            st = CYLRAY_EINVAL;
-            goto fail_st;
-        }
-        ceb_frame_init(&g->fr[i], p0, p1);
-    }
-    int leaves = (desc->options & CYLRAY_EMBREE_LEAVES) != 0, why;
+    int leaves = (g->options & CYLRAY_EMBREE_LEAVES) != 0, why;
     if (leaves) {
         cylray_isa isa = g->k->isa;
         /* 8 with AVX-512 too: behind Embree's BVH a leaf of 16 covers about twice
@@ -88,17 +52,23 @@ RTCGeometry cylray_embree_new_geometry(RTCDevice device, const cylray_embree_des
          * the molecule, the pipes and the lattice) */
         g->m = isa == CYLRAY_ISA_AVX512 || isa == CYLRAY_ISA_AVX2 ? 8 : 4;
         why = ceb_group_leaves(g, device, cyl);
-    } else {
+    } else if (cyl) {
         why = ceb_make_boxes(g, cyl);
+    } else {
+        /* a sphere's box is tight: one box a sphere */
+        g->nprim = g->n;
+        g->box = malloc(g->n * sizeof *g->box);
+        why = g->box ? 0 : CEB_NO_MEMORY;
+        for (size_t i = 0; !why && i < g->n; i++)
+            ceb_sphere_box(&g->sph[i], &g->box[i]);
     }
+    *st = why == CEB_BAD_INPUT   ? CYLRAY_EINVAL
+          : why == CEB_NO_MEMORY ? CYLRAY_ENOMEM
+                                 : CYLRAY_OK;
     if (why) {
-        st = why == CEB_BAD_INPUT   ? CYLRAY_EINVAL
-             : why == CEB_NO_MEMORY ? CYLRAY_ENOMEM
-                                    : CYLRAY_OK;
-        goto fail_st;
+        ceb_free(g);
+        return NULL;
     }
-    free(cyl);
-    cyl = NULL;
     geo = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
     if (!geo)
         goto fail;
@@ -115,19 +85,122 @@ RTCGeometry cylray_embree_new_geometry(RTCDevice device, const cylray_embree_des
     }
     if (rtcGetDeviceError(device) != RTC_ERROR_NONE)
         goto fail;
-    if (status)
-        *status = CYLRAY_OK;
     return geo;
 fail:
-    st = CYLRAY_OK; /* neither the input nor memory: Embree refused */
+    if (geo)
+        rtcReleaseGeometry(geo);
+    ceb_free(g);
+    return NULL; /* neither the input nor memory: Embree refused */
+}
+
+/* The state shared by both shapes' geometries, before their shapes: NULL when out of
+ * memory. */
+static ceb *ceb_new(size_t n, unsigned options, unsigned flags, const cylray_kernels *k)
+{
+    ceb *g = calloc(1, sizeof *g);
+    if (!g)
+        return NULL;
+    g->magic = CEB_MAGIC;
+    g->k = k ? k : cylray_kernels_best();
+    g->options = options;
+    g->iflags = CYLRAY_NORMAL | (flags & CEB_KFLAGS);
+    g->oflags = flags & CEB_KFLAGS;
+    g->n = n;
+    g->prep = ceb_alloc_aligned(n * sizeof *g->prep);
+    if (!g->prep) {
+        ceb_free(g);
+        return NULL;
+    }
+    return g;
+}
+
+/* The checks both descriptions share: 1 when the count, options and flags are fine. */
+static int desc_ok(RTCDevice device, size_t count, unsigned options, unsigned flags)
+{
+    return device && count != 0 && count <= 0xffffffffu && !(options & ~CEB_OPTIONS) &&
+           !(flags & ~(CEB_KFLAGS | CYLRAY_NORMAL));
+}
+
+RTCGeometry cylray_embree_new_geometry(RTCDevice device, const cylray_embree_desc *desc,
+                                       cylray_status *status)
+{
+    cylray_status st = CYLRAY_EINVAL;
+    ceb *g = NULL;
+    cylray_cylinder *cyl = NULL;
+    RTCGeometry geo = NULL;
+    if (status)
+        *status = CYLRAY_EINVAL;
+    if (!desc || !desc_ok(device, desc->count, desc->options, desc->flags) || !desc->p0 ||
+        !desc->p1 || !desc->radius)
+        return NULL;
+    size_t n = desc->count;
+    st = CYLRAY_ENOMEM;
+    g = ceb_new(n, desc->options, desc->flags, desc->kernels);
+    cyl = malloc(n * sizeof *cyl);
+    if (!g || !cyl || !(g->fr = malloc(n * sizeof *g->fr)))
+        goto fail_st;
+    st = CYLRAY_OK; /* no kernels: not the caller's input */
+    if (!g->k)
+        goto fail_st;
+    for (size_t i = 0; i < n; i++) {
+        const float *p0 = elem(desc->p0, desc->p0_stride, i);
+        const float *p1 = elem(desc->p1, desc->p1_stride, i);
+        float r = *(const float *)elem(desc->radius, desc->radius_stride, i);
+        unsigned caps = desc->caps ? *(const unsigned *)elem(desc->caps, desc->caps_stride, i)
+                                   : CYLRAY_CAPPED;
+        if (cylray_cylinder_from_endpoints(&cyl[i], p0, p1, r, caps) != CYLRAY_OK ||
+            cylray_prepare(&g->prep[i], &cyl[i]) != CYLRAY_OK) {
+            st = CYLRAY_EINVAL;
+            goto fail_st;
+        }
+        ceb_frame_init(&g->fr[i], p0, p1);
+    }
+    geo = ceb_finish(g, device, cyl, &st);
+    g = NULL; /* the geometry's now, or freed */
 fail_st:
     if (status)
         *status = st;
-    if (geo)
-        rtcReleaseGeometry(geo);
     free(cyl);
     ceb_free(g);
-    return NULL;
+    return geo;
+}
+
+RTCGeometry cylray_embree_new_spheres(RTCDevice device, const cylray_embree_sphere_desc *desc,
+                                      cylray_status *status)
+{
+    cylray_status st = CYLRAY_EINVAL;
+    ceb *g = NULL;
+    RTCGeometry geo = NULL;
+    if (status)
+        *status = CYLRAY_EINVAL;
+    if (!desc || !desc_ok(device, desc->count, desc->options, desc->flags) || !desc->center ||
+        !desc->radius)
+        return NULL;
+    size_t n = desc->count;
+    st = CYLRAY_ENOMEM;
+    g = ceb_new(n, desc->options, desc->flags, desc->kernels);
+    if (!g || !(g->sph = malloc(n * sizeof *g->sph)))
+        goto fail_st;
+    st = CYLRAY_OK;
+    if (!g->k)
+        goto fail_st;
+    for (size_t i = 0; i < n; i++) {
+        const float *c = elem(desc->center, desc->center_stride, i);
+        cylray_sphere *s = &g->sph[i];
+        s->center[0] = c[0], s->center[1] = c[1], s->center[2] = c[2];
+        s->radius = *(const float *)elem(desc->radius, desc->radius_stride, i);
+        if (cylray_prepare_sphere(&g->prep[i], s) != CYLRAY_OK) {
+            st = CYLRAY_EINVAL;
+            goto fail_st;
+        }
+    }
+    geo = ceb_finish(g, device, NULL, &st);
+    g = NULL;
+fail_st:
+    if (status)
+        *status = st;
+    ceb_free(g);
+    return geo;
 }
 
 ceb *ceb_of(RTCGeometry geometry)
@@ -149,7 +222,14 @@ void cylray_embree_release_geometry(RTCGeometry geometry)
 
 int cylray_embree_is_cylinders(RTCGeometry geometry)
 {
-    return ceb_of(geometry) != NULL;
+    const ceb *g = ceb_of(geometry);
+    return g && !g->sph;
+}
+
+int cylray_embree_is_spheres(RTCGeometry geometry)
+{
+    const ceb *g = ceb_of(geometry);
+    return g && g->sph;
 }
 
 size_t cylray_embree_primitives(RTCGeometry geometry)

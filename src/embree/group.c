@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* embree/group.c - cylinders grouped into cylray leaves with Embree's SAH builder
+/* embree/group.c - cylinders or spheres grouped into cylray leaves with Embree's SAH builder
  * (CYLRAY_EMBREE_LEAVES): one primitive per leaf. */
 #include "ceb.h"
 
@@ -61,10 +61,19 @@ static void box_union(struct RTCBounds *u, const struct RTCBounds *b)
         g->leaves = lv;                                                                        \
         for (size_t l = 0; l < g->nprim; l++) {                                                \
             const uint32_t *ids = c->order + c->first[l];                                      \
-            cylray_cylinder cc[M];                                                             \
-            for (size_t j = 0; j < c->count[l]; j++)                                           \
-                cc[j] = cyl[ids[j]];                                                           \
-            if (cylray_leaf_prepare##M(&lv[l], cc, ids, c->count[l]) != CYLRAY_OK)             \
+            cylray_status st;                                                                  \
+            if (cyl) {                                                                         \
+                cylray_cylinder cc[M];                                                         \
+                for (size_t j = 0; j < c->count[l]; j++)                                       \
+                    cc[j] = cyl[ids[j]];                                                       \
+                st = cylray_leaf_prepare##M(&lv[l], cc, ids, c->count[l]);                     \
+            } else {                                                                           \
+                cylray_sphere ss[M];                                                           \
+                for (size_t j = 0; j < c->count[l]; j++)                                       \
+                    ss[j] = g->sph[ids[j]];                                                    \
+                st = cylray_leaf_prepare_spheres##M(&lv[l], ss, ids, c->count[l]);             \
+            }                                                                                  \
+            if (st != CYLRAY_OK)                                                               \
                 return CEB_REFUSED;                                                            \
         }                                                                                      \
         return 0;                                                                              \
@@ -85,7 +94,7 @@ int ceb_group_leaves(ceb *g, RTCDevice dev, const cylray_cylinder *cyl)
     if (prims && c.order && c.first && c.count) {
         for (size_t i = 0; i < n; i++) {
             struct RTCBounds b;
-            ceb_whole_box(&g->prep[i], &b);
+            ceb_box_of(g, i, &b);
             prims[i] = (struct RTCBuildPrimitive){b.lower_x, b.lower_y, b.lower_z, 0,
                                                   b.upper_x, b.upper_y, b.upper_z, (unsigned)i};
         }
@@ -117,7 +126,7 @@ int ceb_group_leaves(ceb *g, RTCDevice dev, const cylray_cylinder *cyl)
             /* the builder reorders prims in place: the boxes are made again */
             for (size_t j = 0; j < c.count[l]; j++) {
                 struct RTCBounds b;
-                ceb_whole_box(&g->prep[ids[j]], &b);
+                ceb_box_of(g, ids[j], &b);
                 if (j == 0)
                     g->box[l] = b;
                 box_union(&g->box[l], &b);

@@ -97,6 +97,28 @@ static inline void hit_uv(const frame *f, const float o[3], const float d[3], fl
     *v = azimuth_v(f, r);
 }
 
+/* u and v of a sphere's hit from its unit outward normal n, as pbrt-v4's full sphere:
+ * u = atan2(y, x) / 2pi in [0, 1); v = 1 - theta / pi, 0 at the -z pole, taken as
+ * 1/2 + asin(z) / pi through the same atan (acos would be a libm call, and ill
+ * conditioned at the poles). */
+static inline void sphere_uv(const float n[3], float *u, float *v)
+{
+    *u = turns(n[1], n[0]);
+    float a = turns(n[2], sqrtf(n[0] * n[0] + n[1] * n[1])); /* [0, 1/4] or (3/4, 1) */
+    a = pick(a > 0.5f, a - 1.0f, a);
+    *v = 0.5f + 2.0f * a;
+}
+
+/* u and v of a hit on shape c of the geometry, cylinder or sphere. */
+static inline void ceb_uv(const ceb *g, uint32_t c, const float o[3], const float d[3], float t,
+                          int part, const float n[3], float *u, float *v)
+{
+    if (g->sph)
+        sphere_uv(n, u, v);
+    else
+        hit_uv(&g->fr[c], o, d, t, part, n, u, v);
+}
+
 /* Hit h written into lane i of the hit record hb (of N lanes). */
 static inline void hit_fields(float *hb, unsigned N, unsigned i, const hitrec *h,
                               unsigned geomID, const ceb_context *ctx)

@@ -23,8 +23,8 @@ static void beyond(cylray_ray1 *r, float t, const void *base, unsigned N, unsign
 }
 
 /* With filters, a rejected hit lets the leaf be asked again beyond it: the next hit
- * of any of its cylinders (of the same cylinder too), so that every hit is offered in
- * order of t. A leaf of M holds at most 2 M hits along a ray. */
+ * of any of its cylinders or spheres (of the same one too), so that every hit is offered
+ * in order of t. A leaf of M holds at most 2 M hits along a ray. */
 #define CEB_LEAF(M)                                                                            \
     static int next##M(const ceb *g, const cylray_leaf##M *leaf, cylray_ray1 *r, hitrec *hr)   \
     {                                                                                          \
@@ -32,7 +32,7 @@ static void beyond(cylray_ray1 *r, float t, const void *base, unsigned N, unsign
         if (!g->k->leaf_intersect##M(leaf, r, &h, g->iflags))                                  \
             return 0;                                                                          \
         *hr = (hitrec){h.t, {h.n[0], h.n[1], h.n[2]}, 0, 0, h.id};                             \
-        hit_uv(&g->fr[h.id], r->o, r->d, h.t, h.part, h.n, &hr->u, &hr->v);                    \
+        ceb_uv(g, h.id, r->o, r->d, h.t, h.part, h.n, &hr->u, &hr->v);                         \
         return 1;                                                                              \
     }                                                                                          \
     /* occ: a_ is an occlusion query's arguments, else an intersection's */                    \

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
-/* embree/single.c - the callbacks of a geometry of one cylinder a primitive (or one
- * piece of a split one): Embree's N = 1, 4, 8 and 16 lanes through cylray's packet
+/* embree/single.c - the callbacks of a geometry of one cylinder (or one piece of a split
+ * one, or one sphere) a primitive: Embree's N = 1, 4, 8 and 16 lanes through cylray's packet
  * kernels. */
 #include "hit.h"
 
@@ -34,7 +34,7 @@ static int owns(const ceb *g, unsigned prim, uint32_t c, float u)
 {
     if (!g->prim_piece)
         return 1;
-    uint32_t K = g->fr[c].pieces;
+    uint32_t K = g->fr[c].pieces; /* spheres have no prim_piece: never here */
     if (K == 1)
         return 1;
     float x = u * (float)K;
@@ -55,10 +55,11 @@ static int resolve(const ceb *g, const void *a_, int occ, int filt, unsigned i, 
     const void *base = occ ? (const void *)ao->ray : (const void *)ai->rayhit;
     float o[3], d[3];
     ray_of(base, N, i, o, d);
-    /* a cylinder has at most two hits along a ray; the bound only guards the loop */
+    /* a cylinder or sphere has at most two hits along a ray; the bound only guards the
+     * loop */
     for (int tries = 0; tries < 8; tries++) {
         hitrec h = {t, {n[0], n[1], n[2]}, 0, 0, (unsigned)c};
-        hit_uv(&g->fr[c], o, d, t, part, n, &h.u, &h.v);
+        ceb_uv(g, c, o, d, t, part, n, &h.u, &h.v);
         if (owns(g, prim, c, h.u)) {
             if (occ ? (filt ? ceb_filter_occ(ao, i, &h)
                             : (RF(ao->ray, N, R_TFAR, i) = -INFINITY, 1))
@@ -180,10 +181,31 @@ CEB_SINGLE(16)
 static uint32_t cyl_of(const ceb *g, unsigned prim)
 {
     uint32_t c = g->prim_cyl ? g->prim_cyl[prim] : prim;
-    const char *f = (const char *)&g->fr[c];
-    __builtin_prefetch(f);
-    __builtin_prefetch(f + sizeof(frame) - 1);
+    if (g->fr) { /* a sphere's u, v come from its normal alone */
+        const char *f = (const char *)&g->fr[c];
+        __builtin_prefetch(f);
+        __builtin_prefetch(f + sizeof(frame) - 1);
+    }
     return c;
+}
+
+/* A ray that starts outside sphere c, clearly (by 2^-13 R, far beyond the kernels'
+ * tolerance band of a few ulps), and moves away from its center (w.d > 0 by a margin
+ * far beyond the rounding of the dot product in double) never meets it at t >= 0: the
+ * kernel would miss too. A secondary ray leaving a sphere, the most common call on a
+ * sphere it has just hit, starts that way a few ulps off the surface, where the
+ * kernel's own bounding-sphere rejection cannot end it early. */
+static int sphere_behind(const ceb *g, uint32_t c, const float o[3], const float d[3],
+                         float tmin)
+{
+    const cylray_sphere *s = &g->sph[c];
+    double w[3], wd = 0, ww = 0, dd = 0;
+    for (int k = 0; k < 3; k++) {
+        w[k] = (double)o[k] - s->center[k];
+        wd += w[k] * d[k], ww += w[k] * w[k], dd += (double)d[k] * d[k];
+    }
+    double rr = (double)s->radius * s->radius;
+    return tmin >= 0 && ww > rr * (1 + 0x1p-12) && wd > 0 && wd * wd > 0x1p-40 * ww * dd;
 }
 
 /* One valid lane, as Embree's hybrid traversal of incoherent packets calls: the ray is
@@ -194,6 +216,8 @@ static int isect1(const struct RTCIntersectFunctionNArguments *a, const ceb *g, 
     float o[3], d[3], t, n[3];
     int32_t part;
     ray_of(a->rayhit, a->N, i, o, d);
+    if (g->sph && sphere_behind(g, c, o, d, RF(a->rayhit, a->N, R_TNEAR, i)))
+        return 0;
     return one_ray(g, c, o, d, RF(a->rayhit, a->N, R_TNEAR, i), RF(a->rayhit, a->N, R_TFAR, i),
                    &t, n, &part) &&
            resolve(g, a, 0, filt, i, c, t, n, part);
@@ -206,6 +230,8 @@ static int occ1(const struct RTCOccludedFunctionNArguments *a, const ceb *g, uin
     int32_t part;
     ray_of(a->ray, a->N, i, o, d);
     float tmin = RF(a->ray, a->N, R_TNEAR, i), tmax = RF(a->ray, a->N, R_TFAR, i);
+    if (g->sph && sphere_behind(g, c, o, d, tmin))
+        return 0;
     if (!filt) {
         cylray_ray4 r;
         for (int j = 0; j < 4; j++) {

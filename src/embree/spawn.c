@@ -7,12 +7,14 @@
 #include <math.h>
 
 /* The hit's part from its normal: the discs' normals are the axis, the side's are
- * perpendicular to it. -1 for a geometry or primID not ours, or a useless Ng. */
+ * perpendicular to it; a sphere is all side. -1 for a geometry or primID not ours, or a useless Ng. */
 static int hit_part(const ceb *g, unsigned primID, const float Ng[3])
 {
     if (!g || primID >= g->n || !isfinite(Ng[0]) || !isfinite(Ng[1]) || !isfinite(Ng[2]) ||
         (Ng[0] == 0 && Ng[1] == 0 && Ng[2] == 0))
         return -1;
+    if (!g->fr)
+        return CYLRAY_SIDE; /* a sphere */
     const float *n = g->fr[primID].n;
     float c = Ng[0] * n[0] + Ng[1] * n[1] + Ng[2] * n[2];
     float l = sqrtf(Ng[0] * Ng[0] + Ng[1] * Ng[1] + Ng[2] * Ng[2]);

@@ -131,6 +131,10 @@ CYLRAY_INLINE uint32_t KFN(decide)(KFN(lanes) *st, const cylray_kat_ *k, const c
     if (F.scaled)
         st->T = vmul(st->T, t_to_test);
     vm hit = mand(cand, mand(vge(st->T, tmin), vle(st->T, tmax)));
+    /* A shrunk direction's bounds were moved to t', where FLT_MAX became infinite: the
+     * exit of a leaf's infinite lane, parallel inside it, is no hit there either. */
+    if (F.scaled)
+        hit = mand(hit, vlt(vabs(vmul(st->T, st->t_to_user)), vset1(INFINITY)));
     if (k->bits != VFULL) /* a whole vector is the common case, and needs no mask */
         hit = mand(hit, mfrom_bits(k->bits));
     st->back = mandn(hit, front);

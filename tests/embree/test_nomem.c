@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: MIT */
-/* test_nomem.c - cylray_embree_new_geometry when memory runs out: NULL with
- * CYLRAY_ENOMEM, for each of its allocations in turn, in each way of building a
- * geometry (one box a cylinder, split boxes, leaves).
+/* test_nomem.c - cylray_embree_new_geometry and cylray_embree_new_spheres when memory
+ * runs out: NULL with CYLRAY_ENOMEM, for each of their allocations in turn, in each way
+ * of building a geometry (one box a cylinder, split boxes, leaves; one box a sphere,
+ * leaves of spheres).
  *
  * The adapter's objects are linked into this program with --wrap for the allocation
  * functions (tests/embree/meson.build), so the wrappers below see the adapter's
@@ -79,12 +80,14 @@ static void scene(float p0[N][3], float p1[N][3], float radius[N])
 
 /* Fails each of the adapter's allocations in turn until a try makes none fail; returns
  * how many allocations that successful try made. */
-static long each_failure(RTCDevice dev, const cylray_embree_desc *d, const char *what)
+static long each_failure(RTCDevice dev, const cylray_embree_desc *d,
+                         const cylray_embree_sphere_desc *sd, const char *what)
 {
     for (long k = 0;; k++) {
         cylray_status st = CYLRAY_EINVAL;
         calls = 0, failed = 0, fail_at = k;
-        RTCGeometry geo = cylray_embree_new_geometry(dev, d, &st);
+        RTCGeometry geo = d ? cylray_embree_new_geometry(dev, d, &st)
+                            : cylray_embree_new_spheres(dev, sd, &st);
         fail_at = -1;
         if (!geo) {
             CHECK(failed, "%s: NULL with no allocation failed (try %ld)", what, k);
@@ -127,9 +130,26 @@ int main(void)
     };
     for (size_t w = 0; w < sizeof ways / sizeof ways[0]; w++) {
         d.options = ways[w].options;
-        long made = each_failure(dev, &d, ways[w].what);
+        long made = each_failure(dev, &d, NULL, ways[w].what);
         CHECK(made >= ways[w].least, "%s: %ld allocations, not the %ld or more expected",
               ways[w].what, made, ways[w].least);
+    }
+    /* spheres at the rods' first ends, one box a sphere or leaves */
+    cylray_embree_sphere_desc sd = {.count = N,
+                                    .center = p0[0],
+                                    .center_stride = sizeof p0[0],
+                                    .radius = radius,
+                                    .radius_stride = sizeof radius[0]};
+    const struct {
+        unsigned options;
+        const char *what;
+        long least;
+    } sways[] = {{0, "one box a sphere", 4}, {CYLRAY_EMBREE_LEAVES, "leaves of spheres", 9}};
+    for (size_t w = 0; w < sizeof sways / sizeof sways[0]; w++) {
+        sd.options = sways[w].options;
+        long made = each_failure(dev, NULL, &sd, sways[w].what);
+        CHECK(made >= sways[w].least, "%s: %ld allocations, not the %ld or more expected",
+              sways[w].what, made, sways[w].least);
     }
     rtcReleaseDevice(dev);
     return tc_report("embree-nomem");

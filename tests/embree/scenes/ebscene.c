@@ -26,7 +26,8 @@ double eb_range(eb_rng *g, double a, double b)
     return a + (b - a) * eb_unit(g);
 }
 
-static const char *const names[EB_NSCENES] = {"molecule", "pipes", "far-rods", "lattice"};
+static const char *const names[EB_NSCENES] = {"molecule", "pipes", "far-rods",
+                                              "lattice",  "balls", "far-cloud"};
 
 const char *eb_scene_name(int which)
 {
@@ -44,7 +45,7 @@ int eb_scene_find(const char *name)
 /* A growing scene under construction. */
 typedef struct builder {
     eb_scene *s;
-    size_t cap_v, cap_f, cap_c;
+    size_t cap_v, cap_f, cap_c, cap_s;
     double quantum;
     int failed;
 } builder;
@@ -89,6 +90,19 @@ static void add_segment(builder *b, uint32_t v0, unsigned caps)
     s->ns++;
 }
 
+/* A sphere at p (rounded to the scene's grid) of radius r. */
+static void add_sphere(builder *b, const double p[3], float r)
+{
+    eb_scene *s = b->s;
+    if (grow((void **)&s->sph, &b->cap_s, s->nsph + 1, sizeof s->sph[0])) {
+        b->failed = 1;
+        return;
+    }
+    for (int k = 0; k < 3; k++)
+        s->sph[s->nsph].center[k] = (float)(nearbyint(p[k] / b->quantum) * b->quantum);
+    s->sph[s->nsph++].radius = r;
+}
+
 /* A polyline through pts[0..n): closed at its two ends only. */
 static void add_polyline(builder *b, const double (*pts)[3], int n)
 {
@@ -109,8 +123,10 @@ static void set3(float o[3], double x, double y, double z)
 }
 
 /* Ball-and-stick without the balls: atoms on a jittered cubic lattice, a bond to each
- * of the three forward neighbours with probability 0.92 (about 105,000 bonds). */
-static void molecule(builder *b, eb_rng *g)
+ * of the three forward neighbours with probability 0.92 (about 105,000 bonds). With
+ * balls, every atom is a sphere of 2.5 bond radii too (39,304 of them), on the bonds'
+ * own rounded vertex. */
+static void molecule(builder *b, eb_rng *g, int balls)
 {
     enum { N = 34 };
     eb_scene *s = b->s;
@@ -137,6 +153,10 @@ static void molecule(builder *b, eb_rng *g)
                     memcpy(pts[1], atom[n[0]][n[1]][n[2]], sizeof pts[1]);
                     add_polyline(b, (const double(*)[3])pts, 2);
                 }
+    for (int i = 0; balls && i < N; i++)
+        for (int j = 0; j < N; j++)
+            for (int k = 0; k < N; k++)
+                add_sphere(b, atom[i][j][k], 2.5f * s->radius);
     set3(s->eye, -14, 38.5, -21.5);
     set3(s->look, 16.5, 16.5, 16.5);
     set3(s->light, -30, 80, 10);
@@ -223,6 +243,31 @@ static void far_rods(builder *b, eb_rng *g)
     s->scale = 300;
 }
 
+/* Dust far away: 100,000 spheres of radius 0.04 in a 60^3 box around a point 1,200
+ * units from the origin, seen from 1,500 units (3.75e4 radii) through a narrow lens,
+ * each sphere about half a pixel across: grazing and sub-pixel hits, where o - c and
+ * the discriminant lose the most. (Not 48,000 away as the far rods: there floats are
+ * 0.004 apart, a tenth of the radius, and a spawned origin no longer clears the
+ * sphere by the margin cylray_spawn_origin promises under its condition.) */
+static void far_cloud(builder *b, eb_rng *g)
+{
+    eb_scene *s = b->s;
+    b->quantum = 0x1p-12;
+    s->radius = 0.04f;
+    const double C[3] = {1000, 600, 300};
+    for (int i = 0; i < 100000; i++) {
+        double p[3];
+        for (int k = 0; k < 3; k++)
+            p[k] = C[k] + eb_range(g, -30, 30);
+        add_sphere(b, p, s->radius);
+    }
+    set3(s->eye, C[0] - 1200, C[1] + 300, C[2] - 840);
+    set3(s->look, C[0], C[1], C[2]);
+    set3(s->light, C[0] - 300, C[1] + 3000, C[2] + 200);
+    s->fov_deg = 3;
+    s->scale = 60;
+}
+
 /* A jungle gym: rods along x, y and z through every point of a 21^3 grid of spacing 2,
  * each line one polyline, seen from a point on the axis of the middle z rod and in the
  * plane of a layer of x rods: rays run down that rod's axis and edge-on along the
@@ -255,9 +300,17 @@ static void lattice(builder *b)
 static int finish(builder *b)
 {
     eb_scene *s = b->s;
-    if (b->failed || !(s->cyl = malloc(s->ns * sizeof *s->cyl)) ||
-        !(s->p0 = malloc(s->ns * sizeof *s->p0)) || !(s->p1 = malloc(s->ns * sizeof *s->p1)))
+    size_t n1 = s->ns ? s->ns : 1;
+    if (b->failed || !(s->cyl = malloc(n1 * sizeof *s->cyl)) ||
+        !(s->p0 = malloc(n1 * sizeof *s->p0)) || !(s->p1 = malloc(n1 * sizeof *s->p1)))
         return -1;
+    for (size_t i = 0; i < s->nsph; i++) {
+        cylray_prepared p;
+        if (cylray_prepare_sphere(&p, &s->sph[i]) != CYLRAY_OK) {
+            fprintf(stderr, "ebscene: %s sphere %zu refused\n", s->name, i);
+            return -1;
+        }
+    }
     for (size_t i = 0; i < s->ns; i++) {
         memcpy(s->p0[i], s->vert[s->first[i]], sizeof s->p0[i]);
         memcpy(s->p1[i], s->vert[s->first[i] + 1], sizeof s->p1[i]);
@@ -281,7 +334,13 @@ int eb_scene_make(eb_scene *s, int which, uint64_t seed)
     eb_rng g = {seed * 0x2545f4914f6cdd1dull + (uint64_t)which};
     switch (which) {
     case EB_MOLECULE:
-        molecule(&b, &g);
+    case EB_BALLS:
+        /* the balls' molecule is the molecule's, bond for bond: the same draws */
+        g.s = seed * 0x2545f4914f6cdd1dull + (uint64_t)EB_MOLECULE;
+        molecule(&b, &g, which == EB_BALLS);
+        break;
+    case EB_FAR_CLOUD:
+        far_cloud(&b, &g);
         break;
     case EB_PIPES:
         pipes(&b, &g);
@@ -304,6 +363,11 @@ int eb_scene_make(eb_scene *s, int which, uint64_t seed)
 
 int eb_scene_small(eb_scene *s, size_t n, uint64_t seed)
 {
+    return eb_scene_small_spheres(s, n, 0, seed);
+}
+
+int eb_scene_small_spheres(eb_scene *s, size_t n, size_t nsph, uint64_t seed)
+{
     memset(s, 0, sizeof *s);
     snprintf(s->name, sizeof s->name, "small");
     builder b = {.s = s, .quantum = 0x1p-10};
@@ -320,6 +384,15 @@ int eb_scene_small(eb_scene *s, size_t n, uint64_t seed)
         uint32_t v = add_vertex(&b, p);
         add_vertex(&b, q);
         add_segment(&b, v, kinds[(int)(eb_unit(&g) * 4)]);
+    }
+    /* radii from 0.05 to 2.5: small ones among the cylinders, large ones that hold
+     * some of them and some of each other (coincident and nested surfaces) */
+    eb_rng gs = {seed ^ 0x5ca1ab1eull};
+    for (size_t i = 0; i < nsph; i++) {
+        double p[3];
+        for (int k = 0; k < 3; k++)
+            p[k] = eb_range(&gs, -8, 8);
+        add_sphere(&b, p, (float)(nearbyint(0.05 * pow(50, eb_unit(&gs)) * 1024) / 1024));
     }
     set3(s->eye, 0, 3, 24);
     set3(s->look, 0, 0, 0);
@@ -341,5 +414,6 @@ void eb_scene_free(eb_scene *s)
     free(s->cyl);
     free(s->p0);
     free(s->p1);
+    free(s->sph);
     memset(s, 0, sizeof *s);
 }

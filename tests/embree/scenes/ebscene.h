@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* ebscene.h - the procedural scenes of the Embree comparison: polylines of cylinders of
- * one radius, with a camera and a point light. */
+ * one radius and spheres, with a camera and a point light. */
 #ifndef EB_SCENE_H
 #define EB_SCENE_H
 
@@ -24,13 +24,21 @@ typedef struct eb_scene {
     cylray_cylinder *cyl;
     float (*p0)[3], (*p1)[3]; /* segment s from p0[s] to p1[s], for cylray_embree */
     float radius;
+    size_t nsph;        /* spheres besides the segments (none in the cylinder scenes) */
+    cylray_sphere *sph; /* their answers carry EB_SPHERE_BIT with the sphere's index */
     float eye[3], look[3], up[3], fov_deg;
     float light[3];
     float scale; /* a typical size of the scene, for the bounce rays' reach */
 } eb_scene;
 
-/* The scene names, in the order of eb_scene_make's `which`. */
-enum { EB_MOLECULE, EB_PIPES, EB_FAR_RODS, EB_LATTICE, EB_NSCENES };
+/* An answer's id: segment s is s, sphere i is EB_SPHERE_BIT | i (the scenes' sphere
+ * geometry has geomID EB_SPHERE_GEOM, the segments' 0). */
+#define EB_SPHERE_BIT 0x80000000u
+#define EB_SPHERE_GEOM 1u
+
+/* The scene names, in the order of eb_scene_make's `which`: the cylinder scenes, then
+ * those with spheres (balls: the molecule with its atoms; far-cloud: spheres alone). */
+enum { EB_MOLECULE, EB_PIPES, EB_FAR_RODS, EB_LATTICE, EB_BALLS, EB_FAR_CLOUD, EB_NSCENES };
 const char *eb_scene_name(int which);
 /* Returns the index of a scene name, or -1. */
 int eb_scene_find(const char *name);
@@ -48,6 +56,8 @@ double eb_range(eb_rng *g, double a, double b);
 int eb_scene_make(eb_scene *s, int which, uint64_t seed);
 /* A scene of n random cylinders of every cap kind, for the agreement test. */
 int eb_scene_small(eb_scene *s, size_t n, uint64_t seed);
+/* The same with nsph random spheres among them (n may be 0). */
+int eb_scene_small_spheres(eb_scene *s, size_t n, size_t nsph, uint64_t seed);
 void eb_scene_free(eb_scene *s);
 
 #endif

@@ -4,8 +4,11 @@
 #include "exact.h"
 
 #include "geom.h"
+#include "quad.h"
+#include "sphref.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -16,9 +19,16 @@ typedef struct collect_ctx {
     int overflow;
 } collect_ctx;
 
+/* The collecting geometry's primitive i: the segments, then the spheres. */
+static uint32_t collect_id(const eb_scene *s, unsigned i)
+{
+    return i < s->ns ? i : EB_SPHERE_BIT | (uint32_t)(i - s->ns);
+}
+
 static void collect_bounds(const struct RTCBoundsFunctionArguments *a)
 {
-    eb_cylinder_bounds(a->geometryUserPtr, a->primID, a->bounds_o);
+    const eb_scene *s = a->geometryUserPtr;
+    eb_shape_bounds(s, collect_id(s, a->primID), a->bounds_o);
 }
 
 static void collect_isect(const struct RTCIntersectFunctionNArguments *a)
@@ -36,14 +46,31 @@ static void collect_isect(const struct RTCIntersectFunctionNArguments *a)
         }
         c->ids = p, c->cap = cap;
     }
-    c->ids[c->n++] = a->primID;
+    c->ids[c->n++] = collect_id(a->geometryUserPtr, a->primID);
+}
+
+int eb_shape_intersect(const eb_scene *s, uint32_t id, const float o[3], const float d[3],
+                       float tmin, float tmax, cylref_hit *h)
+{
+    if (id & EB_SPHERE_BIT)
+        return sphref_intersect(&s->sph[id & ~EB_SPHERE_BIT], o, d, tmin, tmax, 0, h) == 1;
+    return cylref_intersect(&s->cyl[id], o, d, tmin, tmax, 0, h) == 1;
+}
+
+void eb_shape_band(const eb_scene *s, uint32_t id, const float o[3], const float d[3],
+                   float tmin, float tmax, cylref_band *b)
+{
+    if (id & EB_SPHERE_BIT)
+        sphref_band_eval(&s->sph[id & ~EB_SPHERE_BIT], o, d, tmin, tmax, 0, b);
+    else
+        cylref_band_eval(&s->cyl[id], o, d, tmin, tmax, 0, b);
 }
 
 int eb_ref_init(eb_ref *r, RTCDevice dev, const eb_scene *s)
 {
     r->s = s;
     RTCGeometry geo = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_USER);
-    rtcSetGeometryUserPrimitiveCount(geo, (unsigned)s->ns);
+    rtcSetGeometryUserPrimitiveCount(geo, (unsigned)(s->ns + s->nsph));
     rtcSetGeometryUserData(geo, (void *)s);
     rtcSetGeometryBoundsFunction(geo, collect_bounds, NULL);
     rtcSetGeometryIntersectFunction(geo, collect_isect);
@@ -113,7 +140,7 @@ int eb_ref_closest(const eb_ref *r, const float o[3], const float d[3], float tm
     if (cs) {
         for (size_t i = 0; i < c.n; i++) {
             struct RTCBounds b;
-            eb_cylinder_bounds(r->s, c.ids[i], &b);
+            eb_shape_bounds(r->s, c.ids[i], &b);
             cs[i].t = box_entry(&b, o, d);
             cs[i].id = c.ids[i];
         }
@@ -123,7 +150,7 @@ int eb_ref_closest(const eb_ref *r, const float o[3], const float d[3], float tm
             if (found && cs[i].t > h->t)
                 break;
             cylref_hit x;
-            if (cylref_intersect(&r->s->cyl[cs[i].id], o, d, tmin, tmax, 0, &x) == 1 &&
+            if (eb_shape_intersect(r->s, cs[i].id, o, d, tmin, tmax, &x) == 1 &&
                 (!found || x.t < h->t || (x.t == h->t && cs[i].id < *id))) {
                 *h = x;
                 *id = cs[i].id;

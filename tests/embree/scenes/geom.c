@@ -39,6 +39,38 @@ cylray_embree_desc eb_scene_desc(const eb_scene *s, unsigned options, const cylr
     };
 }
 
+cylray_embree_sphere_desc eb_sphere_desc(const eb_scene *s, unsigned options,
+                                         const cylray_kernels *k)
+{
+    return (cylray_embree_sphere_desc){
+        .count = s->nsph,
+        .center = s->nsph ? s->sph[0].center : NULL,
+        .center_stride = sizeof s->sph[0],
+        .radius = s->nsph ? &s->sph[0].radius : NULL,
+        .radius_stride = sizeof s->sph[0],
+        .options = options,
+        .kernels = k,
+    };
+}
+
+void eb_shape_bounds(const eb_scene *s, uint32_t id, struct RTCBounds *b)
+{
+    if (!(id & EB_SPHERE_BIT)) {
+        eb_cylinder_bounds(s, id, b);
+        return;
+    }
+    const cylray_sphere *sp = &s->sph[id & ~EB_SPHERE_BIT];
+    float lo[3], hi[3];
+    for (int k = 0; k < 3; k++) {
+        double c = sp->center[k], r = sp->radius * (1 + 0x1p-18);
+        double pad = 0x1p-20 * (fabs(c) + r);
+        lo[k] = nextafterf((float)(c - r - pad), -INFINITY);
+        hi[k] = nextafterf((float)(c + r + pad), INFINITY);
+    }
+    b->lower_x = lo[0], b->lower_y = lo[1], b->lower_z = lo[2];
+    b->upper_x = hi[0], b->upper_y = hi[1], b->upper_z = hi[2];
+}
+
 void eb_cylinder_bounds(const eb_scene *s, uint32_t i, struct RTCBounds *b)
 {
     const float *p = s->p0[i], *q = s->p1[i];
@@ -88,6 +120,23 @@ static RTCGeometry native_geometry(RTCDevice dev, const eb_scene *s)
     return geo;
 }
 
+/* Embree's own spheres: sphere points, the radius in each vertex's fourth float. */
+static RTCGeometry native_spheres(RTCDevice dev, const eb_scene *s)
+{
+    RTCGeometry geo = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_SPHERE_POINT);
+    float *v = rtcSetNewGeometryBuffer(geo, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4,
+                                       4 * sizeof(float), s->nsph);
+    if (!v) {
+        rtcReleaseGeometry(geo);
+        return NULL;
+    }
+    for (size_t i = 0; i < s->nsph; i++) {
+        memcpy(v + 4 * i, s->sph[i].center, 3 * sizeof(float));
+        v[4 * i + 3] = s->sph[i].radius;
+    }
+    return geo;
+}
+
 int eb_geom_build(eb_geom *g, RTCDevice dev, const eb_scene *s, eb_variant v,
                   const cylray_kernels *k)
 {
@@ -95,25 +144,46 @@ int eb_geom_build(eb_geom *g, RTCDevice dev, const eb_scene *s, eb_variant v,
     g->variant = v;
     g->src = s;
     double t0 = eb_wall_s();
-    RTCGeometry geo;
+    RTCGeometry geo = NULL, sph = NULL;
     if (v == EB_NATIVE) {
-        geo = native_geometry(dev, s);
-        g->nprim = s->ns;
+        geo = s->ns ? native_geometry(dev, s) : NULL;
+        sph = s->nsph ? native_spheres(dev, s) : NULL;
+        g->nprim = s->ns + s->nsph;
     } else {
         cylray_embree_desc d = eb_scene_desc(s, eb_variant_options(v), k);
-        geo = g->cyl = cylray_embree_new_geometry(dev, &d, NULL);
-        g->nprim = cylray_embree_primitives(geo);
+        /* a sphere's box is tight: the spheres of the split variant are the single's */
+        cylray_embree_sphere_desc e =
+            eb_sphere_desc(s, v == EB_LEAF ? CYLRAY_EMBREE_LEAVES : 0u, k);
+        geo = g->cyl = s->ns ? cylray_embree_new_geometry(dev, &d, NULL) : NULL;
+        sph = g->sph = s->nsph ? cylray_embree_new_spheres(dev, &e, NULL) : NULL;
+        g->nprim = cylray_embree_primitives(geo) + cylray_embree_primitives(sph);
     }
-    if (!geo) {
+    if ((s->ns && !geo) || (s->nsph && !sph)) {
+        if (v == EB_NATIVE) {
+            if (geo)
+                rtcReleaseGeometry(geo);
+            if (sph)
+                rtcReleaseGeometry(sph);
+        }
         eb_geom_free(g);
         return -1;
     }
-    rtcCommitGeometry(geo);
     g->scene = rtcNewScene(dev);
-    rtcAttachGeometry(g->scene, geo);
-    /* the scene holds the geometry now; the adapter's is released in eb_geom_free */
-    if (v == EB_NATIVE)
-        rtcReleaseGeometry(geo);
+    if (geo) {
+        rtcCommitGeometry(geo);
+        rtcAttachGeometryByID(g->scene, geo, 0);
+    }
+    if (sph) {
+        rtcCommitGeometry(sph);
+        rtcAttachGeometryByID(g->scene, sph, EB_SPHERE_GEOM);
+    }
+    /* the scene holds the geometries now; the adapter's are released in eb_geom_free */
+    if (v == EB_NATIVE) {
+        if (geo)
+            rtcReleaseGeometry(geo);
+        if (sph)
+            rtcReleaseGeometry(sph);
+    }
     rtcCommitScene(g->scene);
     g->build_s = eb_wall_s() - t0;
     return rtcGetDeviceError(dev) == RTC_ERROR_NONE ? 0 : -1;
@@ -125,5 +195,6 @@ void eb_geom_free(eb_geom *g)
         rtcReleaseScene(g->scene);
     /* after the scene: nothing traces the geometry any more */
     cylray_embree_release_geometry(g->cyl);
+    cylray_embree_release_geometry(g->sph);
     memset(g, 0, sizeof *g);
 }

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
-/* geom.h - one scene as an Embree scene, four ways: Embree's own cone curves, and
- * cylray's adapter (cylray_embree.h) with one cylinder a primitive, with split boxes
- * along long tilted cylinders, and with leaves. */
+/* geom.h - one scene as an Embree scene, four ways: Embree's own cone curves and sphere
+ * points, and cylray's adapter (cylray_embree.h) with one cylinder or sphere a
+ * primitive, with split boxes along long tilted cylinders, and with leaves. */
 #ifndef EB_GEOM_H
 #define EB_GEOM_H
 
@@ -13,12 +13,15 @@ typedef enum eb_variant { EB_NATIVE, EB_SINGLE, EB_SPLIT, EB_LEAF, EB_NVARIANTS 
 
 const char *eb_variant_name(eb_variant v);
 
+struct eb_geom;
+
 typedef struct eb_geom {
     eb_variant variant;
     RTCScene scene;
     const eb_scene *src;
     RTCGeometry cyl; /* the cylray variants' geometry (cylray_embree_new_geometry) */
-    size_t nprim;    /* Embree's primitives: segments, boxes or leaves */
+    RTCGeometry sph; /* and their spheres' (cylray_embree_new_spheres), geomID 1 */
+    size_t nprim;    /* Embree's primitives: segments, boxes or leaves, and spheres */
     double build_s;  /* seconds to prepare and to build Embree's BVH */
 } eb_geom;
 
@@ -28,7 +31,28 @@ unsigned eb_variant_options(eb_variant v);
 /* The adapter's description of scene s (endpoints, one radius, caps). */
 cylray_embree_desc eb_scene_desc(const eb_scene *s, unsigned options, const cylray_kernels *k);
 
-/* Builds the variant with cylray's path k. 0 on success. */
+/* The adapter's description of the scene's spheres. */
+cylray_embree_sphere_desc eb_sphere_desc(const eb_scene *s, unsigned options,
+                                         const cylray_kernels *k);
+
+/* The adapter's geometry that answered `id` (an answer's id, ebscene.h) and its primID
+ * there. */
+static inline RTCGeometry eb_geom_of(const struct eb_geom *g, uint32_t id, unsigned *prim)
+{
+    *prim = id & ~EB_SPHERE_BIT;
+    return id & EB_SPHERE_BIT ? g->sph : g->cyl;
+}
+
+/* An answer's id from Embree's hit record. */
+static inline uint32_t eb_hit_id(unsigned geomID, unsigned primID)
+{
+    return geomID == RTC_INVALID_GEOMETRY_ID ? RTC_INVALID_GEOMETRY_ID
+           : geomID == EB_SPHERE_GEOM        ? EB_SPHERE_BIT | primID
+                                             : primID;
+}
+
+/* Builds the variant with cylray's path k: the segments as geometry 0, the spheres as
+ * geometry EB_SPHERE_GEOM (Embree's own: sphere points). 0 on success. */
 int eb_geom_build(eb_geom *g, RTCDevice dev, const eb_scene *s, eb_variant v,
                   const cylray_kernels *k);
 void eb_geom_free(eb_geom *g);
@@ -36,6 +60,8 @@ void eb_geom_free(eb_geom *g);
 /* A conservative box around cylinder i (a radius around both end discs, padded by the
  * rounding of the coordinates). */
 void eb_cylinder_bounds(const eb_scene *s, uint32_t i, struct RTCBounds *b);
+/* The same for shape `id` (an answer's id: a cylinder or a sphere). */
+void eb_shape_bounds(const eb_scene *s, uint32_t id, struct RTCBounds *b);
 
 /* One ray for rtcIntersect1, no hit yet. */
 static inline struct RTCRayHit eb_rayhit1(const float o[3], const float d[3], float tnear,

@@ -32,7 +32,7 @@ void eb_sample_solve(eb_sample *s, const eb_ref *ref)
 static int excused(const eb_ref *ref, const eb_sample *s, uint32_t id, int hit, float t)
 {
     cylref_band b;
-    cylref_band_eval(&ref->s->cyl[id], s->o, s->d, s->tmin, s->tmax, 0, &b);
+    eb_shape_band(ref->s, id, s->o, s->d, s->tmin, s->tmax, &b);
     if (b.hit_unstable)
         return 1;
     if (!hit)
@@ -71,7 +71,7 @@ void eb_judge(eb_err *e, const eb_ref *ref, const eb_sample *s, uint32_t vprim, 
         double beyond = 0;
         if (u > 2) {
             cylref_band b;
-            cylref_band_eval(&ref->s->cyl[vprim], s->o, s->d, s->tmin, s->tmax, 0, &b);
+            eb_shape_band(ref->s, vprim, s->o, s->d, s->tmin, s->tmax, &b);
             cylref_judge(&b, 1, s->xh.part, vt, &beyond);
         }
         e->t_beyond[e->nt] = beyond;

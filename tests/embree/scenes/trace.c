@@ -148,8 +148,7 @@ void eb_camera_rays(eb_rays *r, const eb_scene *s, int w, int h)
             r->tfar[i] = rh.ray.tfar[j];                                                       \
             if (occ)                                                                           \
                 continue;                                                                      \
-            r->prim[i] = rh.hit.geomID[j] == RTC_INVALID_GEOMETRY_ID ? RTC_INVALID_GEOMETRY_ID \
-                                                                     : rh.hit.primID[j];       \
+            r->prim[i] = eb_hit_id(rh.hit.geomID[j], rh.hit.primID[j]);                        \
             r->ngx[i] = rh.hit.Ng_x[j], r->ngy[i] = rh.hit.Ng_y[j];                            \
             r->ngz[i] = rh.hit.Ng_z[j], r->u[i] = rh.hit.u[j], r->v[i] = rh.hit.v[j];          \
         }                                                                                      \
@@ -177,8 +176,7 @@ static void single(RTCScene sc, eb_rays *r, size_t i, int occ, RTCFilterFunction
     }
     EB_INTERSECT1(sc, &q, &rh);
     r->tfar[i] = rh.ray.tfar;
-    r->prim[i] =
-        rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? RTC_INVALID_GEOMETRY_ID : rh.hit.primID;
+    r->prim[i] = eb_hit_id(rh.hit.geomID, rh.hit.primID);
     r->ngx[i] = rh.hit.Ng_x, r->ngy[i] = rh.hit.Ng_y, r->ngz[i] = rh.hit.Ng_z;
     r->u[i] = rh.hit.u, r->v[i] = rh.hit.v;
 }
@@ -194,7 +192,7 @@ uint32_t eb_trace1(RTCScene scene, const float o[3], const float d[3], float tne
         return RTC_INVALID_GEOMETRY_ID;
     *t = rh.ray.tfar;
     ng[0] = rh.hit.Ng_x, ng[1] = rh.hit.Ng_y, ng[2] = rh.hit.Ng_z;
-    return rh.hit.primID;
+    return eb_hit_id(rh.hit.geomID, rh.hit.primID);
 }
 
 typedef struct job {
@@ -300,9 +298,13 @@ static void cosine_dir(eb_rng *g, const float n[3], float w[3])
         w[k] = (float)(ww[k] / sqrt(wl));
 }
 
+/* A ray whose origin is not finite (a spawn helper that cannot place one) stays
+ * invalid: Embree's assertions, where built in, stop on such a ray. */
 static void set_ray(eb_rays *r, size_t i, const float o[3], const float w[3], float tnear,
                     float tfar)
 {
+    if (!isfinite(o[0]) || !isfinite(o[1]) || !isfinite(o[2]))
+        return;
     r->ox[i] = o[0], r->oy[i] = o[1], r->oz[i] = o[2];
     r->dx[i] = w[0], r->dy[i] = w[1], r->dz[i] = w[2];
     r->tnear[i] = tnear;
@@ -325,7 +327,9 @@ static void origin_for(const eb_geom *g, const eb_rays *prim, size_t i, const fl
     float o[3], d[3], ng[3] = {prim->ngx[i], prim->ngy[i], prim->ngz[i]};
     eb_rays_get(prim, i, o, d);
     *tnear = 0;
-    cylray_embree_spawn_origin(g->cyl, prim->prim[i], o, d, prim->tfar[i], ng, w, out);
+    unsigned id;
+    RTCGeometry geo = eb_geom_of(g, prim->prim[i], &id);
+    cylray_embree_spawn_origin(geo, id, o, d, prim->tfar[i], ng, w, out);
 }
 
 void eb_spawn(const eb_geom *g, const eb_rays *prim, eb_rays *shadow, eb_rays *bounce)

@@ -17,7 +17,7 @@ typedef struct eb_rays {
     size_t n;
     float *ox, *oy, *oz, *dx, *dy, *dz, *tnear, *tfar;
     float *ngx, *ngy, *ngz, *u, *v;
-    uint32_t *prim;
+    uint32_t *prim; /* an answer's id (ebscene.h) */
     uint8_t *valid;
     int incoherent; /* tells Embree whether neighbouring rays travel alike */
 } eb_rays;
@@ -48,8 +48,9 @@ double eb_trace(RTCScene scene, eb_rays *r, int packet, int threads, int occlude
 double eb_trace_filtered(RTCScene scene, eb_rays *r, int packet, int threads, int occluded,
                          double *cpu_s, RTCFilterFunctionN filter);
 
-/* One ray, rtcIntersect1 on the calling thread: the hit's primID (or
- * RTC_INVALID_GEOMETRY_ID), with *t and ng on a hit. */
+/* One ray, rtcIntersect1 on the calling thread: the hit's id (ebscene.h: the primID,
+ * with EB_SPHERE_BIT on a sphere; or RTC_INVALID_GEOMETRY_ID), with *t and ng on a
+ * hit. */
 uint32_t eb_trace1(RTCScene scene, const float o[3], const float d[3], float tnear, float tfar,
                    float *t, float ng[3]);
 
