@@ -197,8 +197,7 @@ cylray_status cylray_prepare_cone(cylray_prepared *out, const cylray_cone *in)
     const unsigned caps = in->flags & (in->r0 > 0 ? CYLRAY_CAPPED : CYLRAY_CAPPED_HI) &
                           (in->r1 > 0 ? CYLRAY_CAPPED : CYLRAY_CAPPED_LO);
     cylray_cylinder cyl;
-    if (cylray_cylinder_from_endpoints(&cyl, in->p0, in->p1, (float)rmax, caps) !=
-        CYLRAY_OK)
+    if (cylray_cylinder_from_endpoints(&cyl, in->p0, in->p1, (float)rmax, caps) != CYLRAY_OK)
         return CYLRAY_EINVAL;
     cylray_prepared p;
     if (cylray_prepare(&p, &cyl) != CYLRAY_OK)
