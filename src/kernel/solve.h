@@ -123,8 +123,15 @@ CYLRAY_INLINE int KFN(cone_side)(KFN(lanes) *st, const cylray_kat_ *k, const cyl
     st->D = vfnma(g, g, st->AR2);
     const vm act = mand(st->act, veq(vfma(st->C, zero, vmul(st->D, zero)), zero));
     const vm neg = vlt(st->A, zero);
-    st->side = mand(act, vge(st->D, zero));
-    st->inpar = mandn(mand(act, neg), st->side); /* no roots, and inside everywhere */
+    /* A radius that does not change along the ray (a cylinder's lane in a leaf of
+     * cones, or a ray across the axis) leaves A = e.e: a ray within about an ulp of
+     * the axis direction is parallel, as the cylinder's, and meets no side. */
+    const vf par_eps =
+        KFN(cyl_in)(k, F, offsetof(cylray_prepared, par_eps), vmul(vv, vset1(CYLRAY_PAR_EPS)));
+    const vm par = mand(veq(a, zero), vle(st->A, vmul(st->dd, par_eps)));
+    st->side = mandn(mand(act, vge(st->D, zero)), par);
+    /* no roots, and inside everywhere (or parallel inside) */
+    st->inpar = mor(mandn(mand(act, neg), st->side), mand(mand(act, par), vle(st->C, zero)));
     return many(mor(st->side, st->inpar));
 }
 
@@ -179,14 +186,15 @@ CYLRAY_INLINE int KFN(side)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_k
     return F.capped ? many(mor(st->side, st->inpar)) : many(st->side);
 }
 
-/* The near root t of a ray along a generator line (A about 0) is C / 2nB, and there
- * both nB and C are differences of terms thousands of times larger (the ray runs
- * beside the surface from the shifted origin to the root): their rounding errors,
- * uncorrelated, move t by far more than the inputs' own 2 ulps do. At the root's point
- * p + t d the quadratic's terms are the size of the radius there, small near an apex,
- * so its C and nB formed there (f - t e and r0 + a t, each rounded once) are accurate,
- * and one step of its small root corrects t. A step that is not small (a root there
- * ill-posed, as at the apex itself, or NaN) is not taken. */
+/* A cone's nB = e.f + v.v a r0 cancels where the ray runs nearly along the surface
+ * (along a generator line, or leaving it near the apex): nB and C are then differences
+ * of terms many times larger, and their rounding errors, uncorrelated, move a root by
+ * far more than the inputs' own 2 ulps do (C / 2nB, when A is about 0, carries nB's
+ * relative error whole). At the root's point p + t d the quadratic's terms are the
+ * size of the radius there, small near an apex, so its C and nB formed there (f - t e
+ * and r0 + a t, each rounded once) are accurate, and one step of its small root
+ * corrects t. A step that is not small (a root there ill-posed, as at the apex itself,
+ * a root running to infinity, or NaN) is not taken. */
 CYLRAY_INLINE vf KFN(cone_polish)(const KFN(lanes) *st, vf t)
 {
     const vf fx = vfnma(t, st->ex, st->fx), fy = vfnma(t, st->ey, st->fy),
@@ -260,11 +268,19 @@ CYLRAY_INLINE void KFN(roots)(KFN(lanes) *st, const cylray_kat_ *k, const cylray
                                            vset1(KM_GENERATOR))));
         r2 = vsel(tangent, vdiv(vsub(nB, vxorsign(sq, nB)), A), r2);
     }
-    if (F.cone) { /* the near root of a ray along a generator line, polished */
-        vm gen = mand(side, vlt(vabs(A), vmul(KDOT(st->ex, st->ey, st->ez, st->ex, st->ey, st->ez),
-                                               vset1(KM_GENERATOR))));
-        if (many(gen))
-            r2 = vsel(gen, KFN(cone_polish)(st, r2), r2);
+    if (F.cone) { /* the roots of a cancelled nB, polished */
+        const vf ef = KDOT(st->ex, st->ey, st->ez, st->fx, st->fy, st->fz);
+        const vf var =
+            vmul(vmul(KDOT(st->vx, st->vy, st->vz, st->vx, st->vy, st->vz), st->ca), st->cr);
+        /* (CYLRAY_REFINE: every root) */
+        const vm pol =
+            F.refine
+                ? side
+                : mand(side, vlt(vabs(nB), vmul(vadd(vabs(ef), vabs(var)), vset1(KM_CANCEL))));
+        if (many(pol)) {
+            r1 = vsel(pol, KFN(cone_polish)(st, r1), r1);
+            r2 = vsel(pol, KFN(cone_polish)(st, r2), r2);
+        }
     }
     st->tn = vmin(r1, r2), st->tf = vmax(r1, r2);
     if (F.refine && !F.cone && many(side)) {

@@ -82,12 +82,22 @@ CYLRAY_INLINE void KFN(normals)(const KFN(lanes) *st, const cylray_kat_ *k,
                  kz = KFN(cyl_in)(k, F, offsetof(cylray_prepared, vk[2]), vmul(st->vz, rvv));
         const vf kap = KFN(both_in)(k, F, offsetof(cylray_prepared, kap), CYLRAY_LF_RRVV);
         const vf cn = KFN(both_in)(k, F, offsetof(cylray_prepared, cnrm), CYLRAY_LF_NSCALE);
-        const vf r = vfma(st->ca, tr, st->cr), rk = vmul(r, kap), sc = vdiv(cn, r);
+        /* |r|: rounding near an apex may give a hit point a radius just below 0,
+         * which must not turn the normal inwards. */
+        const vf r = vfma(st->ca, tr, st->cr), rk = vmul(r, kap), sc = vdiv(cn, vabs(r));
         vf ux = vfms(tr, st->ex, st->fx), uy = vfms(tr, st->ey, st->fy),
            uz = vfms(tr, st->ez, st->fz);
         nx = vmul(vfnma(rk, st->vx, vfms(ky, uz, vmul(kz, uy))), sc);
         ny = vmul(vfnma(rk, st->vy, vfms(kz, ux, vmul(kx, uz))), sc);
         nz = vmul(vfnma(rk, st->vz, vfms(kx, uy, vmul(ky, ux))), sc);
+        /* At the apex itself the gradient vanishes: the normal there is the axis,
+         * pointing away from the cone (v's length is renormalised below). */
+        const vm apex = mand(hit, veq(r, zero));
+        if (many(apex)) {
+            const vf sg = vsel(vlt(kap, zero), one, vset1(-1.0f));
+            nx = vsel(apex, vmul(sg, st->vx), nx), ny = vsel(apex, vmul(sg, st->vy), ny);
+            nz = vsel(apex, vmul(sg, st->vz), nz);
+        }
     } else {
         /* v x (p x v) = v.v p_perp, with p x v = f + t e already perpendicular, so
          * no axial magnitude leaks in; vk = v / (R v.v) makes it unit length. */
