@@ -361,6 +361,9 @@ void report_tables(FILE *f, const result_list *l, const scene_report *sc, const 
     print_group(f, l, "spheres",
                 "spheres: one sphere, packets of 4, 8, 16 and the stream API (textbook: the "
                 "textbook sphere in plain float)");
+    print_group(f, l, "cones",
+                "cones: one capped cone, packets of 4, 8, 16 and the stream API (textbook: "
+                "the textbook cone in plain float)");
     print_group(f, l, "stress",
                 "stress categories of tests/ref/gen.h (16 rays per cylinder; "
                 "textbook: the textbook formulas in plain float)");
