@@ -30,8 +30,13 @@
 #define TB_CAT(a, b) TB_CAT_(a, b)
 
 /* The iterations are independent (the outputs alias no input): say so, as a user
- * chasing speed would. */
-#if defined(__clang__)
+ * chasing speed would. Not in the scalar build (TB_NO_VECTORIZE): clang's
+ * assume_safety turns its loop vectorizer back on in spite of -fno-vectorize. */
+#if defined(TB_NO_VECTORIZE) && defined(__clang__)
+#define TB_INDEPENDENT _Pragma("clang loop vectorize(disable) interleave(disable)")
+#elif defined(TB_NO_VECTORIZE)
+#define TB_INDEPENDENT
+#elif defined(__clang__)
 #define TB_INDEPENDENT _Pragma("clang loop vectorize(assume_safety)")
 #elif defined(__GNUC__)
 #define TB_INDEPENDENT _Pragma("GCC ivdep")
