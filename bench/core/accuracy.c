@@ -6,14 +6,15 @@
  * hit/miss or part disagreement is counted, then judged against the reference's
  * tolerance band (the float inputs perturbed by a few ulps): excused when the exact
  * case is that close to a decision boundary, "unexcused" otherwise. Bands are costly,
- * so they are computed only for rays that disagree, once per ray. Spheres take
- * tests/ref's exact sphere (sphref.h) in the same form. */
+ * so they are computed only for rays that disagree, once per ray. Spheres and cones
+ * take tests/ref's exact sphere (sphref.h) and cone (conref.h) in the same form. */
 #include "bench.h"
 #include "timing_run.h"
 
 #include <stdlib.h>
 #include <string.h>
 
+#include "conref.h"
 #include "cylref.h"
 #include "sphref.h"
 
@@ -71,8 +72,9 @@ static void ref_closest(const workload *w, size_t i, ref_answer *out)
     out->part = 0;
     for (int c = c0; c < c1; c++) {
         cylref_hit h;
-        int got = w->sph ? sphref_intersect(&w->sph[c], o, d, tmin, tmax, 0, &h)
-                         : cylref_intersect(&w->cyl[c], o, d, tmin, tmax, 0, &h);
+        int got = w->sph   ? sphref_intersect(&w->sph[c], o, d, tmin, tmax, 0, &h)
+                  : w->con ? conref_intersect(&w->con[c], o, d, tmin, tmax, 0, &h)
+                           : cylref_intersect(&w->cyl[c], o, d, tmin, tmax, 0, &h);
         if (got == 1 && (!out->hit || h.t < out->t)) {
             out->hit = 1;
             out->t = h.t;
@@ -120,6 +122,8 @@ static const cylref_band *band_of(const workload *w, size_t i, int c)
     ray_of(w, i, o, d, &tmin, &tmax);
     if (w->sph)
         sphref_band_eval(&w->sph[c], o, d, tmin, tmax, 0, b);
+    else if (w->con)
+        conref_band_eval(&w->con[c], o, d, tmin, tmax, 0, b);
     else
         cylref_band_eval(&w->cyl[c], o, d, tmin, tmax, 0, b);
     if (single)

@@ -71,6 +71,8 @@ typedef struct workload {
     cylray_sphere *sph;    /* non-NULL: the shapes are ncyl spheres (cyl unused; prep
                                    and tbs from these) */
     tb_sphere *tbs;        /* ncyl with sph, for the textbook peer */
+    cylray_cone *con;      /* non-NULL: the shapes are ncyl cones (as sph) */
+    tb_cone *tbc;          /* ncyl with con, for the textbook peer */
     unsigned ops;          /* bit per OP_* measured */
     unsigned widths;       /* bit per BW_* measured (before the --width filter) */
     int textbook;          /* also time and check the textbook peer */

@@ -163,7 +163,9 @@ static uint64_t pass_textbook(const runner *x, size_t b)
         cylray_rays R = stream_rays(x, g);
         cylray_hits H = stream_hits(x, g);
         const size_t c = x->w->grouped ? g / grp : 0;
-        acc += x->tbs ? x->tbs(&x->w->tbs[c], &R, &H, grp) : x->tb(&x->w->tb[c], &R, &H, grp);
+        acc += x->tbs   ? x->tbs(&x->w->tbs[c], &R, &H, grp)
+               : x->tbc ? x->tbc(&x->w->tbc[c], &R, &H, grp)
+                        : x->tb(&x->w->tb[c], &R, &H, grp);
     }
     return acc;
 }
@@ -198,9 +200,11 @@ int runner_init(runner *x, const workload *w, int isa, int width_id, int op)
     if (bench_is_textbook(isa)) {
         if (w->sph)
             x->tbs = tb_sphere_variant(isa - BENCH_ISA_TEXTBOOK);
+        else if (w->con)
+            x->tbc = tb_cone_variant(isa - BENCH_ISA_TEXTBOOK);
         else
             x->tb = tb_variant(isa - BENCH_ISA_TEXTBOOK);
-        if ((!x->tb && !x->tbs) || op != OP_NORMAL || width_id != BW_STREAM)
+        if ((!x->tb && !x->tbs && !x->tbc) || op != OP_NORMAL || width_id != BW_STREAM)
             return -1;
         x->pass = pass_textbook;
     } else {

@@ -14,6 +14,7 @@ struct runner {
     const cylray_kernels *k; /* NULL for the textbook peer */
     tb_stream_fn tb;         /* the textbook peer's build, or NULL */
     tb_sphere_fn tbs;        /* the same for a workload of spheres */
+    tb_cone_fn tbc;          /* and of cones */
     int op, width_id, restore_outside;
     unsigned flags;
     pass_fn pass;

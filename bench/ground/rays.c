@@ -344,6 +344,30 @@ cylray_cylinder sph_box(const cylray_sphere *s)
     return c;
 }
 
+cylray_cone con_general(int kind)
+{
+    const cylray_cylinder c = cyl_general(2);
+    const double al = sqrt((double)c.axis[0] * c.axis[0] + (double)c.axis[1] * c.axis[1] +
+                           (double)c.axis[2] * c.axis[2]);
+    cylray_cone k = {{0}, {0}, 1.0f, kind == 0 ? 0.4f : 0.0f, CYLRAY_CAPPED};
+    for (int i = 0; i < 3; i++) {
+        k.p0[i] = (float)(c.center[i] - c.half_height * c.axis[i] / al);
+        k.p1[i] = (float)(c.center[i] + c.half_height * c.axis[i] / al);
+    }
+    if (kind == 2) {
+        k.r0 = c.radius;
+        k.r1 = nextafterf(nextafterf(nextafterf(c.radius, 1.0f), 1.0f), 1.0f);
+    }
+    return k;
+}
+
+cylray_cylinder con_box(const cylray_cone *k)
+{
+    cylray_cylinder c = cyl_general(2);
+    c.radius = k->r0 > k->r1 ? k->r0 : k->r1;
+    return c;
+}
+
 cylray_cylinder cyl_aligned(int kind)
 {
     cylray_cylinder c = cyl_general(kind);

@@ -60,6 +60,13 @@ cylray_cylinder cyl_aligned(int kind);
 cylray_sphere sph_general(void);
 cylray_cylinder sph_box(const cylray_sphere *s);
 
+/* The cones of the cone scenarios, around cyl_general(2)'s axis and over its length,
+ * capped at both ends: kind 0 radii 1.0 and 0.4 (a frustum), 1 radii 1.0 and 0 (a tip
+ * cone, apex at p1), 2 radii 0.75 and 0.75 + 3 ulps (a near-cylinder). con_box is the
+ * stand-in solid their rays are drawn for: cyl_general(2) of the larger radius. */
+cylray_cone con_general(int kind);
+cylray_cylinder con_box(const cylray_cone *c);
+
 /* Rotates a ray set drawn around cyl_aligned(k) into the frame of cyl_general(k):
  * same local rays, general axis (rounded once). */
 void rays_to_general(raysoa *dst, const raysoa *src);

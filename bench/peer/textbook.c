@@ -21,6 +21,11 @@ size_t tb_sphere_stream_avx512(const tb_sphere *, const cylray_rays *, const cyl
                                size_t);
 size_t tb_sphere_stream_neon(const tb_sphere *, const cylray_rays *, const cylray_hits *,
                              size_t);
+size_t tb_cone_stream_scalar(const tb_cone *, const cylray_rays *, const cylray_hits *, size_t);
+size_t tb_cone_stream_sse41(const tb_cone *, const cylray_rays *, const cylray_hits *, size_t);
+size_t tb_cone_stream_avx2(const tb_cone *, const cylray_rays *, const cylray_hits *, size_t);
+size_t tb_cone_stream_avx512(const tb_cone *, const cylray_rays *, const cylray_hits *, size_t);
+size_t tb_cone_stream_neon(const tb_cone *, const cylray_rays *, const cylray_hits *, size_t);
 
 void tb_prepare(tb_cylinder *out, const cylray_cylinder *in)
 {
@@ -42,6 +47,25 @@ void tb_prepare_sphere(tb_sphere *out, const cylray_sphere *in)
         out->c[k] = in->center[k];
     out->rr = in->radius * in->radius;
     out->inv_r = 1.0f / in->radius;
+}
+
+void tb_prepare_cone(tb_cone *out, const cylray_cone *in)
+{
+    float a[3];
+    for (int k = 0; k < 3; k++) {
+        a[k] = in->p1[k] - in->p0[k];
+        out->c[k] = 0.5f * (in->p0[k] + in->p1[k]);
+    }
+    const float len = sqrtf(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+    for (int k = 0; k < 3; k++)
+        out->v[k] = a[k] / len;
+    out->h = 0.5f * len;
+    out->rm = 0.5f * (in->r0 + in->r1);
+    out->k = (in->r1 - in->r0) / len;
+    out->cnrm = 1.0f / sqrtf(1.0f + out->k * out->k);
+    out->rr0 = in->r0 * in->r0;
+    out->rr1 = in->r1 * in->r1;
+    out->caps = in->flags & CYLRAY_CAPPED;
 }
 
 #if (defined(__x86_64__) || defined(__i386__)) && defined(__GNUC__)
@@ -130,6 +154,11 @@ tb_stream_fn tb_variant(int v)
 tb_sphere_fn tb_sphere_variant(int v)
 {
     TB_PICK(tb_sphere_stream_, v);
+}
+
+tb_cone_fn tb_cone_variant(int v)
+{
+    TB_PICK(tb_cone_stream_, v);
 }
 
 const char *tb_variant_name(int v)

@@ -35,7 +35,7 @@ static const char *disagree_cell(const result *r, char *buf, size_t n)
 /* The groups whose scenarios pit cylray against the peer in this table. */
 static int peer_group(const char *group)
 {
-    return !strcmp(group, "main") || !strcmp(group, "spheres");
+    return !strcmp(group, "main") || !strcmp(group, "spheres") || !strcmp(group, "cones");
 }
 
 void report_peer(FILE *f, const result_list *l)
@@ -47,8 +47,8 @@ void report_peer(FILE *f, const result_list *l)
         return;
     fprintf(f,
             "\n== cylray against the textbook loop a user would write (naive.c, built per ISA "
-            "and auto-vectorized): same rays,\n   same capped cylinder (sphere-*: same "
-            "sphere), normals, calls of %d rays in L1 ==\n",
+            "and auto-vectorized): same rays,\n   same capped cylinder (sphere-*, cone-*: "
+            "same sphere, cone), normals, calls of %d rays in L1 ==\n",
             BENCH_BATCH);
     fprintf(f, "   M rays/s; x peer: the peer's time over cylray's (>= 1: accuracy for free); "
                "error: p99 ulps, dN hit/miss or part\n   disagreements with the exact "

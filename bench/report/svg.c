@@ -70,7 +70,8 @@ static void log_ticks(FILE *f, double lo, double hi, int vertical)
 }
 
 /* A point's marker by its category: cylinder ordinary (disc), far (square); sphere
- * ordinary (triangle), far (open triangle). */
+ * ordinary (triangle), far (open triangle); cone ordinary (diamond), far (open
+ * diamond). */
 static void marker(FILE *f, int cat, double x, double y, const char *col)
 {
     if (cat == 0)
@@ -82,6 +83,12 @@ static void marker(FILE *f, int cat, double x, double y, const char *col)
                 "<rect x=\"%.1f\" y=\"%.1f\" width=\"10\" height=\"10\" fill=\"none\" "
                 "stroke=\"%s\" stroke-width=\"2\"/>\n",
                 x - 5, y - 5, col);
+    else if (cat >= 4)
+        fprintf(f,
+                "<polygon points=\"%.1f,%.1f %.1f,%.1f %.1f,%.1f %.1f,%.1f\" fill=\"%s\" "
+                "fill-opacity=\"%s\" stroke=\"%s\" stroke-width=\"2\"/>\n",
+                x, y - 6, x + 6, y, x, y + 6, x - 6, y, cat == 4 ? col : "none",
+                cat == 4 ? "0.8" : "1", col);
     else
         fprintf(f,
                 "<polygon points=\"%.1f,%.1f %.1f,%.1f %.1f,%.1f\" fill=\"%s\" "
@@ -97,13 +104,14 @@ typedef struct point {
 
 int svg_time_vs_error(const char *path, const result_list *l, const machine_info *m)
 {
-    /* The cylinder's two stress categories (ordinary and far) and the sphere's pair, if
-     * measured. */
-    enum { NCAT = 4 };
-    const char *cats[NCAT] = {"stress-ordinary", "stress-far", "sphere-incoherent",
-                              "sphere-far"};
-    const char *cat_label[NCAT] = {"ordinary rays", "far origins (1e3-1e6 R)",
-                                   "sphere, ordinary rays", "sphere, far (1e4-1e6 R)"};
+    /* The cylinder's two stress categories (ordinary and far), the sphere's pair and the
+     * cone's, if measured. */
+    enum { NCAT = 6 };
+    const char *cats[NCAT] = {"stress-ordinary", "stress-far",      "sphere-incoherent",
+                              "sphere-far",      "cone-incoherent", "cone-far"};
+    const char *cat_label[NCAT] = {"ordinary rays",         "far origins (1e3-1e6 R)",
+                                   "sphere, ordinary rays", "sphere, far (1e4-1e6 R)",
+                                   "cone, ordinary rays",   "cone, far (1e4-1e6 R)"};
     const int ops[3] = {OP_NORMAL, OP_REFINE, OP_FAST};
     const char *var_name[4] = {"default", "REFINE", "FAST", "textbook"};
     const char *var_col[4] = {"#1f77b4", "#2ca02c", "#d62728", "#111111"};
@@ -186,15 +194,15 @@ int svg_time_vs_error(const char *path, const result_list *l, const machine_info
     }
     fprintf(
         f, "<text x=\"%d\" y=\"%d\" font-size=\"10\" fill=\"#444\">R: REFINE, F: FAST</text>\n",
-        lx0 - 5, ly0 + 186);
+        lx0 - 5, ly0 + 114 + 18 * NCAT);
     fprintf(f,
             "<text x=\"%d\" y=\"%d\" font-size=\"10\" fill=\"#444\">textbook: naive.c, "
             "plain float; scalar</text>\n",
-            lx0 - 5, ly0 + 202);
+            lx0 - 5, ly0 + 130 + 18 * NCAT);
     fprintf(f,
             "<text x=\"%d\" y=\"%d\" font-size=\"10\" fill=\"#444\">and auto-vectorized "
             "per ISA (streams)</text>\n",
-            lx0 - 5, ly0 + 216);
+            lx0 - 5, ly0 + 144 + 18 * NCAT);
     fprintf(f, "</svg>\n");
     return fclose(f) ? -1 : 0;
 }

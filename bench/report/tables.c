@@ -206,7 +206,8 @@ static void print_leaf_row(FILE *f, const result_list *l, const char *scen, cons
         r[o] = find_named(l, scen, isa, wid, ops[o]);
     if (!r[0] && !r[1] && !r[2])
         return;
-    fprintf(f, "%-8s %-14s %-3s", scen, isa, m);
+    /* the shape leaves' tables (with a textbook loop) have a wider first column */
+    fprintf(f, "%-*s %-14s %-3s", tbloop ? 11 : 8, scen, isa, m);
     for (int o = 0; o < 3; o++) {
         if (r[o])
             fprintf(f, " %9.1f%c", r[o]->mrays, r[o]->cpu_timed ? '~' : ' ');
@@ -251,6 +252,30 @@ static void print_leaf_cyl(FILE *f, const result_list *l, const leaf_report *lr,
     }
 }
 
+/* sphere-leaf or cone-leaf: the table of leaf-l1 with the textbook loop beside it. */
+static void print_shape_leaf(FILE *f, const result_list *l, const leaf_report *lr,
+                             const char *lane, int sz, const char *tag, const char *shapes,
+                             const char *scene)
+{
+    fprintf(f,
+            "\n== %s: one incoherent ray against %d %s (%s) in leaves of M; %d %s, in L1 ==\n",
+            tag, lr->run, shapes, scene, lr->ncyl[sz], shapes);
+    fprintf(f,
+            "   as for the cylinders; x tb-loop = the textbook %.*s formula in a plain "
+            "scalar loop over the same %s\n   (textbook-loop), its time over this one's. "
+            "Answers that differ from the scalar loop's: %zu\n",
+            (int)strlen(shapes) - 1, shapes, shapes, lr->diff[sz]);
+    fprintf(f, "%-11s %-14s %-3s %10s %10s %10s | %8s %9s %11s %9s\n", "data", "path", "M", "t",
+            "normal", "occluded", "x loop", "x 1-lane", "occ/normal", "x tb-loop");
+    for (int isa = 0; isa < CYLRAY_ISA_COUNT; isa++)
+        for (int w = BW_4; w < BW_STREAM; w++)
+            print_leaf_row(f, l, tag, bench_isa_name(isa), w, bench_width_name[w],
+                           "scalar-loop", lane, "textbook-loop");
+    print_leaf_row(f, l, tag, "scalar-loop", -1, "1", "scalar-loop", lane, "textbook-loop");
+    print_leaf_row(f, l, tag, lane, -1, "1", "scalar-loop", lane, "textbook-loop");
+    print_leaf_row(f, l, tag, "textbook-loop", -1, "1", "scalar-loop", lane, "textbook-loop");
+}
+
 static void print_leaf(FILE *f, const result_list *l, const leaf_report *lr)
 {
     if (!lr->have)
@@ -259,7 +284,7 @@ static void print_leaf(FILE *f, const result_list *l, const leaf_report *lr)
     snprintf(lane, sizeof lane, "1-lane:%s", lr->best);
     /* the scene sizes run (a size not selected has no cylinders) */
     char sizes[96] = "", diffs[96] = "";
-    const char *tag[3] = {"leaf-l1", "leaf-l2", "sphere-leaf"};
+    const char *tag[2] = {"leaf-l1", "leaf-l2"};
     for (int s = 0, ks = 0, kd = 0; s < 2; s++) {
         if (!lr->ncyl[s])
             continue;
@@ -270,27 +295,12 @@ static void print_leaf(FILE *f, const result_list *l, const leaf_report *lr)
     }
     if (lr->ncyl[0] || lr->ncyl[1])
         print_leaf_cyl(f, l, lr, lane, sizes, diffs);
-    if (!lr->sphere)
-        return;
-    fprintf(f,
-            "\n== sphere-leaf: one incoherent ray against %d spheres (atoms on a jittered "
-            "lattice) in leaves of M; %d spheres, in L1 ==\n",
-            lr->run, lr->ncyl[2]);
-    fprintf(f,
-            "   as for the cylinders; x tb-loop = the textbook sphere formula in a plain "
-            "scalar loop over the same spheres\n   (textbook-loop), its time over this one's. "
-            "Answers that differ from the scalar loop's: %zu\n",
-            lr->diff[2]);
-    fprintf(f, "%-11s %-14s %-3s %10s %10s %10s | %8s %9s %11s %9s\n", "data", "path", "M", "t",
-            "normal", "occluded", "x loop", "x 1-lane", "occ/normal", "x tb-loop");
-    for (int isa = 0; isa < CYLRAY_ISA_COUNT; isa++)
-        for (int w = BW_4; w < BW_STREAM; w++)
-            print_leaf_row(f, l, tag[2], bench_isa_name(isa), w, bench_width_name[w],
-                           "scalar-loop", lane, "textbook-loop");
-    print_leaf_row(f, l, tag[2], "scalar-loop", -1, "1", "scalar-loop", lane, "textbook-loop");
-    print_leaf_row(f, l, tag[2], lane, -1, "1", "scalar-loop", lane, "textbook-loop");
-    print_leaf_row(f, l, tag[2], "textbook-loop", -1, "1", "scalar-loop", lane,
-                   "textbook-loop");
+    if (lr->sphere)
+        print_shape_leaf(f, l, lr, lane, 2, "sphere-leaf", "spheres",
+                         "atoms on a jittered lattice");
+    if (lr->cone)
+        print_shape_leaf(f, l, lr, lane, 3, "cone-leaf", "cones",
+                         "leaf-l1's bonds and pipes tapered, a quarter of them tips");
 }
 
 /* ---- the big stream -------------------------------------------------------------- */
@@ -361,6 +371,9 @@ void report_tables(FILE *f, const result_list *l, const scene_report *sc, const 
     print_group(f, l, "spheres",
                 "spheres: one sphere, packets of 4, 8, 16 and the stream API (textbook: the "
                 "textbook sphere in plain float)");
+    print_group(f, l, "cones",
+                "cones: one capped cone, packets of 4, 8, 16 and the stream API (textbook: "
+                "the textbook cone in plain float)");
     print_group(f, l, "stress",
                 "stress categories of tests/ref/gen.h (16 rays per cylinder; "
                 "textbook: the textbook formulas in plain float)");

@@ -13,7 +13,9 @@
  *
  * sphere-leaf is the same with atoms (spheres, scenegen.c) in L1, and one more loop for
  * the same work: the textbook sphere formula over the run's spheres in plain scalar
- * float (textbook-loop), the loop a tracer would write instead of calling anything. */
+ * float (textbook-loop), the loop a tracer would write instead of calling anything.
+ * cone-leaf is leaf-l1's scene with every cylinder tapered into a cone (sg_taper), and
+ * the textbook cone in the same scalar loop. */
 #include "leaf.h"
 
 #include "clock.h"
@@ -37,6 +39,8 @@ typedef struct leaf_scene {
                                    sort and aim as the spheres */
     cylray_sphere *sph;   /* NULL: a scene of cylinders */
     tb_sphere *tbs;
+    cylray_cone *con; /* non-NULL: a scene of cones (cyl: the cylinders around them) */
+    tb_cone *tbc;
     cylray_prepared *prep;
     cylray_leaf4 *l4;
     cylray_leaf8 *l8;
@@ -53,52 +57,52 @@ typedef struct leaf_cfg {
 
 static volatile uint64_t leaf_sink;
 
-/* A cylinder the library refuses (the one-end cap flags in a build without them) is
- * capped at both ends instead; 0 when every cylinder is accepted so. */
-static int prepare_spheres(leaf_scene *s)
-{
-    for (int i = 0; i < s->ncyl; i++) {
-        if (cylray_prepare_sphere(&s->prep[i], &s->sph[i]) != CYLRAY_OK)
-            return -1;
-        tb_prepare_sphere(&s->tbs[i], &s->sph[i]);
+/* Leaf `first / M` of width M from the shapes first.. first+M-1. */
+#define LEAF_PREP(M)                                                                           \
+    static int leaf_prep##M(leaf_scene *s, int first, const uint32_t *ids)                     \
+    {                                                                                          \
+        cylray_leaf##M *L = &s->l##M[first / M];                                               \
+        if (s->sph)                                                                            \
+            return cylray_leaf_prepare_spheres##M(L, s->sph + first, ids, M) != CYLRAY_OK;     \
+        if (s->con)                                                                            \
+            return cylray_leaf_prepare_cones##M(L, s->con + first, ids, M) != CYLRAY_OK;       \
+        return cylray_leaf_prepare##M(L, s->cyl + first, ids, M) != CYLRAY_OK;                 \
     }
-    uint32_t ids[16];
-    for (int i = 0; i < s->ncyl; i += 16) {
-        for (int j = 0; j < 16; j++)
-            ids[j] = (uint32_t)(i + j);
-        for (int j = 0; j < 16; j += 4)
-            if (cylray_leaf_prepare_spheres4(&s->l4[(i + j) / 4], s->sph + i + j, ids + j, 4))
-                return -1;
-        for (int j = 0; j < 16; j += 8)
-            if (cylray_leaf_prepare_spheres8(&s->l8[(i + j) / 8], s->sph + i + j, ids + j, 8))
-                return -1;
-        if (cylray_leaf_prepare_spheres16(&s->l16[i / 16], s->sph + i, ids, 16))
-            return -1;
-    }
-    return 0;
-}
+LEAF_PREP(4)
+LEAF_PREP(8)
+LEAF_PREP(16)
 
+/* Every shape prepared alone (for the loops) and in leaves of 4, 8 and 16. A cylinder
+ * the library refuses (the one-end cap flags in a build without them) is capped at both
+ * ends instead; -1 when a shape is refused even so. */
 static int prepare_all(leaf_scene *s)
 {
-    if (s->sph)
-        return prepare_spheres(s);
-    for (int i = 0; i < s->ncyl; i++)
-        if (cylray_prepare(&s->prep[i], &s->cyl[i]) != CYLRAY_OK) {
+    for (int i = 0; i < s->ncyl; i++) {
+        if (s->sph) {
+            if (cylray_prepare_sphere(&s->prep[i], &s->sph[i]) != CYLRAY_OK)
+                return -1;
+            tb_prepare_sphere(&s->tbs[i], &s->sph[i]);
+        } else if (s->con) {
+            if (cylray_prepare_cone(&s->prep[i], &s->con[i]) != CYLRAY_OK)
+                return -1;
+            tb_prepare_cone(&s->tbc[i], &s->con[i]);
+        } else if (cylray_prepare(&s->prep[i], &s->cyl[i]) != CYLRAY_OK) {
             s->cyl[i].flags = CYLRAY_CAPPED;
             if (cylray_prepare(&s->prep[i], &s->cyl[i]) != CYLRAY_OK)
                 return -1;
         }
+    }
     uint32_t ids[16];
     for (int i = 0; i < s->ncyl; i += 16) {
         for (int j = 0; j < 16; j++)
             ids[j] = (uint32_t)(i + j);
         for (int j = 0; j < 16; j += 4)
-            if (cylray_leaf_prepare4(&s->l4[(i + j) / 4], s->cyl + i + j, ids + j, 4))
+            if (leaf_prep4(s, i + j, ids + j))
                 return -1;
         for (int j = 0; j < 16; j += 8)
-            if (cylray_leaf_prepare8(&s->l8[(i + j) / 8], s->cyl + i + j, ids + j, 8))
+            if (leaf_prep8(s, i + j, ids + j))
                 return -1;
-        if (cylray_leaf_prepare16(&s->l16[i / 16], s->cyl + i, ids, 16))
+        if (leaf_prep16(s, i, ids))
             return -1;
     }
     return 0;
@@ -149,6 +153,8 @@ static void scene_free(leaf_scene *s)
     free(s->cyl);
     free(s->sph);
     free(s->tbs);
+    free(s->con);
+    free(s->tbc);
     bench_free(s->prep);
     bench_free(s->l4);
     bench_free(s->l8);
@@ -158,7 +164,8 @@ static void scene_free(leaf_scene *s)
     memset(s, 0, sizeof *s);
 }
 
-static int scene_build(leaf_scene *s, int ncyl, int spheres, uint64_t seed)
+/* shape: 0 cylinders, 1 spheres, 2 cones */
+static int scene_build(leaf_scene *s, int ncyl, int shape, uint64_t seed)
 {
     memset(s, 0, sizeof *s);
     s->ncyl = ncyl;
@@ -172,7 +179,7 @@ static int scene_build(leaf_scene *s, int ncyl, int spheres, uint64_t seed)
     if (!s->cyl || !s->prep || !s->l4 || !s->l8 || !s->l16 || !s->ray || !s->run)
         return -1;
     rng g = {seed};
-    if (spheres) {
+    if (shape == 1) {
         s->sph = calloc((size_t)ncyl, sizeof *s->sph);
         s->tbs = calloc((size_t)ncyl, sizeof *s->tbs);
         if (!s->sph || !s->tbs)
@@ -201,7 +208,16 @@ static int scene_build(leaf_scene *s, int ncyl, int spheres, uint64_t seed)
     const double mol_base[3] = {0, 0, 0}, pipe_base[3] = {1.1 * size, 0, 0};
     int k = sg_molecule(s->cyl, half, mol_base, &g);
     k += sg_pipes(s->cyl + k, ncyl - k, pipe_base, size, &g);
-    if (k != ncyl || sg_morton_sort(s->cyl, ncyl) || prepare_all(s))
+    if (k != ncyl || sg_morton_sort(s->cyl, ncyl))
+        return -1;
+    if (shape == 2) {
+        s->con = calloc((size_t)ncyl, sizeof *s->con);
+        s->tbc = calloc((size_t)ncyl, sizeof *s->tbc);
+        if (!s->con || !s->tbc)
+            return -1;
+        sg_taper(s->cyl, s->con, ncyl, &g);
+    }
+    if (prepare_all(s))
         return -1;
     aim_rays(s, &g);
     return 0;
@@ -273,8 +289,8 @@ PASS_LEAF(16)
 PASS_LANE(4)
 PASS_LANE(8)
 
-/* The textbook sphere over the run's spheres, one ray at a time, in one call a run (the
- * formula inlined in its loop, as a tracer would have it). */
+/* The textbook sphere (or cone) over the run's shapes, one ray at a time, in one call a
+ * run (the formula inlined in its loop, as a tracer would have it). */
 static uint64_t pass_textbook(const leaf_scene *s, const leaf_cfg *c, uint32_t *out)
 {
     uint64_t acc = 0;
@@ -283,8 +299,9 @@ static uint64_t pass_textbook(const leaf_scene *s, const leaf_cfg *c, uint32_t *
         cylray_ray1 r = s->ray[j];
         cylray_hit1 h;
         const uint32_t first = s->run[j] * LEAF_RUN;
-        uint32_t k =
-            tb_sphere_run_scalar(s->tbs + first, LEAF_RUN, &r, &h, fl, c->op == OP_OCC);
+        const int occ = c->op == OP_OCC;
+        uint32_t k = s->sph ? tb_sphere_run_scalar(s->tbs + first, LEAF_RUN, &r, &h, fl, occ)
+                            : tb_cone_run_scalar(s->tbc + first, LEAF_RUN, &r, &h, fl, occ);
         uint32_t res = c->op == OP_OCC ? k != 0 : k ? first + k : 0;
         acc += res;
         if (out)
@@ -347,23 +364,28 @@ static void sample(const leaf_scene *s, const leaf_cfg *c, result *r, const opti
     leaf_sink = leaf_sink + acc;
 }
 
-static const char *const size_name[3] = {"leaf-l1", "leaf-l2", "sphere-leaf"};
+static const char *const size_name[LEAF_NSIZE] = {"leaf-l1", "leaf-l2", "sphere-leaf",
+                                                  "cone-leaf"};
+static const char *const size_group[LEAF_NSIZE] = {"leaf", "leaf", "spheres", "cones"};
 /* 256 cylinders: 16 KB of leaves (32 KB as cylray_prepared for the loops), in a 48 KB
  * L1; 8192: 512 KB of leaves (1 MB prepared), past L1 and inside a 2 MB L2; 256
- * spheres in L1. */
-static const int size_cyl[3] = {256, 8192, 256};
+ * spheres, and 256 cones, in L1. */
+static const int size_cyl[LEAF_NSIZE] = {256, 8192, 256, 256};
 
 static int size_selected(const options *opt, int sz)
 {
     if (!opt->scenarios)
         return 1;
     return workloads_selected_name(opt->scenarios, size_name[sz], "leaf") ||
-           (sz == 2 && workloads_selected_name(opt->scenarios, size_name[sz], "spheres"));
+           workloads_selected_name(opt->scenarios, size_name[sz], size_group[sz]);
 }
 
 int leaf_selected(const options *opt)
 {
-    return size_selected(opt, 0) || size_selected(opt, 1) || size_selected(opt, 2);
+    int any = 0;
+    for (int sz = 0; sz < LEAF_NSIZE; sz++)
+        any |= size_selected(opt, sz);
+    return any;
 }
 
 int leaf_available(void)
@@ -384,11 +406,11 @@ void leaf_run(const options *opt, result_list *results, leaf_report *rep)
     rep->bytes_per_cyl[1] = (int)(sizeof(cylray_leaf8) / 8);
     rep->bytes_per_cyl[2] = (int)(sizeof(cylray_leaf16) / 16);
     snprintf(rep->best, sizeof rep->best, "%s", best->name);
-    for (int sz = 0; sz < 3; sz++) {
+    for (int sz = 0; sz < LEAF_NSIZE; sz++) {
         if (!size_selected(opt, sz))
             continue;
         leaf_scene s;
-        if (scene_build(&s, size_cyl[sz], sz == 2, 0x1eaf0000u + (uint64_t)sz)) {
+        if (scene_build(&s, size_cyl[sz], sz < 2 ? 0 : sz - 1, 0x1eaf0000u + (uint64_t)sz)) {
             fprintf(stderr, "cylbench: %s: cannot build the scene; skipped\n", size_name[sz]);
             scene_free(&s);
             continue;
@@ -409,7 +431,7 @@ void leaf_run(const options *opt, result_list *results, leaf_report *rep)
                 LK_LOOP, CYLRAY_ISA_SCALAR, 1, ops[o], cylray_kernels_for(CYLRAY_ISA_SCALAR),
                 0};
             cfg[nc++] = (leaf_cfg){LK_LANE, best->isa, 1, ops[o], best, 0};
-            if (s.sph)
+            if (s.sph || s.con)
                 cfg[nc++] = (leaf_cfg){LK_TB, CYLRAY_ISA_SCALAR, 1, ops[o], NULL, 0};
         }
         for (int i = 0; i < nc; i++) {
@@ -435,8 +457,8 @@ void leaf_run(const options *opt, result_list *results, leaf_report *rep)
             r->width_id = c->m == 4 ? BW_4 : c->m == 8 ? BW_8 : c->m == 16 ? BW_16 : BW_STREAM;
             r->op_id = c->op;
             r->rays_timed = LEAF_RAYS;
-            if (s.sph)
-                rep->sphere = 1;
+            rep->sphere |= s.sph != NULL;
+            rep->cone |= s.con != NULL;
             r->ncyl = LEAF_RUN;
         }
         /* rounds over all configurations, as the other scenarios are sampled */

@@ -102,6 +102,30 @@ static int by_key(const void *a, const void *b)
 
 /* Sorted by the Morton code of the center, quantised to 10 bits a coordinate in the
  * centers' box. */
+void sg_taper(cylray_cylinder *cyl, cylray_cone *out, int n, rng *g)
+{
+    for (int i = 0; i < n; i++) {
+        cylray_cylinder *c = &cyl[i];
+        const double al =
+            sqrt((double)c->axis[0] * c->axis[0] + (double)c->axis[1] * c->axis[1] +
+                 (double)c->axis[2] * c->axis[2]);
+        cylray_cone k;
+        for (int q = 0; q < 3; q++) {
+            k.p0[q] = (float)(c->center[q] - c->half_height * c->axis[q] / al);
+            k.p1[q] = (float)(c->center[q] + c->half_height * c->axis[q] / al);
+        }
+        const double u = rng_range(g, 0.1, 0.5), R = c->radius;
+        const int tip = rng_unit(g) < 0.25, wide_lo = rng_unit(g) < 0.5;
+        const float big = (float)(tip ? 1.3 * R : (1 + u) * R);
+        const float small = tip ? 0.0f : (float)((1 - u) * R);
+        k.r0 = wide_lo ? big : small;
+        k.r1 = wide_lo ? small : big;
+        k.flags = c->flags;
+        out[i] = k;
+        c->radius = big;
+    }
+}
+
 int sg_morton_sort(cylray_cylinder *c, int n)
 {
     float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};

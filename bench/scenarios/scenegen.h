@@ -23,6 +23,11 @@ int sg_pipes(cylray_cylinder *out, int n, const double base[3], double size, rng
  * 0.3-0.5 (neighbours may touch, as space-filling atoms do). Fills out[0..n) from the
  * box corner `base`. */
 void sg_atoms(cylray_sphere *out, int n, const double base[3], rng *g);
+/* Cones on the cylinders' axes and ends, with their flags: a quarter tips (one radius 0,
+ * the other 1.3 R), the rest tapered (radii (1 + u) R and (1 - u) R, u in 0.1-0.5, the
+ * wide end drawn at random); each cylinder's radius becomes its cone's larger one, so
+ * that the cylinders bound the cones for aiming. */
+void sg_taper(cylray_cylinder *cyl, cylray_cone *out, int n, rng *g);
 /* Sorts the cylinders along a Morton curve of their centers, as a BVH groups them
  * into leaves; -1 when out of memory. */
 int sg_morton_sort(cylray_cylinder *c, int n);

@@ -32,10 +32,13 @@ typedef struct scen_def {
     int textbook, big;
     int gen_category; /* S_GEN: the cylgen category */
     int fill;         /* FILL_*: every other lane inactive, holding this */
-    int sphere;       /* the shape is sph_general() instead of a cylinder */
+    int shape;        /* SH_*: the cylinder, or sph_general(), or con_general(k) */
 } scen_def;
 
-#define MAX_SCEN 48
+/* The shapes of S_PLAIN: SH_CONE + k is con_general(k). */
+enum { SH_CYL, SH_SPHERE, SH_CONE };
+
+#define MAX_SCEN 64
 static char gen_names[MAX_SCEN][40]; /* "stress-" + the category names of gen.h */
 
 static scen_def table[MAX_SCEN];
@@ -95,13 +98,27 @@ static void init_table(void)
          FILL_SUBNORMAL, 0},
         {"sphere-incoherent", "spheres",
          "ordinary rays: random origins 3-6 sizes away at a sphere", S_PLAIN, RK_INCOHERENT, 2,
-         ALL_OPS, ALL_WIDTHS, 1, 0, 0, 0, 1},
+         ALL_OPS, ALL_WIDTHS, 1, 0, 0, 0, SH_SPHERE},
         {"sphere-coherent", "spheres", "camera rays in 4x4 pixel tiles at a sphere", S_PLAIN,
-         RK_CAMERA, 2, ALL_OPS, ALL_WIDTHS, 1, 0, 0, 0, 1},
+         RK_CAMERA, 2, ALL_OPS, ALL_WIDTHS, 1, 0, 0, 0, SH_SPHERE},
         {"sphere-far", "spheres",
          "origins 1e4-1e6 radii away at a sphere: where the textbook's c = w.w - R^2 "
          "loses R",
-         S_PLAIN, RK_VERY_FAR, 2, ALL_OPS, ALL_WIDTHS, 1, 0, 0, 0, 1},
+         S_PLAIN, RK_VERY_FAR, 2, ALL_OPS, ALL_WIDTHS, 1, 0, 0, 0, SH_SPHERE},
+        {"cone-incoherent", "cones",
+         "ordinary rays: random origins 3-6 sizes away at a capped cone (radii 1 and 0.4)",
+         S_PLAIN, RK_INCOHERENT, 2, ALL_OPS, ALL_WIDTHS, 1, 0, 0, 0, SH_CONE},
+        {"cone-coherent", "cones", "camera rays in 4x4 pixel tiles at the capped cone", S_PLAIN,
+         RK_CAMERA, 2, ALL_OPS, ALL_WIDTHS, 1, 0, 0, 0, SH_CONE},
+        {"cone-far", "cones",
+         "origins 1e4-1e6 radii away at the capped cone: where the textbook's C = w.w - ... "
+         "loses R",
+         S_PLAIN, RK_VERY_FAR, 2, ALL_OPS, ALL_WIDTHS, 1, 0, 0, 0, SH_CONE},
+        {"cone-tip", "cones", "the incoherent rays at a tip cone (radii 1 and 0, capped)",
+         S_PLAIN, RK_INCOHERENT, 2, 1u << OP_NORMAL, ALL_WIDTHS, 1, 0, 0, 0, SH_CONE + 1},
+        {"cone-nearcyl", "cones",
+         "the incoherent rays at a near-cylinder cone (radii 3 ulps apart, capped)", S_PLAIN,
+         RK_INCOHERENT, 2, 1u << OP_NORMAL, ALL_WIDTHS, 1, 0, 0, 0, SH_CONE + 2},
     };
     for (size_t i = 0; i < sizeof fixed / sizeof fixed[0]; i++)
         table[ntable++] = fixed[i];
@@ -182,7 +199,8 @@ int workloads_check_list(const char *list)
                  !strcmp(word, "stream") || !strcmp(word, "skips") || !strcmp(word, "stress") ||
                  !strcmp(word, "lanes") || !strcmp(word, "leaf") || !strcmp(word, "leaf-l1") ||
                  !strcmp(word, "leaf-l2") || !strcmp(word, "spheres") ||
-                 !strcmp(word, "sphere-leaf");
+                 !strcmp(word, "sphere-leaf") || !strcmp(word, "cones") ||
+                 !strcmp(word, "cone-leaf");
         for (int i = 0; i < ntable && !ok; i++)
             ok = !strcmp(word, table[i].name);
         if (!ok) {
@@ -238,13 +256,21 @@ int workloads_build(int idx, workload *w, const options *opt)
         if (alloc_cyls(w, 1))
             return -1;
         w->cyl[0] = cyl_general(s->cyl_kind);
-        if (s->sphere) {
+        if (s->shape == SH_SPHERE) {
             w->sph = calloc(1, sizeof *w->sph);
             w->tbs = calloc(1, sizeof *w->tbs);
             if (!w->sph || !w->tbs)
                 return -1;
             w->sph[0] = sph_general();
             w->cyl[0] = sph_box(&w->sph[0]); /* the rays' target; never intersected */
+        }
+        if (s->shape >= SH_CONE) {
+            w->con = calloc(1, sizeof *w->con);
+            w->tbc = calloc(1, sizeof *w->tbc);
+            if (!w->con || !w->tbc)
+                return -1;
+            w->con[0] = con_general(s->shape - SH_CONE);
+            w->cyl[0] = con_box(&w->con[0]); /* the rays' target; never intersected */
         }
         rays_generate(&w->rays, s->rays, &w->cyl[0], 0, &g);
         break;
@@ -316,7 +342,15 @@ int workloads_build(int idx, workload *w, const options *opt)
         }
         tb_prepare_sphere(&w->tbs[c], &w->sph[c]);
     }
-    for (int c = 0; c < w->ncyl && !w->sph; c++) {
+    for (int c = 0; c < w->ncyl && w->con; c++) {
+        if (cylray_prepare_cone(&w->prep[c], &w->con[c]) != CYLRAY_OK) {
+            fprintf(stderr, "cylbench: %s: cone %d rejected by cylray_prepare_cone\n", s->name,
+                    c);
+            return -1;
+        }
+        tb_prepare_cone(&w->tbc[c], &w->con[c]);
+    }
+    for (int c = 0; c < w->ncyl && !w->sph && !w->con; c++) {
         if (cylray_prepare(&w->prep[c], &w->cyl[c]) != CYLRAY_OK) {
             fprintf(stderr, "cylbench: %s: cylinder %d rejected by cylray_prepare\n", s->name,
                     c);
@@ -338,5 +372,7 @@ void workloads_free(workload *w)
     free(w->tb);
     free(w->sph);
     free(w->tbs);
+    free(w->con);
+    free(w->tbc);
     memset(w, 0, sizeof *w);
 }
