@@ -179,6 +179,30 @@ CYLRAY_INLINE int KFN(side)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_k
     return F.capped ? many(mor(st->side, st->inpar)) : many(st->side);
 }
 
+/* The near root t of a ray along a generator line (A about 0) is C / 2nB, and there
+ * both nB and C are differences of terms thousands of times larger (the ray runs
+ * beside the surface from the shifted origin to the root): their rounding errors,
+ * uncorrelated, move t by far more than the inputs' own 2 ulps do. At the root's point
+ * p + t d the quadratic's terms are the size of the radius there, small near an apex,
+ * so its C and nB formed there (f - t e and r0 + a t, each rounded once) are accurate,
+ * and one step of its small root corrects t. A step that is not small (a root there
+ * ill-posed, as at the apex itself, or NaN) is not taken. */
+CYLRAY_INLINE vf KFN(cone_polish)(const KFN(lanes) *st, vf t)
+{
+    const vf fx = vfnma(t, st->ex, st->fx), fy = vfnma(t, st->ey, st->fy),
+             fz = vfnma(t, st->ez, st->fz);
+    const vf r = vfma(st->ca, t, st->cr);
+    const vf vv = KDOT(st->vx, st->vy, st->vz, st->vx, st->vy, st->vz);
+    const vf vr = vmul(vv, r);
+    const vf C = vsumsq_x(fx, fy, fz, vmul(vr, r));
+    const vf nB = vfma(vmul(vv, st->ca), r, KDOT(st->ex, st->ey, st->ez, fx, fy, fz));
+    const vf disc = vmax(vfnma(st->A, C, vmul(nB, nB)), vzero());
+    const vf q = vadd(nB, vxorsign(vsqrt(disc), nB));
+    const vf dt = vdiv(C, q);
+    const vm small = vle(vabs(dt), vmul(vabs(t), vset1(0x1p-8f)));
+    return vsel(small, vadd(t, dt), t);
+}
+
 /* Stage 5, the side's roots tn <= tf (relative to p), polished with CYLRAY_REFINE. */
 CYLRAY_INLINE void KFN(roots)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
 {
@@ -235,6 +259,12 @@ CYLRAY_INLINE void KFN(roots)(KFN(lanes) *st, const cylray_kat_ *k, const cylray
                 tangent, vgt(vabs(A), vmul(KDOT(st->ex, st->ey, st->ez, st->ex, st->ey, st->ez),
                                            vset1(KM_GENERATOR))));
         r2 = vsel(tangent, vdiv(vsub(nB, vxorsign(sq, nB)), A), r2);
+    }
+    if (F.cone) { /* the near root of a ray along a generator line, polished */
+        vm gen = mand(side, vlt(vabs(A), vmul(KDOT(st->ex, st->ey, st->ez, st->ex, st->ey, st->ez),
+                                               vset1(KM_GENERATOR))));
+        if (many(gen))
+            r2 = vsel(gen, KFN(cone_polish)(st, r2), r2);
     }
     st->tn = vmin(r1, r2), st->tf = vmax(r1, r2);
     if (F.refine && !F.cone && many(side)) {

@@ -38,6 +38,7 @@ typedef struct crec {
     int back[K_COUNT];
     cylq m[K_COUNT][G_COUNT], mw[K_COUNT][G_COUNT];
     cylq u[3], wp[3], dp[3], zw, zd, k, L, r0;
+    cylq A, B, C; /* the side: |x_perp(t)|^2 - r(z(t))^2 = A t^2 + 2 B t + C */
 } crec;
 
 static int present(unsigned flags, int kand)
@@ -115,6 +116,7 @@ static void c_eval(const cin_q *q, cylq tmin, cylq tmax, crec *r)
     const cylq A = dd - kz * kz, B = dot3(r->wp, r->dp) - kz * rw;
     const cylq C = dot3(r->wp, r->wp) - rw * rw;
     const cylq D = B * B - A * C;
+    r->A = A, r->B = B, r->C = C;
     const cylq rmax = q_max(q->r0, q->r1);
     const cylq sq = q_sqrt(q_max(D, 0));
     /* The stable pair: q / A and C / q are the roots with -sgn(B) sqrt and +sgn(B) sqrt
@@ -382,6 +384,71 @@ static void track(c_track tr[K_COUNT], const crec *r, const unsigned char v[K_CO
     }
 }
 
+/* A ray that runs beside the side over a stretch (along a generator line, within the
+ * box's reach of the surface) has no isolated roots: input i of the box moves the
+ * quadratic at t by dA_i t^2 + 2 dB_i t + dC_i, S(t) the sum of their sizes, and
+ * wherever |F(t)| <= S(t) some input in the box puts a root at t (to first order). Sampled along the ray's stretch inside the slab, each run of two or more
+ * samples within reach is an outcome of the side (either facing where F' is within
+ * reach of 0 too), unless a candidate sure to be taken comes first. Isolated roots are
+ * runs of one sample at most and keep their own bands. */
+static void c_reach(c_set *set, const crec *r, const cylq (*dc)[3], cylq tmin, cylq tmax,
+                    const int may_drop[K_COUNT], const double hi[K_COUNT])
+{
+    enum { N = 512 };
+    cylq sa = 0;
+    for (int i = 0; i < IN_COUNT; i++)
+        sa += q_abs(dc[i][0]);
+    if (!(q_abs(r->A) <= 256 * sa) || r->zd == 0)
+        return;
+    cylq ta = (0 - r->zw) / r->zd, tb = (r->L - r->zw) / r->zd;
+    if (ta > tb) {
+        cylq x = ta;
+        ta = tb;
+        tb = x;
+    }
+    ta = q_max(ta, tmin);
+    tb = tb < tmax ? tb : tmax;
+    if (!(ta < tb) || !q_isfinite(ta) || !q_isfinite(tb))
+        return;
+    const cylq h = (tb - ta) / (N - 1);
+    int run = 0, both = 0, fsign = 0;
+    cylq first = 0;
+    for (int i = 0; i <= N; i++) {
+        const cylq t = ta + h * i;
+        int in = 0;
+        if (i < N) {
+            const cylq F = (r->A * t + 2 * r->B) * t + r->C;
+            const cylq F1 = r->A * t + r->B;
+            cylq S = 0, S1 = 0;
+            for (int k = 0; k < IN_COUNT; k++) {
+                S += q_abs((dc[k][0] * t + 2 * dc[k][1]) * t + dc[k][2]);
+                S1 += q_abs(dc[k][0] * t + dc[k][1]);
+            }
+            in = q_abs(F) <= S;
+            if (in) {
+                if (!run)
+                    first = t, both = 0, fsign = 0;
+                both |= q_abs(F1) <= S1;
+                fsign |= F1 < 0 ? 1 : 2;
+                run++;
+            }
+        }
+        if (!in && run) {
+            const double lo = (double)(first - h), hi_t = (double)t;
+            int sure_before = 0;
+            for (int j = 0; j < K_COUNT; j++)
+                sure_before |= !may_drop[j] && hi[j] < lo;
+            if (run >= 2 && !sure_before) {
+                if (both || (fsign & 1))
+                    c_add_range(set, CYLRAY_SIDE, lo, hi_t);
+                if (both || (fsign & 2))
+                    c_add_range(set, CYLRAY_SIDE | CYLRAY_BACKFACE, lo, hi_t);
+            }
+            run = 0;
+        }
+    }
+}
+
 void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], float tmin,
                       float tmax, unsigned flags, cylref_band *out)
 {
@@ -438,6 +505,7 @@ void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], 
     track(tr, &r0, v0);
 
     double sum_m[K_COUNT][G_COUNT] = {{0}}, sum_t[K_COUNT] = {0}, dt[IN_COUNT] = {0};
+    cylq dcoef[IN_COUNT][3]; /* each input's move of A, B and C */
     double nmax = 0;
     for (int i = 0; i < IN_COUNT; i++) {
         signed char k[IN_COUNT] = {0};
@@ -451,6 +519,7 @@ void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], 
                 sum_m[kand][g] += qdiff(r.m[kand][g], r0.m[kand][g]);
             sum_t[kand] += qdiff(r.t[kand], r0.t[kand]);
         }
+        dcoef[i][0] = r.A - r0.A, dcoef[i][1] = r.B - r0.B, dcoef[i][2] = r.C - r0.C;
         if (x0 >= 0) {
             cylq dd = r.t[x0] - r0.t[x0];
             dt[i] = q_isfinite(dd) ? (double)dd : 0;
@@ -550,6 +619,7 @@ void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], 
     }
     if (all_drop)
         c_add(&set, -1, NAN);
+    c_reach(&set, &r0, (const cylq(*)[3])dcoef, tmin, tmax, may_drop, hi);
 
     int hits = 0, misses = 0;
     for (int i = 0; i < set.n; i++) {
@@ -575,12 +645,16 @@ void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], 
     /* The gradient samples turn the normal by 2 ulps of one input each; the box's
      * corners by all at once: twice the worst sample bounds a sum of a few. */
     out->n_spread = 2 * nmax;
-    if (x0 == K_FRONT || x0 == K_BACK) {
+    for (int kand = K_FRONT; kand <= K_BACK; kand++) {
         /* Near the apex the side's normal turns all the way round it: its direction
          * across the axis is that of x_perp, which the box moves by about delta. Where
-         * the samples do not happen to straddle the axis, this bound does. */
+         * the samples do not happen to straddle the axis, this bound does. The side's
+         * root taken exactly, or, where the exact answer is not the side, either root
+         * (an alternative outcome's normal is judged by the same rule). */
+        if (x0 == K_FRONT || x0 == K_BACK ? kand != x0 : !r0.exists[kand])
+            continue;
         double dm = 0, am = 0, xp = 0;
-        const cylq t = r0.t[x0];
+        const cylq t = r0.t[kand];
         for (int k = 0; k < 3; k++) {
             dm = fmax(dm, fabs((double)base.d[k]));
             am = fmax(am, fabs((double)base.a[k]));
