@@ -23,8 +23,9 @@
  *   where only the direct form of the second root is safe (see there).
  * KM_GENERATOR: a cone's A below 2^-8 e.e is the cancellation of a ray nearly along a
  *   generator line, not a tangency (kernel/solve.h, the roots).
- * KM_CANCEL: a cone's nB below 2^-2 of its two terms' sizes has lost more than two
- *   bits to cancellation, and its roots are polished (kernel/solve.h).
+ * KM_CANCEL: a cone's nB below 2^-5 of its two terms' sizes has lost more than five
+ *   bits to cancellation, and its roots are polished (kernel/solve.h). Fewer bits lost
+ *   move t by less than an ulp or two, and the test keeps the polish to a few lanes.
  * KM_NORMAL_OFF: a normal whose squared length is off 1 by more than 2^-10 (a hit point
  *   that rounding moved well off a tiny radius) is normalised exactly; below that one
  *   Newton step of 1/sqrt takes the error to rounding level. */
@@ -37,5 +38,5 @@
 #define KM_NORMAL_OFF 0x1p-10f
 #define KM_TANGENT 0x1p-18f
 #define KM_GENERATOR 0x1p-8f
-#define KM_CANCEL 0x1p-2f
+#define KM_CANCEL 0x1p-5f
 #endif
