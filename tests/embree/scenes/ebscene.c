@@ -26,8 +26,9 @@ double eb_range(eb_rng *g, double a, double b)
     return a + (b - a) * eb_unit(g);
 }
 
-static const char *const names[EB_NSCENES] = {"molecule", "pipes", "far-rods",
-                                              "lattice",  "balls", "far-cloud"};
+static const char *const names[EB_NSCENES] = {"molecule",       "pipes",    "far-rods",
+                                              "lattice",        "balls",    "far-cloud",
+                                              "molecule-taper", "reducers", "far-taper"};
 
 const char *eb_scene_name(int which)
 {
@@ -45,7 +46,7 @@ int eb_scene_find(const char *name)
 /* A growing scene under construction. */
 typedef struct builder {
     eb_scene *s;
-    size_t cap_v, cap_f, cap_c, cap_s;
+    size_t cap_v, cap_f, cap_c, cap_s, cap_r;
     double quantum;
     int failed;
 } builder;
@@ -90,6 +91,17 @@ static void add_segment(builder *b, uint32_t v0, unsigned caps)
     s->ns++;
 }
 
+/* Vertex v's radius, in a tapered scene (every vertex gets one). */
+static void set_vrad(builder *b, uint32_t v, float r)
+{
+    eb_scene *s = b->s;
+    if (grow((void **)&s->vrad, &b->cap_r, (size_t)v + 1, sizeof s->vrad[0])) {
+        b->failed = 1;
+        return;
+    }
+    s->vrad[v] = r;
+}
+
 /* A sphere at p (rounded to the scene's grid) of radius r. */
 static void add_sphere(builder *b, const double p[3], float r)
 {
@@ -103,18 +115,26 @@ static void add_sphere(builder *b, const double p[3], float r)
     s->sph[s->nsph++].radius = r;
 }
 
-/* A polyline through pts[0..n): closed at its two ends only. */
-static void add_polyline(builder *b, const double (*pts)[3], int n)
+/* A polyline through pts[0..n): closed at its two ends only; with radii (a tapered
+ * scene), radii[i] at pts[i]. */
+static void add_polyline_r(builder *b, const double (*pts)[3], const float *radii, int n)
 {
     uint32_t v = 0;
     for (int i = 0; i < n; i++) {
         uint32_t w = add_vertex(b, pts[i]);
+        if (radii)
+            set_vrad(b, w, radii[i]);
         if (i == 0)
             v = w;
     }
     for (int i = 0; i + 1 < n; i++)
         add_segment(b, v + (uint32_t)i,
                     (i == 0 ? CYLRAY_CAPPED_LO : 0) | (i == n - 2 ? CYLRAY_CAPPED_HI : 0));
+}
+
+static void add_polyline(builder *b, const double (*pts)[3], int n)
+{
+    add_polyline_r(b, pts, NULL, n);
 }
 
 static void set3(float o[3], double x, double y, double z)
@@ -125,8 +145,17 @@ static void set3(float o[3], double x, double y, double z)
 /* Ball-and-stick without the balls: atoms on a jittered cubic lattice, a bond to each
  * of the three forward neighbours with probability 0.92 (about 105,000 bonds). With
  * balls, every atom is a sphere of 2.5 bond radii too (39,304 of them), on the bonds'
- * own rounded vertex. */
-static void molecule(builder *b, eb_rng *g, int balls)
+ * own rounded vertex. Tapered, the same bonds run between atoms of three kinds, each
+ * bond the radius of its atom at either end (0.07, 0.1, 0.13; a third of them between
+ * atoms of one kind, cylinders). */
+static float atom_radius(int i, int j, int k)
+{
+    static const float r[3] = {0.07f, 0.1f, 0.13f};
+    uint32_t h = (uint32_t)i * 73856093u ^ (uint32_t)j * 19349663u ^ (uint32_t)k * 83492791u;
+    return r[(h >> 7) % 3];
+}
+
+static void molecule(builder *b, eb_rng *g, int balls, int taper)
 {
     enum { N = 34 };
     eb_scene *s = b->s;
@@ -151,7 +180,8 @@ static void molecule(builder *b, eb_rng *g, int balls)
                     double pts[2][3];
                     memcpy(pts[0], atom[i][j][k], sizeof pts[0]);
                     memcpy(pts[1], atom[n[0]][n[1]][n[2]], sizeof pts[1]);
-                    add_polyline(b, (const double(*)[3])pts, 2);
+                    float r[2] = {atom_radius(i, j, k), atom_radius(n[0], n[1], n[2])};
+                    add_polyline_r(b, (const double(*)[3])pts, taper ? r : NULL, 2);
                 }
     for (int i = 0; balls && i < N; i++)
         for (int j = 0; j < N; j++)
@@ -164,11 +194,37 @@ static void molecule(builder *b, eb_rng *g, int balls)
     s->scale = N;
 }
 
+/* With reducers: the run starts at 0.3 and, at the end of each piece but the last,
+ * with probability 0.4 steps down to the next of 0.24, 0.18, 0.12 through a cone one
+ * unit long, the piece's last unit; the rest of the piece and the pieces after are
+ * cylinders of the radius reached. Decided by their own generator, so that the runs are
+ * the pipes scene's. Writes out[0..) and their radii, returns their count. */
+static int reduce(eb_rng *g, const double (*pts)[3], int n, double (*out)[3], float *rad)
+{
+    static const float steps[4] = {0.3f, 0.24f, 0.18f, 0.12f};
+    int m = 0, at = 0;
+    for (int i = 0; i < n; i++) {
+        if (i > 0 && i < n - 1 && at < 3 && eb_unit(g) < 0.4) {
+            /* the last unit of piece i - 1 (2 units long at least) narrows */
+            for (int c = 0; c < 3; c++) {
+                double dlt = pts[i][c] - pts[i - 1][c];
+                out[m][c] = pts[i][c] - (dlt > 0 ? 1 : dlt < 0 ? -1 : 0);
+            }
+            rad[m++] = steps[at++];
+        }
+        memcpy(out[m], pts[i], sizeof out[m]);
+        rad[m++] = steps[at];
+    }
+    return m;
+}
+
 /* A plant's pipe runs: Manhattan polylines on an integer grid in a 60^3 box, 3-11
  * straight pieces of length 2-7 each, never turning back on themselves (two runs may
- * share a stretch of grid line: coincident surfaces, where either answer is right). */
-static void pipes(builder *b, eb_rng *g)
+ * share a stretch of grid line: coincident surfaces, where either answer is right).
+ * With reducers, narrowing along the run (reduce). */
+static void pipes(builder *b, eb_rng *g, int reducers)
 {
+    eb_rng gr = {g->s ^ 0x7265647563657273ull};
     eb_scene *s = b->s;
     b->quantum = 1;
     s->radius = 0.3f;
@@ -189,7 +245,14 @@ static void pipes(builder *b, eb_rng *g)
                 step = -step; /* stay in the plant's box, away from the camera */
             pts[i][a] += step;
         }
-        add_polyline(b, (const double(*)[3])pts, n);
+        if (reducers) {
+            double out[24][3];
+            float rad[24];
+            int m = reduce(&gr, (const double(*)[3])pts, n, out, rad);
+            add_polyline_r(b, (const double(*)[3])out, rad, m);
+        } else {
+            add_polyline(b, (const double(*)[3])pts, n);
+        }
     }
     set3(s->eye, -35, 75, -45);
     set3(s->look, 30, 28, 30);
@@ -217,9 +280,12 @@ static void int_direction(eb_rng *g, double out[3], double *len)
 }
 
 /* Long thin rods (length 1e4 radii) around a point 48,000 units from the world origin,
- * the camera among them: every coordinate is large, every radius small. */
-static void far_rods(builder *b, eb_rng *g)
+ * the camera among them: every coordinate is large, every radius small. Tapered: the
+ * same rods, each narrowing from 0.25 at its first end to a radius of 1/16 to 1/4 at
+ * its other (steps of 1/64, drawn by their own generator). */
+static void far_rods(builder *b, eb_rng *g, int taper)
 {
+    eb_rng gt = {g->s ^ 0x7461706572656421ull};
     eb_scene *s = b->s;
     b->quantum = 0x1p-6;
     s->radius = 0.25f;
@@ -234,7 +300,8 @@ static void far_rods(builder *b, eb_rng *g)
         double pts[2][3];
         for (int k = 0; k < 3; k++)
             pts[0][k] = c[k] - sc * u[k], pts[1][k] = c[k] + sc * u[k];
-        add_polyline(b, (const double(*)[3])pts, 2);
+        float rad[2] = {0.25f, (float)(4 + (int)(eb_unit(&gt) * 13)) / 64};
+        add_polyline_r(b, (const double(*)[3])pts, taper ? rad : NULL, 2);
     }
     set3(s->eye, C[0] - 260, C[1] + 40, C[2] - 190);
     set3(s->look, C[0], C[1], C[2]);
@@ -315,13 +382,28 @@ static int finish(builder *b)
         memcpy(s->p0[i], s->vert[s->first[i]], sizeof s->p0[i]);
         memcpy(s->p1[i], s->vert[s->first[i] + 1], sizeof s->p1[i]);
     }
-    for (size_t i = 0; i < s->ns; i++)
-        if (cylray_cylinder_from_endpoints(&s->cyl[i], s->vert[s->first[i]],
-                                           s->vert[s->first[i] + 1], s->radius,
-                                           s->caps[i]) != CYLRAY_OK) {
+    if (s->vrad && !(s->cone = malloc(n1 * sizeof *s->cone)))
+        return -1;
+    for (size_t i = 0; i < s->ns; i++) {
+        float r = s->radius;
+        if (s->vrad) {
+            cylray_cone *c = &s->cone[i];
+            memcpy(c->p0, s->p0[i], sizeof c->p0);
+            memcpy(c->p1, s->p1[i], sizeof c->p1);
+            c->r0 = s->vrad[s->first[i]], c->r1 = s->vrad[s->first[i] + 1];
+            c->flags = s->caps[i];
+            r = fmaxf(c->r0, c->r1);
+            cylray_prepared p;
+            if (cylray_prepare_cone(&p, c) != CYLRAY_OK)
+                r = -1;
+        }
+        if (r < 0 || cylray_cylinder_from_endpoints(&s->cyl[i], s->vert[s->first[i]],
+                                                    s->vert[s->first[i] + 1], r,
+                                                    s->caps[i]) != CYLRAY_OK) {
             fprintf(stderr, "ebscene: %s segment %zu refused\n", s->name, i);
             return -1;
         }
+    }
     s->up[0] = 0, s->up[1] = 1, s->up[2] = 0;
     return 0;
 }
@@ -335,18 +417,23 @@ int eb_scene_make(eb_scene *s, int which, uint64_t seed)
     switch (which) {
     case EB_MOLECULE:
     case EB_BALLS:
+    case EB_MOLECULE_TAPER:
         /* the balls' molecule is the molecule's, bond for bond: the same draws */
         g.s = seed * 0x2545f4914f6cdd1dull + (uint64_t)EB_MOLECULE;
-        molecule(&b, &g, which == EB_BALLS);
+        molecule(&b, &g, which == EB_BALLS, which == EB_MOLECULE_TAPER);
         break;
     case EB_FAR_CLOUD:
         far_cloud(&b, &g);
         break;
     case EB_PIPES:
-        pipes(&b, &g);
+    case EB_REDUCERS:
+        g.s = seed * 0x2545f4914f6cdd1dull + (uint64_t)EB_PIPES;
+        pipes(&b, &g, which == EB_REDUCERS);
         break;
     case EB_FAR_RODS:
-        far_rods(&b, &g);
+    case EB_FAR_TAPER:
+        g.s = seed * 0x2545f4914f6cdd1dull + (uint64_t)EB_FAR_RODS;
+        far_rods(&b, &g, which == EB_FAR_TAPER);
         break;
     case EB_LATTICE:
         lattice(&b);
@@ -406,8 +493,53 @@ int eb_scene_small_spheres(eb_scene *s, size_t n, size_t nsph, uint64_t seed)
     return 0;
 }
 
+int eb_scene_small_cones(eb_scene *s, size_t n, uint64_t seed)
+{
+    memset(s, 0, sizeof *s);
+    snprintf(s->name, sizeof s->name, "small-cones");
+    builder b = {.s = s, .quantum = 0x1p-10};
+    eb_rng g = {seed};
+    static const unsigned kinds[4] = {0, CYLRAY_CAPPED_LO, CYLRAY_CAPPED_HI, CYLRAY_CAPPED};
+    for (size_t i = 0; i < n; i++) {
+        /* every fifth a long one, which gets split boxes */
+        double p[3], q[3], reach = i % 5 == 4 ? 12 : 3;
+        for (int k = 0; k < 3; k++) {
+            p[k] = eb_range(&g, -8, 8);
+            q[k] = p[k] + eb_range(&g, -reach, reach);
+        }
+        /* radii in steps of 1/1024 from 0.05 to 1.2: one in eight a tip at one end, one
+         * in six a cylinder */
+        float r0 = (float)(nearbyint(eb_range(&g, 0.05, 1.2) * 1024) / 1024);
+        float r1 = (float)(nearbyint(eb_range(&g, 0.05, 1.2) * 1024) / 1024);
+        double pick = eb_unit(&g);
+        if (pick < 1.0 / 16)
+            r0 = 0;
+        else if (pick < 1.0 / 8)
+            r1 = 0;
+        else if (pick < 1.0 / 8 + 1.0 / 6)
+            r1 = r0;
+        uint32_t v = add_vertex(&b, p);
+        set_vrad(&b, v, r0);
+        set_vrad(&b, add_vertex(&b, q), r1);
+        add_segment(&b, v, kinds[(int)(eb_unit(&g) * 4)]);
+    }
+    s->radius = 0.05f; /* the smallest radius but the tips' */
+    set3(s->eye, 0, 3, 24);
+    set3(s->look, 0, 0, 0);
+    set3(s->light, 10, 30, 20);
+    s->fov_deg = 55;
+    s->scale = 16;
+    if (finish(&b)) {
+        eb_scene_free(s);
+        return -1;
+    }
+    return 0;
+}
+
 void eb_scene_free(eb_scene *s)
 {
+    free(s->vrad);
+    free(s->cone);
     free(s->vert);
     free(s->first);
     free(s->caps);
