@@ -202,11 +202,12 @@ typedef struct cylray_embree_desc {
 /* A new RTCGeometry on device holding desc's cylinders (or cones), not yet committed:
  * set what else the renderer sets (mask, filter functions), then rtcCommitGeometry and
  * rtcAttachGeometry. NULL when a cylinder is refused by the rules of
- * cylray_cylinder_from_endpoints (a cone: by those of cylray_prepare_cone), when count is 0 or beyond 2^32 - 1 (or the split
- * boxes would be), when an option or flag is unknown (CYLRAY_FACE_FORWARD is: Ng is
- * outward), when memory runs out or Embree refuses; *status (when not NULL) says
- * CYLRAY_EINVAL for the first three, CYLRAY_ENOMEM when cylray's own allocations fail,
- * and CYLRAY_OK when Embree refused. */
+ * cylray_cylinder_from_endpoints (a cone: by those of cylray_prepare_cone), when count
+ * is 0 or beyond 2^32 - 1 (or the split boxes would be), when an option or flag is
+ * unknown (CYLRAY_FACE_FORWARD is: Ng is outward), when memory runs out or Embree
+ * refuses; *status (when not NULL) says CYLRAY_EINVAL for the first three,
+ * CYLRAY_ENOMEM when cylray's own allocations fail, and CYLRAY_OK when Embree
+ * refused. */
 CYLRAY_EMBREE_API RTCGeometry cylray_embree_new_geometry(RTCDevice device,
                                                          const cylray_embree_desc *desc,
                                                          cylray_status *status);
@@ -267,8 +268,9 @@ CYLRAY_EMBREE_API size_t cylray_embree_primitives(RTCGeometry geometry);
  * geometry. */
 CYLRAY_EMBREE_API unsigned cylray_embree_leaf_size(RTCGeometry geometry);
 
-/* The prepared form of cylinder (or cone, or sphere) primID of such a geometry, for cylray's own
- * calls (cylray_hit_point, cylray_spawn_origin, the kernels); NULL when out of range. */
+/* The prepared form of cylinder (or cone, or sphere) primID of such a geometry, for
+ * cylray's own calls (cylray_hit_point, cylray_spawn_origin, the kernels); NULL when out
+ * of range. */
 CYLRAY_EMBREE_API const cylray_prepared *cylray_embree_cylinder(RTCGeometry geometry,
                                                                 unsigned primID);
 

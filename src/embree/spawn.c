@@ -7,7 +7,8 @@
 #include <math.h>
 
 /* The hit's part from its normal: the discs' normals are the axis, the side's are
- * perpendicular to it (a cone's tilted by its slope); a sphere is all side. -1 for a geometry or primID not ours, or a useless Ng. */
+ * perpendicular to it (a cone's tilted by its slope); a sphere is all side. -1 for a
+ * geometry or primID not ours, or a useless Ng. */
 static int hit_part(const ceb *g, unsigned primID, const float Ng[3])
 {
     if (!g || primID >= g->n || !isfinite(Ng[0]) || !isfinite(Ng[1]) || !isfinite(Ng[2]) ||
