@@ -9,8 +9,8 @@
  * origins never hitting their own cylinder again. With the argument "cones", all of it
  * for a geometry of cones (cylray_embree_desc.radius1): tips, cylinders and steep
  * cones among them, the kernels' answers those of cylray_prepare_cone's shapes and the
- * exact ones tests/ref's cone reference's; and the descriptions of cones the adapter
- * refuses, and that cones of equal radii are its cylinders. */
+ * exact ones tests/ref's cone reference's (the rest of a geometry of cones:
+ * test_cones.c). */
 #include "geom.h"
 #include "judge.h"
 #include "trace.h"
@@ -496,50 +496,6 @@ static int packet_spawns(RTCDevice dev, RTCGeometry geo, const eb_rays *r, int *
     return bad + (*lanes == 0) + (tris == 0);
 }
 
-/* The descriptions of cones the adapter refuses (cylray_prepare_cone's rules: both
- * radii 0, a negative or NaN radius at p1), and that cones whose radii agree are the
- * cylinders a description without radius1 makes: the same prepared shapes, bit for bit,
- * and the same boxes and leaves. */
-static void cone_descs(RTCDevice dev, const eb_scene *s, int *passed, int *failed)
-{
-    cylray_embree_desc d = eb_scene_desc(s, 0, K);
-    cylray_status st = CYLRAY_OK;
-    float zero = 0, neg = -0.5f, nan = NAN;
-    int bad = 0;
-    d.radius = d.radius1 = &zero, d.radius_stride = d.radius1_stride = 0;
-    bad += cylray_embree_new_geometry(dev, &d, &st) != NULL || st != CYLRAY_EINVAL;
-    d = eb_scene_desc(s, 0, K);
-    d.radius1 = &neg, d.radius1_stride = 0;
-    bad += cylray_embree_new_geometry(dev, &d, &st) != NULL || st != CYLRAY_EINVAL;
-    d.radius1 = &nan;
-    bad += cylray_embree_new_geometry(dev, &d, &st) != NULL || st != CYLRAY_EINVAL;
-    /* a tip at p1 is a cone (r0 the larger radius, never 0) */
-    d.radius = &s->cyl[0].radius, d.radius_stride = sizeof s->cyl[0];
-    d.radius1 = &zero;
-    RTCGeometry geo = cylray_embree_new_geometry(dev, &d, &st);
-    bad += !geo || st != CYLRAY_OK;
-    cylray_embree_release_geometry(geo);
-    for (int v = EB_SINGLE; v < EB_NVARIANTS; v++) {
-        cylray_embree_desc c = eb_scene_desc(s, eb_variant_options((eb_variant)v), K);
-        c.radius = &s->cyl[0].radius, c.radius_stride = sizeof s->cyl[0]; /* no 0 */
-        c.radius1 = c.radius, c.radius1_stride = c.radius_stride;
-        cylray_embree_desc y = c;
-        y.radius1 = NULL;
-        RTCGeometry gc = cylray_embree_new_geometry(dev, &c, &st),
-                    gy = cylray_embree_new_geometry(dev, &y, &st);
-        bad += !gc || !gy || cylray_embree_primitives(gc) != cylray_embree_primitives(gy) ||
-               cylray_embree_leaf_size(gc) != cylray_embree_leaf_size(gy);
-        for (unsigned i = 0; gc && gy && i < s->ns; i++)
-            bad += memcmp(cylray_embree_cylinder(gc, i), cylray_embree_cylinder(gy, i),
-                          sizeof(cylray_prepared)) != 0;
-        cylray_embree_release_geometry(gc);
-        cylray_embree_release_geometry(gy);
-    }
-    printf("%s cones: refused descriptions, and equal radii as the cylinders (%d)\n",
-           bad ? "FAIL" : "ok  ", bad);
-    bad ? (*failed)++ : (*passed)++;
-}
-
 int main(int argc, char **argv)
 {
     eb_scene s;
@@ -722,8 +678,6 @@ int main(int argc, char **argv)
         cylray_embree_release_geometry(geo);
         REPORT(bad, "packet spawn origins as the one-ray ones, %d lanes", lanes);
     }
-    if (CONES)
-        cone_descs(dev, &s, &passed, &failed);
 
     eb_ref_free(&ref);
     eb_rays_free(&r);
