@@ -26,10 +26,11 @@ typedef struct eb_scene {
     float (*p0)[3], (*p1)[3]; /* segment s from p0[s] to p1[s], for cylray_embree */
     float radius;             /* every segment's; in a tapered scene only a scale */
     float *vrad;              /* tapered scenes: each vertex's radius (NULL: radius for all) */
-    cylray_cone *cone;        /* tapered scenes: segment s as a cone (NULL otherwise); cyl[s] is
-                         * then the cylinder of its larger radius, which holds it */
-    size_t nsph;              /* spheres besides the segments (none in the cylinder scenes) */
-    cylray_sphere *sph;       /* their answers carry EB_SPHERE_BIT with the sphere's index */
+    /* tapered scenes: segment s as a cone (NULL otherwise); cyl[s] is then the cylinder
+     * of its larger radius, which holds it */
+    cylray_cone *cone;
+    size_t nsph;        /* spheres besides the segments (none in the cylinder scenes) */
+    cylray_sphere *sph; /* their answers carry EB_SPHERE_BIT with the sphere's index */
     float eye[3], look[3], up[3], fov_deg;
     float light[3];
     float scale; /* a typical size of the scene, for the bounce rays' reach */
