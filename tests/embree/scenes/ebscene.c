@@ -9,6 +9,7 @@
  * one exact reference judges both. */
 #include "ebscene.h"
 
+#include "build.h"
 #include "gen.h"
 
 #include <math.h>
@@ -43,14 +44,6 @@ int eb_scene_find(const char *name)
     return -1;
 }
 
-/* A growing scene under construction. */
-typedef struct builder {
-    eb_scene *s;
-    size_t cap_v, cap_f, cap_c, cap_s, cap_r;
-    double quantum;
-    int failed;
-} builder;
-
 static int grow(void **p, size_t *cap, size_t need, size_t elem)
 {
     if (need <= *cap)
@@ -66,7 +59,7 @@ static int grow(void **p, size_t *cap, size_t need, size_t elem)
     return 0;
 }
 
-static uint32_t add_vertex(builder *b, const double p[3])
+uint32_t eb_add_vertex(eb_builder *b, const double p[3])
 {
     eb_scene *s = b->s;
     if (grow((void **)&s->vert, &b->cap_v, s->nv + 1, sizeof s->vert[0])) {
@@ -78,7 +71,7 @@ static uint32_t add_vertex(builder *b, const double p[3])
     return (uint32_t)s->nv++;
 }
 
-static void add_segment(builder *b, uint32_t v0, unsigned caps)
+void eb_add_segment(eb_builder *b, uint32_t v0, unsigned caps)
 {
     eb_scene *s = b->s;
     if (grow((void **)&s->first, &b->cap_f, s->ns + 1, sizeof s->first[0]) ||
@@ -92,7 +85,7 @@ static void add_segment(builder *b, uint32_t v0, unsigned caps)
 }
 
 /* Vertex v's radius, in a tapered scene (every vertex gets one). */
-static void set_vrad(builder *b, uint32_t v, float r)
+void eb_set_vrad(eb_builder *b, uint32_t v, float r)
 {
     eb_scene *s = b->s;
     if (grow((void **)&s->vrad, &b->cap_r, (size_t)v + 1, sizeof s->vrad[0])) {
@@ -103,7 +96,7 @@ static void set_vrad(builder *b, uint32_t v, float r)
 }
 
 /* A sphere at p (rounded to the scene's grid) of radius r. */
-static void add_sphere(builder *b, const double p[3], float r)
+void eb_add_sphere(eb_builder *b, const double p[3], float r)
 {
     eb_scene *s = b->s;
     if (grow((void **)&s->sph, &b->cap_s, s->nsph + 1, sizeof s->sph[0])) {
@@ -117,27 +110,27 @@ static void add_sphere(builder *b, const double p[3], float r)
 
 /* A polyline through pts[0..n): closed at its two ends only; with radii (a tapered
  * scene), radii[i] at pts[i]. */
-static void add_polyline_r(builder *b, const double (*pts)[3], const float *radii, int n)
+static void add_polyline_r(eb_builder *b, const double (*pts)[3], const float *radii, int n)
 {
     uint32_t v = 0;
     for (int i = 0; i < n; i++) {
-        uint32_t w = add_vertex(b, pts[i]);
+        uint32_t w = eb_add_vertex(b, pts[i]);
         if (radii)
-            set_vrad(b, w, radii[i]);
+            eb_set_vrad(b, w, radii[i]);
         if (i == 0)
             v = w;
     }
     for (int i = 0; i + 1 < n; i++)
-        add_segment(b, v + (uint32_t)i,
-                    (i == 0 ? CYLRAY_CAPPED_LO : 0) | (i == n - 2 ? CYLRAY_CAPPED_HI : 0));
+        eb_add_segment(b, v + (uint32_t)i,
+                       (i == 0 ? CYLRAY_CAPPED_LO : 0) | (i == n - 2 ? CYLRAY_CAPPED_HI : 0));
 }
 
-static void add_polyline(builder *b, const double (*pts)[3], int n)
+static void add_polyline(eb_builder *b, const double (*pts)[3], int n)
 {
     add_polyline_r(b, pts, NULL, n);
 }
 
-static void set3(float o[3], double x, double y, double z)
+void eb_set3(float o[3], double x, double y, double z)
 {
     o[0] = (float)x, o[1] = (float)y, o[2] = (float)z;
 }
@@ -155,7 +148,7 @@ static float atom_radius(int i, int j, int k)
     return r[(h >> 7) % 3];
 }
 
-static void molecule(builder *b, eb_rng *g, int balls, int taper)
+static void molecule(eb_builder *b, eb_rng *g, int balls, int taper)
 {
     enum { N = 34 };
     eb_scene *s = b->s;
@@ -186,10 +179,10 @@ static void molecule(builder *b, eb_rng *g, int balls, int taper)
     for (int i = 0; balls && i < N; i++)
         for (int j = 0; j < N; j++)
             for (int k = 0; k < N; k++)
-                add_sphere(b, atom[i][j][k], 2.5f * s->radius);
-    set3(s->eye, -14, 38.5, -21.5);
-    set3(s->look, 16.5, 16.5, 16.5);
-    set3(s->light, -30, 80, 10);
+                eb_add_sphere(b, atom[i][j][k], 2.5f * s->radius);
+    eb_set3(s->eye, -14, 38.5, -21.5);
+    eb_set3(s->look, 16.5, 16.5, 16.5);
+    eb_set3(s->light, -30, 80, 10);
     s->fov_deg = 40;
     s->scale = N;
 }
@@ -222,7 +215,7 @@ static int reduce(eb_rng *g, const double (*pts)[3], int n, double (*out)[3], fl
  * straight pieces of length 2-7 each, never turning back on themselves (two runs may
  * share a stretch of grid line: coincident surfaces, where either answer is right).
  * With reducers, narrowing along the run (reduce). */
-static void pipes(builder *b, eb_rng *g, int reducers)
+static void pipes(eb_builder *b, eb_rng *g, int reducers)
 {
     eb_rng gr = {g->s ^ 0x7265647563657273ull};
     eb_scene *s = b->s;
@@ -254,9 +247,9 @@ static void pipes(builder *b, eb_rng *g, int reducers)
             add_polyline(b, (const double(*)[3])pts, n);
         }
     }
-    set3(s->eye, -35, 75, -45);
-    set3(s->look, 30, 28, 30);
-    set3(s->light, 10, 120, -20);
+    eb_set3(s->eye, -35, 75, -45);
+    eb_set3(s->look, 30, 28, 30);
+    eb_set3(s->light, 10, 120, -20);
     s->fov_deg = 45;
     s->scale = 60;
 }
@@ -283,7 +276,7 @@ static void int_direction(eb_rng *g, double out[3], double *len)
  * the camera among them: every coordinate is large, every radius small. Tapered: the
  * same rods, each narrowing from 0.25 at its first end to a radius of 1/16 to 1/4 at
  * its other (steps of 1/64, drawn by their own generator). */
-static void far_rods(builder *b, eb_rng *g, int taper)
+static void far_rods(eb_builder *b, eb_rng *g, int taper)
 {
     eb_rng gt = {g->s ^ 0x7461706572656421ull};
     eb_scene *s = b->s;
@@ -303,9 +296,9 @@ static void far_rods(builder *b, eb_rng *g, int taper)
         float rad[2] = {0.25f, (float)(4 + (int)(eb_unit(&gt) * 13)) / 64};
         add_polyline_r(b, (const double(*)[3])pts, taper ? rad : NULL, 2);
     }
-    set3(s->eye, C[0] - 260, C[1] + 40, C[2] - 190);
-    set3(s->look, C[0], C[1], C[2]);
-    set3(s->light, C[0] - 300, C[1] + 3000, C[2] + 200);
+    eb_set3(s->eye, C[0] - 260, C[1] + 40, C[2] - 190);
+    eb_set3(s->look, C[0], C[1], C[2]);
+    eb_set3(s->light, C[0] - 300, C[1] + 3000, C[2] + 200);
     s->fov_deg = 30;
     s->scale = 300;
 }
@@ -316,7 +309,7 @@ static void far_rods(builder *b, eb_rng *g, int taper)
  * the discriminant lose the most. (Not 48,000 away as the far rods: there floats are
  * 0.004 apart, a tenth of the radius, and a spawned origin no longer clears the
  * sphere by the margin cylray_spawn_origin promises under its condition.) */
-static void far_cloud(builder *b, eb_rng *g)
+static void far_cloud(eb_builder *b, eb_rng *g)
 {
     eb_scene *s = b->s;
     b->quantum = 0x1p-12;
@@ -326,11 +319,11 @@ static void far_cloud(builder *b, eb_rng *g)
         double p[3];
         for (int k = 0; k < 3; k++)
             p[k] = C[k] + eb_range(g, -30, 30);
-        add_sphere(b, p, s->radius);
+        eb_add_sphere(b, p, s->radius);
     }
-    set3(s->eye, C[0] - 1200, C[1] + 300, C[2] - 840);
-    set3(s->look, C[0], C[1], C[2]);
-    set3(s->light, C[0] - 300, C[1] + 3000, C[2] + 200);
+    eb_set3(s->eye, C[0] - 1200, C[1] + 300, C[2] - 840);
+    eb_set3(s->look, C[0], C[1], C[2]);
+    eb_set3(s->light, C[0] - 300, C[1] + 3000, C[2] + 200);
     s->fov_deg = 3;
     s->scale = 60;
 }
@@ -339,7 +332,7 @@ static void far_cloud(builder *b, eb_rng *g)
  * each line one polyline, seen from a point on the axis of the middle z rod and in the
  * plane of a layer of x rods: rays run down that rod's axis and edge-on along the
  * layer. */
-static void lattice(builder *b)
+static void lattice(eb_builder *b)
 {
     enum { K = 21 };
     eb_scene *s = b->s;
@@ -357,14 +350,14 @@ static void lattice(builder *b)
                 }
                 add_polyline(b, (const double(*)[3])pts, K);
             }
-    set3(s->eye, 20, 20, 75);
-    set3(s->look, 20, 20, 0);
-    set3(s->light, 55, 70, 90);
+    eb_set3(s->eye, 20, 20, 75);
+    eb_set3(s->look, 20, 20, 0);
+    eb_set3(s->light, 55, 70, 90);
     s->fov_deg = 50;
     s->scale = 40;
 }
 
-static int finish(builder *b)
+int eb_scene_finish(eb_builder *b)
 {
     eb_scene *s = b->s;
     size_t n1 = s->ns ? s->ns : 1;
@@ -412,7 +405,7 @@ int eb_scene_make(eb_scene *s, int which, uint64_t seed)
 {
     memset(s, 0, sizeof *s);
     snprintf(s->name, sizeof s->name, "%s", eb_scene_name(which));
-    builder b = {.s = s};
+    eb_builder b = {.s = s};
     eb_rng g = {seed * 0x2545f4914f6cdd1dull + (uint64_t)which};
     switch (which) {
     case EB_MOLECULE:
@@ -441,95 +434,7 @@ int eb_scene_make(eb_scene *s, int which, uint64_t seed)
     default:
         return -1;
     }
-    if (finish(&b)) {
-        eb_scene_free(s);
-        return -1;
-    }
-    return 0;
-}
-
-int eb_scene_small(eb_scene *s, size_t n, uint64_t seed)
-{
-    return eb_scene_small_spheres(s, n, 0, seed);
-}
-
-int eb_scene_small_spheres(eb_scene *s, size_t n, size_t nsph, uint64_t seed)
-{
-    memset(s, 0, sizeof *s);
-    snprintf(s->name, sizeof s->name, "small");
-    builder b = {.s = s, .quantum = 0x1p-10};
-    eb_rng g = {seed};
-    s->radius = 0.35f;
-    static const unsigned kinds[4] = {0, CYLRAY_CAPPED_LO, CYLRAY_CAPPED_HI, CYLRAY_CAPPED};
-    for (size_t i = 0; i < n; i++) {
-        /* every fifth a long one, which gets split boxes */
-        double p[3], q[3], reach = i % 5 == 4 ? 12 : 3;
-        for (int k = 0; k < 3; k++) {
-            p[k] = eb_range(&g, -8, 8);
-            q[k] = p[k] + eb_range(&g, -reach, reach);
-        }
-        uint32_t v = add_vertex(&b, p);
-        add_vertex(&b, q);
-        add_segment(&b, v, kinds[(int)(eb_unit(&g) * 4)]);
-    }
-    /* radii from 0.05 to 2.5: small ones among the cylinders, large ones that hold
-     * some of them and some of each other (coincident and nested surfaces) */
-    eb_rng gs = {seed ^ 0x5ca1ab1eull};
-    for (size_t i = 0; i < nsph; i++) {
-        double p[3];
-        for (int k = 0; k < 3; k++)
-            p[k] = eb_range(&gs, -8, 8);
-        add_sphere(&b, p, (float)(nearbyint(0.05 * pow(50, eb_unit(&gs)) * 1024) / 1024));
-    }
-    set3(s->eye, 0, 3, 24);
-    set3(s->look, 0, 0, 0);
-    set3(s->light, 10, 30, 20);
-    s->fov_deg = 55;
-    s->scale = 16;
-    if (finish(&b)) {
-        eb_scene_free(s);
-        return -1;
-    }
-    return 0;
-}
-
-int eb_scene_small_cones(eb_scene *s, size_t n, uint64_t seed)
-{
-    memset(s, 0, sizeof *s);
-    snprintf(s->name, sizeof s->name, "small-cones");
-    builder b = {.s = s, .quantum = 0x1p-10};
-    eb_rng g = {seed};
-    static const unsigned kinds[4] = {0, CYLRAY_CAPPED_LO, CYLRAY_CAPPED_HI, CYLRAY_CAPPED};
-    for (size_t i = 0; i < n; i++) {
-        /* every fifth a long one, which gets split boxes */
-        double p[3], q[3], reach = i % 5 == 4 ? 12 : 3;
-        for (int k = 0; k < 3; k++) {
-            p[k] = eb_range(&g, -8, 8);
-            q[k] = p[k] + eb_range(&g, -reach, reach);
-        }
-        /* radii in steps of 1/1024 from 0.05 to 1.2: one in eight a tip at one end, one
-         * in six a cylinder */
-        float r0 = (float)(nearbyint(eb_range(&g, 0.05, 1.2) * 1024) / 1024);
-        float r1 = (float)(nearbyint(eb_range(&g, 0.05, 1.2) * 1024) / 1024);
-        double pick = eb_unit(&g);
-        if (pick < 1.0 / 16)
-            r0 = 0;
-        else if (pick < 1.0 / 8)
-            r1 = 0;
-        else if (pick < 1.0 / 8 + 1.0 / 6)
-            r1 = r0;
-        uint32_t v = add_vertex(&b, p);
-        set_vrad(&b, v, r0);
-        set_vrad(&b, add_vertex(&b, q), r1);
-        add_segment(&b, v, kinds[(int)(eb_unit(&g) * 4)]);
-    }
-    s->radius = 0.05f; /* the smallest radius but the tips' */
-    set3(s->eye, 0, 3, 24);
-    set3(s->look, 0, 0, 0);
-    set3(s->light, 10, 30, 20);
-    s->fov_deg = 55;
-    s->scale = 16;
-    if (finish(&b)) {
+    if (eb_scene_finish(&b)) {
         eb_scene_free(s);
         return -1;
     }
