@@ -1,4 +1,4 @@
-/* cylray_embree.h - cylray's cylinders and spheres as an Embree 3 or Embree 4 geometry.
+/* cylray_embree.h - cylray's cylinders, cones and spheres as an Embree 3 or Embree 4 geometry.
  * SPDX-License-Identifier: MIT
  *
  * An optional part of cylray, in its own library (cylray_embree; pkg-config
@@ -166,7 +166,20 @@ static inline void cylray_embree_init_context(cylray_embree_context *ctx,
  *   (const char *)caps + i * caps_stride        one unsigned (caps NULL: CYLRAY_CAPPED)
  * Strides are in bytes, so the fields of a renderer's own struct serve; a stride of 0
  * gives every cylinder the same value (one radius for all, say). The arrays are read
- * during cylray_embree_new_geometry only. */
+ * during cylray_embree_new_geometry only.
+ *
+ * Cones: with radius1 not NULL, primitive i is instead the truncated cone from the disc
+ * of radius r0 = radius[i] at p0 to the disc of radius r1 at p1, r1 read from
+ *   (const char *)radius1 + i * radius1_stride  one float
+ * and prepared by cylray_prepare_cone (an end of radius 0 is a tip, its disc no
+ * surface whatever caps says; a primitive with r0 == r1 is the cylinder of that radius,
+ * as fast as one, and a leaf whose primitives all have r0 == r1 is a leaf of
+ * cylinders). Everything below holds for cones as for cylinders: boxes (each the hull
+ * of the cone's two discs), split boxes (a cone is split where the cylinder of its
+ * larger radius is, each slice the hull of its two discs), leaves, the callbacks,
+ * filters, masks, instancing, the hit record (u, v as for a cylinder; Ng the cone's
+ * outward normal, tilted by its slope on the side), the hit point, surface and spawn
+ * calls. radius1 NULL: the cylinders above, by the same code as without the field. */
 typedef struct cylray_embree_desc {
     size_t count;
     const float *p0;
@@ -181,16 +194,20 @@ typedef struct cylray_embree_desc {
     unsigned flags;                /* kernel flags: CYLRAY_CULL_BACK, CYLRAY_FAST,
                                      * CYLRAY_REFINE (normals are always computed) */
     const cylray_kernels *kernels; /* the path to call; NULL: cylray_kernels_best() */
+    /* last, so that an initializer naming the fields above keeps its meaning */
+    const float *radius1; /* the radius at p1 (cones); NULL: cylinders */
+    size_t radius1_stride;
 } cylray_embree_desc;
 
-/* A new RTCGeometry on device holding desc's cylinders, not yet committed: set what
- * else the renderer sets (mask, filter functions), then rtcCommitGeometry and
+/* A new RTCGeometry on device holding desc's cylinders (or cones), not yet committed:
+ * set what else the renderer sets (mask, filter functions), then rtcCommitGeometry and
  * rtcAttachGeometry. NULL when a cylinder is refused by the rules of
- * cylray_cylinder_from_endpoints, when count is 0 or beyond 2^32 - 1 (or the split
- * boxes would be), when an option or flag is unknown (CYLRAY_FACE_FORWARD is: Ng is
- * outward), when memory runs out or Embree refuses; *status (when not NULL) says
- * CYLRAY_EINVAL for the first three, CYLRAY_ENOMEM when cylray's own allocations fail,
- * and CYLRAY_OK when Embree refused. */
+ * cylray_cylinder_from_endpoints (a cone: by those of cylray_prepare_cone), when count
+ * is 0 or beyond 2^32 - 1 (or the split boxes would be), when an option or flag is
+ * unknown (CYLRAY_FACE_FORWARD is: Ng is outward), when memory runs out or Embree
+ * refuses; *status (when not NULL) says CYLRAY_EINVAL for the first three,
+ * CYLRAY_ENOMEM when cylray's own allocations fail, and CYLRAY_OK when Embree
+ * refused. */
 CYLRAY_EMBREE_API RTCGeometry cylray_embree_new_geometry(RTCDevice device,
                                                          const cylray_embree_desc *desc,
                                                          cylray_status *status);
@@ -236,7 +253,8 @@ CYLRAY_EMBREE_API RTCGeometry cylray_embree_new_spheres(RTCDevice device,
  * released, or it detached and those scenes committed again). NULL is ignored. */
 CYLRAY_EMBREE_API void cylray_embree_release_geometry(RTCGeometry geometry);
 
-/* 1 when geometry was made by cylray_embree_new_geometry, 0 otherwise. */
+/* 1 when geometry was made by cylray_embree_new_geometry (cylinders or cones), 0
+ * otherwise. */
 CYLRAY_EMBREE_API int cylray_embree_is_cylinders(RTCGeometry geometry);
 /* 1 when geometry was made by cylray_embree_new_spheres, 0 otherwise. */
 CYLRAY_EMBREE_API int cylray_embree_is_spheres(RTCGeometry geometry);
@@ -250,8 +268,9 @@ CYLRAY_EMBREE_API size_t cylray_embree_primitives(RTCGeometry geometry);
  * geometry. */
 CYLRAY_EMBREE_API unsigned cylray_embree_leaf_size(RTCGeometry geometry);
 
-/* The prepared form of cylinder (or sphere) primID of such a geometry, for cylray's own
- * calls (cylray_hit_point, cylray_spawn_origin, the kernels); NULL when out of range. */
+/* The prepared form of cylinder (or cone, or sphere) primID of such a geometry, for
+ * cylray's own calls (cylray_hit_point, cylray_spawn_origin, the kernels); NULL when out
+ * of range. */
 CYLRAY_EMBREE_API const cylray_prepared *cylray_embree_cylinder(RTCGeometry geometry,
                                                                 unsigned primID);
 

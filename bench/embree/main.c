@@ -1,9 +1,10 @@
 /* SPDX-License-Identifier: MIT */
 /* main.c - cylembree: cylray inside Embree (3 or 4: the one the adapter was built
- * against) against that Embree's own cone curves and sphere points, on six scenes, time
- * and error side by side.
+ * against) against that Embree's own cone curves and sphere points, on nine scenes (three
+ * of them tapered: cones), time and error side by side.
  *
- *   cylembree [--quick] [--scene=molecule,pipes,far-rods,lattice,balls,far-cloud]
+ *   cylembree [--quick] [--scene=molecule,pipes,far-rods,lattice,balls,far-cloud,
+ *              molecule-taper,reducers,far-taper]
  *             [--isa=best|all|LIST]
  *             [--packet=1,4,8,16] [--threads=N] [--size=WxH]
  *             [--samples=N] [--reps=N] [--clock=wall|cpu] [--out=DIR]
@@ -207,7 +208,9 @@ static void aimed(eb_sample *s, const eb_scene *sc, int set, rng *g)
         unsigned caps = sc->caps[id];
         int hi = rng_unit(g) < 0.5;
         int closed = (caps & (hi ? CYLRAY_CAPPED_HI : CYLRAY_CAPPED_LO)) != 0;
-        if (set == EB_SET_RIM && !closed)
+        /* the radius at that end (a tapered scene's own there; a tip has no rim) */
+        double R = sc->vrad ? sc->vrad[sc->first[id] + (hi ? 1 : 0)] : sc->radius;
+        if (set == EB_SET_RIM && (!closed || R == 0))
             continue;
         double a[3], l = 0, e1[3], e2[3], E[3], o[3], d[3];
         for (int k = 0; k < 3; k++)
@@ -217,7 +220,7 @@ static void aimed(eb_sample *s, const eb_scene *sc, int set, rng *g)
             E[k] = hi ? p1[k] : p0[k];
         }
         unit_frame(a, e1, e2);
-        double R = sc->radius, ph = rng_range(g, 0, 6.283185307179586);
+        double ph = rng_range(g, 0, 6.283185307179586);
         if (set == EB_SET_RIM) {
             for (int k = 0; k < 3; k++)
                 d[k] = E[k] + R * (cos(ph) * e1[k] + sin(ph) * e2[k]) - sc->eye[k];

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
-/* embree/boxes.c - a cylinder's frame (the endpoint form and the basis for u, v) and
- * the boxes Embree builds its BVH over: one per cylinder, or pieces along a long
+/* embree/boxes.c - a cylinder's or cone's frame (the endpoint form and the basis for u,
+ * v) and the boxes Embree builds its BVH over: one per cylinder, or pieces along a long
  * tilted one (unless CYLRAY_EMBREE_NO_SPLIT). */
 #include "ceb.h"
 
@@ -9,7 +9,7 @@
 
 /* ---- geometry of one cylinder -------------------------------------------------- */
 
-void ceb_frame_init(frame *f, const float p0[3], const float p1[3])
+void ceb_frame_init(frame *f, const float p0[3], const float p1[3], float r0, float r1)
 {
     double a[3], aa = 0;
     for (int k = 0; k < 3; k++) {
@@ -30,6 +30,8 @@ void ceb_frame_init(frame *f, const float p0[3], const float p1[3])
         f->b2[k] = (float)b2[k];
     }
     f->pieces = 1;
+    double dr = (double)r1 - r0;
+    f->ns = (float)(-dr / sqrt(aa + dr * dr)) + 0.0f; /* + 0: no -0 */
 }
 
 void ceb_set_box(struct RTCBounds *b, const float lo[3], const float hi[3], float pad)
@@ -96,7 +98,13 @@ static int long_for_radius(const frame *f, float radius)
     return L2 > CEB_SPLIT_LENGTH * CEB_SPLIT_LENGTH * (double)radius * radius;
 }
 
-int ceb_make_boxes(ceb *g, const cylray_cylinder *cyl)
+/* A shape's largest radius: a cone is split as the cylinder of that radius is. */
+static float rmax_of(const ceb_src *src, size_t i)
+{
+    return src->cone ? fmaxf(src->cone[i].r0, src->cone[i].r1) : src->cyl[i].radius;
+}
+
+int ceb_make_boxes(ceb *g, const ceb_src *src)
 {
     size_t total = 0;
     int split = !(g->options & CYLRAY_EMBREE_NO_SPLIT);
@@ -104,7 +112,7 @@ int ceb_make_boxes(ceb *g, const cylray_cylinder *cyl)
      * CYLRAY_SPLIT_MAX, whose boxes are at most twice the cylinder's width across;
      * short or axis-aligned cylinders keep one box. */
     for (size_t i = 0; i < g->n; i++) {
-        if (split && long_for_radius(&g->fr[i], cyl[i].radius)) {
+        if (split && long_for_radius(&g->fr[i], rmax_of(src, i))) {
             size_t k = cylray_split_boxes(&g->prep[i], 0, NULL, NULL);
             g->fr[i].pieces = k < 1 ? 1u : (uint32_t)k;
         }
@@ -145,7 +153,7 @@ int ceb_make_boxes(ceb *g, const cylray_cylinder *cyl)
             big = fmax(big, fabs(f->p0[k]) + fabs(f->a[k]));
             L += (double)f->a[k] * f->a[k];
         }
-        float pad = (float)(0x1p-16 * (big + sqrt(L)) + 0x1p-10 * cyl[i].radius);
+        float pad = (float)(0x1p-16 * (big + sqrt(L)) + 0x1p-10 * rmax_of(src, i));
         if (cylray_split_boxes(&g->prep[i], K, lo, hi) != K)
             return CEB_REFUSED;
         for (uint32_t k = 0; k < K; k++, p++) {

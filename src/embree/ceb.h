@@ -21,14 +21,17 @@
 #define CEB_NOINLINE
 #endif
 
-/* Per cylinder, what a hit record needs beyond the prepared cylinder: the endpoint
- * form for u, the unit axis and the frame of Duff et al. for v. */
+/* Per cylinder or cone, what a hit record needs beyond the prepared shape: the
+ * endpoint form for u, the unit axis and the frame of Duff et al. for v, and the axial
+ * component of the side's unit outward normal, which tells the side's normals from the
+ * discs' (0 for a cylinder). */
 typedef struct frame {
     float p0[3], a[3]; /* p0 and p1 - p0 */
     float inv_aa;      /* 1 / |a|^2 */
     float n[3];        /* the unit axis */
     float b1[3], b2[3];
     uint32_t pieces; /* split boxes along the axis (1: one box) */
+    float ns; /* n . (the side's outward normal): -(r1 - r0) / sqrt(|a|^2 + (r1 - r0)^2) */
 } frame;
 
 typedef struct ceb {
@@ -53,18 +56,25 @@ typedef struct hitrec {
     unsigned prim;
 } hitrec;
 
-/* boxes.c: a cylinder's frame and its boxes */
-void ceb_frame_init(frame *f, const float p0[3], const float p1[3]);
+/* The shapes a geometry is built from, read only while it is made: cylinders (cyl) or
+ * cones (cone), one of them NULL; spheres: both NULL, and g->sph. */
+typedef struct ceb_src {
+    const cylray_cylinder *cyl;
+    const cylray_cone *cone;
+} ceb_src;
+
+/* boxes.c: a cylinder's or cone's frame and its boxes */
+void ceb_frame_init(frame *f, const float p0[3], const float p1[3], float r0, float r1);
 void ceb_set_box(struct RTCBounds *b, const float lo[3], const float hi[3], float pad);
 void ceb_whole_box(const cylray_prepared *p, struct RTCBounds *b);
 void ceb_sphere_box(const cylray_sphere *s, struct RTCBounds *b);
 void ceb_box_of(const ceb *g, size_t i, struct RTCBounds *b);
-int ceb_make_boxes(ceb *g, const cylray_cylinder *cyl);
+int ceb_make_boxes(ceb *g, const ceb_src *src);
 void *ceb_alloc_aligned(size_t bytes);
 
-/* group.c: cylinders (cyl) or spheres (g->sph, cyl NULL) grouped into leaves with
- * Embree's SAH builder */
-int ceb_group_leaves(ceb *g, RTCDevice dev, const cylray_cylinder *cyl);
+/* group.c: cylinders, cones or spheres (src) grouped into leaves with Embree's SAH
+ * builder */
+int ceb_group_leaves(ceb *g, RTCDevice dev, const ceb_src *src);
 
 /* Why ceb_make_boxes or ceb_group_leaves failed (they return 0 otherwise): the caller
  * of cylray_embree_new_geometry is told CYLRAY_EINVAL for the first, CYLRAY_ENOMEM for

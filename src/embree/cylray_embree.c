@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* cylray_embree.c - cylray's cylinders and spheres as an Embree 3 or 4 user geometry: the
+/* cylray_embree.c - cylray's cylinders, cones and spheres as an Embree 3 or 4 user geometry: the
  * public calls, a geometry made from its description and its options. The rest of src/embree/: the
  * boxes (boxes.c), the grouping into leaves (group.c), the callbacks (single.c,
  * leaves.c), hit records and filters (hit.h, filter.c), secondary rays (spawn.c); what
@@ -36,11 +36,11 @@ static void ceb_free(ceb *g)
     free(g);
 }
 
-/* The geometry made from g's prepared shapes (cylinders: cyl, their frames in g; spheres:
- * g->sph, cyl NULL): its boxes or leaves, then Embree's user geometry. NULL on failure,
- * g freed and *st saying why (CYLRAY_OK: Embree refused); else *st is CYLRAY_OK. */
-static RTCGeometry ceb_finish(ceb *g, RTCDevice device, const cylray_cylinder *cyl,
-                              cylray_status *st)
+/* The geometry made from g's prepared shapes (cylinders or cones: src, their frames in g;
+ * spheres: g->sph, src's both NULL): its boxes or leaves, then Embree's user geometry.
+ * NULL on failure, g freed and *st saying why (CYLRAY_OK: Embree refused); else *st is
+ * CYLRAY_OK. */
+static RTCGeometry ceb_finish(ceb *g, RTCDevice device, const ceb_src *src, cylray_status *st)
 {
     RTCGeometry geo = NULL;
     int leaves = (g->options & CYLRAY_EMBREE_LEAVES) != 0, why;
@@ -51,9 +51,9 @@ static RTCGeometry ceb_finish(ceb *g, RTCDevice device, const cylray_cylinder *c
          * gain that back (docs/performance.md: leaves of 8 took 5-12 % less time on
          * the molecule, the pipes and the lattice) */
         g->m = isa == CYLRAY_ISA_AVX512 || isa == CYLRAY_ISA_AVX2 ? 8 : 4;
-        why = ceb_group_leaves(g, device, cyl);
-    } else if (cyl) {
-        why = ceb_make_boxes(g, cyl);
+        why = ceb_group_leaves(g, device, src);
+    } else if (src->cyl || src->cone) {
+        why = ceb_make_boxes(g, src);
     } else {
         /* a sphere's box is tight: one box a sphere */
         g->nprim = g->n;
@@ -121,12 +121,26 @@ static int desc_ok(RTCDevice device, size_t count, unsigned options, unsigned fl
            !(flags & ~(CEB_KFLAGS | CYLRAY_NORMAL));
 }
 
+/* Cone i of desc (radius1 not NULL), read as cylinder i is below. */
+static void read_cone(const cylray_embree_desc *desc, size_t i, cylray_cone *c)
+{
+    const float *p0 = elem(desc->p0, desc->p0_stride, i);
+    const float *p1 = elem(desc->p1, desc->p1_stride, i);
+    for (int k = 0; k < 3; k++)
+        c->p0[k] = p0[k], c->p1[k] = p1[k];
+    c->r0 = *(const float *)elem(desc->radius, desc->radius_stride, i);
+    c->r1 = *(const float *)elem(desc->radius1, desc->radius1_stride, i);
+    c->flags =
+        desc->caps ? *(const unsigned *)elem(desc->caps, desc->caps_stride, i) : CYLRAY_CAPPED;
+}
+
 RTCGeometry cylray_embree_new_geometry(RTCDevice device, const cylray_embree_desc *desc,
                                        cylray_status *status)
 {
     cylray_status st = CYLRAY_EINVAL;
     ceb *g = NULL;
     cylray_cylinder *cyl = NULL;
+    cylray_cone *cone = NULL;
     RTCGeometry geo = NULL;
     if (status)
         *status = CYLRAY_EINVAL;
@@ -136,8 +150,12 @@ RTCGeometry cylray_embree_new_geometry(RTCDevice device, const cylray_embree_des
     size_t n = desc->count;
     st = CYLRAY_ENOMEM;
     g = ceb_new(n, desc->options, desc->flags, desc->kernels);
-    cyl = malloc(n * sizeof *cyl);
-    if (!g || !cyl || !(g->fr = malloc(n * sizeof *g->fr)))
+    /* cones only where radius1 is given: without it the cylinders' path, unchanged */
+    if (desc->radius1)
+        cone = malloc(n * sizeof *cone);
+    else
+        cyl = malloc(n * sizeof *cyl);
+    if (!g || !(cyl || cone) || !(g->fr = malloc(n * sizeof *g->fr)))
         goto fail_st;
     st = CYLRAY_OK; /* no kernels: not the caller's input */
     if (!g->k)
@@ -145,6 +163,15 @@ RTCGeometry cylray_embree_new_geometry(RTCDevice device, const cylray_embree_des
     for (size_t i = 0; i < n; i++) {
         const float *p0 = elem(desc->p0, desc->p0_stride, i);
         const float *p1 = elem(desc->p1, desc->p1_stride, i);
+        if (cone) {
+            read_cone(desc, i, &cone[i]);
+            if (cylray_prepare_cone(&g->prep[i], &cone[i]) != CYLRAY_OK) {
+                st = CYLRAY_EINVAL;
+                goto fail_st;
+            }
+            ceb_frame_init(&g->fr[i], p0, p1, cone[i].r0, cone[i].r1);
+            continue;
+        }
         float r = *(const float *)elem(desc->radius, desc->radius_stride, i);
         unsigned caps = desc->caps ? *(const unsigned *)elem(desc->caps, desc->caps_stride, i)
                                    : CYLRAY_CAPPED;
@@ -153,14 +180,15 @@ RTCGeometry cylray_embree_new_geometry(RTCDevice device, const cylray_embree_des
             st = CYLRAY_EINVAL;
             goto fail_st;
         }
-        ceb_frame_init(&g->fr[i], p0, p1);
+        ceb_frame_init(&g->fr[i], p0, p1, r, r);
     }
-    geo = ceb_finish(g, device, cyl, &st);
+    geo = ceb_finish(g, device, &(ceb_src){cyl, cone}, &st);
     g = NULL; /* the geometry's now, or freed */
 fail_st:
     if (status)
         *status = st;
     free(cyl);
+    free(cone);
     ceb_free(g);
     return geo;
 }
@@ -194,7 +222,7 @@ RTCGeometry cylray_embree_new_spheres(RTCDevice device, const cylray_embree_sphe
             goto fail_st;
         }
     }
-    geo = ceb_finish(g, device, NULL, &st);
+    geo = ceb_finish(g, device, &(ceb_src){NULL, NULL}, &st);
     g = NULL;
 fail_st:
     if (status)

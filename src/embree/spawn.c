@@ -7,7 +7,8 @@
 #include <math.h>
 
 /* The hit's part from its normal: the discs' normals are the axis, the side's are
- * perpendicular to it; a sphere is all side. -1 for a geometry or primID not ours, or a useless Ng. */
+ * perpendicular to it (a cone's tilted by its slope); a sphere is all side. -1 for a
+ * geometry or primID not ours, or a useless Ng. */
 static int hit_part(const ceb *g, unsigned primID, const float Ng[3])
 {
     if (!g || primID >= g->n || !isfinite(Ng[0]) || !isfinite(Ng[1]) || !isfinite(Ng[2]) ||
@@ -15,10 +16,14 @@ static int hit_part(const ceb *g, unsigned primID, const float Ng[3])
         return -1;
     if (!g->fr)
         return CYLRAY_SIDE; /* a sphere */
-    const float *n = g->fr[primID].n;
+    /* the thresholds halfway between the side's axial component ns and the discs' +-1
+     * (a cylinder's: +-1/2) */
+    const frame *f = &g->fr[primID];
+    const float *n = f->n;
     float c = Ng[0] * n[0] + Ng[1] * n[1] + Ng[2] * n[2];
     float l = sqrtf(Ng[0] * Ng[0] + Ng[1] * Ng[1] + Ng[2] * Ng[2]);
-    return c > 0.5f * l ? CYLRAY_CAP_HI : c < -0.5f * l ? CYLRAY_CAP_LO : CYLRAY_SIDE;
+    float hi = 0.5f * (1.0f + f->ns), lo = 0.5f * (f->ns - 1.0f);
+    return c > hi * l ? CYLRAY_CAP_HI : c < lo * l ? CYLRAY_CAP_LO : CYLRAY_SIDE;
 }
 
 /* The hit point of primID's hit at t on o + t d, with its bound and part: 0, or -1 for a

@@ -6,7 +6,11 @@
  * geometry's and the query's: Embree 3's context filter, Embree 4's argument filter
  * through the adapter's extended context) offered every hit once, in order along each cylinder,
  * with the next hit of a cylinder taken when one is rejected; the spawn helper's
- * origins never hitting their own cylinder again. */
+ * origins never hitting their own cylinder again. With the argument "cones", all of it
+ * for a geometry of cones (cylray_embree_desc.radius1): tips, cylinders and steep
+ * cones among them, the kernels' answers those of cylray_prepare_cone's shapes and the
+ * exact ones tests/ref's cone reference's (the rest of a geometry of cones:
+ * test_cones.c). */
 #include "geom.h"
 #include "judge.h"
 #include "trace.h"
@@ -21,6 +25,12 @@ enum { W = 64, H = 64, NCYL = 300 };
 static const cylray_kernels *K;
 static cylray_prepared PREP[NCYL];
 static const eb_scene *S;
+static int CONES; /* the scene's segments are cones (S->cone) */
+/* Cones: each alone in a leaf, for the variant with leaves, whose leaf query answers a
+ * cone as that leaf does (cylinders: as the prepared cylinder) */
+static _Alignas(64) cylray_leaf8 LEAF8[NCYL];
+static _Alignas(64) cylray_leaf4 LEAF4[NCYL];
+static int LEAVES; /* 0: the prepared shapes' kernel; 4 or 8: the one-cone leaves */
 
 /* Every hit of cylinder i on the ray in [tmin, tmax], in order of t, through the
  * 4-wide kernel: the first, then the next beyond it. */
@@ -30,6 +40,16 @@ static int all_hits(uint32_t i, const float o[3], const float d[3], float tmin, 
     CYLRAY_ALIGN(16) cylray_ray4 r;
     CYLRAY_ALIGN(16) cylray_hit4 h;
     int m = 0;
+    while (LEAVES && m < 4) {
+        cylray_ray1 r1 = {{o[0], o[1], o[2]}, {d[0], d[1], d[2]}, tmin, tmax};
+        cylray_hit1 h1;
+        if (!(LEAVES == 8 ? K->leaf_intersect8(&LEAF8[i], &r1, &h1, CYLRAY_NORMAL)
+                          : K->leaf_intersect4(&LEAF4[i], &r1, &h1, CYLRAY_NORMAL)))
+            return m;
+        t[m] = h1.t;
+        memcpy(n[m++], h1.n, sizeof h1.n);
+        tmin = nextafterf(h1.t, INFINITY);
+    }
     while (m < 4) {
         for (int j = 0; j < 4; j++) {
             r.ox[j] = o[0], r.oy[j] = o[1], r.oz[j] = o[2];
@@ -90,7 +110,13 @@ static int uv_ok(uint32_t prim, const float o[3], const float d[3], float t, con
     for (int k = 0; k < 3; k++)
         a[k] = (double)p1[k] - p0[k], aa += a[k] * a[k];
     double cap = (ng[0] * a[0] + ng[1] * a[1] + ng[2] * a[2]) / sqrt(aa);
-    int32_t part = cap > 0.5 ? CYLRAY_CAP_HI : cap < -0.5 ? CYLRAY_CAP_LO : CYLRAY_SIDE;
+    /* halfway between the side's axial component (a cone's: -(r1 - r0) / slant
+     * length) and the discs' +-1 */
+    double dr = CONES ? (double)S->cone[prim].r1 - S->cone[prim].r0 : 0;
+    double ns = -dr / sqrt(aa + dr * dr);
+    int32_t part = cap > 0.5 * (1 + ns)   ? CYLRAY_CAP_HI
+                   : cap < 0.5 * (ns - 1) ? CYLRAY_CAP_LO
+                                          : CYLRAY_SIDE;
     float p[3] = {o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2]}, uv[2] = {-1, -1};
     float dpdu[3], dpdv[3];
     cylray_surface(&PREP[prim], p, part, uv, dpdu, dpdv);
@@ -470,18 +496,24 @@ static int packet_spawns(RTCDevice dev, RTCGeometry geo, const eb_rays *r, int *
     return bad + (*lanes == 0) + (tris == 0);
 }
 
-int main(void)
+int main(int argc, char **argv)
 {
     eb_scene s;
-    if (eb_scene_small(&s, NCYL, 12345)) {
+    CONES = argc > 1 && !strcmp(argv[1], "cones");
+    if (CONES ? eb_scene_small_cones(&s, NCYL, 12345) : eb_scene_small(&s, NCYL, 12345)) {
         printf("scene failed\n");
         return 1;
     }
     S = &s;
     K = cylray_kernels_best();
-    for (size_t i = 0; i < s.ns; i++)
-        if (cylray_prepare(&PREP[i], &s.cyl[i]) != CYLRAY_OK)
+    for (size_t i = 0; i < s.ns; i++) {
+        uint32_t id = (uint32_t)i;
+        if ((CONES ? cylray_prepare_cone(&PREP[i], &s.cone[i])
+                   : cylray_prepare(&PREP[i], &s.cyl[i])) != CYLRAY_OK ||
+            (CONES && (cylray_leaf_prepare_cones8(&LEAF8[i], &s.cone[i], &id, 1) ||
+                       cylray_leaf_prepare_cones4(&LEAF4[i], &s.cone[i], &id, 1))))
             return 1;
+    }
     RTCDevice dev = rtcNewDevice(NULL);
     eb_rays r;
     eb_ref ref;
@@ -524,6 +556,7 @@ int main(void)
                                                                                  : 4;
             REPORT(m != want || (m && g.nprim * m < s.ns), "%s: leaves of %u, %zu primitives",
                    vn, m, g.nprim);
+            LEAVES = CONES ? (int)m : 0;
             packet_passes(g.scene, vn, v != EB_LEAF, 0, NULL, &r, tfar0, valid0, &passed,
                           &failed);
             eb_camera_rays(&r, &s, W, H);
@@ -585,6 +618,7 @@ int main(void)
         }
     }
     K = cylray_kernels_best();
+    LEAVES = 0;
 
     /* what the adapter refuses */
     {

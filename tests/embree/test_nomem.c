@@ -1,8 +1,8 @@
 /* SPDX-License-Identifier: MIT */
 /* test_nomem.c - cylray_embree_new_geometry and cylray_embree_new_spheres when memory
  * runs out: NULL with CYLRAY_ENOMEM, for each of their allocations in turn, in each way
- * of building a geometry (one box a cylinder, split boxes, leaves; one box a sphere,
- * leaves of spheres).
+ * of building a geometry (one box a cylinder, split boxes, leaves; the same of cones;
+ * one box a sphere, leaves of spheres).
  *
  * The adapter's objects are linked into this program with --wrap for the allocation
  * functions (tests/embree/meson.build), so the wrappers below see the adapter's
@@ -133,6 +133,27 @@ int main(void)
         long made = each_failure(dev, &d, NULL, ways[w].what);
         CHECK(made >= ways[w].least, "%s: %ld allocations, not the %ld or more expected",
               ways[w].what, made, ways[w].least);
+    }
+    /* the same rods as cones (radius1 given), narrowing to half their radius at p1,
+     * every third a cylinder (r0 == r1) among them */
+    static float radius1[N];
+    for (int i = 0; i < N; i++)
+        radius1[i] = i % 3 == 0 ? radius[i] : 0.5f * radius[i];
+    d.radius1 = radius1, d.radius1_stride = sizeof radius1[0];
+    const struct {
+        unsigned options;
+        const char *what;
+        long least;
+    } cways[] = {
+        {CYLRAY_EMBREE_NO_SPLIT, "one box a cone", 5},
+        {CYLRAY_EMBREE_SPLIT, "split boxes of cones", 7},
+        {CYLRAY_EMBREE_LEAVES, "leaves of cones", 10},
+    };
+    for (size_t w = 0; w < sizeof cways / sizeof cways[0]; w++) {
+        d.options = cways[w].options;
+        long made = each_failure(dev, &d, NULL, cways[w].what);
+        CHECK(made >= cways[w].least, "%s: %ld allocations, not the %ld or more expected",
+              cways[w].what, made, cways[w].least);
     }
     /* spheres at the rods' first ends, one box a sphere or leaves */
     cylray_embree_sphere_desc sd = {.count = N,

@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* ebscene.h - the procedural scenes of the Embree comparison: polylines of cylinders of
- * one radius and spheres, with a camera and a point light. */
+ * one radius, or of cones whose radius is given at each vertex, and spheres, with a
+ * camera and a point light. */
 #ifndef EB_SCENE_H
 #define EB_SCENE_H
 
@@ -23,7 +24,11 @@ typedef struct eb_scene {
     unsigned *caps;
     cylray_cylinder *cyl;
     float (*p0)[3], (*p1)[3]; /* segment s from p0[s] to p1[s], for cylray_embree */
-    float radius;
+    float radius;             /* every segment's; in a tapered scene only a scale */
+    float *vrad;              /* tapered scenes: each vertex's radius (NULL: radius for all) */
+    /* tapered scenes: segment s as a cone (NULL otherwise); cyl[s] is then the cylinder
+     * of its larger radius, which holds it */
+    cylray_cone *cone;
     size_t nsph;        /* spheres besides the segments (none in the cylinder scenes) */
     cylray_sphere *sph; /* their answers carry EB_SPHERE_BIT with the sphere's index */
     float eye[3], look[3], up[3], fov_deg;
@@ -37,8 +42,22 @@ typedef struct eb_scene {
 #define EB_SPHERE_GEOM 1u
 
 /* The scene names, in the order of eb_scene_make's `which`: the cylinder scenes, then
- * those with spheres (balls: the molecule with its atoms; far-cloud: spheres alone). */
-enum { EB_MOLECULE, EB_PIPES, EB_FAR_RODS, EB_LATTICE, EB_BALLS, EB_FAR_CLOUD, EB_NSCENES };
+ * those with spheres (balls: the molecule with its atoms; far-cloud: spheres alone),
+ * then the tapered ones (molecule-taper: the molecule's bonds between atoms of three
+ * radii; reducers: the pipes, narrowing through short cones; far-taper: the far rods
+ * narrowing from end to end). */
+enum {
+    EB_MOLECULE,
+    EB_PIPES,
+    EB_FAR_RODS,
+    EB_LATTICE,
+    EB_BALLS,
+    EB_FAR_CLOUD,
+    EB_MOLECULE_TAPER,
+    EB_REDUCERS,
+    EB_FAR_TAPER,
+    EB_NSCENES
+};
 const char *eb_scene_name(int which);
 /* Returns the index of a scene name, or -1. */
 int eb_scene_find(const char *name);
@@ -58,6 +77,9 @@ int eb_scene_make(eb_scene *s, int which, uint64_t seed);
 int eb_scene_small(eb_scene *s, size_t n, uint64_t seed);
 /* The same with nsph random spheres among them (n may be 0). */
 int eb_scene_small_spheres(eb_scene *s, size_t n, size_t nsph, uint64_t seed);
+/* n random cones of every cap kind: tips (an end of radius 0), cylinders (r0 == r1)
+ * and steep and slender ones among them. */
+int eb_scene_small_cones(eb_scene *s, size_t n, uint64_t seed);
 void eb_scene_free(eb_scene *s);
 
 #endif

@@ -1,9 +1,11 @@
 /* SPDX-License-Identifier: MIT */
-/* exact.c - the scene-wide exact reference: Embree lists the candidate cylinders (boxes
- * only), the binary128 reference of tests/ref answers each, nearest box first. */
+/* exact.c - the scene-wide exact reference: Embree lists the candidate cylinders, cones
+ * and spheres (boxes only), the binary128 reference of tests/ref answers each (cylref,
+ * conref, sphref), nearest box first. */
 #include "exact.h"
 
 #include "geom.h"
+#include "conref.h"
 #include "quad.h"
 #include "sphref.h"
 
@@ -54,6 +56,8 @@ int eb_shape_intersect(const eb_scene *s, uint32_t id, const float o[3], const f
 {
     if (id & EB_SPHERE_BIT)
         return sphref_intersect(&s->sph[id & ~EB_SPHERE_BIT], o, d, tmin, tmax, 0, h) == 1;
+    if (s->cone)
+        return conref_intersect(&s->cone[id], o, d, tmin, tmax, 0, h) == 1;
     return cylref_intersect(&s->cyl[id], o, d, tmin, tmax, 0, h) == 1;
 }
 
@@ -62,6 +66,8 @@ void eb_shape_band(const eb_scene *s, uint32_t id, const float o[3], const float
 {
     if (id & EB_SPHERE_BIT)
         sphref_band_eval(&s->sph[id & ~EB_SPHERE_BIT], o, d, tmin, tmax, 0, b);
+    else if (s->cone)
+        conref_band_eval(&s->cone[id], o, d, tmin, tmax, 0, b);
     else
         cylref_band_eval(&s->cyl[id], o, d, tmin, tmax, 0, b);
 }

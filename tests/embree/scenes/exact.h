@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
-/* exact.h - the exact answer for a ray against a whole scene (every cylinder and sphere,
- * nearest first, in binary128: tests/ref's cylinders, the spheres here). */
+/* exact.h - the exact answer for a ray against a whole scene (every cylinder, cone and
+ * sphere, nearest first, in binary128: tests/ref's cylinders, cones and spheres). */
 #ifndef EB_EXACT_H
 #define EB_EXACT_H
 

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
-/* geom.c - builds the Embree scenes of one eb_scene: Embree's cone curves, and cylray's
- * adapter in its three arrangements. */
+/* geom.c - builds the Embree scenes of one eb_scene: Embree's cone curves (per-vertex
+ * radii in a tapered scene), and cylray's adapter in its three arrangements. */
 #include "geom.h"
 
 #include "clocks.h"
@@ -30,12 +30,15 @@ cylray_embree_desc eb_scene_desc(const eb_scene *s, unsigned options, const cylr
         .p0_stride = sizeof s->p0[0],
         .p1 = s->p1[0],
         .p1_stride = sizeof s->p1[0],
-        .radius = &s->radius,
-        .radius_stride = 0,
+        .radius = s->cone ? &s->cone[0].r0 : &s->radius,
+        .radius_stride = s->cone ? sizeof s->cone[0] : 0,
         .caps = s->caps,
         .caps_stride = sizeof s->caps[0],
         .options = options,
         .kernels = k,
+        /* a tapered scene's cones: r0 and r1 from its cone table */
+        .radius1 = s->cone ? &s->cone[0].r1 : NULL,
+        .radius1_stride = sizeof s->cone[0],
     };
 }
 
@@ -77,12 +80,14 @@ void eb_cylinder_bounds(const eb_scene *s, uint32_t i, struct RTCBounds *b)
     double a[3], aa = 0;
     for (int k = 0; k < 3; k++)
         a[k] = (double)q[k] - p[k], aa += a[k] * a[k];
+    /* a cone lies within the cylinder of its larger radius */
+    double R = s->vrad ? fmax(s->vrad[s->first[i]], s->vrad[s->first[i] + 1]) : s->radius;
     float lo[3], hi[3];
     for (int k = 0; k < 3; k++) {
         /* a disc of radius r perpendicular to a reaches r sqrt(1 - a_k^2) along k */
-        double e = s->radius * sqrt(fmax(0.0, 1 - a[k] * a[k] / aa)) * (1 + 0x1p-18);
+        double e = R * sqrt(fmax(0.0, 1 - a[k] * a[k] / aa)) * (1 + 0x1p-18);
         double mn = fmin(p[k], q[k]) - e, mx = fmax(p[k], q[k]) + e;
-        double pad = 0x1p-20 * fmax(fabs(mn), fabs(mx)) + 0x1p-20 * s->radius;
+        double pad = 0x1p-20 * fmax(fabs(mn), fabs(mx)) + 0x1p-20 * R;
         lo[k] = nextafterf((float)(mn - pad), -INFINITY);
         hi[k] = nextafterf((float)(mx + pad), INFINITY);
     }
@@ -105,7 +110,7 @@ static RTCGeometry native_geometry(RTCDevice dev, const eb_scene *s)
     }
     for (size_t i = 0; i < s->nv; i++) {
         memcpy(v + 4 * i, s->vert[i], 3 * sizeof(float));
-        v[4 * i + 3] = s->radius;
+        v[4 * i + 3] = s->vrad ? s->vrad[i] : s->radius;
     }
     /* A segment is closed where it has no neighbour: Embree caps a cone curve's end
      * unless the flag says a segment joins there. */
