@@ -184,7 +184,8 @@ typedef struct cylray_cone {
  * (the disc at p0), CYLRAY_CAP_HI (at p1), with CYLRAY_BACKFACE from inside the solid.
  * Returns CYLRAY_EINVAL (leaving *out untouched) when a pointer is NULL, a coordinate
  * is NaN, infinite or beyond 2^62 in magnitude, p0 == p1 (or p1 - p0 rounds to a zero
- * or subnormal vector), a radius is neither 0 nor in [2^-60, 2^62] (NaN is refused),
+ * or subnormal vector), the ends so far apart that p1 - p0 or the half height passes
+ * 2^62 (as cylray_cylinder_from_endpoints refuses them), a radius is neither 0 nor in [2^-60, 2^62] (NaN is refused),
  * both radii are 0, or a flag bit is not CYLRAY_CAPPED_LO or CYLRAY_CAPPED_HI. */
 CYLRAY_API cylray_status cylray_prepare_cone(cylray_prepared *out, const cylray_cone *in);
 

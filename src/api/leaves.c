@@ -1,11 +1,11 @@
 /* SPDX-License-Identifier: MIT */
-/* api/leaves.c - building leaves of cylinders or of spheres: each lane a prepared
- * shape's fields. */
+/* api/leaves.c - building leaves of cylinders, of spheres or of cones: each lane a
+ * prepared shape's fields. */
 #include "cylray_internal.h"
 
 #include <string.h>
 
-/* Prepares shape k of n (cylinders or spheres, as the leaf holds). */
+/* Prepares shape k of n (cylinders, spheres or cones, as the leaf holds). */
 typedef cylray_status (*prepare_fn)(cylray_prepared *, const void *shapes, size_t k);
 static cylray_status prepare_cylinder(cylray_prepared *p, const void *shapes, size_t k)
 {

@@ -18,10 +18,11 @@ const char *cylray_strerror(cylray_status s)
     case CYLRAY_OK:
         return "success";
     case CYLRAY_EINVAL:
-        return "invalid argument: a NULL pointer, more cylinders than the leaf holds, "
-               "equal endpoints, or a cylinder with a center or axis coordinate that is "
-               "NaN, infinite or beyond 2^62, a zero or subnormal axis, a radius outside "
-               "[2^-60, 2^62], a half height <= 0, NaN or finite beyond 2^62, or flag bits "
+        return "invalid argument: a NULL pointer, more shapes than the leaf holds, "
+               "equal endpoints, or a shape with a center, axis or end coordinate that is "
+               "NaN, infinite or beyond 2^62 (or ends 2^62 or more apart), a zero or "
+               "subnormal axis, a radius outside [2^-60, 2^62] (a cone's: 0 or in it, "
+               "not both 0), a half height <= 0, NaN or finite beyond 2^62, or flag bits "
                "other than CYLRAY_CAPPED_LO and CYLRAY_CAPPED_HI";
     case CYLRAY_ENOMEM:
         return "out of memory";
