@@ -102,6 +102,8 @@ void fz_decode(const uint8_t *data, size_t size, fz_case *c)
     for (int k = 0; k < 3; k++)
         c->cyl.axis[k] = value(&r);
     c->cyl.radius = value(&r);
+    c->cone = (mode & 0xe0) == 0xa0;
+    const float r1 = c->cone ? value(&r) : 0.0f;
     c->cyl.half_height = (mode & 0x20) ? INFINITY : value(&r);
     c->cyl.flags = (mode & 0x10) ? CYLRAY_CAPPED : 0u;
     c->sphere = (mode & 0xc0) == 0xc0;
@@ -112,6 +114,18 @@ void fz_decode(const uint8_t *data, size_t size, fz_case *c)
     cylray_cylinder aim = c->cyl;
     if (c->sphere)
         aim.half_height = aim.radius;
+    if (c->cone) {
+        for (int k = 0; k < 3; k++) {
+            c->con.p0[k] = c->cyl.center[k];
+            c->con.p1[k] = (float)((double)c->cyl.center[k] + c->cyl.axis[k]);
+        }
+        c->con.r0 = c->cyl.radius, c->con.r1 = r1;
+        c->con.flags = c->cyl.flags;
+        /* the rays aim at the cylinder of the larger radius about the same ends */
+        if (cylray_cylinder_from_endpoints(&aim, c->con.p0, c->con.p1, fmaxf(c->con.r0, r1),
+                                           c->con.flags) != CYLRAY_OK)
+            aim = c->cyl;
+    }
     for (size_t i = 0; i < c->n; i++) {
         float ray[G_NFIELD];
         const uint8_t tag = byte(&r);

@@ -7,7 +7,9 @@
  *   byte 0      bits 0-1 width (0: 4, 1: 8, 2: 16, 3: stream), bits 2-3 stream
  *               misalignment in floats, bit 4 capped, bit 5 infinite (half height Inf),
  *               bits 6 and 7 both set: a sphere (the center and radius below; the
- *               axis and half height are read and only aim the rays)
+ *               axis and half height are read and only aim the rays); bits 7 and 5
+ *               set, bit 6 clear: a cone from p0 = center to p1 = center + axis, r0
+ *               the radius, r1 the half height's value, capped by bit 4
  *   byte 1      kernel flags (the low 5 bits: CYLRAY_FLAGS_ALL)
  *   bytes 2-3   active mask, little endian (streams: byte 2 % 50 is the length)
  *   values      center x y z, axis x y z, radius, half height
@@ -32,6 +34,8 @@ typedef struct fz_case {
     cylray_cylinder cyl;
     int sphere; /* the shape is sph; cyl only aims the rays */
     cylray_sphere sph;
+    int cone; /* the shape is con; cyl only aims the rays */
+    cylray_cone con;
     unsigned flags;
     int width;         /* 4, 8, 16 or G_STREAM */
     size_t n;          /* rays: the width, or the stream length */

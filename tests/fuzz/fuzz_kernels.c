@@ -22,7 +22,7 @@
 #include "cylray.h"
 #include "fuzz_input.h"
 #include "fuzz_leaf.h"
-#include "fuzz_sphere.h"
+#include "fuzz_shape.h"
 #ifdef HAVE_SPAWN
 #include "fuzz_spawn.h"
 #endif
@@ -49,6 +49,8 @@ static void report(void)
     fprintf(stderr,
             "cylray-fuzz: spheres: %lu inputs, %lu lanes judged against the exact band\n",
             fz_sphere_cases, fz_sphere_lanes);
+    fprintf(stderr, "cylray-fuzz: cones: %lu inputs, %lu lanes judged against the exact band\n",
+            fz_cone_cases, fz_cone_lanes);
 #ifdef HAVE_SPAWN
     fprintf(stderr,
             "cylray-fuzz: spawn: %lu hits through hit point and origin, %lu spawned "
@@ -72,6 +74,12 @@ static void dump(const fz_case *c, const char *what)
         fprintf(stderr, "cylray-fuzz: sphere center (%a, %a, %a) radius %a\n",
                 (double)c->sph.center[0], (double)c->sph.center[1], (double)c->sph.center[2],
                 (double)c->sph.radius);
+    if (c->cone)
+        fprintf(stderr,
+                "cylray-fuzz: cone p0 (%a, %a, %a) p1 (%a, %a, %a) r0 %a r1 %a flags %#x\n",
+                (double)c->con.p0[0], (double)c->con.p0[1], (double)c->con.p0[2],
+                (double)c->con.p1[0], (double)c->con.p1[1], (double)c->con.p1[2],
+                (double)c->con.r0, (double)c->con.r1, c->con.flags);
     fprintf(stderr,
             "cylray-fuzz: %s\n  %s\n  width %s n %zu active %#x misalign %u flags %#x\n", what,
             g_cyl_str(&c->cyl, s, sizeof s), g_width_name(c->width), c->n, c->active,
@@ -95,10 +103,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     fz_decode(data, size, &c);
     const cylray_kernels *isas[CYLRAY_ISA_COUNT];
     const int nisa = g_isas(isas);
-    if (c.sphere) {
+    if (c.sphere || c.cone) {
         char why[768];
-        if (fz_sphere(&c, isas, nisa, why, sizeof why))
-            FAIL_("sphere: %s", why);
+        if (fz_shape(&c, isas, nisa, why, sizeof why))
+            FAIL_("%s: %s", c.cone ? "cone" : "sphere", why);
         return 0;
     }
 

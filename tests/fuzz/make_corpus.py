@@ -20,11 +20,13 @@ def num(v, scale=0):       # 32 <= tag < 224: int16 * 2^(scale)
 def raw(f):                # tag >= 224: four raw bytes
     return bytes([0xe0]) + struct.pack('<f', f)
 
-def header(width, flags, active, capped=False, infinite=False, misalign=0, sphere=False):
+def header(width, flags, active, capped=False, infinite=False, misalign=0, sphere=False,
+           cone=False):
     mode = {4: 0, 8: 1, 16: 2, 'stream': 3}[width] | misalign << 2
     mode |= 0x10 if capped else 0
     mode |= 0x20 if infinite else 0
     mode |= 0xc0 if sphere else 0
+    mode |= 0xa0 if cone else 0
     return bytes([mode, flags]) + struct.pack('<H', active)
 
 def cyl(center, axis, radius, half_height=None):
@@ -91,6 +93,25 @@ for i in range(21):
     s += aimed([num(i - 10, -3), num(5 - i, -3), num(2, -3)], 12 * i, 6 * i - 60, 6 * i, 8 + i % 7,
                window=i % 4, extra=num(40) + num(2) + num(60))
 seeds['sphere_stream'] = s
+
+# a tip cone (p0 = center, p1 = center + axis, r0 the radius, r1 in the half height's
+# place), capped, 8 aimed rays from all around (some at the apex) and one from inside
+s = header(8, 0x01, 0xff, capped=True, cone=True)
+s += cyl([num(1), num(-2), num(3)], [num(0), num(0), special(TWO)], special(ONE), special(ZERO))
+for i in range(7):
+    s += aimed([num(-6 + 2 * i), num(5 - i), num(3 * i - 9)], 36 * i, 30 * i - 90, 20 * i, 12)
+s += aimed([num(0), num(1, -2), num(0)], 200, 0, 40, 12, window=1)
+seeds['cone8'] = s
+
+# a nearly cylindrical cone far from the world origin, a misaligned stream of 21 aimed
+# rays with every flag and every window
+s = header('stream', 0x1f, 21, misalign=2, cone=True)
+s += cyl([num(1000), num(-1000), num(500)], [raw(0.3), raw(-0.2), raw(0.9)], raw(1e-2),
+         raw(1.0001e-2))
+for i in range(21):
+    s += aimed([num(i - 10, -3), num(5 - i, -3), num(2, -3)], 12 * i, 6 * i - 60, 6 * i, 8 + i % 7,
+               window=i % 4, extra=num(40) + num(2) + num(60))
+seeds['cone_stream'] = s
 
 os.makedirs('corpus', exist_ok=True)
 for name, data in seeds.items():

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
-/* fuzz_sphere.c - the checks of fuzz_sphere.h. */
-#include "fuzz_sphere.h"
+/* fuzz_shape.c - the checks of fuzz_shape.h. */
+#include "fuzz_shape.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -8,37 +8,50 @@
 
 #include "tcheck.h"
 #ifdef HAVE_CYLREF
+#include "conref.h"
 #include "sphref.h"
 #endif
 
-unsigned long fz_sphere_cases, fz_sphere_lanes;
+unsigned long fz_sphere_cases, fz_sphere_lanes, fz_cone_cases, fz_cone_lanes;
+
+/* The shape's center, for the working range: a sphere's, a cone's midpoint. */
+static void center_of(const fz_case *c, double ctr[3])
+{
+    for (int k = 0; k < 3; k++)
+        ctr[k] = c->cone ? 0.5 * ((double)c->con.p0[k] + c->con.p1[k]) : c->sph.center[k];
+}
 
 #ifdef HAVE_CYLREF
 /* cylray.h's working range: the origin within 2^62 of the center in each coordinate;
  * beyond it a lane may miss, and is not judged against the reference. The exact t
  * beyond FLT_MAX is left to the band's own judgement (an exact hit there cannot be
  * reported, and the band then says so only through t). */
-static int in_range(const cylray_sphere *s, const float *ray)
+static int in_range(const fz_case *c, const float *ray)
 {
+    double ctr[3];
+    center_of(c, ctr);
     for (int k = 0; k < 3; k++)
-        if (!(fabs((double)ray[G_OX + k] - s->center[k]) <= 0x1p62))
+        if (!(fabs((double)ray[G_OX + k] - ctr[k]) <= 0x1p62))
             return 0;
     return 1;
 }
 #endif
 
-int fz_sphere(const fz_case *c, const cylray_kernels *const *isas, int nisa, char *why,
-              size_t whylen)
+int fz_shape(const fz_case *c, const cylray_kernels *const *isas, int nisa, char *why,
+             size_t whylen)
 {
-    fz_sphere_cases++;
+    const char *shape = c->cone ? "cone" : "sphere";
+    unsigned long *lanes = c->cone ? &fz_cone_lanes : &fz_sphere_lanes;
+    ++*(c->cone ? &fz_cone_cases : &fz_sphere_cases);
     cylray_prepared P;
-    const int valid = cylray_prepare_sphere(&P, &c->sph) == CYLRAY_OK;
+    const int valid = (c->cone ? cylray_prepare_cone(&P, &c->con)
+                               : cylray_prepare_sphere(&P, &c->sph)) == CYLRAY_OK;
     if (!valid)
         memset(&P, 0, sizeof P); /* what a careless caller passes on: must give nothing */
 #ifdef HAVE_CYLREF
-    if (valid != sphref_valid(&c->sph)) {
-        snprintf(why, whylen, "prepare_sphere %s a sphere the reference calls %s",
-                 valid ? "accepted" : "refused", valid ? "invalid" : "valid");
+    if (valid != (c->cone ? conref_valid(&c->con) : sphref_valid(&c->sph))) {
+        snprintf(why, whylen, "prepare %s a %s the reference calls %s",
+                 valid ? "accepted" : "refused", shape, valid ? "invalid" : "valid");
         return 1;
     }
     static cylref_band band[2][G_MAX];
@@ -47,12 +60,18 @@ int fz_sphere(const fz_case *c, const cylray_kernels *const *isas, int nisa, cha
         float r[G_NFIELD];
         for (int f = 0; f < G_NFIELD; f++)
             r[f] = c->rays.f[f][i];
-        if (!in_range(&c->sph, r))
+        if (!in_range(c, r))
             continue;
         judged[i] = 1;
-        for (int cull = 0; cull < 2; cull++)
-            sphref_band_eval(&c->sph, r + G_OX, r + G_DX, r[G_TMIN], r[G_TMAX],
-                             cull ? CYLRAY_CULL_BACK : 0u, &band[cull][i]);
+        for (int cull = 0; cull < 2; cull++) {
+            const unsigned fl = cull ? CYLRAY_CULL_BACK : 0u;
+            if (c->cone)
+                conref_band_eval(&c->con, r + G_OX, r + G_DX, r[G_TMIN], r[G_TMAX], fl,
+                                 &band[cull][i]);
+            else
+                sphref_band_eval(&c->sph, r + G_OX, r + G_DX, r[G_TMIN], r[G_TMAX], fl,
+                                 &band[cull][i]);
+        }
     }
 #endif
     static gresult res, occ;
@@ -71,7 +90,7 @@ int fz_sphere(const fz_case *c, const cylray_kernels *const *isas, int nisa, cha
             return 1;
         }
         if (!valid && res.hit) {
-            snprintf(why, whylen, "%s: hits with a sphere prepare refused", k->name);
+            snprintf(why, whylen, "%s: hits with a %s prepare refused", k->name, shape);
             return 1;
         }
 #ifdef HAVE_CYLREF
@@ -81,10 +100,10 @@ int fz_sphere(const fz_case *c, const cylray_kernels *const *isas, int nisa, cha
             if (!judged[i] || (c->width != G_STREAM && !((c->active >> i) & 1u)))
                 continue;
             const cylref_band *b = &band[cull][i];
-            fz_sphere_lanes++;
+            ++*lanes;
             const int hit = (int)((res.hit >> i) & 1u);
             double ub = 0;
-            const int v = sphref_judge(b, hit, hit ? res.part[i] : 0, hit ? res.t[i] : 0, &ub);
+            const int v = cylref_judge(b, hit, hit ? res.part[i] : 0, hit ? res.t[i] : 0, &ub);
             if (v || ub > tol) {
                 snprintf(why, whylen,
                          "%s ray %zu: %s t %a part %#x; exact %s t %a part %#x, band [%a, %a] "
