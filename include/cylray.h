@@ -185,7 +185,10 @@ typedef struct cylray_cone {
  * Returns CYLRAY_EINVAL (leaving *out untouched) when a pointer is NULL, a coordinate
  * is NaN, infinite or beyond 2^62 in magnitude, p0 == p1 (or p1 - p0 rounds to a zero
  * or subnormal vector), the ends so far apart that p1 - p0 or the half height passes
- * 2^62 (as cylray_cylinder_from_endpoints refuses them), a radius is neither 0 nor in [2^-60, 2^62] (NaN is refused),
+ * 2^62 (as cylray_cylinder_from_endpoints refuses them), a cone steeper than
+ * |r1 - r0| = 2^40 |p1 - p0| or with max(r0, r1) (1 + slope) + |r1 - r0| / 2 beyond
+ * 2^62, slope = |r1 - r0| / |p1 - p0| (its radius within its bounding sphere, which the
+ * kernels square), a radius is neither 0 nor in [2^-60, 2^62] (NaN is refused),
  * both radii are 0, or a flag bit is not CYLRAY_CAPPED_LO or CYLRAY_CAPPED_HI. */
 CYLRAY_API cylray_status cylray_prepare_cone(cylray_prepared *out, const cylray_cone *in);
 

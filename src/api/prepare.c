@@ -174,13 +174,29 @@ static int cone_radius_ok(double r)
     return r == 0 || (r >= CYLRAY_MIN_RADIUS && r <= CYLRAY_MAX_COORD);
 }
 
+/* A cone's radius at a point of its bounding sphere is at most
+ * rmax (1 + slope) + |r1 - r0| / 2, and the kernels square it (times v.v < 12) and
+ * multiply it by the slope times d.v: that radius is kept to 2^62, the slope to 2^40
+ * (cylray.h). */
+static int cone_steep_ok(float r0, float r1, const float p0[3], const float p1[3])
+{
+    double len2 = 0;
+    for (int k = 0; k < 3; k++) {
+        const double a = (double)p1[k] - p0[k]; /* exact */
+        len2 += a * a;
+    }
+    const double slope = fabs((double)r1 - r0) / sqrt(len2);
+    return slope <= 0x1p40 &&
+           fmax(r0, r1) * (1.0 + slope) + 0.5 * fabs((double)r1 - r0) <= 0x1p62;
+}
+
 int cylray_cone_ok_(const cylray_cone *in)
 {
     for (int k = 0; k < 3; k++)
         if (!coord_ok(in->p0[k]) || !coord_ok(in->p1[k]))
             return 0;
     return cone_radius_ok(in->r0) && cone_radius_ok(in->r1) && (in->r0 > 0 || in->r1 > 0) &&
-           !(in->flags & ~CYLRAY_CAPPED);
+           !(in->flags & ~CYLRAY_CAPPED) && cone_steep_ok(in->r0, in->r1, in->p0, in->p1);
 }
 
 /* A cone is prepared as the capped cylinder of its larger radius around the same axis
@@ -222,6 +238,13 @@ cylray_status cylray_prepare_cone(cylray_prepared *out, const cylray_cone *in)
     p.rm = (float)(0.5 * ((double)in->r0 + in->r1));
     p.kap = (float)(slope / sv);
     p.cnrm = (float)(1.0 / sqrt(1.0 + slope * slope));
+    /* The discriminant's u = r e + a f grows with the radius and the slope times the
+     * distance: its scaling 2^-j (as the cylinder's, cylray_prepare) is chosen for
+     * rmax max(1, slope) rather than for rmax alone. */
+    const double rs = rmax * fmax(1.0, fabs(slope));
+    const int j = abs(ilogb(rs)) > 20 ? ilogb(rs) : 0;
+    p.rr_d = (float)ldexp(rmax * rmax, -2 * j);
+    p.g_s = (float)ldexp(1.0, -j);
     for (int k = 0; k < 3; k++)
         p.vk[k] = (float)(p.v[k] / vv);
     p.variant = (uint8_t)cylray_variant_of_(p.kind, 0u, p.g_s != 1.0f, p.caps);

@@ -89,6 +89,19 @@ static void refusals(void)
         c.p0[0] = c.p0[1] = c.p0[2] = 0;
         c.p1[0] = c.p1[1] = c.p1[2] = 0x1p-140f;
         expect(&c, CYLRAY_EINVAL, "p1 - p0 subnormal");
+        /* too steep, or too wide for its slope (each just past its limit) */
+        const cylray_cone steep[] = {
+            {{0, 0, 0}, {0, 0, 1}, 0, 0x1p62f, CYLRAY_CAPPED_LO},
+            {{0, 0, 0}, {0, 0, 0x1p-126f}, 1, 0, CYLRAY_CAPPED_HI},
+            {{0, 0, 0}, {0, 0, 0x1p40f}, 0x1p62f, 0x1p-60f, CYLRAY_CAPPED},
+            {{0, 0, 0}, {0, 0, 1}, 0, 0x1.000002p40f, 0},
+            {{0, 0, 0}, {0, 0, 1}, 0x1.000002p31f, 0, 0},
+            {{0, 0, 0}, {0, 0, 0x1p-20f}, 0x1.000002p20f, 0, 0},
+            {{0, 0, 0}, {0, 0, 0x1p20f}, 0x1p62f, 0x1p61f, 0}};
+        for (size_t i = 0; i < sizeof steep / sizeof steep[0]; i++) {
+            snprintf(what, sizeof what, "steep cone %zu", i);
+            expect(&steep[i], CYLRAY_EINVAL, what);
+        }
         for (unsigned bit = 4; bit; bit <<= 1) {
             c = good;
             c.flags |= bit;
@@ -107,11 +120,13 @@ static void refusals(void)
 
     const cylray_cone edges[] = {
         {{0x1p62f, 0, 0}, {0, 0, -0x1p62f}, 0x1p-60f, 0, CYLRAY_CAPPED},
-        {{0, 0, 0}, {0, 0, 1}, 0, 0x1p62f, CYLRAY_CAPPED_LO},
-        {{0, 0, 0}, {0, 0, 0x1p-126f}, 1, 0, CYLRAY_CAPPED_HI},
+        {{0, 0, 0}, {0, 0, 1}, 0, 0x1p30f, CYLRAY_CAPPED_LO},
+        {{0, 0, 0}, {0, 0, 0x1p-100f}, 0x1p-60f, 0, CYLRAY_CAPPED_HI},
         {{-0.0f, 0, 0}, {0, 1, 0}, 1, 1, 0},
         {{4e18f, 0, 0}, {4e18f, 1e12f, 0}, 1e-10f, 2e-10f, CYLRAY_CAPPED},
-        {{0, 0, 0}, {0, 0, 1}, 0x1p62f, 0x1p-60f, 0}};
+        {{0, 0, 0}, {0, 0, 1}, 0x1p30f, 0x1p-60f, 0},
+        {{0, 0, 0}, {0, 0, 0x1p22f}, 0x1p62f, 0x1p62f, CYLRAY_CAPPED},
+        {{0, 0, 0}, {0, 0, 0x1p-20f}, 0x1p20f, 0, CYLRAY_CAPPED}};
     for (size_t i = 0; i < sizeof edges / sizeof edges[0]; i++) {
         snprintf(what, sizeof what, "edge cone %zu", i);
         expect(&edges[i], CYLRAY_OK, what);
@@ -301,11 +316,16 @@ static void edge_answers(void)
           {1e4f, -1e4f - 0.5f, 1e4f + 0.5f, 0, 1, 0, 0, I},
           {1e4f + 1e-3f, -1e4f, 1e4f - 1, 0, 0, 1, 0, I},
           {1e4f, -1e4f, 1e4f + 5, 0, 0, -1, 0, I}}},
-        {{{0, 0, 0}, {0, 0, 0x1p40f}, 0x1p62f, 0x1p-60f, CYLRAY_CAPPED},
-         {{-0x1p62f, 0, 0x1p39f, 1, 0, 0, 0, I},
+        {{{0, 0, 0}, {0, 0, 0x1p18f}, 0x1p38f, 0x1p-60f, CYLRAY_CAPPED},
+         {{-0x1p38f, 0, 0x1p17f, 1, 0, 0, 0, I},
           {0, 0, -1, 0, 0, 1, 0, I},
-          {0x1p60f, 0x1p60f, -0x1p50f, 0, 0, 1, 0, I},
-          {0, 0, 0x1p50f, 0, 0, -1, 0, I}}},
+          {0x1p36f, 0x1p36f, -0x1p28f, 0, 0, 1, 0, I},
+          {0, 0, 0x1p28f, 0, 0, -1, 0, I}}},
+        {{{0, 0, 0}, {0, 0, 0x1p-20f}, 0x1p20f, 0, CYLRAY_CAPPED},
+         {{-0x1p21f, 0, 0x1p-21f, 1, 0, 0, 0, I},
+          {0, 0, -1, 0, 0, 1, 0, I},
+          {0x1p19f, 0x1p18f, -5, 0, 0, 1, 0, I},
+          {0x1p19f, 0, 0x1p-22f, -1, 0, 0.5f, 0, I}}},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         cylray_prepared P;
