@@ -468,7 +468,7 @@ static int run_scene(const opts *o, RTCDevice dev, cylray_isa isa, int which, eb
             char path[512];
             snprintf(path, sizeof path, "%s/embree_%s_%s.png", o->out, sc.name,
                      cylray_isa_name(isa));
-            if (png_write_rgb(path, W, o->h, row) == 0)
+            if (png_write_rgb(path, row, (uint32_t)W, (uint32_t)o->h) == 0)
                 fprintf(stderr, "cylembree: wrote %s\n", path);
             free(row);
         }
