@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: MIT */
 /* png.c - a minimal PNG writer: the image data goes into "stored" deflate blocks, which
  * every PNG reader accepts; the file is as large as the raw pixels (plus 5 bytes per
- * 64 KiB), which is fine for an example's output. */
+ * 64 KiB), which is fine for an example's output. The bench writes its images with it
+ * too (the tree's one PNG writer), so it stays free of anything outside examples/. */
 #include "png.h"
 
 #include <stdio.h>

@@ -219,7 +219,7 @@ void scene_run(const options *opt, scene_report *sc, result_list *results)
     sc->primary = (size_t)W * H;
     double hit_frac = (double)nhit / (double)sc->primary;
     snprintf(sc->image, sizeof sc->image, "%s/scene.png", opt->out_dir);
-    if (png_write_rgb(sc->image, W, H, img) != 0) {
+    if (png_write_rgb(sc->image, img, (uint32_t)W, (uint32_t)H) != 0) {
         fprintf(stderr, "cylbench: cannot write %s\n", sc->image);
         sc->image[0] = 0;
     }

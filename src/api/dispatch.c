@@ -162,7 +162,7 @@ const cylray_kernels *cylray_kernels_best(void)
     return k;
 }
 
-/* The toolkit's surface coordinates take their FMA instance (toolkit/surface.c) where
+/* The toolkit's surface coordinates take their FMA instance (toolkit/surface_cylinder.c) where
  * the path chosen is AVX2 or AVX-512: the CPU has FMA, and CYLRAY_ISA did not ask for
  * less. */
 int cylray_surface_fma_(void)

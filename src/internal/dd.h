@@ -3,7 +3,7 @@
  *
  * A value is hi + lo with |lo| <= ulp(hi) / 2. The products use fma(), which C99
  * rounds once wherever the hardware lacks it, so each operation is good to a few units
- * of 2^-104 of its result on every platform; toolkit/bounds.c and toolkit/surface.c
+ * of 2^-104 of its result on every platform; toolkit/bounds.c, split.c and surface_cylinder.c
  * state their error bounds from that. Built with -ffp-contract=off, so nothing here is
  * fused behind our back. */
 #ifndef CYLRAY_DD_H
