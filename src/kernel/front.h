@@ -91,18 +91,9 @@ CYLRAY_INLINE int KFN(reject)(KFN(lanes) *st, const cylray_kat_ *k, const cylray
             act, vle(vfnma(ww, vset1(KM_SPHERE), vsub(ww, wd2)),
                      KFN(both_in)(k, F, offsetof(cylray_prepared, bound2), CYLRAY_LF_BOUND2)));
         /* A shift that brings the origin less than a factor sqrt(2) closer gains less
-         * than it costs: a small t would lose its low bits in s + t'. (ww > 2 pp.) A
-         * cone also shifts an origin beyond twice its half height along the axis: its
-         * radius at the origin's level, squared in C, grows with the slope times that
-         * distance (overflowing for a steep cone), and the shift bounds it; from
-         * there any hit is at least H away, and s + t' loses nothing. */
-        vm far = vgt(vadd(wd2, wd2), ww);
-        if (F.cone)
-            far = mor(far,
-                      vgt(vabs(KDOT(whx, why, whz, st->vx, st->vy, st->vz)),
-                          vmul(vset1(2.0f), KFN(both_in)(k, F, offsetof(cylray_prepared, h_v),
-                                                         CYLRAY_LF_HV))));
-        s = F.leaf ? vsel(st->fin, vkeep(far, s), s) : vkeep(far, s);
+         * than it costs: a small t would lose its low bits in s + t'. (ww > 2 pp.) */
+        s = F.leaf ? vsel(st->fin, vkeep(vgt(vadd(wd2, wd2), ww), s), s)
+                   : vkeep(vgt(vadd(wd2, wd2), ww), s);
     }
     st->rdd = rdd, st->s = s;
     if (F.sphere) {

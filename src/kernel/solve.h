@@ -109,7 +109,9 @@ CYLRAY_INLINE int KFN(cone_side)(KFN(lanes) *st, const cylray_kat_ *k, const cyl
     const vf va = vmul(vv, a);
     st->cr = r0, st->ca = a;
     st->A = vfnma(va, a, st->A); /* e.e - v.v a^2 */
-    st->nB = vfma(va, r0, KDOT(ex, ey, ez, fx, fy, fz));
+    const vf ef = KDOT(ex, ey, ez, fx, fy, fz);
+    st->nB = vfma(va, r0, ef);
+    st->pol = vlt(vabs(st->nB), vmul(vadd(vabs(ef), vabs(vmul(va, r0))), vset1(KM_CANCEL)));
     st->C = vsumsq_x(fx, fy, fz, vmul(vmul(vv, r0), r0));
     vf g = KDOT(ex, ey, ez, px, py, pz);
     vf ux = vfma(r0, ex, vmul(a, fx)), uy = vfma(r0, ey, vmul(a, fy)),
@@ -123,15 +125,18 @@ CYLRAY_INLINE int KFN(cone_side)(KFN(lanes) *st, const cylray_kat_ *k, const cyl
     st->D = vfnma(g, g, st->AR2);
     const vm act = mand(st->act, veq(vfma(st->C, zero, vmul(st->D, zero)), zero));
     const vm neg = vlt(st->A, zero);
-    /* A radius that does not change along the ray (a cylinder's lane in a leaf of
-     * cones, or a ray across the axis) leaves A = e.e: a ray within about an ulp of
-     * the axis direction is parallel, as the cylinder's, and meets no side. */
-    const vf par_eps =
-        KFN(cyl_in)(k, F, offsetof(cylray_prepared, par_eps), vmul(vv, vset1(CYLRAY_PAR_EPS)));
-    const vm par = mand(veq(a, zero), vle(st->A, vmul(st->dd, par_eps)));
-    st->side = mandn(mand(act, vge(st->D, zero)), par);
-    /* no roots, and inside everywhere (or parallel inside) */
-    st->inpar = mor(mandn(mand(act, neg), st->side), mand(mand(act, par), vle(st->C, zero)));
+    st->side = mand(act, vge(st->D, zero));
+    st->inpar = mandn(mand(act, neg), st->side); /* no roots, and inside everywhere */
+    if (F.leaf) {
+        /* A cylinder's lane in a leaf of cones (a = 0) leaves A = e.e: a ray within
+         * about an ulp of the axis direction is parallel, as the cylinder's, meets no
+         * side, and is inside everywhere where C <= 0. (A prepared cone's radius
+         * changes along any ray near its axis.) */
+        const vf par_eps = vmul(vv, vset1(CYLRAY_PAR_EPS));
+        const vm par = mand(veq(a, zero), vle(st->A, vmul(st->dd, par_eps)));
+        st->side = mandn(st->side, par);
+        st->inpar = mor(mandn(st->inpar, par), mand(mand(act, par), vle(st->C, zero)));
+    }
     return many(mor(st->side, st->inpar));
 }
 
@@ -141,6 +146,7 @@ CYLRAY_INLINE int KFN(side)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_k
 {
     const vf zero = vzero(), dx = st->dx, dy = st->dy;
     st->cr = st->ca = zero; /* a cone's */
+    st->pol = vlt(vset1(1.0f), zero);
     if (F.sphere)
         return KFN(sphere_side)(st, k, F);
     if (F.cone)
@@ -268,15 +274,8 @@ CYLRAY_INLINE void KFN(roots)(KFN(lanes) *st, const cylray_kat_ *k, const cylray
                                            vset1(KM_GENERATOR))));
         r2 = vsel(tangent, vdiv(vsub(nB, vxorsign(sq, nB)), A), r2);
     }
-    if (F.cone) { /* the roots of a cancelled nB, polished */
-        const vf ef = KDOT(st->ex, st->ey, st->ez, st->fx, st->fy, st->fz);
-        const vf var =
-            vmul(vmul(KDOT(st->vx, st->vy, st->vz, st->vx, st->vy, st->vz), st->ca), st->cr);
-        /* (CYLRAY_REFINE: every root) */
-        const vm pol =
-            F.refine
-                ? side
-                : mand(side, vlt(vabs(nB), vmul(vadd(vabs(ef), vabs(var)), vset1(KM_CANCEL))));
+    if (F.cone) { /* the roots of a cancelled nB, polished (CYLRAY_REFINE: all) */
+        const vm pol = F.refine ? side : mand(side, st->pol);
         if (many(pol)) {
             r1 = vsel(pol, KFN(cone_polish)(st, r1), r1);
             r2 = vsel(pol, KFN(cone_polish)(st, r2), r2);

@@ -24,6 +24,7 @@ typedef struct {
                      * whole line inside its double cone) */
     vf cr, ca;      /* a cone: its radius at the origin's level, and the radius's rate
                      * along the ray */
+    vm pol;         /* a cone: nB cancelled, its roots to be polished */
     /* roots, ends: the side's roots, and entry and exit relative to p */
     vf tn, tf, z0, dv, side_lo, side_hi, t_in, t_out;
     vm ok_in, ok_out;
