@@ -187,8 +187,8 @@ typedef struct cylray_cone {
  * or subnormal vector), the ends so far apart that p1 - p0 or the half height passes
  * 2^62 (as cylray_cylinder_from_endpoints refuses them), a cone steeper than
  * |r1 - r0| = 2^40 |p1 - p0| or with max(r0, r1) (1 + slope) + |r1 - r0| / 2 beyond
- * 2^62, slope = |r1 - r0| / |p1 - p0| (its radius within its bounding sphere, which the
- * kernels square), a radius is neither 0 nor in [2^-60, 2^62] (NaN is refused),
+ * 2^61, slope = |r1 - r0| / |p1 - p0| (its radius near its bounding sphere, which the
+ * kernels square; r0 == r1 is a cylinder and exempt), a radius is neither 0 nor in [2^-60, 2^62] (NaN is refused),
  * both radii are 0, or a flag bit is not CYLRAY_CAPPED_LO or CYLRAY_CAPPED_HI. */
 CYLRAY_API cylray_status cylray_prepare_cone(cylray_prepared *out, const cylray_cone *in);
 

@@ -174,10 +174,11 @@ static int cone_radius_ok(double r)
     return r == 0 || (r >= CYLRAY_MIN_RADIUS && r <= CYLRAY_MAX_COORD);
 }
 
-/* A cone's radius at a point of its bounding sphere is at most
- * rmax (1 + slope) + |r1 - r0| / 2, and the kernels square it (times v.v < 12) and
- * multiply it by the slope times d.v: that radius is kept to 2^62, the slope to 2^40
- * (cylray.h). */
+/* A cone's radius at a point the kernels keep (within 1.42 bounding radii of the
+ * center) is at most 1.42 (rmax (1 + slope) + |r1 - r0| / 2), and the kernels square it
+ * (times v.v < 12) and multiply it by the slope times d.v: that bound is kept to 2^61,
+ * the slope to 2^40 (cylray.h; docs/design.md, "The range"). r0 == r1 prepares a
+ * cylinder, whose limits are its own. */
 static int cone_steep_ok(float r0, float r1, const float p0[3], const float p1[3])
 {
     double len2 = 0;
@@ -186,8 +187,8 @@ static int cone_steep_ok(float r0, float r1, const float p0[3], const float p1[3
         len2 += a * a;
     }
     const double slope = fabs((double)r1 - r0) / sqrt(len2);
-    return slope <= 0x1p40 &&
-           fmax(r0, r1) * (1.0 + slope) + 0.5 * fabs((double)r1 - r0) <= 0x1p62;
+    return r0 == r1 || (slope <= 0x1p40 &&
+                        fmax(r0, r1) * (1.0 + slope) + 0.5 * fabs((double)r1 - r0) <= 0x1p61);
 }
 
 int cylray_cone_ok_(const cylray_cone *in)

@@ -23,9 +23,8 @@
  *   where only the direct form of the second root is safe (see there).
  * KM_GENERATOR: a cone's A below 2^-8 e.e is the cancellation of a ray nearly along a
  *   generator line, not a tangency (kernel/solve.h, the roots).
- * KM_CANCEL: a cone's nB below 2^-5 of its two terms' sizes has lost more than five
- *   bits to cancellation, and its roots are polished (kernel/solve.h). Fewer bits lost
- *   move t by less than an ulp or two, and the test keeps the polish to a few lanes.
+ * KM_CANCEL: a cone's A below 2^-5 e.e: the ray runs within a few degrees of the
+ *   side's lines, where nB and C cancel too, and the roots are polished (kernel/solve.h).
  * KM_NORMAL_OFF: a normal whose squared length is off 1 by more than 2^-10 (a hit point
  *   that rounding moved well off a tiny radius) is normalised exactly; below that one
  *   Newton step of 1/sqrt takes the error to rounding level. */

@@ -108,10 +108,11 @@ CYLRAY_INLINE int KFN(cone_side)(KFN(lanes) *st, const cylray_kat_ *k, const cyl
     const vf a = vmul(kap, KDOT(dx, dy, dz, vx, vy, vz));
     const vf va = vmul(vv, a);
     st->cr = r0, st->ca = a;
-    st->A = vfnma(va, a, st->A); /* e.e - v.v a^2 */
-    const vf ef = KDOT(ex, ey, ez, fx, fy, fz);
-    st->nB = vfma(va, r0, ef);
-    st->pol = vlt(vabs(st->nB), vmul(vadd(vabs(ef), vabs(vmul(va, r0))), vset1(KM_CANCEL)));
+    const vf ee = st->A;
+    st->A = vfnma(va, a, ee);                               /* e.e - v.v a^2 */
+    st->pol = vlt(vabs(st->A), vmul(ee, vset1(KM_CANCEL))); /* see the roots */
+    st->nB = vfma(va, r0, KDOT(ex, ey, ez, fx, fy, fz));
+
     st->C = vsumsq_x(fx, fy, fz, vmul(vmul(vv, r0), r0));
     vf g = KDOT(ex, ey, ez, px, py, pz);
     vf ux = vfma(r0, ex, vmul(a, fx)), uy = vfma(r0, ey, vmul(a, fy)),
@@ -192,15 +193,17 @@ CYLRAY_INLINE int KFN(side)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_k
     return F.capped ? many(mor(st->side, st->inpar)) : many(st->side);
 }
 
-/* A cone's nB = e.f + v.v a r0 cancels where the ray runs nearly along the surface
- * (along a generator line, or leaving it near the apex): nB and C are then differences
- * of terms many times larger, and their rounding errors, uncorrelated, move a root by
- * far more than the inputs' own 2 ulps do (C / 2nB, when A is about 0, carries nB's
- * relative error whole). At the root's point p + t d the quadratic's terms are the
- * size of the radius there, small near an apex, so its C and nB formed there (f - t e
- * and r0 + a t, each rounded once) are accurate, and one step of its small root
- * corrects t. A step that is not small (a root there ill-posed, as at the apex itself,
- * a root running to infinity, or NaN) is not taken. */
+/* A ray that runs within a few degrees of the side's lines (A = e.e - v.v a^2 cancels:
+ * along a generator line, or leaving the side near the apex at a shallow angle) has
+ * nB = e.f + v.v a r0 and C cancelled too: differences of terms many times larger,
+ * whose rounding errors, uncorrelated, move a root by far more than the inputs' own 2
+ * ulps do (with A small, q is about 2 nB, and C / q carries nB's relative error whole;
+ * elsewhere a cancelled nB matters only near a tangency, where sqrt(D) no longer
+ * outweighs it, and the band is as wide). At the root's point p + t d the quadratic's
+ * terms are the size of the radius there, small near an apex, so its C and nB formed
+ * there (f - t e and r0 + a t, each rounded once) are accurate, and one step of its
+ * small root corrects t. A step that is not small (a root there ill-posed, as at the
+ * apex itself, a root running to infinity, or NaN) is not taken. */
 CYLRAY_INLINE vf KFN(cone_polish)(const KFN(lanes) *st, vf t)
 {
     const vf fx = vfnma(t, st->ex, st->fx), fy = vfnma(t, st->ey, st->fy),

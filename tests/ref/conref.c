@@ -67,7 +67,7 @@ int conref_valid(const cylray_cone *c)
         return 0;
     /* the ends at most 2^62 apart in each rounded coordinate and in half length, and
      * the slope |r1 - r0| / |p1 - p0| at most 2^40, max(r0, r1) (1 + slope) +
-     * |r1 - r0| / 2 at most 2^62 (cylray.h) */
+     * |r1 - r0| / 2 at most 2^61, unless r0 == r1 (cylray.h) */
     double len2 = 0;
     for (int k = 0; k < 3; k++) {
         const double a = (double)c->p1[k] - c->p0[k];
@@ -78,8 +78,9 @@ int conref_valid(const cylray_cone *c)
     if (!((float)(0.5 * sqrt(len2)) <= 0x1p62f))
         return 0;
     const double slope = fabs((double)c->r1 - c->r0) / sqrt(len2);
-    if (!(slope <= 0x1p40) ||
-        !(fmax(c->r0, c->r1) * (1.0 + slope) + 0.5 * fabs((double)c->r1 - c->r0) <= 0x1p62))
+    if (c->r0 != c->r1 &&
+        (!(slope <= 0x1p40) ||
+         !(fmax(c->r0, c->r1) * (1.0 + slope) + 0.5 * fabs((double)c->r1 - c->r0) <= 0x1p61)))
         return 0;
     return (c->flags & ~(unsigned)CYLRAY_CAPPED) == 0;
 }
