@@ -250,7 +250,24 @@ CYLRAY_INLINE void KFN(roots)(KFN(lanes) *st, const cylray_kat_ *k, const cylray
             r1 = vsel(small, vdiv(q, A), r1);
     }
     vf r2;
-    if (F.fast) {
+    if (F.sphere) {
+        /* A shifted lane's nB = -p.d is nearly 0 (p is the closest approach, to the
+         * rounding of s), so nB - sign(nB) sq cancels nothing that s + t' does not
+         * round away: the far root by the reciprocal as well, and no division. A lane
+         * the shift left (s = 0) takes C / q as below, by the same branch. */
+        r2 = vmul(vsub(nB, vxorsign(sq, nB)), st->rdd);
+        const vm unshifted = mand(side, veq(st->s, vzero()));
+        if (many(unshifted)) {
+            vf r2q = F.fast ? vmul(C, vrcp_fast(q)) : vdiv(C, q);
+            if (F.fast) {
+                vm small = mand(side, vlt(vabs(q), tiny));
+                if (many(small))
+                    r2q = vsel(small, vdiv(C, q), r2q);
+            }
+            r2q = vsel(mor(veq(q, vzero()), vlt(vmul(q, q), vmul(C, A))), r1, r2q);
+            r2 = vsel(unshifted, r2q, r2);
+        }
+    } else if (F.fast) {
         r2 = vmul(C, vrcp_fast(q));
         vm small = mand(side, vlt(vabs(q), tiny));
         if (many(small))
@@ -260,7 +277,8 @@ CYLRAY_INLINE void KFN(roots)(KFN(lanes) *st, const cylray_kat_ *k, const cylray
     }
     /* By construction q^2 >= A C. Where rounding of C (a point on the surface, or a
      * tangent ray) breaks that, C / q is no root: the two coincide at q / A. */
-    r2 = vsel(mor(veq(q, vzero()), vlt(vmul(q, q), vmul(C, A))), r1, r2);
+    if (!F.sphere)
+        r2 = vsel(mor(veq(q, vzero()), vlt(vmul(q, q), vmul(C, A))), r1, r2);
     /* Near a tangency D is known only to a few ulps of A R^2 (the rounding of A, R^2
      * and g), and C, at a point near the surface, only to a few ulps of R^2: C / q then
      * divides one rounding error by another and can put the root anywhere, even past
