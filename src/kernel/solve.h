@@ -5,7 +5,10 @@
 /* Stage 3, the shift: w's rounding error, and the origin moved by s along the ray
  * with the product s d exact. The inputs are read again rather than kept across the
  * rejection (the caller's CYLRAY_REREAD): a rejected vector then spills nothing, and
- * the rest loses nothing (it would reload them from the stack instead). */
+ * the rest loses nothing (it would reload them from the stack instead). p = s d + (wh +
+ * wl) is o - c + s d: without an FMA (simd/x86.h) it is formed from o and c in double,
+ * the same bits, and wl is then left to the stages that read it (the slide, an aligned
+ * g). */
 CYLRAY_INLINE void KFN(shift)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
 {
     KFN(load_o)(st, k, F);
@@ -13,9 +16,9 @@ CYLRAY_INLINE void KFN(shift)(KFN(lanes) *st, const cylray_kat_ *k, const cylray
     st->wlx = vsub(vsub(st->ox, vsub(st->whx, bx)), vadd(st->cx, bx));
     st->wly = vsub(vsub(st->oy, vsub(st->why, by)), vadd(st->cy, by));
     st->wlz = vsub(vsub(st->oz, vsub(st->whz, bz)), vadd(st->cz, bz));
-    st->px = vfma_x2(st->s, st->dx, st->whx, st->wlx);
-    st->py = vfma_x2(st->s, st->dy, st->why, st->wly);
-    st->pz = vfma_x2(st->s, st->dz, st->whz, st->wlz);
+    st->px = vfma_xw(st->s, st->dx, st->ox, st->cx, st->whx, st->wlx);
+    st->py = vfma_xw(st->s, st->dy, st->oy, st->cy, st->why, st->wly);
+    st->pz = vfma_xw(st->s, st->dz, st->oz, st->cz, st->whz, st->wlz);
 }
 
 /* An infinite cylinder has no center: c may slide along the axis (any slide u is

@@ -33,6 +33,7 @@
 #define vfnma(a, b, c) vfmsq_f32(c, a, b)
 #define vfma_x(a, b, c) vfmaq_f32(c, a, b)
 #define vfma_x2(a, b, ch, cl) vaddq_f32(vfmaq_f32(ch, a, b), cl)
+#define vfma_xw(a, b, o, c, ch, cl) vfma_x2(a, b, ch, cl)
 #define vsumsq_x(a, b, c, k) vsubq_f32(vfmaq_f32(vfmaq_f32(vmulq_f32(c, c), b, b), a, a), k)
 static inline vf KFN(dop_x)(vf a, vf b, vf c, vf d)
 {

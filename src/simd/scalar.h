@@ -6,6 +6,8 @@
  *     used where one more rounding does not matter;
  *   vfma_x(a,b,c) = a*b + c with the product exact, vfma_x2(a,b,ch,cl) = a*b + ch + cl
  *     with the product exact (for c given as a two-term sum, |cl| <= ulp(ch)),
+ *     vfma_xw(a,b,o,c,ch,cl) = vfma_x2(a,b,ch,cl) where ch + cl = o - c exactly (a
+ *     two-sum): an ISA may form it from o and c instead,
  *   vsumsq_x(a,b,c,k) = a*a + b*b + c*c - k, with the sum of squares as an FMA chain
  *     forms it (in double, rounded once, where the ISA has no FMA), and
  *   vdop_x(a,b,c,d) = a*b - c*d within about one ulp: used where it matters;
@@ -67,6 +69,7 @@ static inline float KFN(dop_x)(float a, float b, float c, float d)
 }
 #endif
 #define vdop_x(a, b, c, d) KFN(dop_x)(a, b, c, d)
+#define vfma_xw(a, b, o, c, ch, cl) vfma_x2(a, b, ch, cl)
 #define vrcp_fast(x) (1.0f / (x))
 #define vrsqrt_fast(x) (1.0f / sqrtf(x))
 

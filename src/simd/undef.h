@@ -29,6 +29,7 @@
 #undef vfnma
 #undef vfma_x
 #undef vfma_x2
+#undef vfma_xw
 #undef vsumsq_x
 #undef vdop_x
 #undef vrcp_est_

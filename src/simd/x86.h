@@ -64,6 +64,7 @@
 #define vfnma(a, b, c) VX(fnmadd_ps)(a, b, c)
 #define vfma_x(a, b, c) VX(fmadd_ps)(a, b, c)
 #define vfma_x2(a, b, ch, cl) vadd(VX(fmadd_ps)(a, b, ch), cl)
+#define vfma_xw(a, b, o, c, ch, cl) vfma_x2(a, b, ch, cl)
 #define vsumsq_x(a, b, c, k) vsub(VX(fmadd_ps)(a, a, VX(fmadd_ps)(b, b, vmul(c, c))), k)
 /* Kahan's a*b - c*d: the rounding error of c*d is recovered exactly by an FMA. */
 static inline vf KFN(dop_x)(vf a, vf b, vf c, vf d)
@@ -82,7 +83,10 @@ static inline vf KFN(dop_x)(vf a, vf b, vf c, vf d)
 /* Each is one expression E(H) in the double lanes H(x) of its operands, evaluated for
  * lanes 0-1 and 2-3 and rounded to float once. */
 #define VLO_(x) _mm_cvtps_pd(x)
-#define VHI_(x) _mm_cvtps_pd(_mm_movehl_ps(x, x))
+/* The high lanes by a generic shuffle rather than movhlps's builtin: the compiler then
+ * sees that those of a broadcast (the axis, R^2) are its low lanes, converts it once
+ * and keeps one double vector of it instead of two. */
+#define VHI_(x) _mm_cvtps_pd(__builtin_shufflevector(x, x, 2, 3, 2, 3))
 #define VIN_DOUBLE_(E) _mm_movelh_ps(_mm_cvtpd_ps(E(VLO_)), _mm_cvtpd_ps(E(VHI_)))
 static inline __m128 KFN(fma_x)(__m128 a, __m128 b, __m128 c)
 {
@@ -94,6 +98,15 @@ static inline __m128 KFN(fma_x)(__m128 a, __m128 b, __m128 c)
 static inline __m128 KFN(fma_x2)(__m128 a, __m128 b, __m128 ch, __m128 cl)
 {
 #define E_(H) _mm_add_pd(_mm_mul_pd(H(a), H(b)), _mm_add_pd(H(ch), H(cl)))
+    return VIN_DOUBLE_(E_);
+#undef E_
+}
+/* a*b + (o - c), where ch + cl = o - c exactly (a two-sum of floats that did not
+ * overflow): fma_x2's value, since ch + cl and o - c round to the same double. From o
+ * and c the two-sum's low part need not be formed, and a broadcast c converts once. */
+static inline __m128 KFN(fma_xw)(__m128 a, __m128 b, __m128 o, __m128 c)
+{
+#define E_(H) _mm_add_pd(_mm_mul_pd(H(a), H(b)), _mm_sub_pd(H(o), H(c)))
     return VIN_DOUBLE_(E_);
 #undef E_
 }
@@ -119,6 +132,7 @@ static inline __m128 KFN(dop_x)(__m128 a, __m128 b, __m128 c, __m128 d)
 #undef VIN_DOUBLE_
 #define vfma_x(a, b, c) KFN(fma_x)(a, b, c)
 #define vfma_x2(a, b, ch, cl) KFN(fma_x2)(a, b, ch, cl)
+#define vfma_xw(a, b, o, c, ch, cl) KFN(fma_xw)(a, b, o, c)
 #define vsumsq_x(a, b, c, k) KFN(sumsq_x)(a, b, c, k)
 #define vdop_x(a, b, c, d) KFN(dop_x)(a, b, c, d)
 #endif
