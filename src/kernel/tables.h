@@ -60,20 +60,52 @@
     }
 #define KLEAF_(b)                                                                              \
     KLEAFDRV_(lf_##b, leaf, KLFL_(CYLRAY_SPEC_KF_(b)))                                         \
-    KLEAFDRV_(sf_##b, leaf, KLFL_(CYLRAY_SPEC_KF_(b)) | CYLRAY_KF_SPHERE)                      \
-    KLEAFDRV_(cf_##b, leaf, KLFL_(CYLRAY_SPEC_KF_(b)) | CYLRAY_KF_CONE)
+    KLEAFDRV_(sf_##b, leaf, KLFL_(CYLRAY_SPEC_KF_(b)) | CYLRAY_KF_SPHERE)
 #define KLEAFOCC_(b)                                                                           \
     KLEAFDRV_(lo_##b, leaf, KLFL_(CYLRAY_OCC_SPEC_KF_(b)))                                     \
-    KLEAFDRV_(so_##b, leaf, KLFL_(CYLRAY_OCC_SPEC_KF_(b)) | CYLRAY_KF_SPHERE)                  \
-    KLEAFDRV_(co_##b, leaf, KLFL_(CYLRAY_OCC_SPEC_KF_(b)) | CYLRAY_KF_CONE)
+    KLEAFDRV_(so_##b, leaf, KLFL_(CYLRAY_OCC_SPEC_KF_(b)) | CYLRAY_KF_SPHERE)
 #define KLEAFANY_(b)                                                                           \
     KLEAFDRV_(lf_##b, leaf_any, KLFL_(CYLRAY_SPEC_KF_(b)))                                     \
-    KLEAFDRV_(sf_##b, leaf_any, KLFL_(CYLRAY_SPEC_KF_(b)) | CYLRAY_KF_SPHERE)                  \
-    KLEAFDRV_(cf_##b, leaf_any, KLFL_(CYLRAY_SPEC_KF_(b)) | CYLRAY_KF_CONE)
+    KLEAFDRV_(sf_##b, leaf_any, KLFL_(CYLRAY_SPEC_KF_(b)) | CYLRAY_KF_SPHERE)
 #define KLEAFOCCANY_(b)                                                                        \
     KLEAFDRV_(lo_##b, leaf_any, KLFL_(CYLRAY_OCC_SPEC_KF_(b)))                                 \
-    KLEAFDRV_(so_##b, leaf_any, KLFL_(CYLRAY_OCC_SPEC_KF_(b)) | CYLRAY_KF_SPHERE)              \
-    KLEAFDRV_(co_##b, leaf_any, KLFL_(CYLRAY_OCC_SPEC_KF_(b)) | CYLRAY_KF_CONE)
+    KLEAFDRV_(so_##b, leaf_any, KLFL_(CYLRAY_OCC_SPEC_KF_(b)) | CYLRAY_KF_SPHERE)
+/* A slot served by another's drivers. */
+#define KALIAS_(kind, b, b0)                                                                   \
+    KSLOT_(kind, b, KFN(pk1_##kind##_##b0)(P, R, H, n, a, rt),                                 \
+           return KFN(pk_##kind##_##b0)(P, R, H, n, a, rt),                                    \
+           KFN(st_##kind##_##b0)(P, R, H, o, n, rt))
+#define KLEAFALIAS_(name, target)                                                              \
+    static int KFN(name)(const float *L, size_t lm, cylray_ray1 *r, cylray_hit1 *h,            \
+                         unsigned rt)                                                          \
+    {                                                                                          \
+        return KFN(target)(L, lm, r, h, rt);                                                   \
+    }
+/* The cone specialises only its plain kernels, with and without normals: CYLRAY_FAST
+ * takes them as they are (the estimates buy a cone nothing: its divisions are few, and
+ * the accurate kernel is within FAST's promise), and CYLRAY_REFINE, the rarer flag,
+ * takes the drivers that read their flags at run time. A third of the cone's kernels,
+ * which keeps the library within its size. */
+/* clang-format off */
+#define KCONE_(k)                                                                              \
+    KISECT_(k, 0) KISECT_(k, 1) KALIAS_(k, 2, 0) KALIAS_(k, 3, 1)                              \
+    KISECTANY_(k, 4) KISECTANY_(k, 5) KISECTANY_(k, 6) KISECTANY_(k, 7)                        \
+    KOCC_(k, 0) KALIAS_(k, o1, o0) KOCCANY_(k, 2) KOCCANY_(k, 3)
+#define KLEAFCONE_                                                                             \
+    KLEAFDRV_(cf_0, leaf, KLFL_(CYLRAY_SPEC_KF_(0)) | CYLRAY_KF_CONE)                          \
+    KLEAFDRV_(cf_1, leaf, KLFL_(CYLRAY_SPEC_KF_(1)) | CYLRAY_KF_CONE)                          \
+    KLEAFALIAS_(cf_2, cf_0)                                                                    \
+    KLEAFALIAS_(cf_3, cf_1)                                                                    \
+    KLEAFDRV_(cf_4, leaf_any, KLFL_(CYLRAY_SPEC_KF_(4)) | CYLRAY_KF_CONE)                      \
+    KLEAFDRV_(cf_5, leaf_any, KLFL_(CYLRAY_SPEC_KF_(5)) | CYLRAY_KF_CONE)                      \
+    KLEAFDRV_(cf_6, leaf_any, KLFL_(CYLRAY_SPEC_KF_(6)) | CYLRAY_KF_CONE)                      \
+    KLEAFDRV_(cf_7, leaf_any, KLFL_(CYLRAY_SPEC_KF_(7)) | CYLRAY_KF_CONE)                      \
+    KLEAFDRV_(co_0, leaf, KLFL_(CYLRAY_OCC_SPEC_KF_(0)) | CYLRAY_KF_CONE)                      \
+    KLEAFALIAS_(co_1, co_0)                                                                    \
+    KLEAFDRV_(co_2, leaf_any, KLFL_(CYLRAY_OCC_SPEC_KF_(2)) | CYLRAY_KF_CONE)                  \
+    KLEAFDRV_(co_3, leaf_any, KLFL_(CYLRAY_OCC_SPEC_KF_(3)) | CYLRAY_KF_CONE)
+/* clang-format on */
+_Static_assert(CYLRAY_VARIANT_CONE == 7, "the cone is kind 7 of the tables");
 #define K8_(X, k) X(k, 0) X(k, 1) X(k, 2) X(k, 3) X(k, 4) X(k, 5) X(k, 6) X(k, 7)
 #define K4_(X, k) X(k, 0) X(k, 1) X(k, 2) X(k, 3)
 #define KALL8_(X)                                                                              \
@@ -89,9 +121,9 @@
     KISECT_(k, 1) KISECT_(k, 2) KISECT_(k, 3) KISECT_(k, 4) KISECT_(k, 5) KISECTANY_(k, 6)     \
         KISECTANY_(k, 7) KOCC_(k, 0) KOCC_(k, 1) KOCC_(k, 2) KOCCANY_(k, 3)
 KKIND_(0)
-KKIND_(1) KKIND_(2) KKIND_(3) KKIND_(4) KKIND_(5) KKIND_(6) KKIND_(7) KLEAF_(0) KLEAF_(1) KLEAF_(2) KLEAF_(3)
+KKIND_(1) KKIND_(2) KKIND_(3) KKIND_(4) KKIND_(5) KKIND_(6) KCONE_(7) KLEAF_(0) KLEAF_(1) KLEAF_(2) KLEAF_(3)
     KLEAF_(4) KLEAF_(5) KLEAFANY_(6) KLEAFANY_(7) KLEAFOCC_(0) KLEAFOCC_(1) KLEAFOCC_(2)
-        KLEAFOCCANY_(3)
+        KLEAFOCCANY_(3) KLEAFCONE_
 /* clang-format on */
 
 #define KREF_PK1_(k, b) KFN(pk1_##k##_##b),
@@ -160,6 +192,10 @@ KTABLE_SIZE_(leaf_cone_occ_table, CYLRAY_OCC_SPECS);
 #undef KISECTANY_
 #undef KOCCANY_
 #undef KKIND_
+#undef KCONE_
+#undef KLEAFCONE_
+#undef KALIAS_
+#undef KLEAFALIAS_
 #undef K8_
 #undef K4_
 #undef KALL8_
