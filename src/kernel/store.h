@@ -129,21 +129,14 @@ CYLRAY_INLINE void KFN(normals)(const KFN(lanes) *st, const cylray_kat_ *k,
         nz = vsel(cap, F.aligned ? sgn : vmul(sgn, n2), nz);
     }
     /* One Newton step of 1/sqrt(n.n) around 1 removes what rounding left of the
-     * length error, whatever the hit point's distance from the axis. A sphere's needs
-     * none: its hit point lies on the surface to a few ulps of R wherever the root is
-     * (near a tangency a root's error moves it along the surface), so |n| is 1 to a
-     * few ulps already (docs/design.md section 9). */
+     * length error, whatever the hit point's distance from the axis. */
     vf l2 = KDOT(nx, ny, nz, nx, ny, nz);
-    vf corr = F.sphere ? one : vfnma(vset1(0.5f), l2, vset1(1.5f));
+    vf corr = vfnma(vset1(0.5f), l2, vset1(1.5f));
     vm off = mand(hit, vgt(vabs(vsub(l2, one)), vset1(KM_NORMAL_OFF)));
     if (many(off)) /* rare enough to branch */
         KFN(renormalize)(st, F, off, &nx, &ny, &nz, &corr);
     if (F.ff)
         corr = vsel(st->back, vneg(corr), corr);
-    if (F.sphere && !F.ff) { /* corr is 1 */
-        *onx = nx, *ony = ny, *onz = nz;
-        return;
-    }
     *onx = vmul(nx, corr), *ony = vmul(ny, corr), *onz = vmul(nz, corr);
 }
 
