@@ -11,6 +11,7 @@
 
 #include "cylray.h"
 #include "guarded.h"
+#include "judged.h"
 #include "sphref.h"
 #include "tcheck.h"
 
@@ -142,65 +143,10 @@ LEAF_REFUSALS(4)
 LEAF_REFUSALS(8)
 LEAF_REFUSALS(16)
 
-/* Rays through each width and path of every ISA on sphere P; judged against the exact
- * band (sph non-NULL) or required to miss (a zeroed prepared struct). The batch
- * repeats its first `distinct` rays, whose bands are evaluated once. */
-static void run_rays(const cylray_prepared *P, const cylray_sphere *sph, const gbatch *b,
-                     size_t n, size_t distinct, const char *what)
+static void band_of(const void *shape, const float o[3], const float d[3], float tmin,
+                    float tmax, unsigned flags, cylref_band *out)
 {
-    const cylray_kernels *isas[CYLRAY_ISA_COUNT];
-    const int nisa = g_isas(isas);
-    static const int widths[] = {4, 8, 16, G_STREAM};
-    cylref_band bands[2][4];
-    for (size_t j = 0; sph && j < distinct && j < 4; j++) {
-        const float o3[3] = {b->f[G_OX][j], b->f[G_OY][j], b->f[G_OZ][j]};
-        const float d3[3] = {b->f[G_DX][j], b->f[G_DY][j], b->f[G_DZ][j]};
-        for (int cull = 0; cull < 2; cull++)
-            sphref_band_eval(sph, o3, d3, b->f[G_TMIN][j], b->f[G_TMAX][j],
-                             cull ? CYLRAY_CULL_BACK : 0u, &bands[cull][j]);
-    }
-    for (int i = 0; i < nisa; i++)
-        for (unsigned flags = 0; flags <= CYLRAY_FLAGS_ALL; flags++)
-            for (size_t wi = 0; wi < sizeof widths / sizeof widths[0]; wi++) {
-                const int w = widths[wi];
-                const size_t m = w == G_STREAM ? n : (size_t)w;
-                gresult r, o;
-                g_intersect(isas[i], w, P, b, m, 0xffffffffu, flags, (unsigned)wi, &r);
-                g_occluded(isas[i], w, P, b, m, 0xffffffffu, flags, (unsigned)wi, &o);
-                CHECK(o.hit == r.hit, "%s %s w=%s flags %#x: occluded %#llx, intersect %#llx",
-                      what, isas[i]->name, g_width_name(w), flags, (unsigned long long)o.hit,
-                      (unsigned long long)r.hit);
-                for (size_t j = 0; j < m; j++) {
-                    const int hit = (int)(r.hit >> j & 1);
-                    if (!sph) {
-                        CHECK(!hit, "%s %s w=%s flags %#x lane %zu: a zeroed prepared hit",
-                              what, isas[i]->name, g_width_name(w), flags, j);
-                        continue;
-                    }
-                    const cylref_band *band =
-                        &bands[(flags & CYLRAY_CULL_BACK) != 0][j % distinct];
-                    double ub = 0;
-                    int v = sphref_judge(band, hit, hit ? r.part[j] : 0, hit ? r.t[j] : 0, &ub);
-                    const double tol = (flags & CYLRAY_FAST) ? 8 : 4;
-                    char rs[256];
-                    CHECK(v == 0 && ub <= tol,
-                          "%s %s w=%s flags %#x lane %zu %s: %s t %a part %#x; exact %s t %a "
-                          "part %#x (verdict %d, %.3g ulps beyond)",
-                          what, isas[i]->name, g_width_name(w), flags, j,
-                          g_ray_str(b, j, rs, sizeof rs), hit ? "hit" : "miss",
-                          hit ? (double)r.t[j] : 0.0, hit ? (unsigned)r.part[j] : 0u,
-                          band->exact.hit ? "hit" : "miss", band->exact.t,
-                          (unsigned)band->exact.part, v, ub);
-                }
-            }
-}
-
-/* Fills the batch with n rays repeating the k given ones. */
-static void fill(gbatch *b, const float (*rays)[8], size_t k, size_t n)
-{
-    for (size_t j = 0; j < n; j++)
-        for (int f = 0; f < G_NFIELD; f++)
-            b->f[f][j] = rays[j % k][f];
+    sphref_band_eval((const cylray_sphere *)shape, o, d, tmin, tmax, flags, out);
 }
 
 static void edge_answers(void)
@@ -237,20 +183,20 @@ static void edge_answers(void)
         CHECK(cylray_prepare_sphere(&P, &cases[i].s) == CYLRAY_OK, "edge sphere %zu refused",
               i);
         gbatch b;
-        fill(&b, cases[i].rays, 4, 16);
+        judged_fill(&b, cases[i].rays, 4, 16);
         char what[64];
         snprintf(what, sizeof what, "edge sphere %zu", i);
-        run_rays(&P, &cases[i].s, &b, 13, 4, what);
+        judged_rays(&P, band_of, &cases[i].s, &b, 13, 4, what);
     }
 
     /* A zeroed prepared struct: never a hit, nothing written (guarded.h checks that). */
     cylray_prepared Z;
     memset(&Z, 0, sizeof Z);
     gbatch b;
-    fill(&b, cases[0].rays, 4, 16);
-    run_rays(&Z, NULL, &b, 13, 4, "zeroed");
-    fill(&b, cases[1].rays, 4, 16);
-    run_rays(&Z, NULL, &b, 13, 4, "zeroed");
+    judged_fill(&b, cases[0].rays, 4, 16);
+    judged_rays(&Z, band_of, NULL, &b, 13, 4, "zeroed");
+    judged_fill(&b, cases[1].rays, 4, 16);
+    judged_rays(&Z, band_of, NULL, &b, 13, 4, "zeroed");
 }
 
 int main(void)

@@ -4,6 +4,7 @@
  * and algebraic form, the band's consistency, and the generators. */
 #include "congen.h"
 #include "conref.h"
+#include "test_ref.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -12,16 +13,6 @@
 int test_conref(void);
 
 static int failures;
-
-#define CHECK(cond, ...)                                                                       \
-    do {                                                                                       \
-        if (!(cond)) {                                                                         \
-            failures++;                                                                        \
-            printf("FAIL %s:%d: %s: ", __FILE__, __LINE__, #cond);                             \
-            printf(__VA_ARGS__);                                                               \
-            printf("\n");                                                                      \
-        }                                                                                      \
-    } while (0)
 
 typedef struct {
     const char *what;
@@ -36,7 +27,7 @@ typedef struct {
 
 #define R2 0.70710678118654752440
 
-static void test_hand(void)
+static void test_cone_hand(void)
 {
     const float I = INFINITY;
     const int S = CYLRAY_SIDE, SB = CYLRAY_SIDE | CYLRAY_BACKFACE, LO = CYLRAY_CAP_LO,
@@ -320,7 +311,7 @@ static void test_generators(void)
 
 int test_conref(void)
 {
-    test_hand();
+    test_cone_hand();
     test_generators();
     test_independent();
     return failures;

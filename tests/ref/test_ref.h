@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
-/* test_ref.h - what the cylinder reference's two test files share: the check, which
- * counts into the including file's own `failures`, and the upright cylinder. */
+/* test_ref.h - what the reference's test files share: the check, which counts into the
+ * including file's own `failures`, and the upright cylinder. */
 #ifndef TEST_REF_H
 #define TEST_REF_H
 
@@ -20,7 +20,7 @@ int test_hand(void); /* test_hand.c */
         }                                                                                      \
     } while (0)
 
-static cylray_cylinder cyl_z(float R, float H, unsigned flags)
+static inline cylray_cylinder cyl_z(float R, float H, unsigned flags)
 {
     cylray_cylinder c = {{0, 0, 0}, {0, 0, 1}, R, H, flags};
     return c;

@@ -4,6 +4,7 @@
  * verdicts on a double-precision solver, and the generators. */
 #include "sphgen.h"
 #include "sphref.h"
+#include "test_ref.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -12,16 +13,6 @@
 int test_sphref(void);
 
 static int failures;
-
-#define CHECK(cond, ...)                                                                       \
-    do {                                                                                       \
-        if (!(cond)) {                                                                         \
-            failures++;                                                                        \
-            printf("FAIL %s:%d: %s: ", __FILE__, __LINE__, #cond);                             \
-            printf(__VA_ARGS__);                                                               \
-            printf("\n");                                                                      \
-        }                                                                                      \
-    } while (0)
 
 typedef struct {
     const char *what;
@@ -34,7 +25,7 @@ typedef struct {
     double n[3];
 } hand_case;
 
-static void test_hand(void)
+static void test_sphere_hand(void)
 {
     const float I = INFINITY;
     const int S = CYLRAY_SIDE, SB = CYLRAY_SIDE | CYLRAY_BACKFACE;
@@ -361,7 +352,7 @@ static void test_generators(void)
 
 int test_sphref(void)
 {
-    test_hand();
+    test_sphere_hand();
     test_generators();
     test_independent();
     test_band();
