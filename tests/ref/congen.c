@@ -331,45 +331,7 @@ static void gen_camera(const cgeo *g, cylgen_rng *cam, size_t index, congen_case
 static void gen_bad(cylgen_rng *r, const cgeo *g, congen_case *c)
 {
     towards(r, g, g->R * uni(r, 1.5, 10), 1.2, c);
-    const float nan = NAN, inf = INFINITY;
-    uint64_t u = cylgen_next(r);
-    int k = (int)((u >> 8) % 3);
-    switch (u % 12) {
-    case 0:
-        c->o[k] = nan;
-        break;
-    case 1:
-        c->d[k] = nan;
-        break;
-    case 2:
-        c->o[k] = (u >> 16) & 1 ? inf : -inf;
-        break;
-    case 3:
-        c->d[k] = (u >> 16) & 1 ? inf : -inf;
-        break;
-    case 4:
-        c->d[0] = c->d[1] = c->d[2] = 0;
-        break;
-    case 5:
-        c->tmin = nan;
-        break;
-    case 6:
-        c->tmax = nan;
-        break;
-    case 7:
-        c->tmin = inf;
-        break;
-    case 8:
-        c->tmax = -inf;
-        break;
-    case 9:
-        c->tmin = 2 * c->tmax;
-        c->tmax = 1;
-        c->tmin = c->tmin > 2 ? c->tmin : 2;
-        break;
-    default:
-        break;
-    }
+    cylgen_spoil(cylgen_next(r), c->o, c->d, &c->tmin, &c->tmax);
 }
 
 static void scale_d(cylgen_rng *r, int span, congen_case *c)

@@ -575,3 +575,48 @@ void cylgen_make_shared(int category, uint64_t seed, size_t n, cylgen_case *out)
 {
     make_range(category, seed, n, out, 1);
 }
+
+/* Spoils one input of a ray by the draw u (the sphere's and the cone's NaN lanes): NaN
+ * or Inf in o, d, tmin or tmax, a zero direction, an empty interval; 2 draws in 12
+ * leave the ray good, a lane beside the bad ones. */
+void cylgen_spoil(uint64_t u, float o[3], float d[3], float *tmin, float *tmax)
+{
+    const float nan = NAN, inf = INFINITY;
+    int k = (int)((u >> 8) % 3);
+    switch (u % 12) {
+    case 0:
+        o[k] = nan;
+        break;
+    case 1:
+        d[k] = nan;
+        break;
+    case 2:
+        o[k] = (u >> 16) & 1 ? inf : -inf;
+        break;
+    case 3:
+        d[k] = (u >> 16) & 1 ? inf : -inf;
+        break;
+    case 4:
+        d[0] = d[1] = d[2] = 0;
+        break;
+    case 5:
+        *tmin = nan;
+        break;
+    case 6:
+        *tmax = nan;
+        break;
+    case 7:
+        *tmin = inf;
+        break;
+    case 8:
+        *tmax = -inf;
+        break;
+    case 9: /* an empty interval */
+        *tmin = 2 * *tmax;
+        *tmax = 1;
+        *tmin = *tmin > 2 ? *tmin : 2;
+        break;
+    default: /* a good lane beside the bad ones */
+        break;
+    }
+}

@@ -65,6 +65,9 @@ void cylgen_seed(cylgen_rng *r, uint64_t seed);
 uint64_t cylgen_next(cylgen_rng *r);
 double cylgen_uniform(cylgen_rng *r); /* [0, 1), 53 bits */
 uint64_t cylgen_splitmix64(uint64_t *state);
+/* Spoils one input of the ray by the draw u: NaN or Inf in o, d, tmin or tmax, a zero
+ * direction, or an empty interval (u % 12 below 10; otherwise the ray stays good). */
+void cylgen_spoil(uint64_t u, float o[3], float d[3], float *tmin, float *tmax);
 
 #ifdef __cplusplus
 }
