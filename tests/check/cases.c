@@ -13,72 +13,63 @@ cylray_status prepare_case(cylray_prepared *p, const ref_case *rc)
                       : cylray_prepare(p, &rc->c.cyl);
 }
 
-static void sphere_case(ref_case *rc, const sphgen_case *g)
+/* What the cases of a sphere or cone category need of their shape's generator and
+ * reference: the generator cases are of `size` bytes each. */
+typedef struct {
+    size_t size;
+    void (*make)(int cat, uint64_t seed, size_t n, void *out, int shared);
+    void (*to_case)(ref_case *rc, const void *g);
+    void (*band)(const ref_case *rc, unsigned flags, cylref_band *out);
+} shape_gen;
+
+static void ray_of(ref_case *rc, const float o[3], const float d[3], float tmin, float tmax)
 {
+    for (int k = 0; k < 3; k++) {
+        rc->c.o[k] = o[k];
+        rc->c.d[k] = d[k];
+    }
+    rc->c.tmin = tmin;
+    rc->c.tmax = tmax;
+}
+
+static void sphere_make(int cat, uint64_t seed, size_t n, void *out, int shared)
+{
+    (shared ? sphgen_make_shared : sphgen_make)(cat - CAT_SPHERE, seed, n, out);
+}
+static void sphere_case(ref_case *rc, const void *gv)
+{
+    const sphgen_case *g = gv;
     rc->sphere = 1;
     rc->sph = g->sph;
-    for (int k = 0; k < 3; k++) {
-        rc->c.o[k] = g->o[k];
-        rc->c.d[k] = g->d[k];
-    }
-    rc->c.tmin = g->tmin;
-    rc->c.tmax = g->tmax;
+    ray_of(rc, g->o, g->d, g->tmin, g->tmax);
 }
-
-static ref_case *make_sphere_cases(int cat, uint64_t seed, size_t n_packet,
-                                   const size_t *lengths, size_t n_lengths, size_t *total)
+static void sphere_band(const ref_case *rc, unsigned flags, cylref_band *out)
 {
-    size_t ns = 0, longest = n_packet;
-    for (size_t i = 0; i < n_lengths; i++) {
-        ns += lengths[i];
-        longest = lengths[i] > longest ? lengths[i] : longest;
-    }
-    size_t n = n_packet + ns;
-    ref_case *rc = calloc(n, sizeof *rc);
-    sphgen_case *gc = malloc((longest ? longest : 1) * sizeof *gc);
-    if (!rc || !gc) {
-        fprintf(stderr, "cylcheck: out of memory\n");
-        exit(2);
-    }
-    sphgen_make(cat - CAT_SPHERE, seed, n_packet, gc);
-    for (size_t i = 0; i < n_packet; i++)
-        sphere_case(&rc[i], &gc[i]);
-    size_t at = n_packet;
-    for (size_t li = 0; li < n_lengths; li++) {
-        sphgen_make_shared(cat - CAT_SPHERE,
-                           seed ^ (0x5354524541ull + li) * 0x9e3779b97f4a7c15ull, lengths[li],
-                           gc);
-        for (size_t i = 0; i < lengths[li]; i++)
-            sphere_case(&rc[at++], &gc[i]);
-    }
-    for (size_t i = 0; i < n; i++) {
-        const cylgen_case *c = &rc[i].c;
-        rc[i].index = (int)i;
-        if (opt.only_case >= 0 && (int)i != opt.only_case)
-            continue;
-        sphref_band_eval(&rc[i].sph, c->o, c->d, c->tmin, c->tmax, 0, &rc[i].band[0]);
-        sphref_band_eval(&rc[i].sph, c->o, c->d, c->tmin, c->tmax, CYLRAY_CULL_BACK,
-                         &rc[i].band[1]);
-    }
-    free(gc);
-    *total = n;
-    return rc;
+    sphref_band_eval(&rc->sph, rc->c.o, rc->c.d, rc->c.tmin, rc->c.tmax, flags, out);
 }
+static const shape_gen spheres = {sizeof(sphgen_case), sphere_make, sphere_case, sphere_band};
 
-static void cone_case(ref_case *rc, const congen_case *g)
+static void cone_make(int cat, uint64_t seed, size_t n, void *out, int shared)
 {
+    (shared ? congen_make_shared : congen_make)(cat - CAT_CONE, seed, n, out);
+}
+static void cone_case(ref_case *rc, const void *gv)
+{
+    const congen_case *g = gv;
     rc->cone = 1;
     rc->con = g->cone;
-    for (int k = 0; k < 3; k++) {
-        rc->c.o[k] = g->o[k];
-        rc->c.d[k] = g->d[k];
-    }
-    rc->c.tmin = g->tmin;
-    rc->c.tmax = g->tmax;
+    ray_of(rc, g->o, g->d, g->tmin, g->tmax);
 }
+static void cone_band(const ref_case *rc, unsigned flags, cylref_band *out)
+{
+    conref_band_eval(&rc->con, rc->c.o, rc->c.d, rc->c.tmin, rc->c.tmax, flags, out);
+}
+static const shape_gen cones = {sizeof(congen_case), cone_make, cone_case, cone_band};
 
-static ref_case *make_cone_cases(int cat, uint64_t seed, size_t n_packet, const size_t *lengths,
-                                 size_t n_lengths, size_t *total)
+/* A sphere or cone category's cases: n_packet of their own, then one shared shape per
+ * stream length, each with its two bands (plain and culling). */
+static ref_case *make_shape_cases(const shape_gen *sg, int cat, uint64_t seed, size_t n_packet,
+                                  const size_t *lengths, size_t n_lengths, size_t *total)
 {
     size_t ns = 0, longest = n_packet;
     for (size_t i = 0; i < n_lengths; i++) {
@@ -87,30 +78,27 @@ static ref_case *make_cone_cases(int cat, uint64_t seed, size_t n_packet, const 
     }
     size_t n = n_packet + ns;
     ref_case *rc = calloc(n, sizeof *rc);
-    congen_case *gc = malloc((longest ? longest : 1) * sizeof *gc);
+    unsigned char *gc = malloc((longest ? longest : 1) * sg->size);
     if (!rc || !gc) {
         fprintf(stderr, "cylcheck: out of memory\n");
         exit(2);
     }
-    congen_make(cat - CAT_CONE, seed, n_packet, gc);
+    sg->make(cat, seed, n_packet, gc, 0);
     for (size_t i = 0; i < n_packet; i++)
-        cone_case(&rc[i], &gc[i]);
+        sg->to_case(&rc[i], gc + i * sg->size);
     size_t at = n_packet;
     for (size_t li = 0; li < n_lengths; li++) {
-        congen_make_shared(cat - CAT_CONE,
-                           seed ^ (0x5354524541ull + li) * 0x9e3779b97f4a7c15ull, lengths[li],
-                           gc);
+        sg->make(cat, seed ^ (0x5354524541ull + li) * 0x9e3779b97f4a7c15ull, lengths[li], gc,
+                 1);
         for (size_t i = 0; i < lengths[li]; i++)
-            cone_case(&rc[at++], &gc[i]);
+            sg->to_case(&rc[at++], gc + i * sg->size);
     }
     for (size_t i = 0; i < n; i++) {
-        const cylgen_case *c = &rc[i].c;
         rc[i].index = (int)i;
         if (opt.only_case >= 0 && (int)i != opt.only_case)
             continue;
-        conref_band_eval(&rc[i].con, c->o, c->d, c->tmin, c->tmax, 0, &rc[i].band[0]);
-        conref_band_eval(&rc[i].con, c->o, c->d, c->tmin, c->tmax, CYLRAY_CULL_BACK,
-                         &rc[i].band[1]);
+        sg->band(&rc[i], 0, &rc[i].band[0]);
+        sg->band(&rc[i], CYLRAY_CULL_BACK, &rc[i].band[1]);
     }
     free(gc);
     *total = n;
@@ -123,9 +111,9 @@ ref_case *make_cases(int cat, uint64_t seed, size_t n_packet, const size_t *leng
                      size_t n_lengths, size_t *total)
 {
     if (cat_is_sphere(cat))
-        return make_sphere_cases(cat, seed, n_packet, lengths, n_lengths, total);
+        return make_shape_cases(&spheres, cat, seed, n_packet, lengths, n_lengths, total);
     if (cat_is_cone(cat))
-        return make_cone_cases(cat, seed, n_packet, lengths, n_lengths, total);
+        return make_shape_cases(&cones, cat, seed, n_packet, lengths, n_lengths, total);
     size_t ns = 0, longest = n_packet;
     for (size_t i = 0; i < n_lengths; i++) {
         ns += lengths[i];
