@@ -46,6 +46,7 @@ typedef int (*KFN(leaf_fn))(const float *, size_t, cylray_ray1 *, cylray_hit1 *,
 #include "kmath.h"
 #include "state.h"
 #include "front.h"
+#include "shapes.h"
 #include "solve.h"
 #include "ends.h"
 #include "store.h"

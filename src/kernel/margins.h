@@ -24,7 +24,7 @@
  * KM_GENERATOR: a cone's A below 2^-8 e.e is the cancellation of a ray nearly along a
  *   generator line, not a tangency (kernel/solve.h, the roots).
  * KM_CANCEL: a cone's A below 2^-5 e.e: the ray runs within a few degrees of the
- *   side's lines, where nB and C cancel too, and the roots are polished (kernel/solve.h).
+ *   side's lines, where nB and C cancel too, and the roots are polished (kernel/shapes.h).
  * KM_NORMAL_OFF: a normal whose squared length is off 1 by more than 2^-10 (a hit point
  *   that rounding moved well off a tiny radius) is normalised exactly; below that one
  *   Newton step of 1/sqrt takes the error to rounding level. */

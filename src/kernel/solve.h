@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* kernel/solve.h - stages 3 to 5: the shifted origin, the side's quadratic and its
- * roots. */
+ * roots (the sphere's and the cone's stage 4 in kernel/shapes.h). */
 
 /* Stage 3, the shift: w's rounding error, and the origin moved by s along the ray
  * with the product s d exact. The inputs are read again rather than kept across the
@@ -57,93 +57,6 @@ CYLRAY_INLINE void KFN(slide)(KFN(lanes) *st, const cylray_kat_ *k, const cylray
     st->g = vsel(slide, g2, st->g);
 }
 
-/* Stage 4 of a sphere: d.d t^2 - 2 nB t + C with nB = -p.d and C = p.p - R^2 from
- * the shifted origin p, and the discriminant in Lagrange's form, d.d R^2 - |p x d|^2:
- * |p x d| is the line's distance from the center times |d|, which no shift changes,
- * so near a tangency D is as accurate as d.d R^2 and the cross product, not the
- * difference of two squares of the shifted origin's terms. Returns whether any lane
- * can still hit. */
-CYLRAY_INLINE int KFN(sphere_side)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
-{
-    const vf zero = vzero(), dx = st->dx, dy = st->dy, dz = st->dz;
-    const vf px = st->px, py = st->py, pz = st->pz;
-    st->fx = st->fy = st->fz = st->g = zero;
-    st->nB = vneg(KDOT(dx, dy, dz, px, py, pz));
-    st->C = vsumsq_x(px, py, pz, st->rr_vv);
-    vf hx = vfms(py, dz, vmul(pz, dy)), hy = vfms(pz, dx, vmul(px, dz)),
-       hz = vfms(px, dy, vmul(py, dx));
-    vf rr = st->rr;
-    if (F.scaled || F.leaf) { /* 2^-2j, as the cylinder's (R 2^-j exact) */
-        const vf gs = KFN(both_in)(k, F, offsetof(cylray_prepared, g_s), CYLRAY_LF_GS);
-        const vf rs = vmul(st->rad, gs);
-        rr = KFN(cyl_in)(k, F, offsetof(cylray_prepared, rr_d), vmul(rs, rs));
-        hx = vmul(hx, gs), hy = vmul(hy, gs), hz = vmul(hz, gs);
-    }
-    st->AR2 = vmul(st->A, rr);
-    st->D = vfms(st->A, rr, KDOT(hx, hy, hz, hx, hy, hz));
-    const vm act = mand(st->act, veq(vfma(st->C, zero, vmul(st->D, zero)), zero));
-    st->side = mand(act, vge(st->D, zero));
-    st->inpar = vlt(vset1(1.0f), zero);
-    return many(st->side);
-}
-
-/* Stage 4 of a cone, whose radius at the axial coordinate z = p.v is r = rm + kap z:
- * with f = v x p and e = d x v as the cylinder's, r0 = rm + kap (p.v) the radius at the
- * shifted origin's level and a = kap (d.v) its rate along the ray, the side of the
- * double cone is |f - t e|^2 = v.v (r0 + a t)^2, so
- *   A = e.e - v.v a^2,  nB = e.f + v.v a r0,  C = f.f - v.v r0^2,
- * and Lagrange's identity turns B^2 - A C into v.v (|r0 e + a f|^2 - g^2), g = e.p as
- * the cylinder's (whose r0 e is R e and a 0). The roots of either sign of A are the
- * cylinder's; the slab of the ends (kernel/ends.h) then keeps the nappe the cone is on.
- * Returns whether any lane can still hit. */
-CYLRAY_INLINE int KFN(cone_side)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
-{
-    const vf zero = vzero(), dx = st->dx, dy = st->dy, dz = st->dz;
-    const vf vx = st->vx, vy = st->vy, vz = st->vz, px = st->px, py = st->py, pz = st->pz;
-    const vf ex = st->ex, ey = st->ey, ez = st->ez;
-    const vf fx = vfms(vy, pz, vmul(vz, py)), fy = vfms(vz, px, vmul(vx, pz)),
-             fz = vfms(vx, py, vmul(vy, px));
-    st->fx = fx, st->fy = fy, st->fz = fz;
-    const vf kap = KFN(both_in)(k, F, offsetof(cylray_prepared, kap), CYLRAY_LF_RRVV);
-    const vf rm = KFN(both_in)(k, F, offsetof(cylray_prepared, rm), CYLRAY_LF_R);
-    const vf vv = KDOT(vx, vy, vz, vx, vy, vz);
-    const vf r0 = vfma(kap, KDOT(px, py, pz, vx, vy, vz), rm);
-    const vf a = vmul(kap, KDOT(dx, dy, dz, vx, vy, vz));
-    const vf va = vmul(vv, a);
-    st->cr = r0, st->ca = a;
-    const vf ee = st->A;
-    st->A = vfnma(va, a, ee);                               /* e.e - v.v a^2 */
-    st->pol = vlt(vabs(st->A), vmul(ee, vset1(KM_CANCEL))); /* see the roots */
-    st->nB = vfma(va, r0, KDOT(ex, ey, ez, fx, fy, fz));
-
-    st->C = vsumsq_x(fx, fy, fz, vmul(vmul(vv, r0), r0));
-    vf g = KDOT(ex, ey, ez, px, py, pz);
-    vf ux = vfma(r0, ex, vmul(a, fx)), uy = vfma(r0, ey, vmul(a, fy)),
-       uz = vfma(r0, ez, vmul(a, fz));
-    if (F.scaled || F.leaf) { /* 2^-2j, as the cylinder's */
-        const vf gs = KFN(both_in)(k, F, offsetof(cylray_prepared, g_s), CYLRAY_LF_GS);
-        ux = vmul(ux, gs), uy = vmul(uy, gs), uz = vmul(uz, gs), g = vmul(g, gs);
-    }
-    st->g = g;
-    st->AR2 = KDOT(ux, uy, uz, ux, uy, uz);
-    st->D = vfnma(g, g, st->AR2);
-    const vm act = mand(st->act, veq(vfma(st->C, zero, vmul(st->D, zero)), zero));
-    const vm neg = vlt(st->A, zero);
-    st->side = mand(act, vge(st->D, zero));
-    st->inpar = mandn(mand(act, neg), st->side); /* no roots, and inside everywhere */
-    if (F.leaf) {
-        /* A cylinder's lane in a leaf of cones (a = 0) leaves A = e.e: a ray within
-         * about an ulp of the axis direction is parallel, as the cylinder's, meets no
-         * side, and is inside everywhere where C <= 0. (A prepared cone's radius
-         * changes along any ray near its axis.) */
-        const vf par_eps = vmul(vv, vset1(CYLRAY_PAR_EPS));
-        const vm par = mand(veq(a, zero), vle(st->A, vmul(st->dd, par_eps)));
-        st->side = mandn(st->side, par);
-        st->inpar = mor(mandn(st->inpar, par), mand(mand(act, par), vle(st->C, zero)));
-    }
-    return many(mor(st->side, st->inpar));
-}
-
 /* Stage 4, the side's quadratic and its discriminant, in Lagrange's form. Returns
  * whether any lane can still hit. */
 CYLRAY_INLINE int KFN(side)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
@@ -194,33 +107,6 @@ CYLRAY_INLINE int KFN(side)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_k
     st->side = mand(act, mandn(vge(st->D, zero), par));
     st->inpar = mand(act, mand(par, vle(st->C, zero))); /* parallel and inside the tube */
     return F.capped ? many(mor(st->side, st->inpar)) : many(st->side);
-}
-
-/* A ray that runs within a few degrees of the side's lines (A = e.e - v.v a^2 cancels:
- * along a generator line, or leaving the side near the apex at a shallow angle) has
- * nB = e.f + v.v a r0 and C cancelled too: differences of terms many times larger,
- * whose rounding errors, uncorrelated, move a root by far more than the inputs' own 2
- * ulps do (with A small, q is about 2 nB, and C / q carries nB's relative error whole;
- * elsewhere a cancelled nB matters only near a tangency, where sqrt(D) no longer
- * outweighs it, and the band is as wide). At the root's point p + t d the quadratic's
- * terms are the size of the radius there, small near an apex, so its C and nB formed
- * there (f - t e and r0 + a t, each rounded once) are accurate, and one step of its
- * small root corrects t. A step that is not small (a root there ill-posed, as at the
- * apex itself, a root running to infinity, or NaN) is not taken. */
-CYLRAY_INLINE vf KFN(cone_polish)(const KFN(lanes) *st, vf t)
-{
-    const vf fx = vfnma(t, st->ex, st->fx), fy = vfnma(t, st->ey, st->fy),
-             fz = vfnma(t, st->ez, st->fz);
-    const vf r = vfma(st->ca, t, st->cr);
-    const vf vv = KDOT(st->vx, st->vy, st->vz, st->vx, st->vy, st->vz);
-    const vf vr = vmul(vv, r);
-    const vf C = vsumsq_x(fx, fy, fz, vmul(vr, r));
-    const vf nB = vfma(vmul(vv, st->ca), r, KDOT(st->ex, st->ey, st->ez, fx, fy, fz));
-    const vf disc = vmax(vfnma(st->A, C, vmul(nB, nB)), vzero());
-    const vf q = vadd(nB, vxorsign(vsqrt(disc), nB));
-    const vf dt = vdiv(C, q);
-    const vm small = vle(vabs(dt), vmul(vabs(t), vset1(0x1p-8f)));
-    return vsel(small, vadd(t, dt), t);
 }
 
 /* Stage 5, the side's roots tn <= tf (relative to p), polished with CYLRAY_REFINE. */
