@@ -170,7 +170,7 @@ static int occ1(const struct RTCOccludedFunctionNArguments *a, const ceb *g, uin
             r.dx[j] = d[0], r.dy[j] = d[1], r.dz[j] = d[2];
             r.tmin[j] = tmin, r.tmax[j] = tmax;
         }
-        if (!g->k->occluded4(&g->prep[c], &r, 1u, g->oflags))
+        if (!g->k->occluded4(&g->prep[c], &r, 0xFu, g->oflags))
             return 0;
         RF(a->ray, a->N, R_TFAR, i) = -INFINITY;
         return 1;
