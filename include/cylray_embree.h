@@ -113,6 +113,11 @@ extern "C" {
  * whose filter the adapter then calls. Without it the adapter never reads past Embree's
  * own context struct. */
 #define CYLRAY_EMBREE_CONTEXT 0x8u
+/* No angles: a hit's angle around the axis, the one costly coordinate of a hit record
+ * (written for every hit a query reports), is left out: v = 0 on a cylinder or cone
+ * (u along p0 -> p1 stays; Embree's cone curves report the same), u = v = 0 on a
+ * sphere. For a renderer that shades without textures. */
+#define CYLRAY_EMBREE_NO_ANGLES 0x20u
 
 /* The query context as Embree's version names it. */
 #if CYLRAY_EMBREE_RTC_MAJOR >= 4

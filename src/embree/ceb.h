@@ -14,7 +14,7 @@
 #define CEB_KFLAGS (CYLRAY_CULL_BACK | CYLRAY_FAST | CYLRAY_REFINE)
 #define CEB_OPTIONS                                                                            \
     (CYLRAY_EMBREE_LEAVES | CYLRAY_EMBREE_SPLIT | CYLRAY_EMBREE_FILTER |                       \
-     CYLRAY_EMBREE_CONTEXT | CYLRAY_EMBREE_NO_SPLIT)
+     CYLRAY_EMBREE_CONTEXT | CYLRAY_EMBREE_NO_SPLIT | CYLRAY_EMBREE_NO_ANGLES)
 #if defined(__GNUC__)
 #define CEB_NOINLINE __attribute__((noinline))
 #else

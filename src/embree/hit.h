@@ -113,7 +113,10 @@ static inline void sphere_uv(const float n[3], float *u, float *v)
 static inline void ceb_uv(const ceb *g, uint32_t c, const float o[3], const float d[3], float t,
                           int part, const float n[3], float *u, float *v)
 {
-    if (g->sph)
+    if (g->options & CYLRAY_EMBREE_NO_ANGLES) {
+        *u = g->sph ? 0.0f : axial_u(&g->fr[c], o, d, t, part);
+        *v = 0.0f;
+    } else if (g->sph)
         sphere_uv(n, u, v);
     else
         hit_uv(&g->fr[c], o, d, t, part, n, u, v);

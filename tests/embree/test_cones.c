@@ -148,6 +148,48 @@ static int masks_instance(RTCDevice dev, const eb_scene *s, eb_variant v, const 
     return bad;
 }
 
+/* The variant's geometry with and without CYLRAY_EMBREE_NO_ANGLES: the same hits, t,
+ * Ng and u to the bit, v = 0 with it. *angled counts the hits whose v is not 0
+ * without it. */
+static int no_angles(RTCDevice dev, const eb_scene *s, eb_variant v, const eb_rays *r,
+                     int *angled)
+{
+    cylray_embree_desc d = eb_scene_desc(s, eb_variant_options(v), NULL);
+    cylray_embree_desc dn = d;
+    dn.options |= CYLRAY_EMBREE_NO_ANGLES;
+    RTCGeometry ga = cylray_embree_new_geometry(dev, &d, NULL),
+                gn = cylray_embree_new_geometry(dev, &dn, NULL);
+    if (!ga || !gn)
+        return 1;
+    RTCScene sa = rtcNewScene(dev), sn = rtcNewScene(dev);
+    rtcCommitGeometry(ga);
+    rtcCommitGeometry(gn);
+    rtcAttachGeometry(sa, ga);
+    rtcAttachGeometry(sn, gn);
+    rtcCommitScene(sa);
+    rtcCommitScene(sn);
+    int bad = 0;
+    for (size_t i = 0; i < r->n; i++) {
+        float o[3], dd[3];
+        eb_rays_get(r, i, o, dd);
+        struct RTCRayHit want, got;
+        trace(sa, o, dd, 0xffffffffu, &want);
+        trace(sn, o, dd, 0xffffffffu, &got);
+        bad += got.hit.geomID != want.hit.geomID;
+        if (want.hit.geomID == RTC_INVALID_GEOMETRY_ID)
+            continue;
+        *angled += want.hit.v != 0;
+        bad += got.hit.primID != want.hit.primID || got.ray.tfar != want.ray.tfar ||
+               got.hit.Ng_x != want.hit.Ng_x || got.hit.Ng_y != want.hit.Ng_y ||
+               got.hit.Ng_z != want.hit.Ng_z || got.hit.u != want.hit.u || got.hit.v != 0;
+    }
+    rtcReleaseScene(sa);
+    rtcReleaseScene(sn);
+    cylray_embree_release_geometry(ga);
+    cylray_embree_release_geometry(gn);
+    return bad;
+}
+
 int main(void)
 {
     eb_scene s;
@@ -168,6 +210,11 @@ int main(void)
         snprintf(what, sizeof what, "%s: a geometry mask, and an instance (%d hits)",
                  eb_variant_name((eb_variant)v), hits);
         report(bad + (hits == 0), what);
+        int angled = 0;
+        bad = no_angles(dev, &s, (eb_variant)v, &r, &angled);
+        snprintf(what, sizeof what, "%s: no angles, the rest unchanged (%d hits with v)",
+                 eb_variant_name((eb_variant)v), angled);
+        report(bad + (angled == 0), what);
     }
     eb_rays_free(&r);
     rtcReleaseDevice(dev);

@@ -598,6 +598,44 @@ static int refusals(RTCDevice dev)
     return bad;
 }
 
+/* The scene with and without CYLRAY_EMBREE_NO_ANGLES: the same hits, t and Ng to the
+ * bit, a sphere's u = v = 0 with it and a cylinder's v = 0 (its u unchanged).
+ * *angled counts the sphere hits whose u or v is not 0 without it. */
+static int no_angles(RTCDevice dev, unsigned opt, const eb_rays *r, int *angled)
+{
+    RTCGeometry ga[2], gn[2];
+    RTCScene sa = adapter_scene(dev, opt, NULL, ga);
+    RTCScene sn = sa ? adapter_scene(dev, opt | CYLRAY_EMBREE_NO_ANGLES, NULL, gn) : NULL;
+    if (!sn) {
+        if (sa)
+            adapter_free(sa, ga);
+        return 1;
+    }
+    int bad = 0;
+    for (size_t i = 0; i < r->n; i++) {
+        float o[3], d[3];
+        eb_rays_get(r, i, o, d);
+        eb_query q;
+        eb_query_init(&q, NULL, 0);
+        struct RTCRayHit want = eb_rayhit1(o, d, 0, INFINITY), got = want;
+        EB_INTERSECT1(sa, &q, &want);
+        eb_query_init(&q, NULL, 0);
+        EB_INTERSECT1(sn, &q, &got);
+        bad += got.hit.geomID != want.hit.geomID;
+        if (want.hit.geomID == RTC_INVALID_GEOMETRY_ID)
+            continue;
+        const int sph = want.hit.geomID == EB_SPHERE_GEOM;
+        *angled += sph && (want.hit.u != 0 || want.hit.v != 0);
+        bad += got.hit.primID != want.hit.primID || got.ray.tfar != want.ray.tfar ||
+               got.hit.Ng_x != want.hit.Ng_x || got.hit.Ng_y != want.hit.Ng_y ||
+               got.hit.Ng_z != want.hit.Ng_z || got.hit.v != 0 ||
+               got.hit.u != (sph ? 0.0f : want.hit.u);
+    }
+    adapter_free(sa, ga);
+    adapter_free(sn, gn);
+    return bad;
+}
+
 /* One scene through every ISA and arrangement. */
 static void run(RTCDevice dev, const eb_scene *s, eb_rays *r, float *tfar0, uint8_t *valid0,
                 size_t *sec, size_t *self)
@@ -667,6 +705,11 @@ static void run(RTCDevice dev, const eb_scene *s, eb_rays *r, float *tfar0, uint
             }
             if (!sc)
                 report(1, "the filtered geometries' build");
+            eb_camera_rays(r, s, W, H);
+            int angled = 0, bad = no_angles(dev, opt, r, &angled);
+            snprintf(what, sizeof what, "%s: no angles, the rest unchanged (%d with u or v)",
+                     vn, angled);
+            report(bad + (angled == 0), what);
         }
     }
     LEAVES = 0;
