@@ -7,7 +7,7 @@
  *              molecule-taper,reducers,far-taper]
  *             [--isa=best|all|LIST]
  *             [--packet=1,4,8,16] [--threads=N] [--size=WxH]
- *             [--samples=N] [--reps=N] [--clock=wall|cpu] [--out=DIR]
+ *             [--samples=N] [--reps=N] [--clock=wall|cpu] [--no-angles] [--out=DIR]
  */
 #include "aimed.h"
 #include "image.h"
@@ -80,6 +80,8 @@ static int parse(opts *o, int argc, char **argv)
             o->samples = atoi(a + 10);
         else if (!strncmp(a, "--reps=", 7))
             o->reps = atoi(a + 7);
+        else if (!strcmp(a, "--no-angles"))
+            eb_cylray_options |= CYLRAY_EMBREE_NO_ANGLES;
         else if (!strcmp(a, "--clock=cpu"))
             o->cpu_clock = 1;
         else if (!strcmp(a, "--clock=wall"))

@@ -27,6 +27,8 @@ typedef struct eb_geom {
 
 /* The options cylray_embree_new_geometry gets for a cylray variant. */
 unsigned eb_variant_options(eb_variant v);
+/* OR'ed into every cylray variant's options (cylembree --no-angles); 0 by default. */
+extern unsigned eb_cylray_options;
 
 /* The adapter's description of scene s (endpoints, one radius, caps). */
 cylray_embree_desc eb_scene_desc(const eb_scene *s, unsigned options, const cylray_kernels *k);
