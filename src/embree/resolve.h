@@ -12,7 +12,8 @@
  * whose subnormals would cost microcode assists). Every lane is active: the kernels
  * then store a whole vector where a partial one would take a masked store, or a blend
  * or lane loop by the store policy, and the reload of lane 0 below is forwarded from a
- * plain store (4 % of a tapered molecule's time in Embree's AVX2 mode, Zen 4). */
+ * plain store (4 % of a tapered molecule's time in Embree's AVX2 mode, Zen 4). h is
+ * cleared first: a blend store reads the fields it keeps. */
 static int one_ray(const ceb *g, uint32_t c, const float o[3], const float d[3], float tmin,
                    float tmax, float *t, float n[3], int32_t *part)
 {
