@@ -626,9 +626,7 @@ static int no_angles(RTCDevice dev, unsigned opt, const eb_rays *r, int *angled)
             continue;
         const int sph = want.hit.geomID == EB_SPHERE_GEOM;
         *angled += sph && (want.hit.u != 0 || want.hit.v != 0);
-        bad += got.hit.primID != want.hit.primID || got.ray.tfar != want.ray.tfar ||
-               got.hit.Ng_x != want.hit.Ng_x || got.hit.Ng_y != want.hit.Ng_y ||
-               got.hit.Ng_z != want.hit.Ng_z || got.hit.v != 0 ||
+        bad += !eb_same_hit(&got, &want) || got.hit.v != 0 ||
                got.hit.u != (sph ? 0.0f : want.hit.u);
     }
     adapter_free(sa, ga);

@@ -78,4 +78,13 @@ static inline struct RTCRayHit eb_rayhit1(const float o[3], const float d[3], fl
     return rh;
 }
 
+/* Whether two answers name the same primitive at the same t with the same Ng, to the
+ * bit (the geometry's ID is the caller's to compare: an instance renames it). */
+static inline int eb_same_hit(const struct RTCRayHit *a, const struct RTCRayHit *b)
+{
+    return a->hit.primID == b->hit.primID && a->ray.tfar == b->ray.tfar &&
+           a->hit.Ng_x == b->hit.Ng_x && a->hit.Ng_y == b->hit.Ng_y &&
+           a->hit.Ng_z == b->hit.Ng_z;
+}
+
 #endif
