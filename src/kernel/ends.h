@@ -25,6 +25,61 @@ CYLRAY_INLINE void KFN(open_ends)(KFN(lanes) *st, const cylray_kat_ *k, const cy
     st->ok_out = mandn(st->ok_out, out_open);
 }
 
+/* Whether the point at t (relative to p) of an end's plane lies on the end's disc,
+ * whose radius is rc: |v x x|^2 = v.v |x_perp|^2 against v.v rc^2, with f - t e =
+ * v x (p + t d). At the rim of a cone whose side meets the plane at a shallow angle
+ * (a flat frustum), the side's root and the plane's t lie a fraction of an ulp apart
+ * while the point lies many ulps of rc inside or outside the rim: the disc decides
+ * what the comparison of the two t cannot. A rounding of t moves the point along d,
+ * which moves it off the axis by no more than |t| eps |d|. */
+CYLRAY_INLINE vm KFN(on_disc)(const KFN(lanes) *st, vf t, vf rc)
+{
+    const vf fx = vfnma_x(t, st->ex, st->fx), fy = vfnma_x(t, st->ey, st->fy),
+             fz = vfnma_x(t, st->ez, st->fz);
+    const vf vv = KDOT(st->vx, st->vy, st->vz, st->vx, st->vy, st->vz);
+    return vle(vsumsq_x(fx, fy, fz, vmul(vmul(vv, rc), rc)), vzero());
+}
+
+/* A cone's entry by an end's disc and exit by the side (or entry by the side and exit
+ * by the other disc) within a few ulps of each other: the ray passes an end's rim, and
+ * where the side is flatter than 45 degrees (slope^2 = kap^2 v.v > 1) the disc decides
+ * whether the solid has that stretch of the ray (KFN(on_disc)). An end of radius 0 is
+ * the apex, which the roots decide. */
+CYLRAY_INLINE void KFN(cone_rims)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F,
+                                  vf slab_in, vf slab_out)
+{
+    const vf eps = vset1(KM_RIM), zero = vzero();
+    const vm live = mor(st->side, st->inpar);
+    /* (strict: an infinite bound, as a ray inside the tube has, is no rim) */
+    vm rim_in = mand(live, vlt(vabs(vsub(slab_in, st->side_hi)),
+                               vmul(eps, vmax(vabs(slab_in), vabs(st->side_hi)))));
+    vm rim_out = mand(live, vlt(vabs(vsub(slab_out, st->side_lo)),
+                                vmul(eps, vmax(vabs(slab_out), vabs(st->side_lo)))));
+    if (!many(mor(rim_in, rim_out)))
+        return;
+    /* the ends' radii: r0 at z = -H|v|, r1 at +H|v| (a leaf's from rm, kap and H|v|) */
+    const vf kap = KFN(both_in)(k, F, offsetof(cylray_prepared, kap), CYLRAY_LF_RRVV);
+    const vf rm = KFN(leaf_in)(k, F, CYLRAY_LF_R), hv = KFN(leaf_in)(k, F, CYLRAY_LF_HV);
+    const vf r_lo = KFN(cyl_in)(k, F, offsetof(cylray_prepared, r0), vfnma(kap, hv, rm));
+    const vf r_hi = KFN(cyl_in)(k, F, offsetof(cylray_prepared, r1), vfma(kap, hv, rm));
+    const vm up = vgt(st->dv, zero); /* in by the low end, out by the high one */
+    const vf rc_in = vsel(up, r_lo, r_hi), rc_out = vsel(up, r_hi, r_lo);
+    const vf vv = KDOT(st->vx, st->vy, st->vz, st->vx, st->vy, st->vz);
+    const vm flat = vgt(vmul(vmul(kap, kap), vv), vset1(1.0f));
+    rim_in = mand(mand(rim_in, flat), vgt(rc_in, zero));
+    rim_out = mand(mand(rim_out, flat), vgt(rc_out, zero));
+    const vm rim = mor(rim_in, rim_out);
+    if (!many(rim))
+        return;
+    /* the other bounds of [max(side_lo, slab_in), min(side_hi, slab_out)] as before */
+    vm ok = mand(live, mand(vle(st->side_lo, st->side_hi), vle(slab_in, slab_out)));
+    ok = mand(ok, mor(mand(rim_in, KFN(on_disc)(st, slab_in, rc_in)),
+                      mandn(vle(slab_in, st->side_hi), rim_in)));
+    ok = mand(ok, mor(mand(rim_out, KFN(on_disc)(st, slab_out, rc_out)),
+                      mandn(vle(st->side_lo, slab_out), rim_out)));
+    st->ok_in = mor(mand(rim, ok), mandn(st->ok_in, rim));
+}
+
 /* Stage 6, the ends: entry and exit relative to p, and whether each is on the
  * surface (the slab and the caps of a finite cylinder). */
 CYLRAY_INLINE void KFN(ends)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
@@ -58,7 +113,7 @@ CYLRAY_INLINE void KFN(ends)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_
             lo = vsel(neg, vsel(far, tf, vneg(inf)), tn);
             hi = vsel(neg, vsel(far, inf, tn), tf);
             const vf mid = vmul(vset1(0.5f), vadd(tn, tf));
-            st->side = mandn(st->side, mandn(vlt(vfma(st->ca, mid, st->cr), zero), neg));
+            st->side = mandn(st->side, mandn(vlt(vfma_x(st->ca, mid, st->cr), zero), neg));
         }
         st->side_lo = vsel(st->inpar, vneg(inf), lo), st->side_hi = vsel(st->inpar, inf, hi);
         const vf hv = KFN(both_in)(k, F, offsetof(cylray_prepared, h_v), CYLRAY_LF_HV);
@@ -82,6 +137,8 @@ CYLRAY_INLINE void KFN(ends)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_
         st->t_in = vmax(st->side_lo, slab_in);
         st->t_out = vmin(st->side_hi, slab_out);
         st->ok_in = mand(mor(st->side, st->inpar), vle(st->t_in, st->t_out));
+        if (F.cone)
+            KFN(cone_rims)(st, k, F, slab_in, slab_out);
         st->ok_out = st->ok_in;
         if (F.one_end)
             KFN(open_ends)(st, k, F, slab_in, slab_out);

@@ -2,6 +2,12 @@
 /* kernel/kmath.h - the side's quadratic and the root polish, on vectors. */
 
 #define KDOT(ax, ay, az, bx, by, bz) vfma(ax, bx, vfma(ay, by, vmul(az, bz)))
+/* c - a*b and a*b - c rounded once, as vfma_x: where they cancel, a product rounded
+ * on its own would be the whole result's error (SSE4.1 has no FMA). */
+#define vfnma_x(a, b, c) vfma_x(vneg(a), b, c)
+#define vfms_x(a, b, c) vfma_x(a, b, vneg(c))
+/* KDOT with every step fused, also where there is no FMA (KDOT rounds each product) */
+#define KDOTX(ax, ay, az, bx, by, bz) vfma_x(ax, bx, vfma_x(ay, by, vmul(az, bz)))
 
 /* 1 / x where the kernel only needs some value near it (a shift, a slide): the
  * divider's correctly rounded quotient, so that every CPU of one ISA gives the same

@@ -25,6 +25,8 @@
  *   generator line, not a tangency (kernel/solve.h, the roots).
  * KM_CANCEL: a cone's A below 2^-5 e.e: the ray runs within a few degrees of the
  *   side's lines, where nB and C cancel too, and the roots are polished (kernel/shapes.h).
+ * KM_RIM: a cone's entry by a disc and exit by the side (or the reverse) within 2^-16 of
+ *   their size, some 256 ulps, pass a rim; the disc there decides (kernel/ends.h).
  * KM_NORMAL_OFF: a normal whose squared length is off 1 by more than 2^-10 (a hit point
  *   that rounding moved well off a tiny radius) is normalised exactly; below that one
  *   Newton step of 1/sqrt takes the error to rounding level. */
@@ -38,4 +40,5 @@
 #define KM_TANGENT 0x1p-18f
 #define KM_GENERATOR 0x1p-8f
 #define KM_CANCEL 0x1p-5f
+#define KM_RIM 0x1p-16f
 #endif

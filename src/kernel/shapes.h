@@ -40,7 +40,11 @@ CYLRAY_INLINE int KFN(sphere_side)(KFN(lanes) *st, const cylray_kat_ *k, const c
  * and Lagrange's identity turns B^2 - A C into v.v (|r0 e + a f|^2 - g^2), g = e.p as
  * the cylinder's (whose r0 e is R e and a 0). The roots of either sign of A are the
  * cylinder's; the slab of the ends (kernel/ends.h) then keeps the nappe the cone is on.
- * Returns whether any lane can still hit. */
+ * The terms that cancel (r0 near an apex, A near a generator line, nB, g and D near a
+ * tangency) are each rounded once (vfma_x, KDOTX): the FMA ISAs' forms, which SSE4.1
+ * forms in double; with their products rounded apart, SSE4.1 put t near an apex or a
+ * tangency tens to hundreds of ulps outside the band. Returns whether any lane can
+ * still hit. */
 CYLRAY_INLINE int KFN(cone_side)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
 {
     const vf zero = vzero(), dx = st->dx, dy = st->dy, dz = st->dz;
@@ -52,17 +56,17 @@ CYLRAY_INLINE int KFN(cone_side)(KFN(lanes) *st, const cylray_kat_ *k, const cyl
     const vf kap = KFN(both_in)(k, F, offsetof(cylray_prepared, kap), CYLRAY_LF_RRVV);
     const vf rm = KFN(both_in)(k, F, offsetof(cylray_prepared, rm), CYLRAY_LF_R);
     const vf vv = KDOT(vx, vy, vz, vx, vy, vz);
-    const vf r0 = vfma(kap, KDOT(px, py, pz, vx, vy, vz), rm);
+    const vf r0 = vfma_x(kap, KDOTX(px, py, pz, vx, vy, vz), rm);
     const vf a = vmul(kap, KDOT(dx, dy, dz, vx, vy, vz));
     const vf va = vmul(vv, a);
     st->cr = r0, st->ca = a;
     const vf ee = st->A;
-    st->A = vfnma(va, a, ee);                               /* e.e - v.v a^2 */
+    st->A = vfnma_x(va, a, ee);                             /* e.e - v.v a^2 */
     st->pol = vlt(vabs(st->A), vmul(ee, vset1(KM_CANCEL))); /* see the roots */
-    st->nB = vfma(va, r0, KDOT(ex, ey, ez, fx, fy, fz));
+    st->nB = vfma_x(va, r0, KDOTX(ex, ey, ez, fx, fy, fz));
 
     st->C = vsumsq_x(fx, fy, fz, vmul(vmul(vv, r0), r0));
-    vf g = KDOT(ex, ey, ez, px, py, pz);
+    vf g = KDOTX(ex, ey, ez, px, py, pz);
     vf ux = vfma(r0, ex, vmul(a, fx)), uy = vfma(r0, ey, vmul(a, fy)),
        uz = vfma(r0, ez, vmul(a, fz));
     if (F.scaled || F.leaf) { /* 2^-2j, as the cylinder's */
@@ -71,7 +75,7 @@ CYLRAY_INLINE int KFN(cone_side)(KFN(lanes) *st, const cylray_kat_ *k, const cyl
     }
     st->g = g;
     st->AR2 = KDOT(ux, uy, uz, ux, uy, uz);
-    st->D = vfnma(g, g, st->AR2);
+    st->D = vfnma_x(g, g, st->AR2);
     const vm act = mand(st->act, veq(vfma(st->C, zero, vmul(st->D, zero)), zero));
     const vm neg = vlt(st->A, zero);
     st->side = mand(act, vge(st->D, zero));

@@ -84,12 +84,12 @@ CYLRAY_INLINE void KFN(normals)(const KFN(lanes) *st, const cylray_kat_ *k,
         const vf cn = KFN(both_in)(k, F, offsetof(cylray_prepared, cnrm), CYLRAY_LF_NSCALE);
         /* |r|: rounding near an apex may give a hit point a radius just below 0,
          * which must not turn the normal inwards. */
-        const vf r = vfma(st->ca, tr, st->cr), rk = vmul(r, kap), sc = vdiv(cn, vabs(r));
-        vf ux = vfms(tr, st->ex, st->fx), uy = vfms(tr, st->ey, st->fy),
-           uz = vfms(tr, st->ez, st->fz);
-        nx = vmul(vfnma(rk, st->vx, vfms(ky, uz, vmul(kz, uy))), sc);
-        ny = vmul(vfnma(rk, st->vy, vfms(kz, ux, vmul(kx, uz))), sc);
-        nz = vmul(vfnma(rk, st->vz, vfms(kx, uy, vmul(ky, ux))), sc);
+        const vf r = vfma_x(st->ca, tr, st->cr), rk = vmul(r, kap), sc = vdiv(cn, vabs(r));
+        vf ux = vfms_x(tr, st->ex, st->fx), uy = vfms_x(tr, st->ey, st->fy),
+           uz = vfms_x(tr, st->ez, st->fz);
+        nx = vmul(vfnma_x(rk, st->vx, vfms_x(ky, uz, vmul(kz, uy))), sc);
+        ny = vmul(vfnma_x(rk, st->vy, vfms_x(kz, ux, vmul(kx, uz))), sc);
+        nz = vmul(vfnma_x(rk, st->vz, vfms_x(kx, uy, vmul(ky, ux))), sc);
         /* At the apex itself the gradient vanishes: the normal there is the axis,
          * pointing away from the cone (v's length is renormalised below). */
         const vm apex = mand(hit, veq(r, zero));

@@ -5,7 +5,13 @@
  *     parallel to its axis: A = D = 0, so no side root; the ray inside the tube meets
  *     the caps, outside it meets nothing (as the prepared cone's packet answers);
  *   - a ray into the apex of a tip cone: the side's gradient vanishes there, and the
- *     normal must still be a unit vector (the axis, away from the cone). */
+ *     normal must still be a unit vector (the axis, away from the cone);
+ *   - cases found by cylcheck's random seeds and by the fuzzer, each judged against the
+ *     exact cone (conref) on every path, packet and leaf: the rims of flat frustums,
+ *     where the side's root and the disc's plane lie a fraction of an ulp of t apart
+ *     though the point lies many ulps of the radius inside or outside the rim, and
+ *     rays near an apex or grazing a scaled cone, where SSE4.1 (no FMA) once rounded
+ *     the products that cancel. */
 #include "conref.h"
 #include "cylray.h"
 
@@ -139,6 +145,143 @@ static void apex_normals(const cylray_kernels *k)
     }
 }
 
+/* One ray against a prepared cone (a 4-ray packet, the ray in lane 2) and a leaf of
+ * 4 (the cone in every lane), judged against the exact answer. */
+typedef struct {
+    const char *why;
+    cylray_cone cone;
+    float o[3], d[3], tmin;
+} found_case;
+
+static const found_case found[] = {
+    {"flat frustum, passing 43 ulps outside the high rim (was a cap hit)",
+     {{-0x1.8f1382p+0f, -0x1.a93a8cp+1f, -0x1.cc4f88p+2f},
+      {-0x1.8d6288p+0f, -0x1.a84752p+1f, -0x1.cd19d6p+2f},
+      0x1.871696p+2f,
+      0x1.c94ac4p+2f,
+      CYLRAY_CAPPED_HI},
+     {0x1.a5055ap+3f, 0x1.6da7fp+4f, -0x1.a61774p+4f},
+     {-0x1.e6c576p-2f, -0x1.95aa72p-1f, 0x1.87a02cp-2f},
+     0},
+    {"flat frustum, 40 ulps inside the high rim (was a miss on SSE4.1)",
+     {{0x1.4af202p+1f, 0x1.e7651cp-2f, 0x1.017dap+2f},
+      {0x1.4b57f4p+1f, 0x1.df20d4p-2f, 0x1.011814p+2f},
+      0x1.3a714ap+1f,
+      0x1.5158d2p+2f,
+      CYLRAY_CAPPED_HI},
+     {-0x1.51e06p+3f, -0x1.3311ep+4f, -0x1.656e18p+4f},
+     {0x1.ffcd14p-3f, 0x1.186348p-1f, 0x1.98d8bp-1f},
+     0},
+    {"flat frustum, inside the low rim (was a miss)",
+     {{-0x1.0a7fb2p+3f, -0x1.081b1ap+3f, 0x1.0752f6p+2f},
+      {-0x1.0a4fbep+3f, -0x1.084ef6p+3f, 0x1.076bc2p+2f},
+      0x1.3c4fep+2f,
+      0x1.7906bep-2f,
+      CYLRAY_CAPPED},
+     {-0x1.ed7ef6p+3f, 0x1.22b2f2p+4f, 0x1.4dcb42p+3f},
+     {0x1.96f8f6p-2f, -0x1.cdb2aap-1f, -0x1.5c13f6p-3f},
+     0},
+    {"a disc one ulp thick (the fuzzer's): the low disc's middle (was a miss)",
+     {{0x1p+0f, -0x0p+0f, 0x1p+0f},
+      {0x1.000002p+0f, 0x0p+0f, 0x1p+0f},
+      0x1p+8f,
+      0,
+      CYLRAY_CAPPED},
+     {-0x1.8p+1f, 0x1p+2f, -0x1.4p+2f},
+     {0x1.ea6a04p-4f, 0x1.9c913ap-1f, -0x1.28f10ep-1f},
+     0},
+    {"scaled cone, near a tangency (SSE4.1 was 237 ulps off)",
+     {{0x1.5f721p+27f, -0x1.4bbc4p+27f, -0x1.e690eep+29f},
+      {0x1.b763a4p+29f, -0x1.aaf37ap+28f, -0x1.d03fa2p+29f},
+      0x1.0e5d32p+27f,
+      0x1.d7d64cp+26f,
+      CYLRAY_CAPPED_LO},
+     {0x1.82200ep+31f, -0x1.3a91bcp+29f, -0x1.005386p+31f},
+     {-0x1.a6637ep+20f, 0x1.2c9798p+18f, 0x1.7bf1fap+19f},
+     0},
+    {"near an apex (SSE4.1 was 38 ulps off)",
+     {{0x1.6fbdecp+0f, -0x1.73264ep+0f, 0x1.679aaap+3f},
+      {-0x1.f530eep+0f, 0x1.f19872p+0f, 0x1.0b8d8ap+3f},
+      0,
+      0x1.38e068p+1f,
+      CYLRAY_CAPPED},
+     {0x1.02338cp-1f, 0x1.9ddd9ap+3f, 0x1.1873d8p+3f},
+     {0x1.051884p-4f, -0x1.f79112p-1f, 0x1.5a65a8p-3f},
+     0},
+    {"near an apex, far along the ray (SSE4.1 was 14 ulps off)",
+     {{-0x1.3a3908p+4f, 0x1.1fc298p+4f, 0x1.0bc79cp+2f},
+      {0x1.a1b256p+4f, -0x1.e26a7ep+2f, -0x1.5b268p+0f},
+      0x1.7fc7aap+0f,
+      0,
+      CYLRAY_CAPPED},
+     {0x1.61758ap+5f, 0x1.14c4d2p+3f, 0x1.9cf43ap+7f},
+     {-0x1.61d8fep-4f, -0x1.3cdbdcp-4f, -0x1.fc8bbcp-1f},
+     0},
+    {"near an apex of an open cone (SSE4.1 was 13 ulps off)",
+     {{0x1.44601p+3f, -0x1.e55c7ep+2f, 0x1.366f3ep+1f},
+      {0x1.f3788p+1f, 0x1.2f546ap+2f, 0x1.1c0d4cp+3f},
+      0,
+      0x1.6cdecap+1f,
+      0},
+     {0x1.3b536ep+5f, -0x1.56a26cp+2f, 0x1.ca8b6ep+3f},
+     {-0x1.d91ebep-1f, -0x1.204a6cp-4f, -0x1.80b8d6p-2f},
+     0},
+};
+
+static void found_cases(const cylray_kernels *k)
+{
+    for (int c = 0; c < (int)(sizeof found / sizeof found[0]); c++) {
+        const found_case *x = &found[c];
+        cylray_prepared p;
+        cylray_leaf4 l4;
+        const cylray_cone lanes[4] = {x->cone, x->cone, x->cone, x->cone};
+        if (cylray_prepare_cone(&p, &x->cone) != CYLRAY_OK ||
+            cylray_leaf_prepare_cones4(&l4, lanes, NULL, 4) != CYLRAY_OK) {
+            fail(k->name, "found: prepare", c, 0, "refused");
+            continue;
+        }
+        for (unsigned flags = 0; flags <= CYLRAY_FLAGS_ALL; flags++) {
+            cylref_band band;
+            conref_band_eval(&x->cone, x->o, x->d, x->tmin, INFINITY, flags, &band);
+            const double tol = flags & CYLRAY_FAST ? 8 : 4;
+            for (int w = 0; w < 2; w++) {
+                int hit;
+                float t = 0;
+                unsigned part = 0;
+                if (w == 0) {
+                    cylray_ray4 r4;
+                    cylray_hit4 h;
+                    for (int l = 0; l < 4; l++) {
+                        r4.ox[l] = x->o[0], r4.oy[l] = x->o[1], r4.oz[l] = x->o[2];
+                        r4.dx[l] = x->d[0], r4.dy[l] = x->d[1], r4.dz[l] = x->d[2];
+                        r4.tmin[l] = x->tmin, r4.tmax[l] = INFINITY;
+                    }
+                    hit = (k->intersect4(&p, &r4, &h, 0x4u, flags) >> 2) & 1u;
+                    t = h.t[2], part = (unsigned)h.part[2];
+                } else {
+                    cylray_ray1 ray = {{x->o[0], x->o[1], x->o[2]},
+                                       {x->d[0], x->d[1], x->d[2]},
+                                       x->tmin,
+                                       INFINITY};
+                    cylray_hit1 h;
+                    hit = k->leaf_intersect4(&l4, &ray, &h, flags);
+                    t = h.t, part = (unsigned)h.part;
+                }
+                double beyond = 0;
+                checks++;
+                if (conref_judge(&band, hit, hit ? (int)part : 0, hit ? t : 0, &beyond) != 0 ||
+                    beyond > tol) {
+                    char why[200];
+                    snprintf(why, sizeof why, "%s, %s: %s t %a part 0x%x, %.3g ulps beyond",
+                             x->why, w ? "leaf" : "packet", hit ? "hit" : "miss", hit ? t : 0,
+                             hit ? part : 0u, beyond);
+                    fail(k->name, "found", c, flags, why);
+                }
+            }
+        }
+    }
+}
+
 int main(void)
 {
     for (int isa = 0; isa < CYLRAY_ISA_COUNT; isa++) {
@@ -147,6 +290,7 @@ int main(void)
             continue;
         parallel_rays(k);
         apex_normals(k);
+        found_cases(k);
     }
     printf("robust-cone-edges: %d checks, %d failures\n", checks, failures);
     return failures != 0;
