@@ -102,8 +102,10 @@ CYLRAY_INLINE int KFN(cone_side)(KFN(lanes) *st, const cylray_kat_ *k, const cyl
  * outweighs it, and the band is as wide). At the root's point p + t d the quadratic's
  * terms are the size of the radius there, small near an apex, so its C and nB formed
  * there (f - t e and r0 + a t, each rounded once) are accurate, and one step of its
- * small root corrects t. A step that is not small (a root there ill-posed, as at the
- * apex itself, a root running to infinity, or NaN) is not taken. */
+ * small root corrects t. A step that is not small (beyond 2^-4 |t|: a root there
+ * ill-posed, as at the apex itself, a root running to infinity, or NaN) is not taken;
+ * a root off by 0.7 % (a ray 0.2 degrees off a tip cone's generator line) is not
+ * ill-posed, and takes its step. */
 CYLRAY_INLINE vf KFN(cone_polish)(const KFN(lanes) *st, vf t)
 {
     const vf fx = vfnma(t, st->ex, st->fx), fy = vfnma(t, st->ey, st->fy),
@@ -116,6 +118,6 @@ CYLRAY_INLINE vf KFN(cone_polish)(const KFN(lanes) *st, vf t)
     const vf disc = vmax(vfnma(st->A, C, vmul(nB, nB)), vzero());
     const vf q = vadd(nB, vxorsign(vsqrt(disc), nB));
     const vf dt = vdiv(C, q);
-    const vm small = vle(vabs(dt), vmul(vabs(t), vset1(0x1p-8f)));
+    const vm small = vle(vabs(dt), vmul(vabs(t), vset1(0x1p-4f)));
     return vsel(small, vadd(t, dt), t);
 }
