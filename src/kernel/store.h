@@ -84,7 +84,8 @@ CYLRAY_INLINE void KFN(normals)(const KFN(lanes) *st, const cylray_kat_ *k,
         const vf cn = KFN(both_in)(k, F, offsetof(cylray_prepared, cnrm), CYLRAY_LF_NSCALE);
         /* |r|: rounding near an apex may give a hit point a radius just below 0,
          * which must not turn the normal inwards. */
-        const vf r = vfma_x(st->ca, tr, st->cr), rk = vmul(r, kap), sc = vdiv(cn, vabs(r));
+        const vf r = vfma_x(st->ca, tr, st->cr), rk = vmul(vabs(r), kap),
+                 sc = vdiv(cn, vabs(r));
         vf ux = vfms_x(tr, st->ex, st->fx), uy = vfms_x(tr, st->ey, st->fy),
            uz = vfms_x(tr, st->ez, st->fz);
         nx = vmul(vfnma_x(rk, st->vx, vfms_x(ky, uz, vmul(kz, uy))), sc);

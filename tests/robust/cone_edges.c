@@ -11,7 +11,9 @@
  *     where the side's root and the disc's plane lie a fraction of an ulp of t apart
  *     though the point lies many ulps of the radius inside or outside the rim, and
  *     rays near an apex or grazing a scaled cone, where SSE4.1 (no FMA) once rounded
- *     the products that cancel. */
+ *     the products that cancel;
+ *   - the side normal of a disc one ulp thick, whose radius at the hit cancels to
+ *     noise and may round below zero. */
 #include "conref.h"
 #include "cylray.h"
 
@@ -140,6 +142,64 @@ static void apex_normals(const cylray_kernels *k)
                              h.part[l], h.nx[l], h.ny[l], h.nz[l]);
                     fail(k->name, "apex normal", c, flags, why);
                 }
+            }
+        }
+    }
+}
+
+/* A disc one ulp thick (the fuzzer's): r0 256 at p0, 0 at p1 one ulp along +x, so the
+ * side is a cone of slope 2e9 whose outward normal is +x to within 2^-31. A ray going
+ * -x through (1, 1, 1) enters by that side. The radius at the hit, rm + kap z with kap
+ * about -4e16, cancels to noise and may round below zero, which must not turn the
+ * normal's axial part inwards. */
+static void thin_disc_normal(const cylray_kernels *k)
+{
+    static const cylray_cone cone = {{0x1p+0f, -0x0p+0f, 0x1p+0f},
+                                     {0x1.000002p+0f, 0x0p+0f, 0x1p+0f},
+                                     0x1p+8f,
+                                     0,
+                                     CYLRAY_CAPPED};
+    static const float o = -0x1.192p+13f, tmin = -0x1.049p+14f, tmax = 0x1.ccccccp-1f;
+    cylray_prepared p;
+    cylray_leaf4 l4;
+    const cylray_cone lanes[4] = {cone, cone, cone, cone};
+    if (cylray_prepare_cone(&p, &cone) != CYLRAY_OK ||
+        cylray_leaf_prepare_cones4(&l4, lanes, NULL, 4) != CYLRAY_OK) {
+        fail(k->name, "thin disc: prepare", 0, 0, "refused");
+        return;
+    }
+    for (unsigned flags = 0; flags <= CYLRAY_FLAGS_ALL; flags++) {
+        if (!(flags & CYLRAY_NORMAL))
+            continue;
+        for (int w = 0; w < 2; w++) {
+            int hit;
+            float t = 0, n[3] = {0, 0, 0};
+            unsigned part = 0;
+            if (w == 0) {
+                cylray_ray4 r4;
+                cylray_hit4 h;
+                for (int l = 0; l < 4; l++) {
+                    r4.ox[l] = r4.oy[l] = r4.oz[l] = o;
+                    r4.dx[l] = r4.dy[l] = r4.dz[l] = o;
+                    r4.tmin[l] = tmin, r4.tmax[l] = tmax;
+                }
+                hit = (k->intersect4(&p, &r4, &h, 0x4u, flags) >> 2) & 1u;
+                t = h.t[2], part = (unsigned)h.part[2];
+                n[0] = h.nx[2], n[1] = h.ny[2], n[2] = h.nz[2];
+            } else {
+                cylray_ray1 ray = {{o, o, o}, {o, o, o}, tmin, tmax};
+                cylray_hit1 h;
+                hit = k->leaf_intersect4(&l4, &ray, &h, flags);
+                t = h.t, part = (unsigned)h.part;
+                n[0] = h.n[0], n[1] = h.n[1], n[2] = h.n[2];
+            }
+            checks++;
+            if (!hit || (part & 0xf) != CYLRAY_SIDE || !(n[0] > 0.999f)) {
+                char why[160];
+                snprintf(
+                    why, sizeof why, "%s: %s t %a part 0x%x n (%g %g %g), want the side, +x",
+                    w ? "leaf" : "packet", hit ? "hit" : "miss", t, part, n[0], n[1], n[2]);
+                fail(k->name, "thin disc normal", 0, flags, why);
             }
         }
     }
@@ -309,6 +369,7 @@ int main(void)
         parallel_rays(k);
         apex_normals(k);
         found_cases(k);
+        thin_disc_normal(k);
     }
     printf("robust-cone-edges: %d checks, %d failures\n", checks, failures);
     return failures != 0;
