@@ -281,6 +281,25 @@ void cylref_band_eval(const cylray_cylinder *cyl, const float o[3], const float 
         out->hit_unstable = out->part_unstable = 1;
     out->decision_unstable = out->hit_unstable || out->part_unstable;
     out->n_spread = fmax(nsum, nmax);
+    /* A side's normal is the direction of the point across the axis. A t anywhere in
+     * the band (and its 4 ulps of tolerance) puts the point up to |d_perp| dt away from
+     * the exact hit, which turns that direction by up to asin(|d_perp| dt / R): on a
+     * grazing ray, or one leaving the surface, the band is wide and the samples above,
+     * which keep the exact outcome, do not move far along it. */
+    if (x0.hit && (x0.part & 0xf) == CYLRAY_SIDE && out->t_lo == out->t_lo) {
+        double vv = 0, dv = 0, dd = 0;
+        for (int k = 0; k < 3; k++) {
+            vv += (double)pc.base.v[k] * (double)pc.base.v[k];
+            dv += (double)pc.base.d[k] * (double)pc.base.v[k];
+            dd += (double)pc.base.d[k] * (double)pc.base.d[k];
+        }
+        const double t = out->exact.t,
+                     tol = 4 * ref_float_ulp(fmax(fabs(out->t_lo), fabs(out->t_hi)));
+        const double dt = fmax(t - out->t_lo, out->t_hi - t) + tol;
+        const double dperp = sqrt(fmax(0, dd - dv * dv / vv)), move = dperp * dt;
+        const double R = (double)pc.base.R;
+        out->n_spread = fmax(out->n_spread, move < R ? asin(move / R) : 3.14159265358979323846);
+    }
 }
 
 double cylref_ulps(float t, double exact)

@@ -686,6 +686,20 @@ void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], 
         xp = sqrt(xp);
         out->n_spread =
             fmax(out->n_spread, xp > delta ? 2 * asin(delta / xp) : 3.14159265358979323846);
+        /* The side's normal is a function of x_perp's direction alone. A t anywhere in
+         * the exact outcome's band moves the point across the axis by up to |d_perp| dt,
+         * turning that direction by up to asin(|d_perp| dt / |x_perp|): on a grazing ray,
+         * or one leaving the surface, the band is wide and the samples, which keep the
+         * exact outcome, do not move far along it. */
+        if (kand == x0 && out->t_lo == out->t_lo) {
+            double dp2 = 0;
+            for (int k = 0; k < 3; k++)
+                dp2 += (double)r0.dp[k] * (double)r0.dp[k];
+            const double tt = (double)t,
+                         move = sqrt(dp2) * fmax(tt - out->t_lo, out->t_hi - tt);
+            out->n_spread = fmax(out->n_spread, move < xp ? asin(move / xp) + 2 * nmax
+                                                          : 3.14159265358979323846);
+        }
     }
     out->n_spread = fmin(out->n_spread, 3.14159265358979323846); /* opposite at most */
 }
