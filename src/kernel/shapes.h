@@ -103,9 +103,13 @@ CYLRAY_INLINE int KFN(cone_side)(KFN(lanes) *st, const cylray_kat_ *k, const cyl
  * terms are the size of the radius there, small near an apex, so its C and nB formed
  * there (f - t e and r0 + a t, each rounded once) are accurate, and one step of its
  * small root corrects t. A step that is not small (beyond 2^-4 |t|: a root there
- * ill-posed, as at the apex itself, a root running to infinity, or NaN) is not taken;
- * a root off by 0.7 % (a ray 0.2 degrees off a tip cone's generator line) is not
- * ill-posed, and takes its step. */
+ * ill-posed, as at the apex itself, a root running to infinity, or NaN) is not taken,
+ * nor one that is not small beside the quadratic's other root there, q / A: on a ray
+ * through the apex's neighbourhood the two roots close in on each other, C and nB at
+ * the point are roundings of terms that vanish, and C / q is noise (0.3 % of t,
+ * thousands of ulps). A root off by 0.7 % (a ray 0.2 degrees off a tip cone's
+ * generator line, where A is small and the other root far) is not ill-posed, and
+ * takes its step. */
 CYLRAY_INLINE vf KFN(cone_polish)(const KFN(lanes) *st, vf t)
 {
     const vf fx = vfnma(t, st->ex, st->fx), fy = vfnma(t, st->ey, st->fy),
@@ -118,6 +122,7 @@ CYLRAY_INLINE vf KFN(cone_polish)(const KFN(lanes) *st, vf t)
     const vf disc = vmax(vfnma(st->A, C, vmul(nB, nB)), vzero());
     const vf q = vadd(nB, vxorsign(vsqrt(disc), nB));
     const vf dt = vdiv(C, q);
-    const vm small = vle(vabs(dt), vmul(vabs(t), vset1(0x1p-4f)));
+    const vm small = mand(vle(vabs(dt), vmul(vabs(t), vset1(0x1p-4f))),
+                          vle(vmul(vabs(dt), vmul(vabs(st->A), vset1(4.0f))), vabs(q)));
     return vsel(small, vadd(t, dt), t);
 }
