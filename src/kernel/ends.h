@@ -40,44 +40,73 @@ CYLRAY_INLINE vm KFN(on_disc)(const KFN(lanes) *st, vf t, vf rc)
     return vle(vsumsq_x(fx, fy, fz, vmul(vmul(vv, rc), rc)), vzero());
 }
 
-/* A cone's entry by an end's disc and exit by the side (or entry by the side and exit
- * by the other disc) within a few ulps of each other: the ray passes an end's rim, and
- * where the side is flatter than 45 degrees (slope^2 = kap^2 v.v > 1) the disc decides
- * whether the solid has that stretch of the ray (KFN(on_disc)). An end of radius 0 is
- * the apex, which the roots decide. */
+/* A cone whose side is flatter than 45 degrees (slope^2 = kap^2 v.v > 1) at its ends.
+ * A ray that passes an end's rim enters by the disc and leaves by the side (or the
+ * reverse) at two t a fraction of an ulp apart, while the point lies many ulps of the
+ * radius inside or outside the rim: where the two lie within a few ulps, the disc
+ * decides whether the solid has that stretch of the ray (KFN(on_disc)). And a flat side
+ * runs close along the plane far from the rim too: there the plane's t and the side's
+ * entry (or exit) are a hair apart, and their order is rounding's. Exactly, the ray
+ * enters by the plane if and only if the plane's point lies inside the cone there, on
+ * the disc: where the two lie within KM_RIM the disc names the entry's part (and the
+ * exit's), and the other bound is moved to it (the side's to the later entry, or out
+ * of the way) so that the part and an open end's test follow. The slab's t agrees with
+ * the side's to rounding because both take the axial coordinate alike (KFN(ends)). An
+ * end of radius 0 is the apex, which the roots decide: it has no disc, and a bound
+ * there a hair from the side's is the side's. */
 CYLRAY_INLINE void KFN(cone_rims)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F,
                                   vf slab_in, vf slab_out)
 {
-    const vf eps = vset1(KM_RIM), zero = vzero();
+    const vf eps = vset1(KM_RIM), zero = vzero(), inf = vset1(INFINITY);
     const vm live = mor(st->side, st->inpar);
-    /* (strict: an infinite bound, as a ray inside the tube has, is no rim) */
-    vm rim_in = mand(live, vlt(vabs(vsub(slab_in, st->side_hi)),
-                               vmul(eps, vmax(vabs(slab_in), vabs(st->side_hi)))));
-    vm rim_out = mand(live, vlt(vabs(vsub(slab_out, st->side_lo)),
-                                vmul(eps, vmax(vabs(slab_out), vabs(st->side_lo)))));
-    if (!many(mor(rim_in, rim_out)))
+    const vf kap = KFN(both_in)(k, F, offsetof(cylray_prepared, kap), CYLRAY_LF_RRVV);
+    const vf vv = KDOT(st->vx, st->vy, st->vz, st->vx, st->vy, st->vz);
+    const vm flat = mand(live, vgt(vmul(vmul(kap, kap), vv), vset1(1.0f)));
+    if (!many(flat))
         return;
     /* the ends' radii: r0 at z = -H|v|, r1 at +H|v| (a leaf's from rm, kap and H|v|) */
-    const vf kap = KFN(both_in)(k, F, offsetof(cylray_prepared, kap), CYLRAY_LF_RRVV);
     const vf rm = KFN(leaf_in)(k, F, CYLRAY_LF_R), hv = KFN(leaf_in)(k, F, CYLRAY_LF_HV);
     const vf r_lo = KFN(cyl_in)(k, F, offsetof(cylray_prepared, r0), vfnma(kap, hv, rm));
     const vf r_hi = KFN(cyl_in)(k, F, offsetof(cylray_prepared, r1), vfma(kap, hv, rm));
     const vm up = vgt(st->dv, zero); /* in by the low end, out by the high one */
     const vf rc_in = vsel(up, r_lo, r_hi), rc_out = vsel(up, r_hi, r_lo);
-    const vf vv = KDOT(st->vx, st->vy, st->vz, st->vx, st->vy, st->vz);
-    const vm flat = vgt(vmul(vmul(kap, kap), vv), vset1(1.0f));
-    rim_in = mand(mand(rim_in, flat), vgt(rc_in, zero));
-    rim_out = mand(mand(rim_out, flat), vgt(rc_out, zero));
+    const vm has_in = mand(flat, vgt(rc_in, zero)), has_out = mand(flat, vgt(rc_out, zero));
+    /* (strict: an infinite bound, as a ray inside the tube has, is no rim) */
+#define KNEAR_(a, b) vlt(vabs(vsub(a, b)), vmul(eps, vmax(vabs(a), vabs(b))))
+    const vm rim_in = mand(has_in, KNEAR_(slab_in, st->side_hi));
+    const vm rim_out = mand(has_out, KNEAR_(slab_out, st->side_lo));
     const vm rim = mor(rim_in, rim_out);
-    if (!many(rim))
-        return;
-    /* the other bounds of [max(side_lo, slab_in), min(side_hi, slab_out)] as before */
-    vm ok = mand(live, mand(vle(st->side_lo, st->side_hi), vle(slab_in, slab_out)));
-    ok = mand(ok, mor(mand(rim_in, KFN(on_disc)(st, slab_in, rc_in)),
-                      mandn(vle(slab_in, st->side_hi), rim_in)));
-    ok = mand(ok, mor(mand(rim_out, KFN(on_disc)(st, slab_out, rc_out)),
-                      mandn(vle(st->side_lo, slab_out), rim_out)));
-    st->ok_in = mor(mand(rim, ok), mandn(st->ok_in, rim));
+    if (many(rim)) {
+        /* the other bounds of [max(side_lo, slab_in), min(side_hi, slab_out)] as before */
+        vm ok = mand(live, mand(vle(st->side_lo, st->side_hi), vle(slab_in, slab_out)));
+        ok = mand(ok, mor(mand(rim_in, KFN(on_disc)(st, slab_in, rc_in)),
+                          mandn(vle(slab_in, st->side_hi), rim_in)));
+        ok = mand(ok, mor(mand(rim_out, KFN(on_disc)(st, slab_out, rc_out)),
+                          mandn(vle(st->side_lo, slab_out), rim_out)));
+        st->ok_in = mor(mand(rim, ok), mandn(st->ok_in, rim));
+    }
+    /* The parts where the plane's and the side's entries (exits) lie within KM_RIM, on
+     * lanes with roots (a line inside the double cone throughout has no side bound to
+     * weigh). Only there: further apart, the side's bound that the disc would name is
+     * not the one beside the plane, and near a rim the disc test is no surer than the
+     * order of the two t. */
+    const vm sd = mandn(flat, st->inpar);
+    const vm in = mand(sd, KNEAR_(slab_in, st->side_lo));
+    const vm out = mand(sd, KNEAR_(slab_out, st->side_hi));
+#undef KNEAR_
+    if (many(in)) {
+        const vm disc = mand(mand(in, has_in), KFN(on_disc)(st, slab_in, rc_in));
+        const vm side = mandn(in, disc);
+        st->side_lo =
+            vsel(disc, vneg(inf), vsel(side, vmax(st->side_lo, slab_in), st->side_lo));
+        st->t_in = vsel(disc, slab_in, vsel(side, st->side_lo, st->t_in));
+    }
+    if (many(out)) {
+        const vm disc = mand(mand(out, has_out), KFN(on_disc)(st, slab_out, rc_out));
+        const vm side = mandn(out, disc);
+        st->side_hi = vsel(disc, inf, vsel(side, vmin(st->side_hi, slab_out), st->side_hi));
+        st->t_out = vsel(disc, slab_out, vsel(side, st->side_hi, st->t_out));
+    }
 }
 
 /* Stage 6, the ends: entry and exit relative to p, and whether each is on the
@@ -91,7 +120,12 @@ CYLRAY_INLINE void KFN(ends)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_
      * only names the caps. */
     vf z0 = zero, dv = zero;
     if (F.finite && !F.sphere) {
-        z0 = F.aligned ? st->pz : KDOT(st->px, st->py, st->pz, st->vx, st->vy, st->vz);
+        /* a cone's as its radius r0 = rm + kap z0 takes it (kernel/shapes.h): an
+         * error there moves the planes and the side together along the axis, which
+         * keeps their order where a flat side runs along a plane */
+        z0 = F.aligned ? st->pz
+             : F.cone  ? KDOTX(st->px, st->py, st->pz, st->vx, st->vy, st->vz)
+                       : KDOT(st->px, st->py, st->pz, st->vx, st->vy, st->vz);
         dv = F.aligned ? st->dz : KDOT(st->dx, st->dy, st->dz, st->vx, st->vy, st->vz);
     }
     st->z0 = z0, st->dv = dv;

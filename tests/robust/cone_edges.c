@@ -9,7 +9,8 @@
  *   - cases found by cylcheck's random seeds and by the fuzzer, each judged against the
  *     exact cone (conref) on every path, packet and leaf: the rims of flat frustums,
  *     where the side's root and the disc's plane lie a fraction of an ulp of t apart
- *     though the point lies many ulps of the radius inside or outside the rim, and
+ *     though the point lies many ulps of the radius inside or outside the rim (or far
+ *     from the rim, where a flat side runs along the plane), and
  *     rays near an apex or grazing a scaled cone, where SSE4.1 (no FMA) once rounded
  *     the products that cancel;
  *   - the side normal of a disc one ulp thick, whose radius at the hit cancels to
@@ -304,6 +305,26 @@ static const found_case found[] = {
      {0x1.ccb95p+3f, -0x1.f64802p+2f, 0x1.b197c2p+2f},
      {-0x1.d6d836p-1f, -0x1.2a286ap-2f, -0x1.0dffbep-2f},
      0},
+    {"a flat cone's side by its tiny end's plane (the fuzzer's; was that disc, 0.1 from its "
+     "1e-10 rim)",
+     {{0x1.b7cdfep-34f, 0x1.b7cdfep-34f, 0x1.b7cdfep-34f},
+      {0x1.b7cdfep-33f, 0x1.b7cdfep-33f, 0x1.b7cdfep-33f},
+      0x1.b7cdfep-34f,
+      0x1.e5ep-2f,
+      CYLRAY_CAPPED},
+     {0x1.49da7ep-33f, -0x1.8bcp+14f, -0x1.999cp-5f},
+     {0x1.ef32d2p-22f, 0x1p-3f, -0x1.5550e6p-26f},
+     -INFINITY},
+    {"a flat cone crossed 0.1 degrees off its plane (the fuzzer's; was its 5e-5 disc, or a "
+     "miss)",
+     {{0x1.a1ap+0f, 0x1.b7cdfep-34f, 0x1.b7cdfep-34f},
+      {0x1.a1ap+0f, 0x1.b7cdfep-33f, 0x1.b7cdfep-33f},
+      0x1.9p-15f,
+      0x1p+1f,
+      CYLRAY_CAPPED},
+     {-0x1.fe5e6p+8f, 0x1.49da7ep-33f, -0x1p+0f},
+     {0x1.ffffacp-13f, -0x1.0f72f2p-24f, 0x1.21eeccp-21f},
+     -INFINITY},
     {"near an apex of an open cone (SSE4.1 was 13 ulps off)",
      {{0x1.44601p+3f, -0x1.e55c7ep+2f, 0x1.366f3ep+1f},
       {0x1.f3788p+1f, 0x1.2f546ap+2f, 0x1.1c0d4cp+3f},
