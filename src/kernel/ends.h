@@ -32,11 +32,10 @@ CYLRAY_INLINE void KFN(open_ends)(KFN(lanes) *st, const cylray_kat_ *k, const cy
  * while the point lies many ulps of rc inside or outside the rim: the disc decides
  * what the comparison of the two t cannot. A rounding of t moves the point along d,
  * which moves it off the axis by no more than |t| eps |d|. */
-CYLRAY_INLINE vm KFN(on_disc)(const KFN(lanes) *st, vf t, vf rc)
+CYLRAY_INLINE vm KFN(on_disc)(const KFN(lanes) *st, vf t, vf rc, vf vv)
 {
     const vf fx = vfnma_x(t, st->ex, st->fx), fy = vfnma_x(t, st->ey, st->fy),
              fz = vfnma_x(t, st->ez, st->fz);
-    const vf vv = KDOT(st->vx, st->vy, st->vz, st->vx, st->vy, st->vz);
     return vle(vsumsq_x(fx, fy, fz, vmul(vmul(vv, rc), rc)), vzero());
 }
 
@@ -51,9 +50,9 @@ CYLRAY_INLINE vm KFN(on_disc)(const KFN(lanes) *st, vf t, vf rc)
  * the disc: where the two lie within KM_RIM the disc names the entry's part (and the
  * exit's), and the other bound is moved to it (the side's to the later entry, or out
  * of the way) so that the part and an open end's test follow. The slab's t agrees with
- * the side's to rounding because both take the axial coordinate alike (KFN(ends)). An
- * end of radius 0 is the apex, which the roots decide: it has no disc, and a bound
- * there a hair from the side's is the side's. */
+ * the side's to rounding because both take one axial coordinate (KFN(cone_z0)). An end
+ * of radius 0 is the apex, which the roots decide: it has no disc, and a bound there a
+ * hair from the side's is the side's. */
 CYLRAY_INLINE void KFN(cone_rims)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F,
                                   vf slab_in, vf slab_out)
 {
@@ -79,9 +78,9 @@ CYLRAY_INLINE void KFN(cone_rims)(KFN(lanes) *st, const cylray_kat_ *k, const cy
     if (many(rim)) {
         /* the other bounds of [max(side_lo, slab_in), min(side_hi, slab_out)] as before */
         vm ok = mand(live, mand(vle(st->side_lo, st->side_hi), vle(slab_in, slab_out)));
-        ok = mand(ok, mor(mand(rim_in, KFN(on_disc)(st, slab_in, rc_in)),
+        ok = mand(ok, mor(mand(rim_in, KFN(on_disc)(st, slab_in, rc_in, vv)),
                           mandn(vle(slab_in, st->side_hi), rim_in)));
-        ok = mand(ok, mor(mand(rim_out, KFN(on_disc)(st, slab_out, rc_out)),
+        ok = mand(ok, mor(mand(rim_out, KFN(on_disc)(st, slab_out, rc_out, vv)),
                           mandn(vle(st->side_lo, slab_out), rim_out)));
         st->ok_in = mor(mand(rim, ok), mandn(st->ok_in, rim));
     }
@@ -95,14 +94,14 @@ CYLRAY_INLINE void KFN(cone_rims)(KFN(lanes) *st, const cylray_kat_ *k, const cy
     const vm out = mand(sd, KNEAR_(slab_out, st->side_hi));
 #undef KNEAR_
     if (many(in)) {
-        const vm disc = mand(mand(in, has_in), KFN(on_disc)(st, slab_in, rc_in));
+        const vm disc = mand(mand(in, has_in), KFN(on_disc)(st, slab_in, rc_in, vv));
         const vm side = mandn(in, disc);
         st->side_lo =
             vsel(disc, vneg(inf), vsel(side, vmax(st->side_lo, slab_in), st->side_lo));
         st->t_in = vsel(disc, slab_in, vsel(side, st->side_lo, st->t_in));
     }
     if (many(out)) {
-        const vm disc = mand(mand(out, has_out), KFN(on_disc)(st, slab_out, rc_out));
+        const vm disc = mand(mand(out, has_out), KFN(on_disc)(st, slab_out, rc_out, vv));
         const vm side = mandn(out, disc);
         st->side_hi = vsel(disc, inf, vsel(side, vmin(st->side_hi, slab_out), st->side_hi));
         st->t_out = vsel(disc, slab_out, vsel(side, st->side_hi, st->t_out));
@@ -120,11 +119,8 @@ CYLRAY_INLINE void KFN(ends)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_
      * only names the caps. */
     vf z0 = zero, dv = zero;
     if (F.finite && !F.sphere) {
-        /* a cone's as its radius r0 = rm + kap z0 takes it (kernel/shapes.h): an
-         * error there moves the planes and the side together along the axis, which
-         * keeps their order where a flat side runs along a plane */
         z0 = F.aligned ? st->pz
-             : F.cone  ? KDOTX(st->px, st->py, st->pz, st->vx, st->vy, st->vz)
+             : F.cone  ? KFN(cone_z0)(st)
                        : KDOT(st->px, st->py, st->pz, st->vx, st->vy, st->vz);
         dv = F.aligned ? st->dz : KDOT(st->dx, st->dy, st->dz, st->vx, st->vy, st->vz);
     }

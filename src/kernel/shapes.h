@@ -45,6 +45,16 @@ CYLRAY_INLINE int KFN(sphere_side)(KFN(lanes) *st, const cylray_kat_ *k, const c
  * forms in double; with their products rounded apart, SSE4.1 put t near an apex or a
  * tangency tens to hundreds of ulps outside the band. Returns whether any lane can
  * still hit. */
+/* A cone's axial coordinate z0 = p.v, one rounding (KDOTX): its radius r0 = rm + kap z0
+ * and the ends' slab (kernel/ends.h) both take this one, so that an error in it moves
+ * the planes and the side together along the axis and keeps their order where a flat
+ * side runs along a plane (rounded product by product, SSE4.1 once put the slab past
+ * the side there). The compiler forms it once. */
+CYLRAY_INLINE vf KFN(cone_z0)(const KFN(lanes) *st)
+{
+    return KDOTX(st->px, st->py, st->pz, st->vx, st->vy, st->vz);
+}
+
 CYLRAY_INLINE int KFN(cone_side)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
 {
     const vf zero = vzero(), dx = st->dx, dy = st->dy, dz = st->dz;
@@ -56,7 +66,7 @@ CYLRAY_INLINE int KFN(cone_side)(KFN(lanes) *st, const cylray_kat_ *k, const cyl
     const vf kap = KFN(both_in)(k, F, offsetof(cylray_prepared, kap), CYLRAY_LF_RRVV);
     const vf rm = KFN(both_in)(k, F, offsetof(cylray_prepared, rm), CYLRAY_LF_R);
     const vf vv = KDOT(vx, vy, vz, vx, vy, vz);
-    const vf r0 = vfma_x(kap, KDOTX(px, py, pz, vx, vy, vz), rm);
+    const vf r0 = vfma_x(kap, KFN(cone_z0)(st), rm);
     const vf a = vmul(kap, KDOT(dx, dy, dz, vx, vy, vz));
     const vf va = vmul(vv, a);
     st->cr = r0, st->ca = a;

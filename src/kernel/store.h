@@ -84,8 +84,7 @@ CYLRAY_INLINE void KFN(normals)(const KFN(lanes) *st, const cylray_kat_ *k,
         const vf cn = KFN(both_in)(k, F, offsetof(cylray_prepared, cnrm), CYLRAY_LF_NSCALE);
         /* |r|: rounding near an apex may give a hit point a radius just below 0,
          * which must not turn the normal inwards. */
-        const vf r = vfma_x(st->ca, tr, st->cr), rk = vmul(vabs(r), kap),
-                 sc = vdiv(cn, vabs(r));
+        const vf ar = vabs(vfma_x(st->ca, tr, st->cr)), rk = vmul(ar, kap), sc = vdiv(cn, ar);
         vf ux = vfms_x(tr, st->ex, st->fx), uy = vfms_x(tr, st->ey, st->fy),
            uz = vfms_x(tr, st->ez, st->fz);
         nx = vmul(vfnma_x(rk, st->vx, vfms_x(ky, uz, vmul(kz, uy))), sc);
@@ -93,7 +92,7 @@ CYLRAY_INLINE void KFN(normals)(const KFN(lanes) *st, const cylray_kat_ *k,
         nz = vmul(vfnma_x(rk, st->vz, vfms_x(kx, uy, vmul(ky, ux))), sc);
         /* At the apex itself the gradient vanishes: the normal there is the axis,
          * pointing away from the cone (v's length is renormalised below). */
-        const vm apex = mand(hit, veq(r, zero));
+        const vm apex = mand(hit, veq(ar, zero));
         if (many(apex)) {
             const vf sg = vsel(vlt(kap, zero), one, vset1(-1.0f));
             nx = vsel(apex, vmul(sg, st->vx), nx), ny = vsel(apex, vmul(sg, st->vy), ny);
