@@ -522,6 +522,7 @@ void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], 
     track(tr, &r0, v0);
 
     double sum_m[K_COUNT][G_COUNT] = {{0}}, sum_t[K_COUNT] = {0}, dt[IN_COUNT] = {0};
+    cylq sum_zd = 0;         /* the box's first-order reach of zd (d's rate along the axis) */
     cylq dcoef[IN_COUNT][3]; /* each input's move of A, B and C */
     double nmax = 0;
     for (int i = 0; i < IN_COUNT; i++) {
@@ -537,6 +538,7 @@ void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], 
             sum_t[kand] += qdiff(r.t[kand], r0.t[kand]);
         }
         dcoef[i][0] = r.A - r0.A, dcoef[i][1] = r.B - r0.B, dcoef[i][2] = r.C - r0.C;
+        sum_zd += q_abs(r.zd - r0.zd);
         if (x0 >= 0) {
             cylq dd = r.t[x0] - r0.t[x0];
             dt[i] = q_isfinite(dd) ? (double)dd : 0;
@@ -567,6 +569,31 @@ void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], 
         }
         cin_q q;
         c_perturb(&base, step, k, &q);
+        c_eval(&q, tmin, tmax, &r);
+        out->evals++;
+        c_valid(&r, vflags, v);
+        track(tr, &r, v);
+        int x = c_first(&r, v);
+        c_add(&set, x < 0 ? -1 : c_part(&r, x), x < 0 ? NAN : (double)r.t[x]);
+        if (x0 >= 0 && x == x0 && c_part(&r, x) == p0) {
+            double n[3];
+            c_normal(&r, x, ff, n);
+            nmax = fmax(nmax, angle3(n, n0));
+        }
+    }
+
+    /* Each input alone at a quarter and a half of the box's reach either way: t is not
+     * monotonic across an apex (the double cone's radius is |r|), and on a cone as
+     * short as the box's reach along its axis the vertices all leave the slab or meet
+     * the tip while the box's inside meets the side at every t between. */
+    cylq half[IN_COUNT];
+    for (int i = 0; i < IN_COUNT; i++)
+        half[i] = step[i] / 2;
+    for (int i = 0; i < 4 * IN_COUNT; i++) {
+        signed char k[IN_COUNT] = {0};
+        k[i / 4] = (signed char)((i & 1 ? -1 : 1) * (i & 2 ? 2 : 1));
+        cin_q q;
+        c_perturb(&base, half, k, &q);
         c_eval(&q, tmin, tmax, &r);
         out->evals++;
         c_valid(&r, vflags, v);
@@ -637,6 +664,20 @@ void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], 
     if (all_drop)
         c_add(&set, -1, NAN);
     c_reach(&set, &r0, (const cylq(*)[3])dcoef, tmin, tmax, may_drop, hi);
+    /* A ray whose rate along the axis the box takes through 0 (d.v = 0 within it) meets
+     * the ends' planes at any t beyond those the samples saw, of either sign: a disc
+     * the samples found is an outcome out to the range's bound. */
+    if (q_abs(r0.zd) <= sum_zd)
+        for (int i = 0; i < set.n; i++) {
+            c_outcome *x = &set.v[i];
+            const int pp = x->part < 0 ? 0 : x->part & ~CYLRAY_BACKFACE;
+            if (pp != CYLRAY_CAP_LO && pp != CYLRAY_CAP_HI)
+                continue;
+            if (x->hi > 0)
+                x->hi = fmax(x->hi, (double)tmax);
+            if (x->lo < 0)
+                x->lo = fmin(x->lo, (double)tmin);
+        }
 
     int hits = 0, misses = 0;
     for (int i = 0; i < set.n; i++) {

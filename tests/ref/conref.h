@@ -32,8 +32,10 @@ int conref_intersect(const cylray_cone *c, const float o[3], const float d[3], f
  * ulps of |o - c|, plus 2 ulps of the center's largest coordinate when the center
  * (p0 + p1) / 2 is not a float (the prepared cone rounds it once); d by 2 ulps of its
  * largest component; the axis p1 - p0 by 2 ulps of its largest component; each radius
- * by 2 ulps. Re-evaluated once per input, at the two vertices where t is extreme and at
- * 8 random ones. A candidate (each side root, each disc) whose validity margins (the
+ * by 2 ulps. Re-evaluated once per input, at the two vertices where t is extreme, at
+ * 8 random ones, and for each input alone at a quarter and a half of its reach either
+ * way (t need not be monotonic in an input on a cone). Where the box takes d.v through
+ * 0, a disc outcome seen extends to tmin or tmax. A candidate (each side root, each disc) whose validity margins (the
  * discriminant, the slab, the disc, tmin and tmax) can change sign in the box, or lie
  * within 4 float ulps of the values compared, may be taken or dropped; candidates whose
  * t ranges overlap may come in either order; every outcome this allows is kept. */

@@ -12,7 +12,10 @@
  *     though the point lies many ulps of the radius inside or outside the rim (or far
  *     from the rim, where a flat side runs along the plane), and
  *     rays near an apex or grazing a scaled cone, where SSE4.1 (no FMA) once rounded
- *     the products that cancel; with normals, each found case's normal too. */
+ *     the products that cancel, and rays along an end's plane of cones so flat or so
+ *     short that their inputs' rounding spans the slab (where the band's samples must
+ *     see inside the box, not only its vertices); with normals, each found case's
+ *     normal too. */
 #include "conref.h"
 #include "cylray.h"
 
@@ -276,6 +279,26 @@ static const found_case found[] = {
      {-0x1.fe5e6p+8f, 0x1.49da7ep-33f, -0x1p+0f},
      {0x1.ffffacp-13f, -0x1.0f72f2p-24f, 0x1.21eeccp-21f},
      -INFINITY},
+    {"a ray across a flat tip cone's axis, d.v = 0 (the fuzzer's): d.v rounds to a hair "
+     "of either sign, and the box of the inputs meets the ends' planes at any t",
+     {{0x1.a1ap-7f, 0x1.b7cdfep-34f, 0x1.b7cdfep-34f},
+      {0x1.a1ap-7f, 0x1.b7cdfep-33f, 0x1.b7cdfep-33f},
+      0x1.e5ep-2f,
+      0,
+      CYLRAY_CAPPED},
+     {0x1.a1ap-7f, 0x1.49da7ep-33f, 0x1.12e0bep-32f},
+     {0x1.30ff8p-11f, -0x1.22caccp-11f, 0x1.22caccp-11f},
+     0},
+    {"a ray in the low end's plane of a disc one ulp thick (the fuzzer's): the rounded "
+     "center moves the cone half its length, within the box's reach along the axis",
+     {{0x1p+0f, -0x0p+0f, 0x1p+0f},
+      {0x1.000002p+0f, 0x0p+0f, 0x1p+0f},
+      0x1p-12f,
+      0,
+      CYLRAY_CAPPED},
+     {0x1p+0f, 0x1.8p-9f, 0x1p+0f},
+     {0, -0x1p-12f, 0},
+     0},
     {"near an apex of an open cone (SSE4.1 was 13 ulps off)",
      {{0x1.44601p+3f, -0x1.e55c7ep+2f, 0x1.366f3ep+1f},
       {0x1.f3788p+1f, 0x1.2f546ap+2f, 0x1.1c0d4cp+3f},
