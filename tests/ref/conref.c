@@ -466,6 +466,36 @@ static void c_reach(c_set *set, const crec *r, const cylq (*dc)[3], cylq tmin, c
     }
 }
 
+/* One point of the box: its outcome joins the set, its candidates the tracks, and the
+ * turn of its normal from the exact one where it keeps the exact outcome. */
+typedef struct {
+    cylq tmin, tmax;
+    unsigned vflags;
+    int ff, x0, p0;
+    const double *n0;
+    c_track *tr;
+    c_set *set;
+    double nmax;
+    int evals;
+} c_box;
+
+static void c_sample(c_box *b, const cin_q *q)
+{
+    crec r;
+    unsigned char v[K_COUNT];
+    c_eval(q, b->tmin, b->tmax, &r);
+    b->evals++;
+    c_valid(&r, b->vflags, v);
+    track(b->tr, &r, v);
+    const int x = c_first(&r, v);
+    c_add(b->set, x < 0 ? -1 : c_part(&r, x), x < 0 ? NAN : (double)r.t[x]);
+    if (b->x0 >= 0 && x == b->x0 && c_part(&r, x) == b->p0) {
+        double n[3];
+        c_normal(&r, x, b->ff, n);
+        b->nmax = fmax(b->nmax, angle3(n, b->n0));
+    }
+}
+
 void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], float tmin,
                       float tmax, unsigned flags, cylref_band *out)
 {
@@ -558,6 +588,7 @@ void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], 
         seed = seed * 0x100000001b3u ^ fbits(o[k]) ^ (uint64_t)fbits(d[k]) << 32 ^
                (uint64_t)fbits(c->p0[k]) << 7 ^ (uint64_t)fbits(c->p1[k]) << 19;
     seed ^= (uint64_t)fbits(c->r0) << 11 ^ (uint64_t)fbits(c->r1) << 29;
+    c_box box = {tmin, tmax, vflags, ff, x0, p0, n0, tr, &set, nmax, 0};
     for (int vtx = 0; vtx < 2 + RANDOM_VERTICES; vtx++) {
         signed char k[IN_COUNT];
         uint64_t bits = rng_splitmix64(&seed);
@@ -569,17 +600,7 @@ void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], 
         }
         cin_q q;
         c_perturb(&base, step, k, &q);
-        c_eval(&q, tmin, tmax, &r);
-        out->evals++;
-        c_valid(&r, vflags, v);
-        track(tr, &r, v);
-        int x = c_first(&r, v);
-        c_add(&set, x < 0 ? -1 : c_part(&r, x), x < 0 ? NAN : (double)r.t[x]);
-        if (x0 >= 0 && x == x0 && c_part(&r, x) == p0) {
-            double n[3];
-            c_normal(&r, x, ff, n);
-            nmax = fmax(nmax, angle3(n, n0));
-        }
+        c_sample(&box, &q);
     }
 
     /* Each input alone at a quarter and a half of the box's reach either way: t is not
@@ -594,18 +615,19 @@ void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], 
         k[i / 4] = (signed char)((i & 1 ? -1 : 1) * (i & 2 ? 2 : 1));
         cin_q q;
         c_perturb(&base, half, k, &q);
-        c_eval(&q, tmin, tmax, &r);
-        out->evals++;
-        c_valid(&r, vflags, v);
-        track(tr, &r, v);
-        int x = c_first(&r, v);
-        c_add(&set, x < 0 ? -1 : c_part(&r, x), x < 0 ? NAN : (double)r.t[x]);
-        if (x0 >= 0 && x == x0 && c_part(&r, x) == p0) {
-            double n[3];
-            c_normal(&r, x, ff, n);
-            nmax = fmax(nmax, angle3(n, n0));
-        }
+        c_sample(&box, &q);
     }
+    /* Where the box takes d.v through 0, the ray that keeps its level along the axis:
+     * its side's t is the farthest (a nearly level ray through a flat cone leaves it
+     * sooner the faster it climbs), and no vertex has it. */
+    if (q_abs(r0.zd) <= sum_zd && r0.zd != 0) {
+        cin_q q = base;
+        for (int k = 0; k < 3; k++)
+            q.d[k] -= r0.zd * r0.u[k];
+        c_sample(&box, &q);
+    }
+    nmax = box.nmax;
+    out->evals += box.evals;
 
     /* Which candidates may be taken, which dropped: a margin within its first-order
      * spread over the box (or 4 ulps of its terms) of zero, or seen both ways. */
