@@ -688,18 +688,26 @@ void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], 
     c_reach(&set, &r0, (const cylq(*)[3])dcoef, tmin, tmax, may_drop, hi);
     /* A ray whose rate along the axis the box takes through 0 (d.v = 0 within it) meets
      * the ends' planes at any t beyond those the samples saw, of either sign: a disc
-     * the samples found is an outcome out to the range's bound. */
-    if (q_abs(r0.zd) <= sum_zd)
+     * the samples found is an outcome out to where the ray leaves the disc's reach
+     * (|t| at most (r + |w_perp|) / |d_perp|, with a margin for the box) or the range's
+     * bound. */
+    if (q_abs(r0.zd) <= sum_zd) {
+        double wp = 0, dp = 0;
+        for (int k = 0; k < 3; k++)
+            wp += (double)(r0.wp[k] * r0.wp[k]), dp += (double)(r0.dp[k] * r0.dp[k]);
+        const double reach =
+            (fmax(c->r0, c->r1) + sqrt(wp)) / sqrt(dp) * (1 + 0x1p-16); /* inf: dp = 0 */
         for (int i = 0; i < set.n; i++) {
             c_outcome *x = &set.v[i];
             const int pp = x->part < 0 ? 0 : x->part & ~CYLRAY_BACKFACE;
             if (pp != CYLRAY_CAP_LO && pp != CYLRAY_CAP_HI)
                 continue;
             if (x->hi > 0)
-                x->hi = fmax(x->hi, (double)tmax);
+                x->hi = fmax(x->hi, fmin((double)tmax, reach));
             if (x->lo < 0)
-                x->lo = fmin(x->lo, (double)tmin);
+                x->lo = fmin(x->lo, fmax((double)tmin, -reach));
         }
+    }
 
     int hits = 0, misses = 0;
     for (int i = 0; i < set.n; i++) {
