@@ -626,6 +626,48 @@ void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], 
             q.d[k] -= r0.zd * r0.u[k];
         c_sample(&box, &q);
     }
+    /* And the rays of the box that cross an end's plane where the line passes the disc
+     * (its closest approach to the axis, and along its chord there to a hair of the
+     * rim): with d.v near 0 the plane is met far along the ray, at a t set by a hair of
+     * d's part along the axis and of the origin's level, which no vertex has. The move
+     * is made along the axis, d's part first and the origin's level for the rest, each
+     * within its own perturbation, with the ray climbing and falling (it meets the
+     * plane from either side). */
+    {
+        cylq pp = 0, pd = 0, dd = 0, md = INFINITY, mw = INFINITY;
+        for (int k = 0; k < 3; k++) {
+            pp += r0.wp[k] * r0.wp[k], pd += r0.wp[k] * r0.dp[k], dd += r0.dp[k] * r0.dp[k];
+            if (r0.u[k] != 0) {
+                md = q_min(md, 2 * step[IN_D + k] / q_abs(r0.u[k]));
+                mw = q_min(mw, 2 * step[IN_W + k] / q_abs(r0.u[k]));
+            }
+        }
+        for (int e = 0; e < 2 && dd > 0; e++) {
+            const cylq rad = e ? base.r1 : base.r0, tc = -pd / dd;
+            const cylq dist2 = pp + tc * pd; /* |wp + tc dp|^2 */
+            if (!(rad > 0) || !(dist2 < rad * rad))
+                continue;
+            const cylq half = q_sqrt((rad * rad - dist2) / dd);
+            static const double at[] = {-(1 - 0x1p-20), -0.5, 0, 0.5, 1 - 0x1p-20};
+            for (int j = 0; j < 5; j++) {
+                const cylq ts = tc + (cylq)at[j] * half;
+                if (!(ts > tmin && ts < tmax) || ts == 0)
+                    continue;
+                const cylq need = (e ? r0.L : 0) - r0.zw - ts * r0.zd;
+                for (int sg = -1; sg <= 1; sg += 2) {
+                    cylq dz = sg * q_abs(need / ts);
+                    dz = dz > md ? md : dz < -md ? -md : dz;
+                    const cylq dw = need - ts * dz;
+                    if (!(q_abs(dw) <= mw))
+                        continue;
+                    cin_q q = base;
+                    for (int k = 0; k < 3; k++)
+                        q.d[k] += dz * r0.u[k], q.w[k] += dw * r0.u[k];
+                    c_sample(&box, &q);
+                }
+            }
+        }
+    }
     nmax = box.nmax;
     out->evals += box.evals;
 

@@ -36,7 +36,9 @@ int conref_intersect(const cylray_cone *c, const float o[3], const float d[3], f
  * 8 random ones, and for each input alone at a quarter and a half of its reach either
  * way (t need not be monotonic in an input on a cone). Where the box takes d.v through
  * 0, also at the level ray (d.v = 0), and a disc outcome seen extends to tmin or tmax
- * or to where the ray leaves the disc's reach.
+ * or to where the ray leaves the disc's reach. And at the rays of the box (d's and the
+ * origin's moves along the axis) that meet each end's plane along the line's chord
+ * across the disc.
  * A candidate (each side root, each disc) whose validity margins (the
  * discriminant, the slab, the disc, tmin and tmax) can change sign in the box, or lie
  * within 4 float ulps of the values compared, may be taken or dropped; candidates whose
