@@ -467,8 +467,7 @@ static void c_reach(c_set *set, const crec *r, const cylq (*dc)[3], cylq tmin, c
 }
 
 /* One point of the box: its outcome joins the set, its candidates the tracks, and the
- * turn of its normal from the exact one where it keeps the exact outcome; its record
- * to out, where given. */
+ * turn of its normal from the exact one where it keeps the exact outcome. */
 typedef struct {
     cylq tmin, tmax;
     unsigned vflags;
@@ -480,7 +479,7 @@ typedef struct {
     int evals;
 } c_box;
 
-static void c_sample(c_box *b, const cin_q *q, crec *out)
+static void c_sample(c_box *b, const cin_q *q)
 {
     crec r;
     unsigned char v[K_COUNT];
@@ -495,8 +494,6 @@ static void c_sample(c_box *b, const cin_q *q, crec *out)
         c_normal(&r, x, b->ff, n);
         b->nmax = fmax(b->nmax, angle3(n, b->n0));
     }
-    if (out)
-        *out = r;
 }
 
 void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], float tmin,
@@ -530,7 +527,7 @@ void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], 
 
     crec r0, r;
     c_eval(&base, tmin, tmax, &r0);
-    unsigned char v0[K_COUNT];
+    unsigned char v0[K_COUNT], v[K_COUNT];
     c_valid(&r0, vflags, v0);
     const int x0 = c_first(&r0, v0);
     const int p0 = x0 < 0 ? -1 : c_part(&r0, x0);
@@ -557,13 +554,14 @@ void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], 
     double sum_m[K_COUNT][G_COUNT] = {{0}}, sum_t[K_COUNT] = {0}, dt[IN_COUNT] = {0};
     cylq sum_zd = 0;         /* the box's first-order reach of zd (d's rate along the axis) */
     cylq dcoef[IN_COUNT][3]; /* each input's move of A, B and C */
-    c_box box = {tmin, tmax, vflags, ff, x0, p0, n0, tr, &set, 0, 0};
+    double nmax = 0;
     for (int i = 0; i < IN_COUNT; i++) {
         signed char k[IN_COUNT] = {0};
         k[i] = 2;
         cin_q q;
         c_perturb(&base, step, k, &q);
-        c_sample(&box, &q, &r);
+        c_eval(&q, tmin, tmax, &r);
+        out->evals++;
         for (int kand = 0; kand < K_COUNT; kand++) {
             for (int g = 0; g < G_COUNT; g++)
                 sum_m[kand][g] += qdiff(r.m[kand][g], r0.m[kand][g]);
@@ -575,12 +573,22 @@ void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], 
             cylq dd = r.t[x0] - r0.t[x0];
             dt[i] = q_isfinite(dd) ? (double)dd : 0;
         }
+        c_valid(&r, vflags, v);
+        track(tr, &r, v);
+        int x = c_first(&r, v);
+        c_add(&set, x < 0 ? -1 : c_part(&r, x), x < 0 ? NAN : (double)r.t[x]);
+        if (x0 >= 0 && x == x0 && c_part(&r, x) == p0) {
+            double n[3];
+            c_normal(&r, x, ff, n);
+            nmax = fmax(nmax, angle3(n, n0));
+        }
     }
     uint64_t seed = 0x636f6e65u;
     for (int k = 0; k < 3; k++)
         seed = seed * 0x100000001b3u ^ fbits(o[k]) ^ (uint64_t)fbits(d[k]) << 32 ^
                (uint64_t)fbits(c->p0[k]) << 7 ^ (uint64_t)fbits(c->p1[k]) << 19;
     seed ^= (uint64_t)fbits(c->r0) << 11 ^ (uint64_t)fbits(c->r1) << 29;
+    c_box box = {tmin, tmax, vflags, ff, x0, p0, n0, tr, &set, nmax, 0};
     for (int vtx = 0; vtx < 2 + RANDOM_VERTICES; vtx++) {
         signed char k[IN_COUNT];
         uint64_t bits = rng_splitmix64(&seed);
@@ -592,7 +600,7 @@ void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], 
         }
         cin_q q;
         c_perturb(&base, step, k, &q);
-        c_sample(&box, &q, NULL);
+        c_sample(&box, &q);
     }
 
     /* Each input alone at a quarter and a half of the box's reach either way: t is not
@@ -607,24 +615,16 @@ void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], 
         k[i / 4] = (signed char)((i & 1 ? -1 : 1) * (i & 2 ? 2 : 1));
         cin_q q;
         c_perturb(&base, half, k, &q);
-        c_sample(&box, &q, NULL);
+        c_sample(&box, &q);
     }
-    /* The largest moves along the axis that d and the origin's level each take within
-     * their own perturbations. */
-    cylq md = INFINITY, mw = INFINITY;
-    for (int k = 0; k < 3; k++)
-        if (r0.u[k] != 0) {
-            md = q_min(md, 2 * step[IN_D + k] / q_abs(r0.u[k]));
-            mw = q_min(mw, 2 * step[IN_W + k] / q_abs(r0.u[k]));
-        }
-    /* Where d's own perturbation takes d.v to 0, the ray that keeps its level along
-     * the axis: its side's t is the farthest (a nearly level ray through a flat cone leaves it
+    /* Where the box takes d.v through 0, the ray that keeps its level along the axis:
+     * its side's t is the farthest (a nearly level ray through a flat cone leaves it
      * sooner the faster it climbs), and no vertex has it. */
-    if (q_abs(r0.zd) <= md && r0.zd != 0) {
+    if (q_abs(r0.zd) <= sum_zd && r0.zd != 0) {
         cin_q q = base;
         for (int k = 0; k < 3; k++)
             q.d[k] -= r0.zd * r0.u[k];
-        c_sample(&box, &q, NULL);
+        c_sample(&box, &q);
     }
     /* And the rays of the box that cross an end's plane where the line passes the disc
      * (its closest approach to the axis, and along its chord there to a hair of the
@@ -634,9 +634,14 @@ void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], 
      * within its own perturbation, with the ray climbing and falling (it meets the
      * plane from either side). */
     {
-        cylq pp = 0, pd = 0, dd = 0;
-        for (int k = 0; k < 3; k++)
+        cylq pp = 0, pd = 0, dd = 0, md = INFINITY, mw = INFINITY;
+        for (int k = 0; k < 3; k++) {
             pp += r0.wp[k] * r0.wp[k], pd += r0.wp[k] * r0.dp[k], dd += r0.dp[k] * r0.dp[k];
+            if (r0.u[k] != 0) {
+                md = q_min(md, 2 * step[IN_D + k] / q_abs(r0.u[k]));
+                mw = q_min(mw, 2 * step[IN_W + k] / q_abs(r0.u[k]));
+            }
+        }
         for (int e = 0; e < 2 && dd > 0; e++) {
             const cylq rad = e ? base.r1 : base.r0, tc = -pd / dd;
             const cylq dist2 = pp + tc * pd; /* |wp + tc dp|^2 */
@@ -658,12 +663,12 @@ void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], 
                     cin_q q = base;
                     for (int k = 0; k < 3; k++)
                         q.d[k] += dz * r0.u[k], q.w[k] += dw * r0.u[k];
-                    c_sample(&box, &q, NULL);
+                    c_sample(&box, &q);
                 }
             }
         }
     }
-    const double nmax = box.nmax;
+    nmax = box.nmax;
     out->evals += box.evals;
 
     /* Which candidates may be taken, which dropped: a margin within its first-order
