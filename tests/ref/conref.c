@@ -524,6 +524,10 @@ void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], 
     }
     step[IN_R0] = (cylq)ref_float_ulp(c->r0);
     step[IN_R1] = (cylq)ref_float_ulp(c->r1);
+    if (flags & CONREF_LEAF) { /* rm -+ kap H|v|: an ulp of the larger radius each */
+        const cylq rs = (cylq)ref_float_ulp(fmax(c->r0, c->r1));
+        step[IN_R0] = q_max(step[IN_R0], rs), step[IN_R1] = q_max(step[IN_R1], rs);
+    }
 
     crec r0, r;
     c_eval(&base, tmin, tmax, &r0);
@@ -627,12 +631,15 @@ void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], 
         c_sample(&box, &q);
     }
     /* And the rays of the box that cross an end's plane where the line passes the disc
-     * (its closest approach to the axis, and along its chord there to a hair of the
-     * rim): with d.v near 0 the plane is met far along the ray, at a t set by a hair of
-     * d's part along the axis and of the origin's level, which no vertex has. The move
-     * is made along the axis, d's part first and the origin's level for the rest, each
-     * within its own perturbation, with the ray climbing and falling (it meets the
-     * plane from either side). */
+     * (along its chord there, clipped to the range): with d.v near 0 the plane is met
+     * far along the ray, at a t set by a hair of d's part along the axis and of the
+     * origin's level, which no vertex has. Moving d along the axis by at most md and
+     * the origin's level by at most mw reaches the plane at ts exactly where
+     * |need(ts)| <= mw + |ts| md, need being the plane's level less the ray's there:
+     * an interval on either side of ts = 0 (a convex condition on each), whose ends and
+     * inside are sampled. The move is made d's part first and the origin's level for
+     * the rest, with the ray climbing and falling (it meets the plane from either
+     * side). */
     {
         cylq pp = 0, pd = 0, dd = 0, md = INFINITY, mw = INFINITY;
         for (int k = 0; k < 3; k++) {
@@ -642,28 +649,59 @@ void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], 
                 mw = q_min(mw, 2 * step[IN_W + k] / q_abs(r0.u[k]));
             }
         }
-        for (int e = 0; e < 2 && dd > 0; e++) {
+        const cylq hair = (cylq)0x1p-20;
+        for (int e = 0; e < 2 && dd > 0 && q_isfinite(md) && q_isfinite(mw); e++) {
             const cylq rad = e ? base.r1 : base.r0, tc = -pd / dd;
             const cylq dist2 = pp + tc * pd; /* |wp + tc dp|^2 */
             if (!(rad > 0) || !(dist2 < rad * rad))
                 continue;
-            const cylq half = q_sqrt((rad * rad - dist2) / dd);
-            static const double at[] = {-(1 - 0x1p-20), -0.5, 0, 0.5, 1 - 0x1p-20};
-            for (int j = 0; j < 5; j++) {
-                const cylq ts = tc + (cylq)at[j] * half;
-                if (!(ts > tmin && ts < tmax) || ts == 0)
+            const cylq half = q_sqrt((rad * rad - dist2) / dd) * (1 - hair);
+            const cylq n0 = (e ? r0.L : 0) - r0.zw; /* need(ts) = n0 - ts zd */
+            const cylq mwi = mw * (1 - hair), mdi = md * (1 - hair);
+            for (int side = 0; side < 2; side++) {
+                /* ts >= 0: ts (zd + md) >= n0 - mw and ts (zd - md) <= n0 + mw;
+                 * ts <= 0: ts (md - zd) <= mw - n0 and ts (zd + md) <= n0 + mw. */
+                cylq a = q_max(tc - half, (cylq)tmin), b = q_min(tc + half, (cylq)tmax);
+                if (side)
+                    b = q_min(b, 0);
+                else
+                    a = q_max(a, 0);
+                const cylq k1 = side ? mdi - r0.zd : -(r0.zd + mdi), m1 = mwi - n0;
+                const cylq k2 = side ? r0.zd + mdi : r0.zd - mdi, m2 = n0 + mwi;
+                const cylq kk[2] = {k1, k2}, mm[2] = {m1, m2};
+                for (int c2 = 0; c2 < 2; c2++) {
+                    if (kk[c2] > 0)
+                        b = q_min(b, mm[c2] / kk[c2]);
+                    else if (kk[c2] < 0)
+                        a = q_max(a, mm[c2] / kk[c2]);
+                    else if (mm[c2] < 0)
+                        b = a - 1;
+                }
+                if (!(a <= b) || !q_isfinite(a) || !q_isfinite(b))
                     continue;
-                const cylq need = (e ? r0.L : 0) - r0.zw - ts * r0.zd;
-                for (int sg = -1; sg <= 1; sg += 2) {
-                    cylq dz = sg * q_abs(need / ts);
-                    dz = dz > md ? md : dz < -md ? -md : dz;
-                    const cylq dw = need - ts * dz;
-                    if (!(q_abs(dw) <= mw))
+                /* the ends themselves (the range's bound may be one), but a hair off
+                 * ts = 0, where only the origin moves */
+                if (a == 0)
+                    a = b * (cylq)0x1p-100;
+                if (b == 0)
+                    b = a * (cylq)0x1p-100;
+                static const double at[] = {0, 0.25, 0.5, 0.75, 1};
+                for (int j = 0; j < 5; j++) {
+                    const cylq ts = j == 4 ? b : a + (cylq)at[j] * (b - a);
+                    if (ts == 0)
                         continue;
-                    cin_q q = base;
-                    for (int k = 0; k < 3; k++)
-                        q.d[k] += dz * r0.u[k], q.w[k] += dw * r0.u[k];
-                    c_sample(&box, &q);
+                    const cylq need = n0 - ts * r0.zd;
+                    for (int sg = -1; sg <= 1; sg += 2) {
+                        cylq dz = sg * q_abs(need / ts);
+                        dz = dz > md ? md : dz < -md ? -md : dz;
+                        const cylq dw = need - ts * dz;
+                        if (!(q_abs(dw) <= mw))
+                            continue;
+                        cin_q q = base;
+                        for (int k = 0; k < 3; k++)
+                            q.d[k] += dz * r0.u[k], q.w[k] += dw * r0.u[k];
+                        c_sample(&box, &q);
+                    }
                 }
             }
         }

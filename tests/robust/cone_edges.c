@@ -15,7 +15,8 @@
  *     the products that cancel, and rays along an end's plane of cones so flat or so
  *     short that their inputs' rounding spans the slab (where the band's samples must
  *     see inside the box, not only its vertices); with normals, each found case's
- *     normal too. */
+ *     normal too. The leaf is judged by the leaf's band (CONREF_LEAF): its end radii
+ *     are rm -+ kap H|v|, an ulp of the larger radius off. */
 #include "conref.h"
 #include "cylray.h"
 
@@ -319,6 +320,26 @@ static const found_case found[] = {
      {-0x1.798p-2f, 0x1.8p+1f, -0x1.8p+1f},
      {0x1.b4a294p-10f, -0x1.4779eep-9f, 0x1.4779eep-9f},
      0},
+    {"a level ray through a flat cone's middle plane (the fuzzer's): the box of the "
+     "inputs lets it fall onto the wide disc anywhere along the chord from its origin",
+     {{0x1.a5ap+0f, 0x1.b7cdfep-34f, 0x1.b7cdfep-34f},
+      {0x1.a5ap+0f, 0x1.b7cdfep-33f, 0x1.b7cdfep-33f},
+      0x1.9p-15f,
+      0x1p+1f,
+      CYLRAY_CAPPED},
+     {0x1.4b4p-1f, 0x1.49da7ep-33f, 0x1.49da7ep-33f},
+     {0x1.d02e2p+1f, -0x1.318d1ap+0f, 0x1.318d1ap+0f},
+     0},
+    {"a level ray from a hair below a flat cone's high plane (the fuzzer's): the box of "
+     "the inputs lets it fall onto the wide disc right from its origin",
+     {{0x1.a5ap+0f, 0x1.b7cdfep-34f, 0x1.b7cdfep-34f},
+      {0x1.a5ap+0f, 0x1.b7cdfep-33f, 0x1.b7cdfep-33f},
+      0x1.9p-15f,
+      0x1p+1f,
+      CYLRAY_CAPPED},
+     {0x1.a5a002p+0f, 0x1.49da7ep-33f, 0x1.12e0bep-32f},
+     {-0x1.f8765p-13f, -0x1.ef2894p-16f, 0x1.ef2894p-16f},
+     0},
     {"near an apex of an open cone (SSE4.1 was 13 ulps off)",
      {{0x1.44601p+3f, -0x1.e55c7ep+2f, 0x1.366f3ep+1f},
       {0x1.f3788p+1f, 0x1.2f546ap+2f, 0x1.1c0d4cp+3f},
@@ -343,10 +364,13 @@ static void found_cases(const cylray_kernels *k)
             continue;
         }
         for (unsigned flags = 0; flags <= CYLRAY_FLAGS_ALL; flags++) {
-            cylref_band band;
-            conref_band_eval(&x->cone, x->o, x->d, x->tmin, INFINITY, flags, &band);
+            cylref_band bands[2];
+            conref_band_eval(&x->cone, x->o, x->d, x->tmin, INFINITY, flags, &bands[0]);
+            conref_band_eval(&x->cone, x->o, x->d, x->tmin, INFINITY, flags | CONREF_LEAF,
+                             &bands[1]);
             const double tol = flags & CYLRAY_FAST ? 8 : 4;
             for (int w = 0; w < 2; w++) {
+                const cylref_band band = bands[w];
                 int hit;
                 float t = 0, n[3] = {0, 0, 0};
                 unsigned part = 0;
