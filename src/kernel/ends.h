@@ -39,6 +39,22 @@ CYLRAY_INLINE vm KFN(on_disc)(const KFN(lanes) *st, vf t, vf rc, vf vv)
     return vle(vsumsq_x(fx, fy, fz, vmul(vmul(vv, rc), rc)), vzero());
 }
 
+/* Where the disc's verdict (KFN(on_disc)) is sure: the point's distance from the axis
+ * |f - t e| / |v| and rc differ by more than 2^-18 of the terms that round (|v| |p|,
+ * to which f is rounded, |t e| and the radius), some 64 ulps of them. Beside a tiny
+ * disc at the end of a wide cone the terms are the cone's size and no verdict is. */
+CYLRAY_INLINE vm KFN(disc_sure)(const KFN(lanes) *st, vf t, vf rc, vf vv)
+{
+    const vf fx = vfnma_x(t, st->ex, st->fx), fy = vfnma_x(t, st->ey, st->fy),
+             fz = vfnma_x(t, st->ez, st->fz);
+    const vf dist = vsqrt(KDOT(fx, fy, fz, fx, fy, fz)), rr = vmul(vsqrt(vv), rc);
+    const vf v1 = vadd(vadd(vabs(st->vx), vabs(st->vy)), vabs(st->vz)),
+             p1 = vadd(vadd(vabs(st->px), vabs(st->py)), vabs(st->pz)),
+             e1 = vadd(vadd(vabs(st->ex), vabs(st->ey)), vabs(st->ez));
+    const vf terms = vfma(v1, p1, vfma(vabs(t), e1, rr));
+    return vgt(vabs(vsub(dist, rr)), vmul(vset1(0x1p-18f), terms));
+}
+
 /* A cone whose side is flatter than 45 degrees (slope^2 = kap^2 v.v > 1) at its ends.
  * A ray that passes an end's rim enters by the disc and leaves by the side (or the
  * reverse) at two t a fraction of an ulp apart, while the point lies many ulps of the
@@ -84,24 +100,44 @@ CYLRAY_INLINE void KFN(cone_rims)(KFN(lanes) *st, const cylray_kat_ *k, const cy
                           mandn(vle(st->side_lo, slab_out), rim_out)));
         st->ok_in = mor(mand(rim, ok), mandn(st->ok_in, rim));
     }
-    /* The parts where the plane's and the side's entries (exits) lie within KM_RIM, on
-     * lanes with roots (a line inside the double cone throughout has no side bound to
-     * weigh). Only there: further apart, the side's bound that the disc would name is
-     * not the one beside the plane, and near a rim the disc test is no surer than the
-     * order of the two t. */
+    /* The parts, on lanes with roots (a line inside the double cone throughout has no
+     * side bound to weigh): the entry is the plane's exactly when the plane's point
+     * lies on the disc. Where the two t lie within KM_RIM the disc names the part.
+     * Further apart their order is surer than a disc test that rounding can turn, but
+     * a side root that cancellation has moved by more than KM_RIM can fall on the
+     * wrong side of the plane's t: within KM_ROOT, where the disc's verdict is sure
+     * (KFN(disc_sure)) and the order says otherwise, the disc names it. */
     const vm sd = mandn(flat, st->inpar);
-    const vm in = mand(sd, KNEAR_(slab_in, st->side_lo));
-    const vm out = mand(sd, KNEAR_(slab_out, st->side_hi));
+    vm in = mand(sd, KNEAR_(slab_in, st->side_lo));
+    vm out = mand(sd, KNEAR_(slab_out, st->side_hi));
+    /* further apart (within KM_ROOT), the lanes that may hit */
+    const vf wide = vset1(KM_ROOT);
+    const vm may = mand(sd, st->ok_in);
+#define KWIDE_(a, b) vlt(vabs(vsub(a, b)), vmul(wide, vmax(vabs(a), vabs(b))))
+    const vm wide_in = mandn(mand(mand(may, has_in), KWIDE_(slab_in, st->side_lo)), in);
+    const vm wide_out = mandn(mand(mand(may, has_out), KWIDE_(slab_out, st->side_hi)), out);
+#undef KWIDE_
 #undef KNEAR_
+    if (!many(mor(mor(in, out), mor(wide_in, wide_out))))
+        return;
+    const vm on_in = mand(has_in, KFN(on_disc)(st, slab_in, rc_in, vv));
+    const vm on_out = mand(has_out, KFN(on_disc)(st, slab_out, rc_out, vv));
+    /* there, where the disc and the order of the two t disagree, a sure disc decides */
+    const vm odd_in = mand(wide_in, mxor(on_in, vle(st->side_lo, slab_in)));
+    const vm odd_out = mand(wide_out, mxor(on_out, vle(slab_out, st->side_hi)));
+    if (many(mor(odd_in, odd_out))) {
+        in = mor(in, mand(odd_in, KFN(disc_sure)(st, slab_in, rc_in, vv)));
+        out = mor(out, mand(odd_out, KFN(disc_sure)(st, slab_out, rc_out, vv)));
+    }
     if (many(in)) {
-        const vm disc = mand(mand(in, has_in), KFN(on_disc)(st, slab_in, rc_in, vv));
+        const vm disc = mand(in, on_in);
         const vm side = mandn(in, disc);
         st->side_lo =
             vsel(disc, vneg(inf), vsel(side, vmax(st->side_lo, slab_in), st->side_lo));
         st->t_in = vsel(disc, slab_in, vsel(side, st->side_lo, st->t_in));
     }
     if (many(out)) {
-        const vm disc = mand(mand(out, has_out), KFN(on_disc)(st, slab_out, rc_out, vv));
+        const vm disc = mand(out, on_out);
         const vm side = mandn(out, disc);
         st->side_hi = vsel(disc, inf, vsel(side, vmin(st->side_hi, slab_out), st->side_hi));
         st->t_out = vsel(disc, slab_out, vsel(side, st->side_hi, st->t_out));

@@ -27,6 +27,10 @@
  *   side's lines, where nB and C cancel too, and the roots are polished (kernel/shapes.h).
  * KM_RIM: a cone's entry by a disc and exit by the side (or the reverse) within 2^-16 of
  *   their size, some 256 ulps, pass a rim; the disc there decides (kernel/ends.h).
+ * KM_ROOT: a cone's side root and an end's plane t within 2^-4 of their size may be in
+ *   the wrong order where the root is ill-conditioned (0.06 % off, near a flat cone's
+ *   tiny end); there a sure disc verdict decides (kernel/ends.h). Beyond, the roots'
+ *   own bands are narrower than the gap.
  * KM_NORMAL_OFF: a normal whose squared length is off 1 by more than 2^-10 (a hit point
  *   that rounding moved well off a tiny radius) is normalised exactly; below that one
  *   Newton step of 1/sqrt takes the error to rounding level. */
@@ -41,4 +45,5 @@
 #define KM_GENERATOR 0x1p-8f
 #define KM_CANCEL 0x1p-5f
 #define KM_RIM 0x1p-16f
+#define KM_ROOT 0x1p-4f
 #endif

@@ -320,6 +320,16 @@ static const found_case found[] = {
      {-0x1.798p-2f, 0x1.8p+1f, -0x1.8p+1f},
      {0x1.b4a294p-10f, -0x1.4779eep-9f, 0x1.4779eep-9f},
      0},
+    {"a ray by a flat cone's tiny end (the fuzzer's): its side root, 0.06 % off, falls "
+     "before the plane's t; the plane's point, 17 radii outside the disc, was a cap hit",
+     {{0x1.b7cdfep-34f, 0x1.b7cdfep-34f, 0x1.b7cdfep-34f},
+      {0x1.b7cdfep-33f, 0x1.0c765ap-20f, 0x1.b7cdfep-33f},
+      0x1.b7cdfep-34f,
+      0x1.e5ep-2f,
+      CYLRAY_CAPPED},
+     {0, 0, 0x1p-149f},
+     {-0x1p+0f, 0x1p+1f, -0x1.fap+4f},
+     0},
     {"a level ray through a flat cone's middle plane (the fuzzer's): the box of the "
      "inputs lets it fall onto the wide disc anywhere along the chord from its origin",
      {{0x1.a5ap+0f, 0x1.b7cdfep-34f, 0x1.b7cdfep-34f},
