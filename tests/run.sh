@@ -441,6 +441,9 @@ config_fuzz() {
     else
         grep -E '^cylray-fuzz|^  |^==[0-9]+==|SUMMARY|Test unit written' "$log" |
             head -60 | sed 's/^/   /'
+        # the case and the input once more, last, where the tail of a long log shows them
+        { grep -E '^cylray-fuzz: ' "$log" | head -6; grep -E 'Test unit written|^Base64: ' "$log"; } |
+            sed 's/^/   /'
         note fuzz 0 1 $(($(date +%s) - t0)) "FAILED: see $log"
     fi
 }
