@@ -230,7 +230,9 @@ CYLRAY_API cylray_status cylray_prepare_sphere(cylray_prepared *out, const cylra
  * of divisions and square roots; t is held to 8 ulps beyond the exact band instead of
  * 4 (docs/design.md, section 4). The estimates are the CPU's: on SSE4.1 and AVX2 their
  * tables differ between vendors, and so may FAST's answers (each within that rule).
- * Without it, one build answers bit for bit alike on every CPU of a path's ISA. */
+ * Where the CPU divides faster than the estimates refine (AMD's and Hygon's cores), the
+ * x86 paths answer FAST with their exact kernels, as without the flag. Without it, one
+ * build answers bit for bit alike on every CPU of a path's ISA. */
 #define CYLRAY_FAST 0x10u
 #define CYLRAY_FLAGS_ALL 0x1fu
 

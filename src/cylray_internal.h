@@ -33,6 +33,12 @@ int cylray_cpu_has_(cylray_isa isa);
  * are microcode (AMD, Hygon), else MASKED. */
 unsigned cylray_cpu_store_policy_(void);
 
+/* Whether this CPU's divisions beat the estimates with their Newton steps (api/cpu.c),
+ * and so whether the x86 paths serve CYLRAY_FAST with the exact kernels
+ * (api/dispatch.c: cylray_fast_divides_, read by kernel/entries.h). */
+int cylray_cpu_divides_fast_(void);
+int cylray_fast_divides_(void);
+
 /* Whether the toolkit's surface coordinates take their FMA instance, as the path
  * chosen does (api/dispatch.c). */
 int cylray_surface_fma_(void);

@@ -42,19 +42,31 @@ int cylray_cpu_has_(cylray_isa isa)
     }
 }
 
+static int amd_or_hygon(void)
+{
+    unsigned a, b, c, d;
+    if (!__get_cpuid(0, &a, &b, &c, &d))
+        return 0;
+    const int amd = b == 0x68747541u && d == 0x69746e65u && c == 0x444d4163u; /* AuthenticAMD */
+    const int hygon =
+        b == 0x6f677948u && d == 0x6e65476eu && c == 0x656e6975u; /* HygonGenuine */
+    return amd || hygon;
+}
 /* AMD's cores from Zen 1 to Zen 4, and Hygon's Zen, run AVX's masked stores to memory
  * as microcode (11-17 cycles each for 256 bits on Zen 3 and Zen 4, measured), while
  * their blends cost half a cycle; so every AMD and Hygon CPU takes the blends. Intel
  * cores run the masked store as two uops (docs/performance.md, "Stores by vendor"). */
 unsigned cylray_cpu_store_policy_(void)
 {
-    unsigned a, b, c, d;
-    if (!__get_cpuid(0, &a, &b, &c, &d))
-        return CYLRAY_STORE_MASKED;
-    const int amd = b == 0x68747541u && d == 0x69746e65u && c == 0x444d4163u; /* AuthenticAMD */
-    const int hygon =
-        b == 0x6f677948u && d == 0x6e65476eu && c == 0x656e6975u; /* HygonGenuine */
-    return amd || hygon ? CYLRAY_STORE_BLEND : CYLRAY_STORE_MASKED;
+    return amd_or_hygon() ? CYLRAY_STORE_BLEND : CYLRAY_STORE_MASKED;
+}
+/* The same cores divide quickly (a 256-bit division every 3.3 cycles on Zen 4): there
+ * an estimate with its Newton steps is a longer chain of more operations than the
+ * division it replaces, and CYLRAY_FAST ran 13-30 % slower on SSE4.1 and AVX2 and up
+ * to 7 % on AVX-512 (docs/performance.md, "CYLRAY_FAST on Zen 4"). */
+int cylray_cpu_divides_fast_(void)
+{
+    return amd_or_hygon();
 }
 #elif defined(__aarch64__)
 int cylray_cpu_has_(cylray_isa isa)
@@ -72,5 +84,9 @@ int cylray_cpu_has_(cylray_isa isa)
 unsigned cylray_cpu_store_policy_(void)
 {
     return CYLRAY_STORE_MASKED;
+}
+int cylray_cpu_divides_fast_(void)
+{
+    return 0;
 }
 #endif

@@ -70,6 +70,26 @@ static unsigned store_policies(void)
     return p;
 }
 
+/* Whether the x86 paths serve CYLRAY_FAST with their exact kernels, as where the CPU
+ * divides quickly (cylray_cpu_divides_fast_), chosen once per process;
+ * CYLRAY_ESTIMATES=on|off forces the estimates or the divisions (to test each on any
+ * CPU; another value is ignored). Read once a call, by kernel/entries.h. */
+static atomic_uint fast_chosen; /* 1 + the choice; 0: not yet */
+int cylray_fast_divides_(void)
+{
+    const unsigned c = atomic_load_explicit(&fast_chosen, memory_order_relaxed);
+    if (c)
+        return (int)c - 1;
+    int divide = cylray_cpu_divides_fast_();
+    const char *want = getenv("CYLRAY_ESTIMATES");
+    if (want && strcmp(want, "on") == 0)
+        divide = 0;
+    else if (want && strcmp(want, "off") == 0)
+        divide = 1;
+    atomic_store_explicit(&fast_chosen, 1u + (unsigned)divide, memory_order_relaxed);
+    return divide;
+}
+
 /* An ISA's table with the store policy p (store_policies' encoding) where it has
  * several. The policy travels in the table: its intersect entry points pass it down
  * (kernel/entries.h), so no kernel reads it from anywhere else. */

@@ -56,5 +56,6 @@
 /* a table per store policy (internal/variants.h; api/dispatch.c picks one) */
 #define KSTORES(X)                                                                             \
     X(, CYLRAY_STORE_MASKED) X(_blend, CYLRAY_STORE_BLEND) X(_lanes, CYLRAY_STORE_LANES)
+#define KFAST_BY_CPU 1 /* CYLRAY_FAST by the CPU (kernel/entries.h) */
 #include "kernel/entries.h"
 #include "isa/table.h"

@@ -71,5 +71,6 @@
 #define SPW16 avx512_d8
 #define SPWS avx512_d8
 #include "spawn/entries.h"
+#define KFAST_BY_CPU 1 /* CYLRAY_FAST by the CPU (kernel/entries.h) */
 #include "kernel/entries.h"
 #include "isa/table.h"

@@ -42,5 +42,6 @@
 #include "spawn/entries.h"
 /* a table per store policy (internal/variants.h; api/dispatch.c picks one) */
 #define KSTORES(X) X(, CYLRAY_STORE_MASKED) X(_blend, CYLRAY_STORE_BLEND)
+#define KFAST_BY_CPU 1 /* CYLRAY_FAST by the CPU (kernel/entries.h) */
 #include "kernel/entries.h"
 #include "isa/table.h"

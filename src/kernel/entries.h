@@ -11,6 +11,16 @@
  * shared). Without it, CYLRAY_STORE_MASKED alone. */
 
 #define KI_(name) CYLRAY_CAT(name, CYLRAY_CAT(_, KISA))
+
+/* Where the CPU divides quickly, CYLRAY_FAST is served by the exact kernels: they are
+ * within its rule and faster there than the estimates with their Newton steps (the x86
+ * ISAs define KFAST_BY_CPU; api/dispatch.c chooses). */
+#ifdef KFAST_BY_CPU
+#define KFAST_(flags)                                                                          \
+    ((flags)&CYLRAY_FAST && cylray_fast_divides_() ? (flags) & ~CYLRAY_FAST : (flags))
+#else
+#define KFAST_(flags) (flags)
+#endif
 #define KW_(name, w) CYLRAY_CAT(name, CYLRAY_CAT(_, w))
 
 /* The intersect entry points of one store policy st, named with suffix sfx. User flags
@@ -23,7 +33,7 @@
         active &= (uint32_t)((1ull << n) - 1u);                                                \
         if (!active || !ray || !hit || !cylray_prepared_ok_(P))                                \
             return 0;                                                                          \
-        flags = (flags & CYLRAY_FLAGS_ALL) | (st) << CYLRAY_KF_STORE_SHIFT;                    \
+        flags = (KFAST_(flags) & CYLRAY_FLAGS_ALL) | (st) << CYLRAY_KF_STORE_SHIFT;            \
         if (cylray_generic_(P))                                                                \
             return KW_(packet_generic, KW##n)(P, ray->ox, hit->t, n, active, flags);           \
         const KW_(packet_fn, KW##n) *t =                                                       \
@@ -38,7 +48,7 @@
     {                                                                                          \
         if (!n || !rays || !hits || !cylray_prepared_ok_(P))                                   \
             return 0;                                                                          \
-        flags = (flags & CYLRAY_FLAGS_ALL) | (st) << CYLRAY_KF_STORE_SHIFT;                    \
+        flags = (KFAST_(flags) & CYLRAY_FLAGS_ALL) | (st) << CYLRAY_KF_STORE_SHIFT;            \
         if (cylray_generic_(P))                                                                \
             return KW_(stream_generic, KWSTREAM)(P, rays, hits, NULL, n, flags);               \
         return KW_(isect_stream_table, KWSTREAM)[cylray_isect_index_(P->variant, flags)](      \
@@ -63,7 +73,7 @@ KSTORES(KISECT_ALL_)
         active &= (uint32_t)((1ull << n) - 1u);                                                \
         if (!active || !ray || !cylray_prepared_ok_(P))                                        \
             return 0;                                                                          \
-        flags &= CYLRAY_FLAGS_ALL;                                                             \
+        flags = KFAST_(flags) & CYLRAY_FLAGS_ALL;                                              \
         /* the occluded kernels read tmax and never write through this pointer */              \
         if (cylray_generic_(P))                                                                \
             return KW_(packet_generic, KW##n)(P, (float *)(uintptr_t)ray->ox, NULL, n, active, \
@@ -82,7 +92,7 @@ static size_t KI_(occluded_stream)(const cylray_prepared *P, const cylray_rays *
 {
     if (!n || !rays || !occluded || !cylray_prepared_ok_(P))
         return 0;
-    flags &= CYLRAY_FLAGS_ALL;
+    flags = KFAST_(flags) & CYLRAY_FLAGS_ALL;
     if (cylray_generic_(P))
         return KW_(stream_generic, KWSTREAM)(P, rays, NULL, occluded, n, flags);
     return KW_(occ_stream_table, KWSTREAM)[cylray_occ_index_(P->variant, flags)](
@@ -100,6 +110,7 @@ static size_t KI_(occluded_stream)(const cylray_prepared *P, const cylray_rays *
     {                                                                                          \
         if (!leaf || !ray || !hit)                                                             \
             return 0;                                                                          \
+        flags = KFAST_(flags);                                                                 \
         const KW_(leaf_fn, KL##m) *t =                                                         \
             cylray_leaf_spheres_(leaf->meta_) ? KW_(leaf_sphere_table, KL##m)                  \
             : cylray_leaf_cones_(leaf->meta_) ? KW_(leaf_cone_table, KL##m)                    \
@@ -112,6 +123,7 @@ static size_t KI_(occluded_stream)(const cylray_prepared *P, const cylray_rays *
     {                                                                                          \
         if (!leaf || !ray)                                                                     \
             return 0;                                                                          \
+        flags = KFAST_(flags);                                                                 \
         /* the occluded kernels read the ray and never write through this pointer */           \
         cylray_ray1 *r = (cylray_ray1 *)(uintptr_t)ray;                                        \
         const KW_(leaf_fn, KL##m) *t =                                                         \
@@ -127,6 +139,7 @@ KLEAF_ENTRY_(16)
 
 #undef KI_
 #undef KW_
+#undef KFAST_
 #undef KPACKET_
 #undef KLEAF_ENTRY_
 #undef KISECT_ENTRY_

@@ -91,6 +91,7 @@ typedef struct options {
     int category;   /* -1: all */
     int only_case;  /* -1: all */
     int flags_only; /* -1: all 32 combinations */
+    int fast_only;  /* only the combinations with CYLRAY_FAST */
     size_t n;       /* packet cases per category (multiple of 16) */
     int quick, report, verbose;
     int max_print;    /* failures printed in full */

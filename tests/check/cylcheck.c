@@ -4,7 +4,7 @@
  * reference (tests/ref). Prints its seed; a failure prints the lane's inputs in %a.
  *
  *   cylcheck [--isa=NAME] [--category=NAME] [--seed=N] [--quick] [--report]
- *            [--n=N] [--flags=F] [--case=I] [--max-print=N] [--no-headline]
+ *            [--n=N] [--flags=F] [--fast] [--case=I] [--max-print=N] [--no-headline]
  *            [--show-ulps=X]
  *
  * Exit status: 0 all passed, 1 failures, 2 usage, 77 the requested ISA is not here
@@ -41,6 +41,8 @@ static void usage(FILE *f)
                "  --report         the accuracy table per ISA x category x mode\n"
                "  --n=N            packet rays per category (16k; spheres and cones N/4)\n"
                "  --flags=F        only this kernel flag combination (0..31)\n"
+               "  --fast           only the combinations with CYLRAY_FAST (run them with\n"
+               "                   CYLRAY_ESTIMATES=on to check the estimates on any CPU)\n"
                "  --case=I         only this case of the category (from a failure's repro)\n"
                "  --max-print=N    failures printed in full (default 12)\n"
                "  --no-headline    do not assert the headline accuracy numbers\n"
@@ -91,6 +93,8 @@ static void parse_args(int argc, char **argv)
                 fprintf(stderr, "cylcheck: flags must be 0..31\n");
                 exit(2);
             }
+        } else if (strcmp(a, "--fast") == 0) {
+            opt.fast_only = 1;
         } else if (strncmp(a, "--case=", 7) == 0) {
             opt.only_case = atoi(a + 7);
         } else if (strncmp(a, "--max-print=", 12) == 0) {
@@ -176,7 +180,8 @@ int main(int argc, char **argv)
         for (size_t i = 0; i < nl; i++)
             segs[npk / CYLGEN_BATCH + i] = ls[i];
         for (unsigned flags = 0; flags <= CYLRAY_FLAGS_ALL; flags++) {
-            if (opt.flags_only >= 0 && flags != (unsigned)opt.flags_only)
+            if ((opt.flags_only >= 0 && flags != (unsigned)opt.flags_only) ||
+                (opt.fast_only && !(flags & CYLRAY_FAST)))
                 continue;
             if (scalar)
                 scalar_answers(scalar, flags, rc, segs, n_seg, sc);
@@ -204,7 +209,7 @@ int main(int argc, char **argv)
     if (opt.report)
         stats_report();
     int headline_bad = 0;
-    if (opt.headline && opt.only_case < 0 &&
+    if (opt.headline && opt.only_case < 0 && !opt.fast_only &&
         (opt.flags_only < 0 || mode_of((unsigned)opt.flags_only) == MODE_PLAIN)) {
         printf("\n");
         for (int i = 0; i < n_isas; i++)

@@ -10,11 +10,12 @@
  * array is hashed whole (what a kernel must leave untouched as well as what it writes),
  * with the returned masks and counts.
  *
- *     outhash [--no-fast] [CASES]   prints "isa hash" per path the CPU runs, then
- *                                   "all hash"; --no-fast leaves out the flag sets
- *                                   with CYLRAY_FAST, whose estimates may differ by
- *                                   CPU (the others must not: tests/run.sh compares
- *                                   them across builds with other estimates) */
+ *     outhash [--no-fast] [--fast-plain] [CASES]
+ *         prints "isa hash" per path the CPU runs, then "all hash"; --no-fast leaves
+ *         out the flag sets with CYLRAY_FAST, whose estimates may differ by CPU (the
+ *         others must not: tests/run.sh compares them across builds with other
+ *         estimates); --fast-plain calls each of those without CYLRAY_FAST instead, the
+ *         answers of a path that serves FAST with its exact kernels (fast_same.py) */
 #include "cylray.h"
 
 #include <math.h>
@@ -208,10 +209,12 @@ LEAF(16)
 
 int main(int argc, char **argv)
 {
-    int cases = 300, no_fast = 0;
+    int cases = 300, no_fast = 0, fast_plain = 0;
     for (int a = 1; a < argc; a++) {
         if (strcmp(argv[a], "--no-fast") == 0)
             no_fast = 1;
+        else if (strcmp(argv[a], "--fast-plain") == 0)
+            fast_plain = 1;
         else
             cases = atoi(argv[a]);
     }
@@ -235,10 +238,11 @@ int main(int argc, char **argv)
             const size_t n = c % 4 == 0 ? MAXN : 1 + (size_t)(rnd() % 64);
             fill(&s, &cyl[0], MAXN);
             const uint32_t active = rnd() % 3 == 0 ? rnd() : 0xffffffffu;
-            for (unsigned flags = 0; flags <= CYLRAY_FLAGS_ALL; flags++) {
+            for (unsigned fl = 0; fl <= CYLRAY_FLAGS_ALL; fl++) {
                 const size_t count = 1 + rnd() % 16;
-                if (no_fast && (flags & CYLRAY_FAST))
+                if (no_fast && (fl & CYLRAY_FAST))
                     continue;
+                const unsigned flags = fast_plain ? fl & ~CYLRAY_FAST : fl;
                 packet4(k, &p, &s, active, flags);
                 packet8(k, &p, &s, active, flags);
                 packet16(k, &p, &s, active, flags);

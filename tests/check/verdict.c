@@ -9,7 +9,12 @@
 #include <string.h>
 
 /* Defaults; cylcheck.c's parser (or the self-test) changes them. */
-options opt = {0, -1, -1, -1, -1, 0, 0, 0, 0, 12, 1, 0};
+options opt = {.isa = -1,
+               .category = -1,
+               .only_case = -1,
+               .flags_only = -1,
+               .max_print = 12,
+               .headline = 1};
 long failures;
 
 const char *flags_name(unsigned flags)
