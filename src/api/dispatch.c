@@ -48,6 +48,17 @@ const char *cylray_isa_name(cylray_isa isa)
     return (unsigned)isa < CYLRAY_ISA_COUNT ? names[isa] : "unknown";
 }
 
+/* Which of names[0..n) the environment variable var holds, or -1 (unset, or another
+ * value). */
+static int env_pick(const char *var, const char *const *names, int n)
+{
+    const char *want = getenv(var);
+    for (int i = 0; want && i < n; i++)
+        if (strcmp(want, names[i]) == 0)
+            return i;
+    return -1;
+}
+
 /* The store policies of the x86 kernels (CYLRAY_STORE_*), chosen once per process:
  * AVX2 takes the CPU's (cylray_cpu_store_policy_), SSE4.1, which has no masked store,
  * the blends on every CPU; CYLRAY_STORES=masked|blend|lanes forces one on both (to
@@ -60,11 +71,10 @@ static unsigned store_policies(void)
     if (p)
         return p - 1u;
     unsigned avx = cylray_cpu_store_policy_(), sse = CYLRAY_STORE_BLEND;
-    const char *want = getenv("CYLRAY_STORES");
-    static const char *const names[3] = {"masked", "blend", "lanes"};
-    for (unsigned i = 0; want && i < 3; i++)
-        if (strcmp(want, names[i]) == 0)
-            avx = sse = i;
+    static const char *const names[3] = {"masked", "blend", "lanes"}; /* CYLRAY_STORE_* */
+    const int forced = env_pick("CYLRAY_STORES", names, 3);
+    if (forced >= 0)
+        avx = sse = (unsigned)forced;
     p = avx + 4u * sse;
     atomic_store_explicit(&stores_chosen, p + 1u, memory_order_relaxed);
     return p;
@@ -80,12 +90,9 @@ int cylray_fast_divides_(void)
     const unsigned c = atomic_load_explicit(&fast_chosen, memory_order_relaxed);
     if (c)
         return (int)c - 1;
-    int divide = cylray_cpu_divides_fast_();
-    const char *want = getenv("CYLRAY_ESTIMATES");
-    if (want && strcmp(want, "on") == 0)
-        divide = 0;
-    else if (want && strcmp(want, "off") == 0)
-        divide = 1;
+    static const char *const names[2] = {"on", "off"}; /* off: divide */
+    const int forced = env_pick("CYLRAY_ESTIMATES", names, 2);
+    const int divide = forced >= 0 ? forced : cylray_cpu_divides_fast_();
     atomic_store_explicit(&fast_chosen, 1u + (unsigned)divide, memory_order_relaxed);
     return divide;
 }
