@@ -25,6 +25,13 @@ CYLRAY_INLINE void KFN(open_ends)(KFN(lanes) *st, const cylray_kat_ *k, const cy
     st->ok_out = mandn(st->ok_out, out_open);
 }
 
+/* v x (p + t d) = f - t e: the point at t (relative to p) crossed with the axis. */
+CYLRAY_INLINE void KFN(disc_point)(const KFN(lanes) *st, vf t, vf *fx, vf *fy, vf *fz)
+{
+    *fx = vfnma_x(t, st->ex, st->fx), *fy = vfnma_x(t, st->ey, st->fy);
+    *fz = vfnma_x(t, st->ez, st->fz);
+}
+
 /* Whether the point at t (relative to p) of an end's plane lies on the end's disc,
  * whose radius is rc: |v x x|^2 = v.v |x_perp|^2 against v.v rc^2, with f - t e =
  * v x (p + t d). At the rim of a cone whose side meets the plane at a shallow angle
@@ -34,8 +41,8 @@ CYLRAY_INLINE void KFN(open_ends)(KFN(lanes) *st, const cylray_kat_ *k, const cy
  * which moves it off the axis by no more than |t| eps |d|. */
 CYLRAY_INLINE vm KFN(on_disc)(const KFN(lanes) *st, vf t, vf rc, vf vv)
 {
-    const vf fx = vfnma_x(t, st->ex, st->fx), fy = vfnma_x(t, st->ey, st->fy),
-             fz = vfnma_x(t, st->ez, st->fz);
+    vf fx, fy, fz;
+    KFN(disc_point)(st, t, &fx, &fy, &fz);
     return vle(vsumsq_x(fx, fy, fz, vmul(vmul(vv, rc), rc)), vzero());
 }
 
@@ -45,8 +52,8 @@ CYLRAY_INLINE vm KFN(on_disc)(const KFN(lanes) *st, vf t, vf rc, vf vv)
  * disc at the end of a wide cone the terms are the cone's size and no verdict is. */
 CYLRAY_INLINE vm KFN(disc_sure)(const KFN(lanes) *st, vf t, vf rc, vf vv)
 {
-    const vf fx = vfnma_x(t, st->ex, st->fx), fy = vfnma_x(t, st->ey, st->fy),
-             fz = vfnma_x(t, st->ez, st->fz);
+    vf fx, fy, fz;
+    KFN(disc_point)(st, t, &fx, &fy, &fz);
     const vf dist = vsqrt(KDOT(fx, fy, fz, fx, fy, fz)), rr = vmul(vsqrt(vv), rc);
     const vf v1 = vadd(vadd(vabs(st->vx), vabs(st->vy)), vabs(st->vz)),
              p1 = vadd(vadd(vabs(st->px), vabs(st->py)), vabs(st->pz)),
@@ -72,7 +79,7 @@ CYLRAY_INLINE vm KFN(disc_sure)(const KFN(lanes) *st, vf t, vf rc, vf vv)
 CYLRAY_INLINE void KFN(cone_rims)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F,
                                   vf slab_in, vf slab_out)
 {
-    const vf eps = vset1(KM_RIM), zero = vzero(), inf = vset1(INFINITY);
+    const vf zero = vzero(), inf = vset1(INFINITY);
     const vm live = mor(st->side, st->inpar);
     const vf kap = KFN(both_in)(k, F, offsetof(cylray_prepared, kap), CYLRAY_LF_RRVV);
     const vf vv = KDOT(st->vx, st->vy, st->vz, st->vx, st->vy, st->vz);
@@ -87,9 +94,9 @@ CYLRAY_INLINE void KFN(cone_rims)(KFN(lanes) *st, const cylray_kat_ *k, const cy
     const vf rc_in = vsel(up, r_lo, r_hi), rc_out = vsel(up, r_hi, r_lo);
     const vm has_in = mand(flat, vgt(rc_in, zero)), has_out = mand(flat, vgt(rc_out, zero));
     /* (strict: an infinite bound, as a ray inside the tube has, is no rim) */
-#define KNEAR_(a, b) vlt(vabs(vsub(a, b)), vmul(eps, vmax(vabs(a), vabs(b))))
-    const vm rim_in = mand(has_in, KNEAR_(slab_in, st->side_hi));
-    const vm rim_out = mand(has_out, KNEAR_(slab_out, st->side_lo));
+#define KNEAR_(a, b, margin) vlt(vabs(vsub(a, b)), vmul(vset1(margin), vmax(vabs(a), vabs(b))))
+    const vm rim_in = mand(has_in, KNEAR_(slab_in, st->side_hi, KM_RIM));
+    const vm rim_out = mand(has_out, KNEAR_(slab_out, st->side_lo, KM_RIM));
     const vm rim = mor(rim_in, rim_out);
     if (many(rim)) {
         /* the other bounds of [max(side_lo, slab_in), min(side_hi, slab_out)] as before */
@@ -108,15 +115,14 @@ CYLRAY_INLINE void KFN(cone_rims)(KFN(lanes) *st, const cylray_kat_ *k, const cy
      * wrong side of the plane's t: within KM_ROOT, where the disc's verdict is sure
      * (KFN(disc_sure)) and the order says otherwise, the disc names it. */
     const vm sd = mandn(flat, st->inpar);
-    vm in = mand(sd, KNEAR_(slab_in, st->side_lo));
-    vm out = mand(sd, KNEAR_(slab_out, st->side_hi));
+    vm in = mand(sd, KNEAR_(slab_in, st->side_lo, KM_RIM));
+    vm out = mand(sd, KNEAR_(slab_out, st->side_hi, KM_RIM));
     /* further apart (within KM_ROOT), the lanes that may hit */
-    const vf wide = vset1(KM_ROOT);
     const vm may = mand(sd, st->ok_in);
-#define KWIDE_(a, b) vlt(vabs(vsub(a, b)), vmul(wide, vmax(vabs(a), vabs(b))))
-    const vm wide_in = mandn(mand(mand(may, has_in), KWIDE_(slab_in, st->side_lo)), in);
-    const vm wide_out = mandn(mand(mand(may, has_out), KWIDE_(slab_out, st->side_hi)), out);
-#undef KWIDE_
+    const vm wide_in =
+        mandn(mand(mand(may, has_in), KNEAR_(slab_in, st->side_lo, KM_ROOT)), in);
+    const vm wide_out =
+        mandn(mand(mand(may, has_out), KNEAR_(slab_out, st->side_hi, KM_ROOT)), out);
 #undef KNEAR_
     if (!many(mor(mor(in, out), mor(wide_in, wide_out))))
         return;
