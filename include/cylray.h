@@ -403,7 +403,7 @@ CYLRAY_API cylray_status cylray_cylinder_from_endpoints(cylray_cylinder *out, co
  * than 2^-50 R) and rounded up to float. A cone: p is the nearest point of the part hit
  * (the side, or the disc of radius r0 or r1) to x, in the half plane through the axis
  * that holds x, and *err p's distance from that part evaluated likewise (the cone being
- * the prepared one: radius rm + kap z between its discs). */
+ * the prepared one: radius r0 and r1 at its discs as given, linear in z between). */
 CYLRAY_API void cylray_hit_point(const cylray_prepared *cyl, const float o[3], const float d[3],
                                  float t, int32_t part, float p[3], float *err);
 /* The same, given also the normal n the kernel returned for that hit (CYLRAY_NORMAL;
@@ -765,8 +765,8 @@ CYLRAY_API const char *cylray_isa_name(cylray_isa isa);
  * exact one (the smallest float box). Returns CYLRAY_EINVAL and writes nothing for an
  * infinite cylinder (it has no box), a NULL pointer, or a cyl cylray_prepare did not fill. */
 CYLRAY_API cylray_status cylray_bounds(const cylray_prepared *cyl, float lo[3], float hi[3]);
-/* A cone's box is its frustum's, the hull of its two discs (radius rm -+ kap H |v|, as
- * prepared), each face within 2 floats of the exact one, on its outer side. */
+/* A cone's box is its frustum's, the hull of its two discs (radii r0 and r1 about the
+ * prepared ends), each face within 2 floats of the exact one, on its outer side. */
 /* The box of a leaf's used lanes (the union of their cylray_bounds boxes); CYLRAY_EINVAL
  * and nothing written when a lane is infinite or no lane is used. */
 CYLRAY_API cylray_status cylray_leaf_bounds4(const cylray_leaf4 *leaf, float lo[3],

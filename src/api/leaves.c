@@ -53,7 +53,7 @@ static cylray_status leaf_prepare(void *out, size_t m, size_t bytes, const void 
             [CYLRAY_LF_VX] = p.v[0],
             [CYLRAY_LF_VY] = p.v[1],
             [CYLRAY_LF_VZ] = p.v[2],
-            [CYLRAY_LF_R] = cone ? p.rm : p.radius,
+            [CYLRAY_LF_R] = cone ? cylray_cone_ra_(&p) : p.radius,
             [CYLRAY_LF_H] = p.half_height,
             [CYLRAY_LF_RRVV] = cone ? p.kap : p.rr_vv,
             [CYLRAY_LF_HV] = p.h_v,

@@ -203,8 +203,10 @@ int cylray_cone_ok_(const cylray_cone *in)
 /* A cone is prepared as the capped cylinder of its larger radius around the same axis
  * (the endpoint form's center, axis and half height, whose bounding sphere and scaling
  * serve the cone as they are), and then the radius as a function of the axial
- * coordinate z = p.v: r = rm + kap z, with kap = (r1 - r0) / (2 H |v|), so that r is r0
- * at z = -H |v| and r1 at +H |v|. The normal's length, 1 / sqrt(1 + slope^2), and v / v.v
+ * coordinate z = p.v, with kap = (r1 - r0) / (2 H |v|): r is r0 at z = -H |v| and r1 at
+ * +H |v|, and the kernels form it from the narrower end, as given (internal/leaf.h), so
+ * that a tiny end keeps its radius beside a wide one. rm, the radius at the center, is
+ * kept for the caller. The normal's length, 1 / sqrt(1 + slope^2), and v / v.v
  * for its radial part (kernel/store.h). */
 cylray_status cylray_prepare_cone(cylray_prepared *out, const cylray_cone *in)
 {

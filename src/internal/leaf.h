@@ -31,8 +31,24 @@ enum {
  * radii). The leaf starts with the fields a kernel reads, so it is passed to one as a
  * float pointer.
  *
- * A cone's lane reads some rows otherwise: CYLRAY_LF_R is its radius at the center
- * rm, CYLRAY_LF_RRVV its slope kap and CYLRAY_LF_NSCALE its cnrm (cylray_prepared). */
+ * A cone's lane reads some rows otherwise: CYLRAY_LF_R is the radius of its narrower
+ * end ra (cylray_cone_ra_), CYLRAY_LF_RRVV its slope kap and CYLRAY_LF_NSCALE its cnrm
+ * (cylray_prepared). */
+/* A cone's radius is formed from its narrower end (kernel/shapes.h, cone_anchor): ra,
+ * that end's radius as given (r0 where kap > 0, r1 elsewhere), plus kap (z - za) with za
+ * its axial coordinate, -H|v| or +H|v|. */
+static inline float cylray_cone_ra_(const cylray_prepared *p)
+{
+    return p->kap > 0 ? p->r0 : p->r1;
+}
+/* The same radius in double at the axial coordinate z, hv = H |v| (never below 0; a
+ * slope of 0, a leaf's cylinder, is ra at every z). */
+static inline double cylray_cone_radius_(double ra, double kap, double hv, double z)
+{
+    const double za = kap > 0 ? -hv : kap < 0 ? hv : 0.0, r = ra + kap * (z - za);
+    return r > 0 ? r : 0.0;
+}
+
 enum { CYLRAY_LM_USED, CYLRAY_LM_LO, CYLRAY_LM_HI, CYLRAY_LM_SPHERE };
 #define CYLRAY_LM_CONE_SHIFT 16
 static inline uint32_t cylray_leaf_spheres_(const uint32_t *meta)

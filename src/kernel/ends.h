@@ -86,10 +86,14 @@ CYLRAY_INLINE void KFN(cone_rims)(KFN(lanes) *st, const cylray_kat_ *k, const cy
     const vm flat = mand(live, vgt(vmul(vmul(kap, kap), vv), vset1(1.0f)));
     if (!many(flat))
         return;
-    /* the ends' radii: r0 at z = -H|v|, r1 at +H|v| (a leaf's from rm, kap and H|v|) */
-    const vf rm = KFN(leaf_in)(k, F, CYLRAY_LF_R), hv = KFN(leaf_in)(k, F, CYLRAY_LF_HV);
-    const vf r_lo = KFN(cyl_in)(k, F, offsetof(cylray_prepared, r0), vfnma(kap, hv, rm));
-    const vf r_hi = KFN(cyl_in)(k, F, offsetof(cylray_prepared, r1), vfma(kap, hv, rm));
+    /* the ends' radii: r0 at z = -H|v|, r1 at +H|v| (a leaf's as its side forms them) */
+    vf ra, za;
+    KFN(cone_anchor)(k, F, kap, &ra, &za);
+    const vf hv = KFN(leaf_in)(k, F, CYLRAY_LF_HV);
+    const vf r_lo =
+        KFN(cyl_in)(k, F, offsetof(cylray_prepared, r0), vfma(kap, vsub(vneg(hv), za), ra));
+    const vf r_hi =
+        KFN(cyl_in)(k, F, offsetof(cylray_prepared, r1), vfma(kap, vsub(hv, za), ra));
     const vm up = vgt(st->dv, zero); /* in by the low end, out by the high one */
     const vf rc_in = vsel(up, r_lo, r_hi), rc_out = vsel(up, r_hi, r_lo);
     const vm has_in = mand(flat, vgt(rc_in, zero)), has_out = mand(flat, vgt(rc_out, zero));

@@ -32,8 +32,8 @@ CYLRAY_INLINE int KFN(sphere_side)(KFN(lanes) *st, const cylray_kat_ *k, const c
     return many(st->side);
 }
 
-/* Stage 4 of a cone, whose radius at the axial coordinate z = p.v is r = rm + kap z:
- * with f = v x p and e = d x v as the cylinder's, r0 = rm + kap (p.v) the radius at the
+/* Stage 4 of a cone, whose radius at the axial coordinate z = p.v is r = ra + kap (z - za)
+ * (cone_anchor): with f = v x p and e = d x v as the cylinder's, r0 the radius at the
  * shifted origin's level and a = kap (d.v) its rate along the ray, the side of the
  * double cone is |f - t e|^2 = v.v (r0 + a t)^2, so
  *   A = e.e - v.v a^2,  nB = e.f + v.v a r0,  C = f.f - v.v r0^2,
@@ -45,14 +45,37 @@ CYLRAY_INLINE int KFN(sphere_side)(KFN(lanes) *st, const cylray_kat_ *k, const c
  * forms in double; with their products rounded apart, SSE4.1 put t near an apex or a
  * tangency tens to hundreds of ulps outside the band. Returns whether any lane can
  * still hit. */
-/* A cone's axial coordinate z0 = p.v, one rounding (KDOTX): its radius r0 = rm + kap z0
- * and the ends' slab (kernel/ends.h) both take this one, so that an error in it moves
+/* A cone's axial coordinate z0 = p.v, one rounding (KDOTX): its radius at z0 and the
+ * ends' slab (kernel/ends.h) both take this one, so that an error in it moves
  * the planes and the side together along the axis and keeps their order where a flat
  * side runs along a plane (rounded product by product, SSE4.1 once put the slab past
  * the side there). The compiler forms it once. */
 CYLRAY_INLINE vf KFN(cone_z0)(const KFN(lanes) *st)
 {
     return KDOTX(st->px, st->py, st->pz, st->vx, st->vy, st->vz);
+}
+
+/* A cone's narrower end, from which its radius is formed: r = ra + kap (z - za), with ra
+ * that end's radius as given and za its axial coordinate (-H|v| where kap > 0, +H|v|
+ * where kap < 0). At the narrow end's plane z - za is exact (z0 is computed from the
+ * same p.v as the slab's), so the disc meets the side at the radius given, however
+ * small beside the other; rm + kap z would cancel there to an ulp of the wide end (a
+ * 1e-10 tip beside a radius of 0.5 came out 7e-9 wide). Away from it kap (z - za) is
+ * the radius's growth from ra, rounded relative to itself: the radius is good to a few
+ * ulps of its own value at every level. A leaf holds ra as its radius row; a cylinder's
+ * lane in a leaf of cones (kap = 0) takes za = 0, whose half height may be infinite. */
+CYLRAY_INLINE void KFN(cone_anchor)(const cylray_kat_ *k, const cylray_kflags_ F, vf kap,
+                                    vf *ra, vf *za)
+{
+    if (F.leaf) {
+        const vf hv = KFN(leaf_in)(k, F, CYLRAY_LF_HV);
+        *ra = KFN(leaf_in)(k, F, CYLRAY_LF_R);
+        *za = vsel(veq(kap, vzero()), vzero(), vneg(vxorsign(hv, kap)));
+    } else {
+        const cylray_prepared *P = k->P;
+        *ra = vset1(P->kap > 0 ? P->r0 : P->r1);
+        *za = vset1(P->kap > 0 ? -P->h_v : P->h_v);
+    }
 }
 
 CYLRAY_INLINE int KFN(cone_side)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
@@ -64,9 +87,10 @@ CYLRAY_INLINE int KFN(cone_side)(KFN(lanes) *st, const cylray_kat_ *k, const cyl
              fz = vfms(vx, py, vmul(vy, px));
     st->fx = fx, st->fy = fy, st->fz = fz;
     const vf kap = KFN(both_in)(k, F, offsetof(cylray_prepared, kap), CYLRAY_LF_RRVV);
-    const vf rm = KFN(both_in)(k, F, offsetof(cylray_prepared, rm), CYLRAY_LF_R);
+    vf ra, za;
+    KFN(cone_anchor)(k, F, kap, &ra, &za);
     const vf vv = KDOT(vx, vy, vz, vx, vy, vz);
-    const vf r0 = vfma_x(kap, KFN(cone_z0)(st), rm);
+    const vf r0 = vfma_x(kap, vsub(KFN(cone_z0)(st), za), ra);
     const vf a = vmul(kap, KDOT(dx, dy, dz, vx, vy, vz));
     const vf va = vmul(vv, a);
     st->cr = r0, st->ca = a;

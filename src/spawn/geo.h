@@ -18,13 +18,14 @@ typedef struct DFN(geo) {
     vdm lo, hi;            /* the discs that are part of the surface */
     vdm sph;               /* the lanes that are spheres */
     int any_sph;           /* some lane is */
-    /* A cone's lane: radius rm + kz s at the axial parameter s (kz = kap v.v), rlo and
-     * rhi at s = -+hs (never below 0), kk = dr/dz per unit length along the axis and
-     * cn = 1/sqrt(1 + kk^2); R is then max(rlo, rhi). A cylinder's lane: rm = rlo = rhi
-     * = R, kz = kk = 0, cn = 1. */
+    /* A cone's lane: radius ra + kz (s - sa) at the axial parameter s (kz = kap v.v; ra
+     * and sa its narrower end's radius and parameter, internal/leaf.h), rlo and rhi at
+     * s = -+hs (never below 0), kk = dr/dz per unit length along the axis and cn =
+     * 1/sqrt(1 + kk^2); R is then max(rlo, rhi). A cylinder's lane: ra = rlo = rhi = R,
+     * sa = kz = kk = 0, cn = 1. */
     vdm cone;
     int any_cone;
-    vd rm, kz, rlo, rhi, kk, cn;
+    vd ra, sa, kz, rlo, rhi, kk, cn;
 } DFN(geo);
 
 /* The spacing of floats at the float f (as a double): its exponent (dexpo drops the
@@ -68,9 +69,15 @@ static inline vd DFN(l1)(const vd a[3])
     return dadd(dadd(dabs(a[0]), dabs(a[1])), dabs(a[2]));
 }
 
+/* A cone's radius at the axial parameter s (its lanes'; never below 0). */
+static inline vd DFN(cone_r)(const DFN(geo) *g, vd s)
+{
+    return dmax(dset1(0.0), dadd(g->ra, dmul(g->kz, dsub(s, g->sa))));
+}
+
 /* The cylinders' derived values, from their floats (c, v, R, H and the discs); sph: the
  * lanes that are spheres (v = 0, H = 0, no discs); cone: the lanes that are cones, whose
- * R is read as rm and kap as their slope (both as cylray_prepared holds them), so that a
+ * R is read as ra (the narrower end's radius) and kap as their slope (both as cylray_prepared holds them), so that a
  * prepared cone and its leaf lane derive the same values. */
 CYLRAY_INLINE void DFN(geo_make)(DFN(geo) *g, const vd c[3], const vd v[3], vd R, vd H, vdm lo,
                                  vdm hi, vdm sph, vdm cone, vd kap)
@@ -86,8 +93,8 @@ CYLRAY_INLINE void DFN(geo_make)(DFN(geo) *g, const vd c[3], const vd v[3], vd R
     cone = dmandn(cone, deq(kap, zero));
     g->cone = cone;
     g->any_cone = dmbits(cone) != 0;
-    g->rm = R;
-    g->kz = g->kk = dset1(0.0);
+    g->ra = R;
+    g->sa = g->kz = g->kk = dset1(0.0);
     g->cn = one;
     g->rlo = g->rhi = R;
     if (g->any_cone) {
@@ -95,8 +102,9 @@ CYLRAY_INLINE void DFN(geo_make)(DFN(geo) *g, const vd c[3], const vd v[3], vd R
         g->kz = dsel(cone, dmul(kap, vv), zero);
         g->kk = dmul(g->kz, ddiv(one, g->sv));
         g->cn = ddiv(one, dsqrt(dadd(one, dmul(g->kk, g->kk))));
-        g->rlo = dmax(zero, dsub(R, dmul(g->kz, hs)));
-        g->rhi = dmax(zero, dadd(R, dmul(g->kz, hs)));
+        g->sa = dsel(dgt(g->kz, zero), dsub(zero, hs), dsel(dlt(g->kz, zero), hs, zero));
+        g->rlo = dsel(cone, DFN(cone_r)(g, dsub(zero, hs)), R);
+        g->rhi = dsel(cone, DFN(cone_r)(g, hs), R);
         R = dsel(cone, dmax(g->rlo, g->rhi), R);
     }
     g->sph = sph;
@@ -148,8 +156,8 @@ static inline void DFN(geo_prepared)(DFN(geo) *g, const cylray_prepared *P)
     const vd zero = dset1(0.0);
     const int cone = P->kind == CYLRAY_KIND_CONE;
     DFN(geo_make)
-    (g, c, v, dset1((double)(cone ? P->rm : P->radius)), dset1((double)P->half_height),
-     dgt(dset1((P->caps & CYLRAY_CAPPED_LO) ? 1.0 : 0.0), zero),
+    (g, c, v, dset1((double)(cone ? cylray_cone_ra_(P) : P->radius)),
+     dset1((double)P->half_height), dgt(dset1((P->caps & CYLRAY_CAPPED_LO) ? 1.0 : 0.0), zero),
      dgt(dset1((P->caps & CYLRAY_CAPPED_HI) ? 1.0 : 0.0), zero),
      dgt(dset1(P->kind == CYLRAY_KIND_SPHERE ? 1.0 : 0.0), zero),
      dgt(dset1(P->kind == CYLRAY_KIND_CONE ? 1.0 : 0.0), zero), dset1((double)P->kap));

@@ -68,7 +68,7 @@ CYLRAY_INLINE void DFN(spawn)(const DFN(geo) *g, const vd p[3], vd err, vd part,
         gc[k] = g->nv[k];
     }
     if (g->any_cone) {
-        rz = dsel(g->cone, dmax(zero, dadd(g->rm, dmul(g->kz, s))), g->R);
+        rz = dsel(g->cone, DFN(cone_r)(g, s), g->R);
         for (int k = 0; k < 3; k++) {
             nc[k] = dsel(g->cone, dmul(dsub(r[k], dmul(g->kk, g->nv[k])), g->cn), r[k]);
             gc[k] = dsel(g->cone, dmul(dadd(g->nv[k], dmul(g->kk, r[k])), g->cn), g->nv[k]);

@@ -95,8 +95,7 @@ CYLRAY_INLINE void DFN(hit_point)(const DFN(geo) *g, const vd o[3], const vd d[3
         const vdm flip = dmor(dmand(clear, dmor(dmandn(dpos, bk), dmandn(bk, dpos))),
                               dmandn(dlt(DFN(dot3)(rn, qr), zero), clear));
         /* a cone's radius at the kernel's axial coordinate */
-        const vd Rn =
-            g->any_cone ? dsel(g->cone, dmax(zero, dadd(g->rm, dmul(g->kz, s0))), g->R) : g->R;
+        const vd Rn = g->any_cone ? dsel(g->cone, DFN(cone_r)(g, s0), g->R) : g->R;
         const vd gn = ddiv(dsel(flip, dsub(zero, Rn), Rn), rl);
         for (int k = 0; k < 3; k++)
             q[k] = dsel(valid, dadd(dmul(s0, g->v[k]), dmul(gn, rn[k])), q[k]);

@@ -44,18 +44,20 @@ static float round_out(double x, int dir)
     return f;
 }
 
-/* The box of a cone (radius rm + kap z at z = (x - c).v, its ends at z = -+H|v|): the
+/* The box of a cone (radius ra + kap (z - za) at z = (x - c).v, internal/leaf.h; its
+ * ends at z = -+H|v|): the
  * frustum is the hull of its two discs, and a disc of radius r about d with unit normal
  * n spans d_k -+ r sqrt(1 - n_k^2) along axis k. Evaluated in double (each product and
  * quotient to a few units of 2^-53 relative), each face lies within a few units of 2^-53
  * of (|c_k| + H + r) of its exact value; 2^-48 of that is taken off outward before the
  * face is rounded outward to float (at most an ulp more than the smallest box). */
-static void cone_box(const float c[3], const float v[3], double rm, double kap, double H,
+static void cone_box(const float c[3], const float v[3], double ra, double kap, double H,
                      float lo[3], float hi[3])
 {
     const double vv = (double)v[0] * v[0] + (double)v[1] * v[1] + (double)v[2] * v[2];
-    const double sv = sqrt(vv), dk = kap * H * sv;
-    const double r[2] = {fmax(0.0, rm - dk), fmax(0.0, rm + dk)};
+    const double sv = sqrt(vv), hv = H * sv;
+    const double r[2] = {cylray_cone_radius_(ra, kap, hv, -hv),
+                         cylray_cone_radius_(ra, kap, hv, hv)};
     for (int k = 0; k < 3; k++) {
         /* sqrt(1 - n_k^2) from the other two components: no cancellation near n_k = 1 */
         const double a = v[(k + 1) % 3], b = v[(k + 2) % 3];
@@ -80,7 +82,7 @@ cylray_status cylray_bounds(const cylray_prepared *cyl, float lo[3], float hi[3]
     if (cyl->kind == CYLRAY_KIND_SPHERE)
         sphere_box(cyl->c, cyl->radius, l, h);
     else if (cyl->kind == CYLRAY_KIND_CONE)
-        cone_box(cyl->c, cyl->v, cyl->rm, cyl->kap, cyl->half_height, l, h);
+        cone_box(cyl->c, cyl->v, cylray_cone_ra_(cyl), cyl->kap, cyl->half_height, l, h);
     else
         cyl_box(cyl->c, cyl->v, cyl->radius, cyl->half_height, l, h);
     memcpy(lo, l, sizeof l);
@@ -111,7 +113,7 @@ static cylray_status leaf_bounds(const float *geom, const uint32_t *meta, unsign
             return CYLRAY_EINVAL;
         if ((meta[CYLRAY_LM_SPHERE] >> i) & 1u)
             sphere_box(c, geom[CYLRAY_LF_R * m + i], bl, bh);
-        else if ((cylray_leaf_cones_(meta) >> i) & 1u) /* R is rm, RRVV the slope */
+        else if ((cylray_leaf_cones_(meta) >> i) & 1u) /* R is ra, RRVV the slope */
             cone_box(c, v, geom[CYLRAY_LF_R * m + i], geom[CYLRAY_LF_RRVV * m + i], H, bl, bh);
         else
             cyl_box(c, v, geom[CYLRAY_LF_R * m + i], H, bl, bh);

@@ -95,25 +95,25 @@ size_t cylray_split_boxes(const cylray_prepared *cyl, size_t k, float (*lo)[3], 
      * their disc exactly and together cover the cylinder; H q_i is exact as a
      * double-double. */
     const double H = cyl->half_height, R = cyl->radius;
-    /* A cone's slice is the hull of its two discs, of radius rm + dk q at t = H q (dk =
-     * kap H |v|): evaluated in double to a few units of 2^-53 of rm + |dk|, which 2^-48
-     * of it covers */
+    /* A cone's slice is the hull of its two discs, of radius r(hv q) at t = H q (hv =
+     * H |v|, r as internal/leaf.h forms it): evaluated in double to a few units of 2^-53
+     * of ra + |kap| 2 hv, which 2^-48 of it covers */
     const int cone = cyl->kind == CYLRAY_KIND_CONE;
-    double rm = 0, dk = 0, pad = 0;
+    double ra = 0, kap = 0, hv = 0, pad = 0;
     if (cone) {
         const double vv = (double)cyl->v[0] * cyl->v[0] + (double)cyl->v[1] * cyl->v[1] +
                           (double)cyl->v[2] * cyl->v[2];
-        rm = cyl->rm, dk = (double)cyl->kap * H * sqrt(vv);
-        pad = 0x1p-48 * (rm + fabs(dk));
+        ra = cylray_cone_ra_(cyl), kap = cyl->kap, hv = H * sqrt(vv);
+        pad = 0x1p-48 * (ra + 2 * fabs(kap) * hv);
     }
     float plo[3], phi[3];
-    disc_box(cyl->c, cyl->v, cone ? fmax(0.0, rm - dk) + pad : R, dd_two_prod(H, -1.0), plo,
-             phi);
+    disc_box(cyl->c, cyl->v, cone ? cylray_cone_radius_(ra, kap, hv, -hv) + pad : R,
+             dd_two_prod(H, -1.0), plo, phi);
     for (size_t i = 0; i < k; i++) {
         double q = ((double)(i + 1) * 2.0 - (double)k) / (double)k;
         float nlo[3], nhi[3];
-        disc_box(cyl->c, cyl->v, cone ? fmax(0.0, rm + dk * q) + pad : R, dd_two_prod(H, q),
-                 nlo, nhi);
+        disc_box(cyl->c, cyl->v, cone ? cylray_cone_radius_(ra, kap, hv, hv * q) + pad : R,
+                 dd_two_prod(H, q), nlo, nhi);
         for (int j = 0; j < 3; j++) {
             lo[i][j] = fminf(plo[j], nlo[j]);
             hi[i][j] = fmaxf(phi[j], nhi[j]);

@@ -63,28 +63,30 @@ static void surface_at(const surf_cyl *s, const float p[3], int32_t part, float 
     cylray_surface_at_plain_(s, p, part, uv, dpdu, dpdv);
 }
 
-/* A cone (radius rm + dk z / H at axial coordinate z, dk = kap H |v|): its u and v are
+/* A cone (radius ra + kap (z |v| - za) at axial coordinate z, internal/leaf.h): its u and v are
  * the cylinder's, and so are its derivatives with R the radius where they are taken (a
  * disc's own; on the side the radius at p's axial coordinate, for dpdv), except the
  * side's dpdu, which follows the slope: 2H n + (r1 - r0) e_r, e_r = cos(phi) b1 +
  * sin(phi) b2 the radial direction at p (b1 on the axis, where phi = 0). All in double:
  * e_r is good to 2^-50 |r| / rho, within 2^-20 where the cylinder's derivatives are. */
-static void cone_surface(surf_cyl *s, double rm, double kap, const float p[3], int32_t part,
+static void cone_surface(surf_cyl *s, double ra, double kap, const float p[3], int32_t part,
                          float uv[2], float dpdu[3], float dpdv[3])
 {
     double n[3], r[3], vv = 0, z = 0;
     for (int k = 0; k < 3; k++)
         vv += (double)s->v[k] * s->v[k];
-    const double sv = sqrt(vv), H = s->H, dk = kap * H * sv;
+    const double sv = sqrt(vv), H = s->H, hv = H * sv;
     for (int k = 0; k < 3; k++) {
         n[k] = s->v[k] / sv;
         r[k] = (double)p[k] - s->c[k];
         z += r[k] * n[k];
     }
-    const double rlo = fmax(0.0, rm - dk), rhi = fmax(0.0, rm + dk);
-    s->R = part == CYLRAY_CAP_LO   ? rlo
-           : part == CYLRAY_CAP_HI ? rhi
-                                   : fmax(0.0, rm + dk * fmin(1.0, fmax(-1.0, z / H)));
+    const double rlo = cylray_cone_radius_(ra, kap, hv, -hv),
+                 rhi = cylray_cone_radius_(ra, kap, hv, hv);
+    s->R = part == CYLRAY_CAP_LO ? rlo
+           : part == CYLRAY_CAP_HI
+               ? rhi
+               : cylray_cone_radius_(ra, kap, hv, sv * fmin(H, fmax(-H, z)));
     surface_at(s, p, part, uv, dpdu, dpdv);
     if (!dpdu || part != CYLRAY_SIDE)
         return;
@@ -120,7 +122,7 @@ void cylray_surface(const cylray_prepared *cyl, const float p[3], int32_t part, 
     s.R = cyl->radius;
     s.H = cyl->kind == CYLRAY_KIND_INFINITE ? INFINITY : cyl->half_height;
     if (cyl->kind == CYLRAY_KIND_CONE)
-        cone_surface(&s, cyl->rm, cyl->kap, p, part, uv, dpdu, dpdv);
+        cone_surface(&s, cylray_cone_ra_(cyl), cyl->kap, p, part, uv, dpdu, dpdv);
     else
         surface_at(&s, p, part, uv, dpdu, dpdv);
 }
@@ -146,7 +148,7 @@ static void leaf_surface(const float *geom, const uint32_t *meta, unsigned m,
     s.R = geom[CYLRAY_LF_R * m + i];
     s.H = geom[CYLRAY_LF_H * m + i];
     const float kap = geom[CYLRAY_LF_RRVV * m + i];
-    /* a cone's lane: R is rm, RRVV its slope (slope 0: the cylinder it prepares as) */
+    /* a cone's lane: R is ra, RRVV its slope (slope 0: the cylinder it prepares as) */
     if (((cylray_leaf_cones_(meta) >> i) & 1u) && kap != 0)
         cone_surface(&s, s.R, kap, p, hit->part, uv, dpdu, dpdv);
     else

@@ -164,8 +164,7 @@ static void make_cone_leaf(leaf_case *lc, int m, cylgen_rng *r, uint64_t seed)
     for (int k = 0; k < lc->n; k++)
         for (int cull = 0; cull < 2; cull++)
             conref_band_eval(&lc->lane[k].con, lc->o, lc->d, lc->tmin, lc->tmax,
-                             (cull ? CYLRAY_CULL_BACK : 0u) | CONREF_LEAF,
-                             &lc->lane[k].band[cull]);
+                             cull ? CYLRAY_CULL_BACK : 0u, &lc->lane[k].band[cull]);
 }
 
 /* Lanes j and L hold the same shape (spheres and cones only). */

@@ -524,10 +524,6 @@ void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], 
     }
     step[IN_R0] = (cylq)ref_float_ulp(c->r0);
     step[IN_R1] = (cylq)ref_float_ulp(c->r1);
-    if (flags & CONREF_LEAF) { /* rm -+ kap H|v|: an ulp of the larger radius each */
-        const cylq rs = (cylq)ref_float_ulp(fmax(c->r0, c->r1));
-        step[IN_R0] = q_max(step[IN_R0], rs), step[IN_R1] = q_max(step[IN_R1], rs);
-    }
 
     crec r0, r;
     c_eval(&base, tmin, tmax, &r0);

@@ -28,9 +28,6 @@ int conref_valid(const cylray_cone *c);
 int conref_intersect(const cylray_cone *c, const float o[3], const float d[3], float tmin,
                      float tmax, unsigned flags, cylref_hit *out);
 
-/* A flag of conref_band_eval's beside the ray's CYLRAY_ flags. */
-#define CONREF_LEAF 0x40000000u
-
 /* The tolerance band. The perturbed inputs: the origin relative to the center by 2
  * ulps of |o - c|, plus 2 ulps of the center's largest coordinate when the center
  * (p0 + p1) / 2 is not a float (the prepared cone rounds it once); d by 2 ulps of its
@@ -46,9 +43,8 @@ int conref_intersect(const cylray_cone *c, const float o[3], const float d[3], f
  * A candidate (each side root, each disc) whose validity margins (the
  * discriminant, the slab, the disc, tmin and tmax) can change sign in the box, or lie
  * within 4 float ulps of the values compared, may be taken or dropped; candidates whose
- * t ranges overlap may come in either order; every outcome this allows is kept.
- * With CONREF_LEAF in flags, the band of a cone in a leaf, whose end radii are
- * rm -+ kap H|v| (docs/design.md 10.1): each radius moves by 2 ulps of the larger. */
+ * t ranges overlap may come in either order; every outcome this allows is kept. A
+ * cone in a leaf has the same band. */
 void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], float tmin,
                       float tmax, unsigned flags, cylref_band *out);
 

@@ -15,8 +15,8 @@
  *     the products that cancel, and rays along an end's plane of cones so flat or so
  *     short that their inputs' rounding spans the slab (where the band's samples must
  *     see inside the box, not only its vertices); with normals, each found case's
- *     normal too. The leaf is judged by the leaf's band (CONREF_LEAF): its end radii
- *     are rm -+ kap H|v|, an ulp of the larger radius off. */
+ *     normal too. The leaf is judged by the same band: its radius is formed as the
+ *     prepared cone's, from the narrower end. */
 #include "conref.h"
 #include "cylray.h"
 
@@ -157,6 +157,7 @@ typedef struct {
     const char *why;
     cylray_cone cone;
     float o[3], d[3], tmin;
+    float tmax; /* 0: INFINITY */
 } found_case;
 
 static const found_case found[] = {
@@ -359,6 +360,17 @@ static const found_case found[] = {
      {0x1.3b536ep+5f, -0x1.56a26cp+2f, 0x1.ca8b6ep+3f},
      {-0x1.d91ebep-1f, -0x1.204a6cp-4f, -0x1.80b8d6p-2f},
      0},
+    {"a steep cone's 1e-10 end beside one of 0.47 (the fuzzer's): its radius formed as "
+     "rm - kap H|v| came out 7e-9, and the ray, 1.4e-10 off the axis, hit that disc",
+     {{0x1.b7cdfep-34f, 0x1.b7cdfep-34f, 0x1.b7cdfep-34f},
+      {0x1.b7cdfep-33f, 0x1.0c765ap-20f, 0x1.b7cdfep-33f},
+      0x1.b7cdfep-34f,
+      0x1.e5ep-2f,
+      CYLRAY_CAPPED},
+     {0, 0x1.b7cdfep-34f, 0x1.343442p-75f},
+     {0x1.b7cdfep-34f, 0x1.b7cdfep-34f, 0x1.b7cdfep-34f},
+     0x1.b7cdfep-34f,
+     0x1.7998p+0f},
 };
 
 static void found_cases(const cylray_kernels *k)
@@ -374,13 +386,11 @@ static void found_cases(const cylray_kernels *k)
             continue;
         }
         for (unsigned flags = 0; flags <= CYLRAY_FLAGS_ALL; flags++) {
-            cylref_band bands[2];
-            conref_band_eval(&x->cone, x->o, x->d, x->tmin, INFINITY, flags, &bands[0]);
-            conref_band_eval(&x->cone, x->o, x->d, x->tmin, INFINITY, flags | CONREF_LEAF,
-                             &bands[1]);
+            cylref_band band;
+            const float tmax = x->tmax > 0 ? x->tmax : INFINITY;
+            conref_band_eval(&x->cone, x->o, x->d, x->tmin, tmax, flags, &band);
             const double tol = flags & CYLRAY_FAST ? 8 : 4;
             for (int w = 0; w < 2; w++) {
-                const cylref_band band = bands[w];
                 int hit;
                 float t = 0, n[3] = {0, 0, 0};
                 unsigned part = 0;
@@ -390,7 +400,7 @@ static void found_cases(const cylray_kernels *k)
                     for (int l = 0; l < 4; l++) {
                         r4.ox[l] = x->o[0], r4.oy[l] = x->o[1], r4.oz[l] = x->o[2];
                         r4.dx[l] = x->d[0], r4.dy[l] = x->d[1], r4.dz[l] = x->d[2];
-                        r4.tmin[l] = x->tmin, r4.tmax[l] = INFINITY;
+                        r4.tmin[l] = x->tmin, r4.tmax[l] = tmax;
                     }
                     hit = (k->intersect4(&p, &r4, &h, 0x4u, flags) >> 2) & 1u;
                     t = h.t[2], part = (unsigned)h.part[2];
@@ -399,7 +409,7 @@ static void found_cases(const cylray_kernels *k)
                     cylray_ray1 ray = {{x->o[0], x->o[1], x->o[2]},
                                        {x->d[0], x->d[1], x->d[2]},
                                        x->tmin,
-                                       INFINITY};
+                                       tmax};
                     cylray_hit1 h;
                     hit = k->leaf_intersect4(&l4, &ray, &h, flags);
                     t = h.t, part = (unsigned)h.part;

@@ -89,7 +89,7 @@ static void make_cone(cylgen_rng *r, int kind, cylray_cone *c)
     c->flags = caps[cylgen_next(r) % 4 == 0 ? cylgen_next(r) % 3 : 3];
 }
 
-/* ---- the exact cone: the prepared one (c, v, H, rm, kap) in binary128 -------------- */
+/* ---- the exact cone: the prepared one (c, v, H, r0, r1, kap) in binary128 --------- */
 
 typedef struct {
     cylq c[3], v[3], sv, H, rlo, rhi;
@@ -104,9 +104,11 @@ static void qcone_of(const cylray_prepared *P, qcone *q)
     }
     q->sv = q_sqrt(vv);
     q->H = P->half_height;
-    const cylq dk = (cylq)P->kap * q->H * q->sv;
-    q->rlo = q_max(0, (cylq)P->rm - dk), q->rhi = q_max(0, (cylq)P->rm + dk);
-    if (P->kap == 0) /* prepared as a cylinder: rm is not set */
+    /* the kernels' radius, from the narrower end: ra + dk (q - qa) at z = q H |v| */
+    const cylq dk = (cylq)P->kap * q->H * q->sv, qa = P->kap > 0 ? -1 : 1;
+    const cylq ra = P->kap > 0 ? P->r0 : P->r1;
+    q->rlo = q_max(0, ra + dk * (-1 - qa)), q->rhi = q_max(0, ra + dk * (1 - qa));
+    if (P->kap == 0) /* prepared as a cylinder: r0 and r1 are not set */
         q->rlo = q->rhi = P->radius;
 }
 

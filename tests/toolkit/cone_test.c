@@ -13,8 +13,9 @@
  *                   formulas in double: u and v within 2^-20, the derivatives within
  *                   2^-18 of their length; the leaf form equals the prepared one
  *
- * The exact cone is the prepared one: radius rm + kap z between its discs, its ends at
- * z = -+H|v|. CYLRAY_TEST_QUICK=1 shrinks the counts tenfold. */
+ * The exact cone is the prepared one: radius ra + kap (z - za) between its discs (from
+ * its narrower end, as the kernels form it), its ends at z = -+H|v|.
+ * CYLRAY_TEST_QUICK=1 shrinks the counts tenfold. */
 #include "cylray.h"
 #include "cylref.h"
 #include "gen.h"
@@ -55,6 +56,17 @@ static void make_cone(cylgen_rng *r, int kind, cylray_cone *c)
     c->flags = CYLRAY_CAPPED;
 }
 
+/* The prepared cone's radius at z = q H |v| is ra + dk (q - qa), dk = kap H |v|: formed
+ * from its narrower end (radius ra as given, at q = qa), as the kernels form it. */
+static double cone_ra(const cylray_prepared *P)
+{
+    return P->kap > 0 ? P->r0 : P->r1;
+}
+static double cone_qa(const cylray_prepared *P)
+{
+    return P->kap > 0 ? -1.0 : 1.0;
+}
+
 /* The exact box of the prepared cone P: lo, hi in binary128. */
 static void exact_box(const cylray_prepared *P, cylq lo[3], cylq hi[3])
 {
@@ -67,7 +79,8 @@ static void exact_box(const cylray_prepared *P, cylq lo[3], cylq hi[3])
         r[0] = r[1] = P->radius;
     else {
         const cylq dk = (cylq)P->kap * H * sv;
-        r[0] = q_max(0, (cylq)P->rm - dk), r[1] = q_max(0, (cylq)P->rm + dk);
+        r[0] = q_max(0, cone_ra(P) + dk * (-1 - cone_qa(P)));
+        r[1] = q_max(0, cone_ra(P) + dk * (1 - cone_qa(P)));
     }
     for (int k = 0; k < 3; k++) {
         const cylq a = P->v[(k + 1) % 3], b = P->v[(k + 2) % 3];
@@ -172,7 +185,8 @@ static void exact_slice(const cylray_prepared *P, double qa, double qb, cylq lo[
         const cylq n = (cylq)P->v[k] / sv, s = q_sqrt(a * a + b * b) / sv;
         lo[k] = 1e300, hi[k] = -1e300;
         for (int e = 0; e < 2; e++) {
-            const cylq r = q_max(0, (cylq)P->rm + dk * q[e]), d = (cylq)P->c[k] + H * q[e] * n;
+            const cylq r = q_max(0, cone_ra(P) + dk * (q[e] - cone_qa(P))),
+                       d = (cylq)P->c[k] + H * q[e] * n;
             lo[k] = q_min(lo[k], d - r * s);
             hi[k] = q_max(hi[k], d + r * s);
         }
@@ -238,7 +252,7 @@ static int run_split(long N)
         e2[2] = (v[0] * e1[1] - v[1] * e1[0]) / sv;
         for (int n = 0; n < 50; n++) {
             const double q = uni(&rng, -1, 1), ph = uni(&rng, 0, 6.283185307179586);
-            const double r = fmax(0.0, P.rm + dk * q);
+            const double r = fmax(0.0, cone_ra(&P) + dk * (q - cone_qa(&P)));
             size_t i = (size_t)((q + 1) / 2 * (double)k);
             if (i >= k)
                 i = k - 1;
@@ -301,7 +315,8 @@ static int run_surface(long N)
                          b = n[0] * n[1] * a;
             const double b1[3] = {1 + sg * n[0] * n[0] * a, sg * b, -sg * n[0]};
             const double b2[3] = {b, sg + n[1] * n[1] * a, -n[1]};
-            const double rlo = fmax(0.0, Q->rm - dk), rhi = fmax(0.0, Q->rm + dk);
+            const double rlo = fmax(0.0, cone_ra(Q) + dk * (-1 - cone_qa(Q))),
+                         rhi = fmax(0.0, cone_ra(Q) + dk * (1 - cone_qa(Q)));
             for (int t = 0; t < 8; t++) {
                 const int part = t < 4 ? CYLRAY_SIDE : t < 6 ? CYLRAY_CAP_LO : CYLRAY_CAP_HI;
                 const double ph = uni(&rng, 0.01, 6.27), co = cos(ph), si = sin(ph);
