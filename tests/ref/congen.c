@@ -151,6 +151,11 @@ void congen_cone(int cat, cylgen_rng *r, cylray_cone *out)
             r0 = 0;
         else
             r1 = 0;
+    } else if (chance(r, 0.1)) { /* an end tiny beside the other: a near tip, no apex */
+        if (chance(r, 0.5))
+            r0 = R * logu(r, -34, -8);
+        else
+            r1 = R * logu(r, -34, -8);
     }
     out->r0 = r0 == 0 ? 0 : radius_f(r0);
     out->r1 = r1 == 0 ? 0 : radius_f(r1);
@@ -275,8 +280,13 @@ static void gen_rim(cylgen_rng *r, const cgeo *g, congen_case *c)
     if ((hi ? g->r1 : g->r0) == 0)
         hi = !hi;
     v3 p = side_point(g, hi ? g->L : 0, e);
+    /* off the rim by a part of the cone's size or of that end's own radius (a tiny end's
+     * rim is far smaller than the cone) */
+    const int own = chance(r, 0.5);
+    const double size = own ? (hi ? g->r1 : g->r0) : g->R;
     if (chance(r, 0.5))
-        p = axpy(p, g->R * logu(r, -24, -10) * (chance(r, 0.5) ? 1 : -1), rand_dir(r));
+        p = axpy(p, size * logu(r, -24, own ? 7 : -10) * (chance(r, 0.5) ? 1 : -1),
+                 rand_dir(r));
     aim(r, p, rand_dir(r), g->R * uni(r, 1.5, 10), c);
 }
 
