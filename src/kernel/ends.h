@@ -168,7 +168,9 @@ CYLRAY_INLINE void KFN(ends)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_
         z0 = F.aligned ? st->pz
              : F.cone  ? KFN(cone_z0)(st)
                        : KDOT(st->px, st->py, st->pz, st->vx, st->vy, st->vz);
-        dv = F.aligned ? st->dz : KDOT(st->dx, st->dy, st->dz, st->vx, st->vy, st->vz);
+        dv = F.aligned ? st->dz
+             : F.cone  ? KFN(cone_dv)(st)
+                       : KDOT(st->dx, st->dy, st->dz, st->vx, st->vy, st->vz);
     }
     st->z0 = z0, st->dv = dv;
     if (F.capped) {

@@ -371,6 +371,15 @@ static const found_case found[] = {
      {0x1.b7cdfep-34f, 0x1.b7cdfep-34f, 0x1.b7cdfep-34f},
      0x1.b7cdfep-34f,
      0x1.7998p+0f},
+    {"a flat tip cone 1.4e-10 long of radius 0.47, left from its center (the fuzzer's)",
+     {{0x1.cp-16f, 0, 0},
+      {0x1.c0006ep-16f, 0x1.b7cdfep-34f, 0x1.b7cdfep-34f},
+      0x1.e5ep-2f,
+      0,
+      CYLRAY_CAPPED},
+     {0x1.c00038p-16f, 0x1.b7cdfep-35f, 0x1.b7cdfep-35f},
+     {-0x1.93c178p+2f, 0x1.b13d4cp+0f, 0x1.27a00ep+2f},
+     0},
 };
 
 static void found_cases(const cylray_kernels *k)
