@@ -82,7 +82,7 @@ CYLRAY_INLINE void KFN(cone_anchor)(const cylray_kat_ *k, const cylray_kflags_ F
         *za = vsel(veq(kap, vzero()), vzero(), vneg(vxorsign(hv, kap)));
     } else {
         const cylray_prepared *P = k->P;
-        *ra = vset1(P->kap > 0 ? P->r0 : P->r1);
+        *ra = vset1(cylray_cone_ra_(P));
         *za = vset1(P->kap > 0 ? -P->h_v : P->h_v);
     }
 }

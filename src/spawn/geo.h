@@ -77,8 +77,9 @@ static inline vd DFN(cone_r)(const DFN(geo) *g, vd s)
 
 /* The cylinders' derived values, from their floats (c, v, R, H and the discs); sph: the
  * lanes that are spheres (v = 0, H = 0, no discs); cone: the lanes that are cones, whose
- * R is read as ra (the narrower end's radius) and kap as their slope (both as cylray_prepared holds them), so that a
- * prepared cone and its leaf lane derive the same values. */
+ * R is read as ra (the narrower end's radius) and kap as their slope (as a leaf's rows
+ * hold them, cylray_cone_ra_), so that a prepared cone and its leaf lane derive the
+ * same values. */
 CYLRAY_INLINE void DFN(geo_make)(DFN(geo) *g, const vd c[3], const vd v[3], vd R, vd H, vdm lo,
                                  vdm hi, vdm sph, vdm cone, vd kap)
 {

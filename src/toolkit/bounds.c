@@ -45,12 +45,12 @@ static float round_out(double x, int dir)
 }
 
 /* The box of a cone (radius ra + kap (z - za) at z = (x - c).v, internal/leaf.h; its
- * ends at z = -+H|v|): the
- * frustum is the hull of its two discs, and a disc of radius r about d with unit normal
- * n spans d_k -+ r sqrt(1 - n_k^2) along axis k. Evaluated in double (each product and
- * quotient to a few units of 2^-53 relative), each face lies within a few units of 2^-53
- * of (|c_k| + H + r) of its exact value; 2^-48 of that is taken off outward before the
- * face is rounded outward to float (at most an ulp more than the smallest box). */
+ * ends at z = -+H|v|): the frustum is the hull of its two discs, and a disc of radius r
+ * about d with unit normal n spans d_k -+ r sqrt(1 - n_k^2) along axis k. Evaluated in
+ * double (each product and quotient to a few units of 2^-53 relative), each face lies
+ * within a few units of 2^-53 of (|c_k| + H + r) of its exact value; 2^-48 of that is
+ * taken off outward before the face is rounded outward to float (at most an ulp more
+ * than the smallest box). */
 static void cone_box(const float c[3], const float v[3], double ra, double kap, double H,
                      float lo[3], float hi[3])
 {
