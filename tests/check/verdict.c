@@ -160,7 +160,9 @@ static double normal_of(const ref_case *rc, const lane_out *o, int ff, double n[
             ww += w * w;
             td += (double)o->t * c->d[k] * ((double)o->t * c->d[k]);
         }
-        const double kk = ((double)rc->con.r1 - rc->con.r0) / L, rz = rc->con.r0 + kk * z;
+        /* |r|: a point that rounding puts a hair past an apex is on the cone's own
+         * nappe, whose normal the kernels give (kernel/store.h), not the mirror's */
+        const double kk = ((double)rc->con.r1 - rc->con.r0) / L, rz = fabs(rc->con.r0 + kk * z);
         const int part = o->part & CYLRAY_PART_MASK;
         for (int k = 0; k < 3; k++) {
             n[k] = part == CYLRAY_SIDE     ? x[k] - z * u[k] - rz * kk * u[k]

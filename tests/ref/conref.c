@@ -687,8 +687,17 @@ void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], 
                     if (ts == 0)
                         continue;
                     const cylq need = n0 - ts * r0.zd;
-                    for (int sg = -1; sg <= 1; sg += 2) {
-                        cylq dz = sg * q_abs(need / ts);
+                    /* d's least move either way, and the ends of the moves that still
+                     * meet the plane there: where those take d.v through 0, the ray
+                     * meets it climbing as well as falling (a disc entered or left) */
+                    cylq dlo = (need - mwi) / ts, dhi = (need + mwi) / ts;
+                    if (dlo > dhi) {
+                        const cylq tmp = dlo;
+                        dlo = dhi, dhi = tmp;
+                    }
+                    const cylq dzs[4] = {-q_abs(need / ts), q_abs(need / ts), dlo, dhi};
+                    for (int c3 = 0; c3 < 4; c3++) {
+                        cylq dz = dzs[c3];
                         dz = dz > md ? md : dz < -md ? -md : dz;
                         const cylq dw = need - ts * dz;
                         if (!(q_abs(dw) <= mw))
