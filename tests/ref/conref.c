@@ -690,12 +690,9 @@ void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], 
                     /* d's least move either way, and the ends of the moves that still
                      * meet the plane there: where those take d.v through 0, the ray
                      * meets it climbing as well as falling (a disc entered or left) */
-                    cylq dlo = (need - mwi) / ts, dhi = (need + mwi) / ts;
-                    if (dlo > dhi) {
-                        const cylq tmp = dlo;
-                        dlo = dhi, dhi = tmp;
-                    }
-                    const cylq dzs[4] = {-q_abs(need / ts), q_abs(need / ts), dlo, dhi};
+                    const cylq da = (need - mwi) / ts, db = (need + mwi) / ts;
+                    const cylq dzs[4] = {-q_abs(need / ts), q_abs(need / ts), q_min(da, db),
+                                         q_max(da, db)};
                     for (int c3 = 0; c3 < 4; c3++) {
                         cylq dz = dzs[c3];
                         dz = dz > md ? md : dz < -md ? -md : dz;

@@ -402,6 +402,17 @@ static const found_case found[] = {
      {-0x1.93c178p+2f, 0x1.b13d4cp+0f, 0x1.27a00ep+2f},
      0,
      0},
+    {"a ray in the plane of a cone's 1.4e-3 disc (d.v 2.7e-9), through it: either facing "
+     "of that disc is in the box (the band once had only the falling one)",
+     {{0, 0, 0},
+      {0x1.36c2a2p+6f, -0x1.1dc5p+5f, 0x1.3289e8p+4f},
+      0x1.77be04p-10f,
+      0x1.04d674p+3f,
+      CYLRAY_CAPPED_LO},
+     {-0x1.165be8p+7f, -0x1.478c52p+8f, -0x1.729b9p+5f},
+     {0x1.8d1bfep-2f, 0x1.d34834p-1f, 0x1.085964p-3f},
+     0,
+     0},
 };
 
 static void found_cases(const cylray_kernels *k)
