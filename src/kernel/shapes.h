@@ -104,7 +104,12 @@ CYLRAY_INLINE int KFN(cone_side)(KFN(lanes) *st, const cylray_kat_ *k, const cyl
     const vf va = vmul(vv, a);
     st->cr = r0, st->ca = a;
     const vf ee = st->A;
-    st->A = vfnma_x(va, a, ee);                             /* e.e - v.v a^2 */
+    /* e.e - v.v a^2, and + 0: where both terms lie below the smallest float (a
+     * direction within 1e-16 of the angle of a long, thin cone) A rounds to a zero,
+     * whose sign the far root q / A takes. Exactly, A -> 0 from either side leaves the
+     * same half-line inside, the one A >= 0 reads from [C / q, +-inf]; -0 would give
+     * [-inf, C / q], the line's outside. */
+    st->A = vadd(vfnma_x(va, a, ee), zero);
     st->pol = vlt(vabs(st->A), vmul(ee, vset1(KM_CANCEL))); /* see the roots */
     st->nB = vfma_x(va, r0, KDOTX(ex, ey, ez, fx, fy, fz));
 

@@ -413,6 +413,18 @@ static const found_case found[] = {
      {0x1.8d1bfep-2f, 0x1.d34834p-1f, 0x1.085964p-3f},
      0,
      0},
+    {"a ray of a 2^-149 direction 0.47 off the axis of a needle 1e6 long of radius 1e-10 at "
+     "its base, outside it (A underflowed to -0, and the side's roots read as its inside; "
+     "the fuzzer's)",
+     {{0x1.b7cdfep-34f, 0x1.b7cdfep-34f, 0x1.b7cdfep-34f},
+      {0x1.b7cdfep-33f, 0x1.b7cdfep-33f, 0x1.e848p+19f},
+      0x1.b7cdfep-34f,
+      0,
+      CYLRAY_CAPPED},
+     {0, 0x1.e5ep-2f, -0.0f},
+     {0, 0, 0x1p-149f},
+     -1,
+     2},
 };
 
 static void found_cases(const cylray_kernels *k)
