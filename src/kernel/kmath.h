@@ -9,6 +9,29 @@
 /* KDOT with every step fused, also where there is no FMA (KDOT rounds each product) */
 #define KDOTX(ax, ay, az, bx, by, bz) vfma_x(ax, bx, vfma_x(ay, by, vmul(az, bz)))
 
+/* ax bx + ay by + az bz + c where the terms cancel far below themselves: Ogita, Rump
+ * and Oishi's Dot2, each product split exactly by vfms (fused, or formed in double) and
+ * each sum by a two-sum, so that the result is as good as one formed in twice the
+ * precision and rounded (about an ulp of it, and 2^-45 of the terms). An ISA whose
+ * vfms is not exact (SSE4.1) defines vdot3_x in double instead. */
+#ifndef vdot3_x
+CYLRAY_INLINE vf KFN(two_sum)(vf a, vf b, vf *err)
+{
+    const vf s = vadd(a, b), bb = vsub(s, a);
+    *err = vadd(vsub(a, vsub(s, bb)), vsub(b, bb));
+    return s;
+}
+CYLRAY_INLINE vf KFN(dot3_x)(vf ax, vf ay, vf az, vf bx, vf by, vf bz, vf c)
+{
+    const vf px = vmul(ax, bx), py = vmul(ay, by), pz = vmul(az, bz);
+    const vf ep = vadd(vadd(vfms(ax, bx, px), vfms(ay, by, py)), vfms(az, bz, pz));
+    vf e1, e2, e3;
+    const vf s = KFN(two_sum)(KFN(two_sum)(KFN(two_sum)(px, py, &e1), pz, &e2), c, &e3);
+    return vadd(s, vadd(ep, vadd(e1, vadd(e2, e3))));
+}
+#define vdot3_x(ax, ay, az, bx, by, bz, c) KFN(dot3_x)(ax, ay, az, bx, by, bz, c)
+#endif
+
 /* 1 / x where the kernel only needs some value near it (a shift, a slide): the
  * divider's correctly rounded quotient, so that every CPU of one ISA gives the same
  * answers; the hardware estimate (rcpps's table differs between vendors) only under

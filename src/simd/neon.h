@@ -28,6 +28,9 @@
         veorq_u32(vreinterpretq_u32_f32(a),                                                    \
                   vandq_u32(vreinterpretq_u32_f32(b), vdupq_n_u32(0x80000000u))))
 
+#define vexpsign(x)                                                                            \
+    vreinterpretq_f32_u32(vandq_u32(vreinterpretq_u32_f32(x), vdupq_n_u32(0xff800000u)))
+
 #define vfma(a, b, c) vfmaq_f32(c, a, b)
 #define vfms(a, b, c) vnegq_f32(vfmsq_f32(c, a, b))
 #define vfnma(a, b, c) vfmsq_f32(c, a, b)

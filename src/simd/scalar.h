@@ -11,6 +11,11 @@
  *   vsumsq_x(a,b,c,k) = a*a + b*b + c*c - k, with the sum of squares as an FMA chain
  *     forms it (in double, rounded once, where the ISA has no FMA), and
  *   vdop_x(a,b,c,d) = a*b - c*d within about one ulp: used where it matters;
+ *   vdot3_x(ax,ay,az,bx,by,bz,c) = ax*bx + ay*by + az*bz + c within about an ulp of
+ *     the result and 2^-45 of the terms, where they cancel far below themselves
+ *     (kernel/kmath.h forms it from vfms wherever vfms is an exact a*b - c);
+ *   vexpsign(x) = x with its significand cleared: its sign times the power of two at or
+ *     below |x| (x normal, or 0);
  *   vmin(a,b) = a < b ? a : b and vmax(a,b) = a > b ? a : b (NaN gives b);
  *   comparisons are ordered (false when either side is NaN);
  *   vxorsign(a,b) = a with its sign flipped where b's sign bit is set (copysign for a >= 0);
@@ -37,6 +42,16 @@
 #define vneg(a) (-(a))
 #define vcopysign(mag, sgn) copysignf(mag, sgn)
 #define vxorsign(a, b) (signbit(b) ? -(a) : (a))
+static inline float KFN(expsign)(float x)
+{
+    union {
+        float f;
+        uint32_t u;
+    } b = {x};
+    b.u &= 0xff800000u;
+    return b.f;
+}
+#define vexpsign(x) KFN(expsign)(x)
 
 #if defined(__FMA__) || defined(__aarch64__) || defined(__ARM_FEATURE_FMA)
 #define vfma(a, b, c) fmaf(a, b, c)
@@ -63,6 +78,9 @@ static inline float KFN(dop_x)(float a, float b, float c, float d)
 #define vsumsq_x(a, b, c, k)                                                                   \
     ((float)((double)(a) * (double)(a) + (double)(b) * (double)(b) +                           \
              (double)(c) * (double)(c) - (double)(k)))
+#define vdot3_x(ax, ay, az, bx, by, bz, c)                                                     \
+    ((float)((double)(ax) * (double)(bx) + (double)(ay) * (double)(by) +                       \
+             (double)(az) * (double)(bz) + (double)(c)))
 static inline float KFN(dop_x)(float a, float b, float c, float d)
 {
     return (float)((double)a * (double)b - (double)c * (double)d);

@@ -32,6 +32,8 @@
 #undef vfma_xw
 #undef vsumsq_x
 #undef vdop_x
+#undef vdot3_x
+#undef vexpsign
 #undef vrcp_est_
 #undef vrsqrt_est_
 #undef VEST_ERR

@@ -57,6 +57,7 @@
 #define vcopysign(mag, sgn)                                                                    \
     VX(or_ps)(VX(andnot_ps)(vsignbit_(), mag), VX(and_ps)(vsignbit_(), sgn))
 #define vxorsign(a, b) VX(xor_ps)(a, VX(and_ps)(b, vsignbit_()))
+#define vexpsign(x) VX(and_ps)(x, VCASTF(VX(set1_epi32)((int)0xff800000u)))
 
 #if X86_FMA
 #define vfma(a, b, c) VX(fmadd_ps)(a, b, c)
@@ -127,6 +128,18 @@ static inline __m128 KFN(dop_x)(__m128 a, __m128 b, __m128 c, __m128 d)
     return VIN_DOUBLE_(E_);
 #undef E_
 }
+/* in double, whose rounding of the sum (2^-52 of the terms) is far below what the
+ * callers need */
+static inline __m128 KFN(dot3_x)(__m128 ax, __m128 ay, __m128 az, __m128 bx, __m128 by,
+                                 __m128 bz, __m128 c)
+{
+#define E_(H)                                                                                  \
+    _mm_add_pd(_mm_add_pd(_mm_add_pd(_mm_mul_pd(H(ax), H(bx)), _mm_mul_pd(H(ay), H(by))),      \
+                          _mm_mul_pd(H(az), H(bz))),                                           \
+               H(c))
+    return VIN_DOUBLE_(E_);
+#undef E_
+}
 #undef VLO_
 #undef VHI_
 #undef VIN_DOUBLE_
@@ -135,6 +148,7 @@ static inline __m128 KFN(dop_x)(__m128 a, __m128 b, __m128 c, __m128 d)
 #define vfma_xw(a, b, o, c, ch, cl) KFN(fma_xw)(a, b, o, c)
 #define vsumsq_x(a, b, c, k) KFN(sumsq_x)(a, b, c, k)
 #define vdop_x(a, b, c, d) KFN(dop_x)(a, b, c, d)
+#define vdot3_x(ax, ay, az, bx, by, bz, c) KFN(dot3_x)(ax, ay, az, bx, by, bz, c)
 #endif
 
 /* Reciprocal and reciprocal square root for CYLRAY_FAST: the hardware estimate and
