@@ -4,6 +4,7 @@
 #define CYLRAY_INTERNAL_LEAF_H
 
 #include "cylray.h"
+#include "variants.h"
 
 /* A leaf's fields: geom_[LF_*][lane], the meta_ bits, and its lane count by type. The
  * axis v is the user's scaled by a power of two (exact), as in cylray_prepared. */
@@ -24,7 +25,8 @@ enum {
     CYLRAY_LF_BOUND2, /* squared bounding-sphere radius; -1 for padding */
     CYLRAY_LF_COUNT
 };
-/* meta_ holds lane masks (bit k: lane k): [0] the lanes in use, [1] those whose low
+/* meta_ holds lane masks (bit k: lane k): [0] the lanes in use (in its high 16 bits,
+ * bit 16 + k, the cones with a tiny end), [1] those whose low
  * disc is part of the surface, [2] those whose high disc is, [3] those that are
  * spheres in its low 16 bits and those that are cones in its high 16 (bit 16 + k). A
  * leaf holds cylinders, spheres, or cones (cylinders among them as cones of equal
@@ -33,14 +35,8 @@ enum {
  *
  * A cone's lane reads some rows otherwise: CYLRAY_LF_R is the radius of its narrower
  * end ra (cylray_cone_ra_), CYLRAY_LF_RRVV its slope kap and CYLRAY_LF_NSCALE its cnrm
- * (cylray_prepared). */
-/* A cone's radius is formed from its narrower end (kernel/shapes.h, cone_anchor): ra,
- * that end's radius as given (r0 where kap > 0, r1 elsewhere), plus kap (z - za) with za
- * its axial coordinate, -H|v| or +H|v|. */
-static inline float cylray_cone_ra_(const cylray_prepared *p)
-{
-    return p->kap > 0 ? p->r0 : p->r1;
-}
+ * (cylray_prepared). A cone's radius is formed from its narrower end (cylray_cone_ra_,
+ * internal/variants.h). */
 /* The same radius in double at the axial coordinate z, hv = H |v| (never below 0; a
  * slope of 0, a leaf's cylinder, is ra at every z). */
 static inline double cylray_cone_radius_(double ra, double kap, double hv, double z)
@@ -58,6 +54,12 @@ static inline uint32_t cylray_leaf_spheres_(const uint32_t *meta)
 static inline uint32_t cylray_leaf_cones_(const uint32_t *meta)
 {
     return meta[CYLRAY_LM_SPHERE] >> CYLRAY_LM_CONE_SHIFT;
+}
+/* The lanes whose cone has a tiny end (cylray_cone_tiny_), in the high 16 bits of
+ * meta_[CYLRAY_LM_USED]: a leaf that has any runs the kernels for them (CYLRAY_KF_TINY). */
+static inline uint32_t cylray_leaf_tiny_(const uint32_t *meta)
+{
+    return meta[CYLRAY_LM_USED] >> CYLRAY_LM_CONE_SHIFT;
 }
 static inline unsigned cylray_leaf_caps_(const uint32_t *meta, unsigned lane)
 {

@@ -18,6 +18,20 @@
 
 #define CYLRAY_MAGIC 0x63796c72u /* "cylr" */
 
+/* A cone's radius is formed from its narrower end (kernel/shapes.h, cone_anchor): ra,
+ * that end's radius as given (r0 where kap > 0, r1 elsewhere), plus kap (z - za) with za
+ * its axial coordinate, -H|v| or +H|v|. */
+static inline float cylray_cone_ra_(const cylray_prepared *p)
+{
+    return p->kap > 0 ? p->r0 : p->r1;
+}
+/* Whether a cone's narrower end is under 1/64 of the wider one (a tip among them): the
+ * cones whose kernels measure from that end near it (CYLRAY_KF_TINY). */
+static inline int cylray_cone_tiny_(const cylray_prepared *p)
+{
+    return cylray_cone_ra_(p) * 64.0f < (p->r0 > p->r1 ? p->r0 : p->r1);
+}
+
 /* A ray is parallel to the axis where A <= CYLRAY_PAR_EPS v.v d.d: an angle below
  * 2^-23 rad, about one float ulp of the direction, where the side's roots are noise. */
 #define CYLRAY_PAR_EPS 0x1p-46
@@ -34,6 +48,9 @@
 /* A cone (the kind bits then those of a capped cylinder, whose slab logic it runs): the
  * side's quadratic and its normal take the cone's branch. */
 #define CYLRAY_KF_CONE 0x20000u
+/* A cone whose narrower end is under 1/64 of the other (cylray_cone_tiny_), or a leaf
+ * that holds one: rays near that end measure from it (kernel/shapes.h). */
+#define CYLRAY_KF_TINY 0x40000u
 /* How the x86 kernels store a hit vector (docs/performance.md, "Stores by vendor"):
  * the policy is a property of the kernel table the dispatch chose for the CPU, whose
  * entry points pass it down with the run-time flags.
@@ -60,15 +77,17 @@
  * generic kernel, which reads its flags at run time. */
 #define CYLRAY_VARIANT_SPHERE (2u * CYLRAY_KIND_COUNT)
 #define CYLRAY_VARIANT_CONE (CYLRAY_VARIANT_SPHERE + 1u)
-#define CYLRAY_VARIANT_GENERIC (CYLRAY_VARIANT_CONE + 1u)
+#define CYLRAY_VARIANT_CONE_TINY (CYLRAY_VARIANT_CONE + 1u)
+#define CYLRAY_VARIANT_GENERIC (CYLRAY_VARIANT_CONE_TINY + 1u)
 static inline unsigned cylray_variant_of_(unsigned kind, unsigned axis_id, int radius_scaled,
-                                          unsigned caps)
+                                          unsigned caps, int tiny)
 {
     if (kind == CYLRAY_KIND_SPHERE)
         return radius_scaled ? CYLRAY_VARIANT_GENERIC + CYLRAY_KIND_COUNT
                              : CYLRAY_VARIANT_SPHERE;
     if (kind == CYLRAY_KIND_CONE) /* a cone with one disc or none: the generic one */
         return radius_scaled || caps != CYLRAY_CAPPED ? CYLRAY_VARIANT_GENERIC + 4u
+               : tiny                                 ? CYLRAY_VARIANT_CONE_TINY
                                                       : CYLRAY_VARIANT_CONE;
     if (radius_scaled || (kind == CYLRAY_KIND_CAPPED && caps != CYLRAY_CAPPED))
         return CYLRAY_VARIANT_GENERIC + kind;
@@ -84,6 +103,8 @@ static inline int cylray_generic_(const cylray_prepared *p)
     ((v) == CYLRAY_VARIANT_SPHERE ? CYLRAY_KF_SPHERE                                           \
      : (v) == CYLRAY_VARIANT_CONE                                                              \
          ? CYLRAY_KF_CONE | CYLRAY_KIND_CAPPED << CYLRAY_KF_KIND_SHIFT                         \
+     : (v) == CYLRAY_VARIANT_CONE_TINY                                                         \
+         ? CYLRAY_KF_CONE | CYLRAY_KF_TINY | CYLRAY_KIND_CAPPED << CYLRAY_KF_KIND_SHIFT        \
          : (((v) % CYLRAY_KIND_COUNT) << CYLRAY_KF_KIND_SHIFT |                                \
             ((v) >= CYLRAY_KIND_COUNT ? CYLRAY_KF_ALIGNED : 0u)))
 /* The kernel flags of a generic variant, which the generic drivers read at run time:
@@ -98,7 +119,8 @@ static inline unsigned cylray_generic_kf_(const cylray_prepared *P, unsigned fla
         return CYLRAY_KF_CONE | CYLRAY_KIND_CAPPED << CYLRAY_KF_KIND_SHIFT |
                (occ ? CYLRAY_KF_OCCLUDED : 0u) |
                (flags & ((occ ? 0u : CYLRAY_NORMAL) | CYLRAY_REFINE | CYLRAY_FAST)) |
-               (P->caps != CYLRAY_CAPPED ? CYLRAY_KF_ONE_END : 0u) | CYLRAY_KF_SCALED;
+               (P->caps != CYLRAY_CAPPED ? CYLRAY_KF_ONE_END : 0u) |
+               (cylray_cone_tiny_(P) ? CYLRAY_KF_TINY : 0u) | CYLRAY_KF_SCALED;
     return P->kind << CYLRAY_KF_KIND_SHIFT | (occ ? CYLRAY_KF_OCCLUDED : 0u) |
            (flags & ((occ ? 0u : CYLRAY_NORMAL) | CYLRAY_REFINE | CYLRAY_FAST)) |
            (P->kind == CYLRAY_KIND_CAPPED && P->caps != CYLRAY_CAPPED ? CYLRAY_KF_ONE_END
@@ -139,8 +161,8 @@ static inline unsigned cylray_occ_index_(unsigned variant, unsigned flags)
  * so whole vectors may be stored there; stores: the store policy (CYLRAY_STORE_*). */
 typedef struct {
     unsigned kind;
-    int sphere, cone, leaf, capped, finite, one_end, aligned, scaled, occ, normal, cull, ff,
-        refine, fast;
+    int sphere, cone, tiny, leaf, capped, finite, one_end, aligned, scaled, occ, normal, cull,
+        ff, refine, fast;
     int scratch;
     unsigned stores;
 } cylray_kflags_;
@@ -152,6 +174,7 @@ CYLRAY_INLINE cylray_kflags_ cylray_kflags_of_(unsigned FL, unsigned rt)
     F.kind = (FL >> CYLRAY_KF_KIND_SHIFT) & 3u;
     F.sphere = (FL & CYLRAY_KF_SPHERE) != 0;
     F.cone = (FL & CYLRAY_KF_CONE) != 0;
+    F.tiny = F.cone && (FL & CYLRAY_KF_TINY) != 0;
     F.leaf = F.kind == CYLRAY_KIND_LEAF;
     /* A leaf's lanes are cylinders of any kind: each runs the capped solid's logic with
      * its own discs (an open tube has none, an infinite one an infinite slab). */
@@ -179,7 +202,9 @@ static inline int cylray_prepared_ok_(const cylray_prepared *p)
            (p->kind < CYLRAY_KIND_COUNT || p->kind == CYLRAY_KIND_SPHERE ||
             p->kind == CYLRAY_KIND_CONE) &&
            p->axis_id <= 3u && (p->caps & ~CYLRAY_CAPPED) == 0 &&
-           p->variant == cylray_variant_of_(p->kind, p->axis_id, p->g_s != 1.0f, p->caps);
+           p->variant ==
+               cylray_variant_of_(p->kind, p->axis_id, p->g_s != 1.0f, p->caps,
+                                  p->kind == CYLRAY_KIND_CONE && cylray_cone_tiny_(p));
 }
 
 #endif

@@ -195,9 +195,12 @@ CYLRAY_INLINE void KFN(ends)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_
         }
         st->side_lo = vsel(st->inpar, vneg(inf), lo), st->side_hi = vsel(st->inpar, inf, hi);
         const vf hv = KFN(both_in)(k, F, offsetof(cylray_prepared, h_v), CYLRAY_LF_HV);
+        vf zlo = vneg(hv), zhi = hv;
+        if (F.cone) /* a cone's lanes measured from its narrower end */
+            KFN(cone_planes)(st, k, F, &zlo, &zhi);
         /* Two divisions rather than one reciprocal: a cap hit is then as exact as
          * the plane's offset, and dv = 0 gives the infinities the slab wants. */
-        vf na = vsub(vneg(hv), z0), nb = vsub(hv, z0);
+        vf na = vsub(zlo, z0), nb = vsub(zhi, z0);
         vf ta, tb;
         if (F.fast) {
             vf rdv = vdiv(vset1(1.0f), dv);

@@ -113,6 +113,7 @@ static size_t KI_(occluded_stream)(const cylray_prepared *P, const cylray_rays *
         flags = KFAST_(flags);                                                                 \
         const KW_(leaf_fn, KL##m) *t =                                                         \
             cylray_leaf_spheres_(leaf->meta_) ? KW_(leaf_sphere_table, KL##m)                  \
+            : cylray_leaf_tiny_(leaf->meta_)  ? KW_(leaf_tiny_table, KL##m)                    \
             : cylray_leaf_cones_(leaf->meta_) ? KW_(leaf_cone_table, KL##m)                    \
                                               : KW_(leaf_table, KL##m);                        \
         return t[cylray_spec_(flags)](leaf->geom_[0], m, ray, hit,                             \
@@ -128,6 +129,7 @@ static size_t KI_(occluded_stream)(const cylray_prepared *P, const cylray_rays *
         cylray_ray1 *r = (cylray_ray1 *)(uintptr_t)ray;                                        \
         const KW_(leaf_fn, KL##m) *t =                                                         \
             cylray_leaf_spheres_(leaf->meta_) ? KW_(leaf_sphere_occ_table, KL##m)              \
+            : cylray_leaf_tiny_(leaf->meta_)  ? KW_(leaf_tiny_occ_table, KL##m)                \
             : cylray_leaf_cones_(leaf->meta_) ? KW_(leaf_cone_occ_table, KL##m)                \
                                               : KW_(leaf_occ_table, KL##m);                    \
         return t[cylray_occ_spec_(flags)](leaf->geom_[0], m, r, NULL,                          \

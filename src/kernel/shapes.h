@@ -87,18 +87,95 @@ CYLRAY_INLINE void KFN(cone_anchor)(const cylray_kat_ *k, const cylray_kflags_ F
     }
 }
 
+/* A cone is far smaller near its narrower end than its distance from the center, which
+ * sets the rounding of p (and of s + t', and of f = v x p where p runs along the axis):
+ * a ray from next to a tip 1e-9 wide and 10 from the center would see it to 1e-6. A
+ * lane whose origin lies at least twice as near that end as the center therefore takes
+ * its origin there: p = o - a unshifted (s = 0), with a = c + m v, m the power of two
+ * nearest za / v.v, so that m v is exact and p = (wh - m v) + wl is o - a rounded at
+ * its own size. Axial coordinates are then measured from a: the narrower end's plane
+ * lies at zn = za - m v.v (vdot3_x: a residue of the rounding of H|v|, formed to far
+ * below it), the other 2 H|v| beyond (KFN(cone_planes), for the slab). Everything after
+ * is the same quadratic in that frame, whose C = f.f - v.v r0^2, which cancels to the
+ * tiny radius, is formed to the last bits.
+ *
+ * Only where the cone comes to a point or nearly (its narrower end under 1/64 of the
+ * other, cylray_cone_tiny_) is that end's size below what the center's frame resolves:
+ * those cones, and leaves that hold one, run kernels of their own (CYLRAY_KF_TINY), and
+ * every other cone's kernel has none of this work. */
+
+/* The lanes of a tiny-ended cone: a prepared cone's all, a leaf's as its meta marks. */
+CYLRAY_INLINE vm KFN(cone_tiny)(const cylray_kat_ *k, const cylray_kflags_ F)
+{
+    if (!F.tiny)
+        return mfrom_bits(0u);
+    if (F.leaf) {
+        const uint32_t *meta = (const uint32_t *)(const void *)(k->L + CYLRAY_LF_COUNT * k->lm);
+        return mfrom_bits(cylray_leaf_tiny_(meta) >> k->i);
+    }
+    return mfrom_bits(VFULL);
+}
+
+/* The lanes of `tiny` whose origin is near the narrower end, from w = o - c rounded:
+ * |o - a|^2 v.v = w.w v.v - 2 (w.v) za + za^2, against w.w v.v / 4. */
+CYLRAY_INLINE vm KFN(cone_near)(vm tiny, vf wx, vf wy, vf wz, vf vx, vf vy, vf vz, vf vv, vf za)
+{
+    const vf ww = KDOT(wx, wy, wz, wx, wy, wz), zw = KDOT(wx, wy, wz, vx, vy, vz);
+    const vf oa = vfma(za, za, vfms(ww, vv, vmul(vadd(zw, zw), za)));
+    return mand(tiny, vlt(vmul(oa, vset1(4.0f)), vmul(ww, vv)));
+}
+
+/* Takes the narrower end's frame on the lanes near it (st->near): p, s, and za, the
+ * narrower end's axial coordinate, which becomes zn (kept in st->zn for the slab). */
+CYLRAY_INLINE void KFN(cone_frame)(KFN(lanes) *st, vm tiny, vf vv, vf *za)
+{
+    const vf vx = st->vx, vy = st->vy, vz = st->vz;
+    const vm near = KFN(cone_near)(tiny, st->whx, st->why, st->whz, vx, vy, vz, vv, *za);
+    st->near = near;
+    if (!many(near))
+        return;
+    const vf m = vexpsign(vmul(vdiv(*za, vv), vset1(1.25f)));
+    const vf mx = vmul(m, vx), my = vmul(m, vy), mz = vmul(m, vz);
+    st->px = vsel(near, vadd(vsub(st->whx, mx), st->wlx), st->px);
+    st->py = vsel(near, vadd(vsub(st->why, my), st->wly), st->py);
+    st->pz = vsel(near, vadd(vsub(st->whz, mz), st->wlz), st->pz);
+    st->s = vsel(near, vzero(), st->s);
+    st->zn = vdot3_x(vneg(mx), vneg(my), vneg(mz), vx, vy, vz, *za);
+    *za = vsel(near, st->zn, *za);
+}
+
+/* The slab's planes, the axial coordinates of -H and +H (kernel/ends.h), on the lanes
+ * that took the narrower end's frame: that end's at zn, the other 2 H|v| beyond. */
+CYLRAY_INLINE void KFN(cone_planes)(const KFN(lanes) *st, const cylray_kat_ *k,
+                                    const cylray_kflags_ F, vf *zlo, vf *zhi)
+{
+    if (!F.tiny || !many(st->near))
+        return;
+    const vf kap = KFN(both_in)(k, F, offsetof(cylray_prepared, kap), CYLRAY_LF_RRVV);
+    vf ra, za;
+    KFN(cone_anchor)(k, F, kap, &ra, &za);
+    const vf zn = st->zn, zf = vsub(zn, vadd(za, za));
+    const vm lo = vlt(za, vzero()); /* the narrower end is the low one */
+    *zlo = vsel(st->near, vsel(lo, zn, zf), *zlo);
+    *zhi = vsel(st->near, vsel(lo, zf, zn), *zhi);
+}
+
 CYLRAY_INLINE int KFN(cone_side)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
 {
     const vf zero = vzero();
-    const vf vx = st->vx, vy = st->vy, vz = st->vz, px = st->px, py = st->py, pz = st->pz;
-    const vf ex = st->ex, ey = st->ey, ez = st->ez;
-    const vf fx = vfms(vy, pz, vmul(vz, py)), fy = vfms(vz, px, vmul(vx, pz)),
-             fz = vfms(vx, py, vmul(vy, px));
-    st->fx = fx, st->fy = fy, st->fz = fz;
+    const vf vx = st->vx, vy = st->vy, vz = st->vz;
     const vf kap = KFN(both_in)(k, F, offsetof(cylray_prepared, kap), CYLRAY_LF_RRVV);
     vf ra, za;
     KFN(cone_anchor)(k, F, kap, &ra, &za);
     const vf vv = KDOT(vx, vy, vz, vx, vy, vz);
+    const vm tiny = KFN(cone_tiny)(k, F);
+    if (F.tiny)
+        KFN(cone_frame)(st, tiny, vv, &za);
+    const vf px = st->px, py = st->py, pz = st->pz;
+    const vf ex = st->ex, ey = st->ey, ez = st->ez;
+    const vf fx = vfms(vy, pz, vmul(vz, py)), fy = vfms(vz, px, vmul(vx, pz)),
+             fz = vfms(vx, py, vmul(vy, px));
+    st->fx = fx, st->fy = fy, st->fz = fz;
     const vf r0 = vfma_x(kap, vsub(KFN(cone_z0)(st), za), ra);
     const vf a = vmul(kap, KFN(cone_dv)(st));
     const vf va = vmul(vv, a);
@@ -113,7 +190,10 @@ CYLRAY_INLINE int KFN(cone_side)(KFN(lanes) *st, const cylray_kat_ *k, const cyl
     st->pol = vlt(vabs(st->A), vmul(ee, vset1(KM_CANCEL))); /* see the roots */
     st->nB = vfma_x(va, r0, KDOTX(ex, ey, ez, fx, fy, fz));
 
-    st->C = vsumsq_x(fx, fy, fz, vmul(vmul(vv, r0), r0));
+    const vf vrr = vmul(vmul(vv, r0), r0);
+    st->C = vsumsq_x(fx, fy, fz, vrr);
+    if (F.tiny && many(tiny))
+        st->C = vsel(tiny, vdot3_x(fx, fy, fz, fx, fy, fz, vneg(vrr)), st->C);
     vf g = KDOTX(ex, ey, ez, px, py, pz);
     vf ux = vfma(r0, ex, vmul(a, fx)), uy = vfma(r0, ey, vmul(a, fy)),
        uz = vfma(r0, ez, vmul(a, fz));

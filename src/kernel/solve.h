@@ -62,7 +62,8 @@ CYLRAY_INLINE void KFN(slide)(KFN(lanes) *st, const cylray_kat_ *k, const cylray
 CYLRAY_INLINE int KFN(side)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
 {
     const vf zero = vzero(), dx = st->dx, dy = st->dy;
-    st->cr = st->ca = zero; /* a cone's */
+    st->cr = st->ca = st->zn = zero; /* a cone's */
+    st->near = mfrom_bits(0u);
     st->pol = vlt(vset1(1.0f), zero);
     if (F.sphere)
         return KFN(sphere_side)(st, k, F);

@@ -25,6 +25,8 @@ typedef struct {
     vf cr, ca;      /* a cone: its radius at the origin's level, and the radius's rate
                      * along the ray */
     vm pol;         /* a cone: nB cancelled, its roots to be polished */
+    vm near;        /* a tiny-ended cone: the lanes measured from that end, */
+    vf zn;          /* and its plane's axial coordinate there (kernel/shapes.h) */
     /* roots, ends: the side's roots, and entry and exit relative to p */
     vf tn, tf, z0, dv, side_lo, side_hi, t_in, t_out;
     vm ok_in, ok_out;

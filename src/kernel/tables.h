@@ -4,7 +4,8 @@
 
 /* The specialisations, where a tracer spends its time: for each kind of cylinder
  * (infinite, open, capped; the same three along a coordinate axis), the sphere, the
- * capped cone, and a leaf of cylinders, spheres or cones, the
+ * capped cone (and the one with a tiny end), and a leaf of cylinders, spheres or cones
+ * (and of cones, one with a tiny end), the
  * intersect kernels with and without normals, each plain, with CYLRAY_FAST or with
  * CYLRAY_REFINE, and the occluded ones likewise. FAST and REFINE together (an odd
  * pair: one trades accuracy away, the other buys it) take the drivers that read their
@@ -91,27 +92,28 @@
     KISECT_(k, 0) KISECT_(k, 1) KALIAS_(k, 2, 0) KALIAS_(k, 3, 1)                              \
     KISECTANY_(k, 4) KISECTANY_(k, 5) KISECTANY_(k, 6) KISECTANY_(k, 7)                        \
     KOCC_(k, 0) KALIAS_(k, o1, o0) KOCCANY_(k, 2) KOCCANY_(k, 3)
-#define KLEAFCONE_                                                                             \
-    KLEAFDRV_(cf_0, leaf, KLFL_(CYLRAY_SPEC_KF_(0)) | CYLRAY_KF_CONE)                          \
-    KLEAFDRV_(cf_1, leaf, KLFL_(CYLRAY_SPEC_KF_(1)) | CYLRAY_KF_CONE)                          \
-    KLEAFALIAS_(cf_2, cf_0)                                                                    \
-    KLEAFALIAS_(cf_3, cf_1)                                                                    \
-    KLEAFDRV_(cf_4, leaf_any, KLFL_(CYLRAY_SPEC_KF_(4)) | CYLRAY_KF_CONE)                      \
-    KLEAFDRV_(cf_5, leaf_any, KLFL_(CYLRAY_SPEC_KF_(5)) | CYLRAY_KF_CONE)                      \
-    KLEAFDRV_(cf_6, leaf_any, KLFL_(CYLRAY_SPEC_KF_(6)) | CYLRAY_KF_CONE)                      \
-    KLEAFDRV_(cf_7, leaf_any, KLFL_(CYLRAY_SPEC_KF_(7)) | CYLRAY_KF_CONE)                      \
-    KLEAFDRV_(co_0, leaf, KLFL_(CYLRAY_OCC_SPEC_KF_(0)) | CYLRAY_KF_CONE)                      \
-    KLEAFALIAS_(co_1, co_0)                                                                    \
-    KLEAFDRV_(co_2, leaf_any, KLFL_(CYLRAY_OCC_SPEC_KF_(2)) | CYLRAY_KF_CONE)                  \
-    KLEAFDRV_(co_3, leaf_any, KLFL_(CYLRAY_OCC_SPEC_KF_(3)) | CYLRAY_KF_CONE)
+#define KLEAFCONE_(c, x)                                                                       \
+    KLEAFDRV_(c##f_0, leaf, KLFL_(CYLRAY_SPEC_KF_(0)) | CYLRAY_KF_CONE | (x))                  \
+    KLEAFDRV_(c##f_1, leaf, KLFL_(CYLRAY_SPEC_KF_(1)) | CYLRAY_KF_CONE | (x))                  \
+    KLEAFALIAS_(c##f_2, c##f_0)                                                                \
+    KLEAFALIAS_(c##f_3, c##f_1)                                                                \
+    KLEAFDRV_(c##f_4, leaf_any, KLFL_(CYLRAY_SPEC_KF_(4)) | CYLRAY_KF_CONE | (x))              \
+    KLEAFDRV_(c##f_5, leaf_any, KLFL_(CYLRAY_SPEC_KF_(5)) | CYLRAY_KF_CONE | (x))              \
+    KLEAFDRV_(c##f_6, leaf_any, KLFL_(CYLRAY_SPEC_KF_(6)) | CYLRAY_KF_CONE | (x))              \
+    KLEAFDRV_(c##f_7, leaf_any, KLFL_(CYLRAY_SPEC_KF_(7)) | CYLRAY_KF_CONE | (x))              \
+    KLEAFDRV_(c##o_0, leaf, KLFL_(CYLRAY_OCC_SPEC_KF_(0)) | CYLRAY_KF_CONE | (x))              \
+    KLEAFALIAS_(c##o_1, c##o_0)                                                                \
+    KLEAFDRV_(c##o_2, leaf_any, KLFL_(CYLRAY_OCC_SPEC_KF_(2)) | CYLRAY_KF_CONE | (x))          \
+    KLEAFDRV_(c##o_3, leaf_any, KLFL_(CYLRAY_OCC_SPEC_KF_(3)) | CYLRAY_KF_CONE | (x))
 /* clang-format on */
-_Static_assert(CYLRAY_VARIANT_CONE == 7, "the cone is kind 7 of the tables");
+_Static_assert(CYLRAY_VARIANT_CONE == 7 && CYLRAY_VARIANT_CONE_TINY == 8,
+               "the cone is kind 7 of the tables, a tiny-ended one 8");
 #define K8_(X, k) X(k, 0) X(k, 1) X(k, 2) X(k, 3) X(k, 4) X(k, 5) X(k, 6) X(k, 7)
 #define K4_(X, k) X(k, 0) X(k, 1) X(k, 2) X(k, 3)
 #define KALL8_(X)                                                                              \
-    K8_(X, 0) K8_(X, 1) K8_(X, 2) K8_(X, 3) K8_(X, 4) K8_(X, 5) K8_(X, 6) K8_(X, 7)
+    K8_(X, 0) K8_(X, 1) K8_(X, 2) K8_(X, 3) K8_(X, 4) K8_(X, 5) K8_(X, 6) K8_(X, 7) K8_(X, 8)
 #define KALL4_(X)                                                                              \
-    K4_(X, 0) K4_(X, 1) K4_(X, 2) K4_(X, 3) K4_(X, 4) K4_(X, 5) K4_(X, 6) K4_(X, 7)
+    K4_(X, 0) K4_(X, 1) K4_(X, 2) K4_(X, 3) K4_(X, 4) K4_(X, 5) K4_(X, 6) K4_(X, 7) K4_(X, 8)
 
 /* b = 6, 7 (occluded: 3) are FAST with REFINE. Lists of definitions: clang-format reads
  * them as one long expression and breaks them differently from version to version. */
@@ -121,9 +123,9 @@ _Static_assert(CYLRAY_VARIANT_CONE == 7, "the cone is kind 7 of the tables");
     KISECT_(k, 1) KISECT_(k, 2) KISECT_(k, 3) KISECT_(k, 4) KISECT_(k, 5) KISECTANY_(k, 6)     \
         KISECTANY_(k, 7) KOCC_(k, 0) KOCC_(k, 1) KOCC_(k, 2) KOCCANY_(k, 3)
 KKIND_(0)
-KKIND_(1) KKIND_(2) KKIND_(3) KKIND_(4) KKIND_(5) KKIND_(6) KCONE_(7) KLEAF_(0) KLEAF_(1) KLEAF_(2) KLEAF_(3)
+KKIND_(1) KKIND_(2) KKIND_(3) KKIND_(4) KKIND_(5) KKIND_(6) KCONE_(7) KCONE_(8) KLEAF_(0) KLEAF_(1) KLEAF_(2) KLEAF_(3)
     KLEAF_(4) KLEAF_(5) KLEAFANY_(6) KLEAFANY_(7) KLEAFOCC_(0) KLEAFOCC_(1) KLEAFOCC_(2)
-        KLEAFOCCANY_(3) KLEAFCONE_
+        KLEAFOCCANY_(3) KLEAFCONE_(c, 0u) KLEAFCONE_(t, CYLRAY_KF_TINY)
 /* clang-format on */
 
 #define KREF_PK1_(k, b) KFN(pk1_##k##_##b),
@@ -157,6 +159,11 @@ CYLRAY_MAYBE_UNUSED static const KFN(leaf_fn) KFN(leaf_cone_table)[] = {
     KFN(cf_0), KFN(cf_1), KFN(cf_2), KFN(cf_3), KFN(cf_4), KFN(cf_5), KFN(cf_6), KFN(cf_7)};
 CYLRAY_MAYBE_UNUSED static const KFN(leaf_fn)
     KFN(leaf_cone_occ_table)[] = {KFN(co_0), KFN(co_1), KFN(co_2), KFN(co_3)};
+/* And for a leaf that holds a tiny-ended cone. */
+CYLRAY_MAYBE_UNUSED static const KFN(leaf_fn) KFN(leaf_tiny_table)[] = {
+    KFN(tf_0), KFN(tf_1), KFN(tf_2), KFN(tf_3), KFN(tf_4), KFN(tf_5), KFN(tf_6), KFN(tf_7)};
+CYLRAY_MAYBE_UNUSED static const KFN(leaf_fn)
+    KFN(leaf_tiny_occ_table)[] = {KFN(to_0), KFN(to_1), KFN(to_2), KFN(to_3)};
 /* Every table holds exactly what its index reaches (cylray_isect_index_,
  * cylray_occ_index_, cylray_spec_, cylray_occ_spec_): one entry per specialised variant
  * and flag encoding. */
@@ -173,6 +180,8 @@ KTABLE_SIZE_(leaf_sphere_table, CYLRAY_SPECS);
 KTABLE_SIZE_(leaf_sphere_occ_table, CYLRAY_OCC_SPECS);
 KTABLE_SIZE_(leaf_cone_table, CYLRAY_SPECS);
 KTABLE_SIZE_(leaf_cone_occ_table, CYLRAY_OCC_SPECS);
+KTABLE_SIZE_(leaf_tiny_table, CYLRAY_SPECS);
+KTABLE_SIZE_(leaf_tiny_occ_table, CYLRAY_OCC_SPECS);
 
 #undef KDOT
 #undef KRCP
