@@ -142,8 +142,10 @@ static void make_cone_leaf(leaf_case *lc, int m, cylgen_rng *r, uint64_t seed)
         lc->n = 1;
     const int aim = (int)((u >> 16) % (unsigned)lc->n);
     for (int k = 0; k < lc->n; k++) {
-        /* cone-bad's rays would make every lane miss: it is the last category. */
-        int cat = (int)(cylgen_next(r) % CONGEN_BAD);
+        /* Every category before cone-bad, whose rays would make every lane miss, and the
+         * tiny ends. */
+        int cat = (int)(cylgen_next(r) % (CONGEN_BAD + 1));
+        cat = cat == CONGEN_BAD ? CONGEN_TINYEND : cat;
         congen_case c;
         congen_make(cat, seed + cylgen_next(r), 1, &c);
         if (cylgen_next(r) % 4 == 0 && c.cone.r0 > 0)

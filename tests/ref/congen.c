@@ -93,8 +93,35 @@ static float radius_f(double r)
     return f < 0x1p-60f ? 0x1p-60f : f;
 }
 
+static const unsigned modes[4] = {0, CYLRAY_CAPPED_LO, CYLRAY_CAPPED_HI, CYLRAY_CAPPED};
+
+/* A flat to steep cone with one end 2^-40..2^-12 of the other (or a tip), which is
+ * where a radius formed from the wide end cancels to that end's rounding and where the
+ * cone is far smaller than its distance from the center. The tiny end lies at the
+ * origin most of the time, so that rays from close by keep their aim to a part of its
+ * radius (see gen_tinyend). */
+static void tinyend_cone(cylgen_rng *r, cylray_cone *out)
+{
+    const double R = uni(r, 0.1, 10), L = R * logu(r, -6, 4), rt = R * logu(r, -40, -12);
+    const v3 u = rand_dir(r);
+    v3 at = mk(0, 0, 0);
+    if (chance(r, 0.3))
+        at = mk(uni(r, -10, 10), uni(r, -10, 10), uni(r, -10, 10));
+    const int lo = chance(r, 0.5);
+    float *tiny = lo ? out->p0 : out->p1, *wide = lo ? out->p1 : out->p0;
+    to_f(tiny, at);
+    to_f(wide, axpy(mk(tiny[0], tiny[1], tiny[2]), L, u));
+    *(lo ? &out->r0 : &out->r1) = chance(r, 0.25) ? 0.0f : radius_f(rt); /* or a tip */
+    *(lo ? &out->r1 : &out->r0) = radius_f(R);
+    out->flags = modes[cylgen_next(r) % 4];
+}
+
 void congen_cone(int cat, cylgen_rng *r, cylray_cone *out)
 {
+    if (cat == CONGEN_TINYEND) {
+        tinyend_cone(r, out);
+        return;
+    }
     double R = uni(r, 0.1, 10), span = 10, L = R * uni(r, 0.3, 6);
     switch (cat) {
     case CONGEN_FLAT:
@@ -165,7 +192,6 @@ void congen_cone(int cat, cylgen_rng *r, cylray_cone *out)
         for (int i = 0; i < steps; i++)
             out->r1 = nextafterf(out->r1, chance(r, 0.5) ? INFINITY : 0);
     }
-    static const unsigned modes[4] = {0, CYLRAY_CAPPED_LO, CYLRAY_CAPPED_HI, CYLRAY_CAPPED};
     out->flags = modes[cylgen_next(r) % 4];
 }
 
@@ -322,6 +348,35 @@ static void gen_axial(cylgen_rng *r, const cgeo *g, congen_case *c)
     aim(r, mid, d, g->R * uni(r, 2, 10), c);
 }
 
+/* About a tiny end (tinyend_cone): at radial offsets from a quarter of its radius (a
+ * tip's: 2^-30 of the other) out to past the wide radius's ulp, in its plane, a little off it or by the side next to
+ * it; across the disc's plane, parallel to it or nearly along the axis; most from close
+ * by, where the float origin keeps the aim. */
+static void gen_tinyend(cylgen_rng *r, const cgeo *g, congen_case *c)
+{
+    const int lo = g->r0 <= g->r1;
+    const double rt = lo ? g->r0 : g->r1, rw = lo ? g->r1 : g->r0;
+    const v3 end = lo ? g->p0 : axpy(g->p0, g->L, g->u), in = lo ? g->u : neg(g->u);
+    const double rq = rt > 0 ? rt : rw * 0x1p-30;
+    const double rho = rq * exp2(uni(r, -2, fmax(log2(rw / rq) - 18, 3)));
+    const v3 e = rand_perp(r, g->u);
+    v3 p = axpy(end, rho, e);
+    const uint64_t where = cylgen_next(r) % 3;
+    if (where == 1) {
+        p = axpy(p, rho * logu(r, -8, 3) * (chance(r, 0.5) ? 1 : -1), in);
+    } else if (where == 2) {
+        const double z = fmin(rho * logu(r, -6, 4), g->L);
+        const double rz = rt + (rw - rt) * (z / g->L);
+        p = axpy(axpy(end, z, in), rz * (1 + logu(r, -24, -2) * (chance(r, 0.5) ? 1 : -1)), e);
+    }
+    const uint64_t how = cylgen_next(r) % 3;
+    v3 d = how == 0 ? rand_dir(r) : rand_perp(r, g->u);
+    if (how == 2)
+        d = unit(axpy(chance(r, 0.5) ? in : neg(in), uni(r, -0.3, 0.3), d));
+    const double dist = chance(r, 0.8) ? fmax(rho, rq) * uni(r, 2, 64) : g->R * uni(r, 1.5, 10);
+    aim(r, p, d, dist, c);
+}
+
 static void gen_camera(const cgeo *g, cylgen_rng *cam, size_t index, congen_case *c)
 {
     v3 fwd = rand_dir(cam);
@@ -420,6 +475,9 @@ void congen_ray(int cat, cylgen_rng *r, cylgen_rng *cam, size_t index, const cyl
             towards(r, g, g->R * uni(r, 1.5, 10), 1.2, c);
         break;
     }
+    case CONGEN_TINYEND:
+        gen_tinyend(r, g, c);
+        break;
     case CONGEN_ORDINARY:
     default:
         towards(r, g, g->R * uni(r, 1.5, 10), 1.2, c);
@@ -428,9 +486,10 @@ void congen_ray(int cat, cylgen_rng *r, cylgen_rng *cam, size_t index, const cyl
 }
 
 static const char *const names[CONGEN_COUNT] = {
-    "cone-ordinary", "cone-far",     "cone-grazing", "cone-surface", "cone-inside", "cone-rim",
-    "cone-apex",     "cone-nearcyl", "cone-flat",    "cone-long",    "cone-tiny",   "cone-huge",
-    "cone-unnorm",   "cone-axial",   "cone-camera",  "cone-bad",     "cone-scaled"};
+    "cone-ordinary", "cone-far",    "cone-grazing", "cone-surface", "cone-inside",
+    "cone-rim",      "cone-apex",   "cone-nearcyl", "cone-flat",    "cone-long",
+    "cone-tiny",     "cone-huge",   "cone-unnorm",  "cone-axial",   "cone-camera",
+    "cone-bad",      "cone-scaled", "cone-tinyend"};
 
 static const char *const descriptions[CONGEN_COUNT] = {
     "cone: from 1.5-10 R at a point within 1.2 r(z)",
@@ -449,7 +508,8 @@ static const char *const descriptions[CONGEN_COUNT] = {
     "cone: along the axis and along generator lines",
     "cone: 4 x 4 pixel blocks of a pinhole camera",
     "cone: NaN, Inf, zero-direction and empty-interval lanes among good ones",
-    "cone: scenes scaled by 2^+-(21..50), |d| 2^-20..2^20"};
+    "cone: scenes scaled by 2^+-(21..50), |d| 2^-20..2^20",
+    "cone: one end 2^-40..2^-12 of the other or a tip, rays at and about it from close by"};
 
 const char *congen_category_name(int category)
 {

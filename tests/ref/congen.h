@@ -36,6 +36,7 @@ enum {
     CONGEN_CAMERA,   /* "cone-camera": 4 x 4 pixel blocks */
     CONGEN_BAD,      /* "cone-bad": NaN/Inf/zero/empty lanes among good ones */
     CONGEN_SCALED,   /* "cone-scaled": scenes scaled by 2^+-(21..50), |d| 2^+-20 */
+    CONGEN_TINYEND,  /* "cone-tinyend": one end 2^-40..2^-12 of the other or a tip */
     CONGEN_COUNT
 };
 
