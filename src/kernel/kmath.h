@@ -13,8 +13,12 @@
  * and Oishi's Dot2, each product split exactly by vfms (fused, or formed in double) and
  * each sum by a two-sum, so that the result is as good as one formed in twice the
  * precision and rounded (about an ulp of it, and 2^-45 of the terms). An ISA whose
- * vfms is not exact (SSE4.1) defines vdot3_x in double instead. */
-#ifndef vdot3_x
+ * vfms is not exact (SSE4.1) defines vdot3_x in double instead, as it forms vsumsq_x:
+ * KSUMSQ_CHAINED says whether vsumsq_x is a chain of roundings that vdot3_x betters. */
+#ifdef vdot3_x
+#define KSUMSQ_CHAINED 0
+#else
+#define KSUMSQ_CHAINED 1
 CYLRAY_INLINE vf KFN(two_sum)(vf a, vf b, vf *err)
 {
     const vf s = vadd(a, b), bb = vsub(s, a);

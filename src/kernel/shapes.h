@@ -192,7 +192,7 @@ CYLRAY_INLINE int KFN(cone_side)(KFN(lanes) *st, const cylray_kat_ *k, const cyl
 
     const vf vrr = vmul(vmul(vv, r0), r0);
     st->C = vsumsq_x(fx, fy, fz, vrr);
-    if (F.tiny && many(tiny))
+    if (KSUMSQ_CHAINED && F.tiny && many(tiny)) /* (in double, vsumsq_x is that already) */
         st->C = vsel(tiny, vdot3_x(fx, fy, fz, fx, fy, fz, vneg(vrr)), st->C);
     vf g = KDOTX(ex, ey, ez, px, py, pz);
     vf ux = vfma(r0, ex, vmul(a, fx)), uy = vfma(r0, ey, vmul(a, fy)),

@@ -185,6 +185,7 @@ KTABLE_SIZE_(leaf_tiny_occ_table, CYLRAY_OCC_SPECS);
 
 #undef KDOT
 #undef KRCP
+#undef KSUMSQ_CHAINED
 #undef KFL_
 #undef KLFL_
 #undef KSPEC_
