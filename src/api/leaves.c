@@ -75,6 +75,8 @@ static cylray_status leaf_prepare(void *out, size_t m, size_t bytes, const void 
             meta[CYLRAY_LM_SPHERE] |= 1u << (CYLRAY_LM_CONE_SHIFT + k);
         if (cone && cylray_cone_tiny_(&p))
             meta[CYLRAY_LM_USED] |= 1u << (CYLRAY_LM_CONE_SHIFT + k);
+        if (cylray_slender_(&p))
+            meta[CYLRAY_LM_LO] |= 1u << (CYLRAY_LM_CONE_SHIFT + k);
         id[k] = ids ? ids[k] : (uint32_t)k;
     }
     unsigned char *o = out;

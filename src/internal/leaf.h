@@ -61,6 +61,11 @@ static inline uint32_t cylray_leaf_tiny_(const uint32_t *meta)
 {
     return meta[CYLRAY_LM_USED] >> CYLRAY_LM_CONE_SHIFT;
 }
+/* The lanes of slender shapes (cylray_slender_), in the high half of the low caps' word. */
+static inline uint32_t cylray_leaf_slender_(const uint32_t *meta)
+{
+    return meta[CYLRAY_LM_LO] >> CYLRAY_LM_CONE_SHIFT;
+}
 static inline unsigned cylray_leaf_caps_(const uint32_t *meta, unsigned lane)
 {
     return ((meta[CYLRAY_LM_LO] >> lane) & 1u ? CYLRAY_CAPPED_LO : 0u) |

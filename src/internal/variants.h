@@ -32,6 +32,18 @@ static inline int cylray_cone_tiny_(const cylray_prepared *p)
     return cylray_cone_ra_(p) * 64.0f < (p->r0 > p->r1 ? p->r0 : p->r1);
 }
 
+/* Whether a finite shape is slender: longer than 16 of its widest radius (H |v| >
+ * 8 R |v|, in the prepared cylinder's R^2 v.v; a cone's R is its wider end's). Its
+ * lanes take their frame where the ray passes rather than at the center (kernel/anchor.h):
+ * the center lies up to half its length from where a ray meets it, and p, f and C
+ * rounded at that size would lose the local radius. */
+static inline int cylray_slender_(const cylray_prepared *p)
+{
+    const double hv = p->h_v;
+    return p->kind != CYLRAY_KIND_INFINITE && p->kind != CYLRAY_KIND_SPHERE && hv < 0x1p128 &&
+           hv * hv > 64.0 * p->rr_vv;
+}
+
 /* A ray is parallel to the axis where A <= CYLRAY_PAR_EPS v.v d.d: an angle below
  * 2^-23 rad, about one float ulp of the direction, where the side's roots are noise. */
 #define CYLRAY_PAR_EPS 0x1p-46

@@ -154,6 +154,39 @@ CYLRAY_INLINE void KFN(cone_rims)(KFN(lanes) *st, const cylray_kat_ *k, const cy
     }
 }
 
+/* A cone's end of radius 0 is its apex: no disc to meet and no hole to pass. The side's
+ * own nappe lies wholly beyond the apex's plane, so exactly the side's entry there is
+ * never before the plane's t, nor its exit after it; where rounding (a line through the
+ * apex's neighbourhood, its roots a double root there) puts it a hair beyond, the
+ * plane's bound is the side's: the entry is a side hit at the apex, never an open end
+ * that lets the ray through to leave by the far disc. */
+CYLRAY_INLINE void KFN(cone_tips)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F,
+                                  vf slab_in, vf slab_out)
+{
+    const vf zero = vzero();
+    const vf kap = KFN(both_in)(k, F, offsetof(cylray_prepared, kap), CYLRAY_LF_RRVV);
+    vf ra, za;
+    KFN(cone_anchor)(k, F, kap, &ra, &za);
+    const vm tip = mand(mor(st->side, st->inpar), mand(veq(ra, zero), vlt(zero, vabs(kap))));
+    if (!many(tip))
+        return;
+    const vm up = vgt(st->dv, zero), lo = vgt(kap, zero); /* the tip is the low end */
+    const vm tip_in = mandn(tip, mxor(up, lo)), tip_out = mand(tip, mxor(up, lo));
+    st->side_lo = vsel(tip_in, vmax(st->side_lo, slab_in), st->side_lo);
+    st->side_hi = vsel(tip_out, vmin(st->side_hi, slab_out), st->side_hi);
+}
+
+/* The axial coordinates of the ends' planes, -H|v| and +H|v| from the center, or from
+ * a slender shape's anchor on its lanes that took one (kernel/anchor.h). */
+CYLRAY_INLINE void KFN(planes)(const KFN(lanes) *st, const cylray_kat_ *k,
+                               const cylray_kflags_ F, vf *zlo, vf *zhi)
+{
+    const vf hv = KFN(both_in)(k, F, offsetof(cylray_prepared, h_v), CYLRAY_LF_HV);
+    *zlo = vneg(hv), *zhi = hv;
+    if (many(st->anc))
+        *zlo = vsel(st->anc, st->alo, *zlo), *zhi = vsel(st->anc, st->ahi, *zhi);
+}
+
 /* Stage 6, the ends: entry and exit relative to p, and whether each is on the
  * surface (the slab and the caps of a finite cylinder). */
 CYLRAY_INLINE void KFN(ends)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
@@ -194,8 +227,8 @@ CYLRAY_INLINE void KFN(ends)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_
             st->side = mandn(st->side, mandn(vlt(vfma_x(st->ca, mid, st->cr), zero), neg));
         }
         st->side_lo = vsel(st->inpar, vneg(inf), lo), st->side_hi = vsel(st->inpar, inf, hi);
-        const vf hv = KFN(both_in)(k, F, offsetof(cylray_prepared, h_v), CYLRAY_LF_HV);
-        vf zlo = vneg(hv), zhi = hv;
+        vf zlo, zhi;
+        KFN(planes)(st, k, F, &zlo, &zhi);
         if (F.cone) /* a cone's lanes measured from its narrower end */
             KFN(cone_planes)(st, k, F, &zlo, &zhi);
         /* Two divisions rather than one reciprocal: a cap hit is then as exact as
@@ -215,6 +248,8 @@ CYLRAY_INLINE void KFN(ends)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_
         ta = vsel(veq(ta, ta), ta, vneg(tb));
         tb = vsel(veq(tb, tb), tb, vneg(ta));
         vf slab_in = vmin(ta, tb), slab_out = vmax(ta, tb);
+        if (F.cone)
+            KFN(cone_tips)(st, k, F, slab_in, slab_out);
         st->t_in = vmax(st->side_lo, slab_in);
         st->t_out = vmin(st->side_hi, slab_out);
         st->ok_in = mand(mor(st->side, st->inpar), vle(st->t_in, st->t_out));
@@ -228,8 +263,16 @@ CYLRAY_INLINE void KFN(ends)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_
         st->ok_in = st->ok_out = st->side;
         if (F.kind == CYLRAY_KIND_OPEN) {
             const vf hv = vset1(k->P->h_v);
-            st->ok_in = mand(st->ok_in, vle(vabs(vfma(tn, dv, z0)), hv));
-            st->ok_out = mand(st->ok_out, vle(vabs(vfma(tf, dv, z0)), hv));
+            if (many(st->anc)) {
+                vf zlo, zhi;
+                KFN(planes)(st, k, F, &zlo, &zhi);
+                const vf zn = vfma(tn, dv, z0), zf = vfma(tf, dv, z0);
+                st->ok_in = mand(st->ok_in, mand(vle(zlo, zn), vle(zn, zhi)));
+                st->ok_out = mand(st->ok_out, mand(vle(zlo, zf), vle(zf, zhi)));
+            } else {
+                st->ok_in = mand(st->ok_in, vle(vabs(vfma(tn, dv, z0)), hv));
+                st->ok_out = mand(st->ok_out, vle(vabs(vfma(tf, dv, z0)), hv));
+            }
         }
     }
 }

@@ -47,6 +47,7 @@ typedef int (*KFN(leaf_fn))(const float *, size_t, cylray_ray1 *, cylray_hit1 *,
 #include "state.h"
 #include "front.h"
 #include "shapes.h"
+#include "anchor.h"
 #include "solve.h"
 #include "ends.h"
 #include "store.h"

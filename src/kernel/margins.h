@@ -23,6 +23,10 @@
  *   where only the direct form of the second root is safe (see there).
  * KM_GENERATOR: a cone's A below 2^-8 e.e is the cancellation of a ray nearly along a
  *   generator line, not a tangency (kernel/solve.h, the roots).
+ * KM_ROOTLESS: a cone's A = e.e - v.v a^2 below 2^-18 e.e, some 32 ulps of the terms it
+ *   is rounded from, may be 0 exactly (a line along the side's lines), where a line can
+ *   have no roots; above it the sign of A is sure, and a line steeper than the side
+ *   (A < 0) always has roots (kernel/shapes.h).
  * KM_CANCEL: a cone's A below 2^-5 e.e: the ray runs within a few degrees of the
  *   side's lines, where nB and C cancel too, and the roots are polished (kernel/shapes.h).
  * KM_RIM: a cone's entry by a disc and exit by the side (or the reverse) within 2^-16 of
@@ -44,6 +48,7 @@
 #define KM_TANGENT 0x1p-18f
 #define KM_GENERATOR 0x1p-8f
 #define KM_CANCEL 0x1p-5f
+#define KM_ROOTLESS 0x1p-18f
 #define KM_RIM 0x1p-16f
 #define KM_ROOT 0x1p-4f
 #endif

@@ -171,6 +171,10 @@ CYLRAY_INLINE int KFN(cone_side)(KFN(lanes) *st, const cylray_kat_ *k, const cyl
     const vm tiny = KFN(cone_tiny)(k, F);
     if (F.tiny)
         KFN(cone_frame)(st, tiny, vv, &za);
+    if (many(st->anc)) { /* the narrower end's plane from a slender cone's anchor */
+        st->anc = mandn(st->anc, st->near);
+        za = vsel(st->anc, vsel(vlt(za, zero), st->alo, st->ahi), za);
+    }
     const vf px = st->px, py = st->py, pz = st->pz;
     const vf ex = st->ex, ey = st->ey, ez = st->ez;
     const vf fx = vfms(vy, pz, vmul(vz, py)), fy = vfms(vz, px, vmul(vx, pz)),
@@ -195,8 +199,8 @@ CYLRAY_INLINE int KFN(cone_side)(KFN(lanes) *st, const cylray_kat_ *k, const cyl
     if (KSUMSQ_CHAINED && F.tiny && many(tiny)) /* (in double, vsumsq_x is that already) */
         st->C = vsel(tiny, vdot3_x(fx, fy, fz, fx, fy, fz, vneg(vrr)), st->C);
     vf g = KDOTX(ex, ey, ez, px, py, pz);
-    vf ux = vfma(r0, ex, vmul(a, fx)), uy = vfma(r0, ey, vmul(a, fy)),
-       uz = vfma(r0, ez, vmul(a, fz));
+    vf ux = vfma_x(r0, ex, vmul(a, fx)), uy = vfma_x(r0, ey, vmul(a, fy)),
+       uz = vfma_x(r0, ez, vmul(a, fz));
     if (F.scaled || F.leaf) { /* 2^-2j, as the cylinder's */
         const vf gs = KFN(both_in)(k, F, offsetof(cylray_prepared, g_s), CYLRAY_LF_GS);
         ux = vmul(ux, gs), uy = vmul(uy, gs), uz = vmul(uz, gs), g = vmul(g, gs);
@@ -205,9 +209,19 @@ CYLRAY_INLINE int KFN(cone_side)(KFN(lanes) *st, const cylray_kat_ *k, const cyl
     st->AR2 = KDOT(ux, uy, uz, ux, uy, uz);
     st->D = vfnma_x(g, g, st->AR2);
     const vm act = mand(st->act, veq(vfma(st->C, zero, vmul(st->D, zero)), zero));
-    const vm neg = vlt(st->A, zero);
+    /* A < 0, a line steeper than the side's lines, crosses the apex's plane, where the
+     * double cone is one point: it has a root on each side of that plane, or a double
+     * root at the apex. D < 0 there is rounding (near the apex u = r0 e + a f cancels),
+     * and the answer is that double root, nB / A, whose nappe the slab keeps (KFN(ends)):
+     * never the whole line inside, which would let the slab's open end at a tip take
+     * the entry. Only a line whose A may be 0 exactly (KM_ROOTLESS: along the side's
+     * lines) can have no roots: A = 0 and nB = 0, and the line is inside everywhere
+     * where C <= 0 and outside everywhere where C > 0. */
+    const vm neg = mand(act, vlt(st->A, zero)), nod = mand(neg, vlt(st->D, zero));
+    const vm gen = vlt(vabs(st->A), vmul(ee, vset1(KM_ROOTLESS)));
+    st->D = vsel(mandn(nod, gen), zero, st->D);
     st->side = mand(act, vge(st->D, zero));
-    st->inpar = mandn(mand(act, neg), st->side); /* no roots, and inside everywhere */
+    st->inpar = mand(mand(nod, gen), vle(st->C, zero)); /* no roots, inside everywhere */
     if (F.leaf) {
         /* A cylinder's lane in a leaf of cones (a = 0) leaves A = e.e: a ray within
          * about an ulp of the axis direction is parallel, as the cylinder's, meets no

@@ -19,6 +19,7 @@ CYLRAY_INLINE void KFN(shift)(KFN(lanes) *st, const cylray_kat_ *k, const cylray
     st->px = vfma_xw(st->s, st->dx, st->ox, st->cx, st->whx, st->wlx);
     st->py = vfma_xw(st->s, st->dy, st->oy, st->cy, st->why, st->wly);
     st->pz = vfma_xw(st->s, st->dz, st->oz, st->cz, st->whz, st->wlz);
+    KFN(anchor)(st, k, F);
 }
 
 /* An infinite cylinder has no center: c may slide along the axis (any slide u is
