@@ -23,8 +23,9 @@ CYLRAY_INLINE vm KFN(slender)(const cylray_kat_ *k, const cylray_kflags_ F)
  * of it gives), and the origin's own level (clamped), which serves an origin next to
  * the surface whose hit lies far along a shallow ray. The origin's level is taken where
  * the origin lies at least twice as near it as the other. The center stays where the
- * line passes it within twice the larger of that distance and R: there its frame, with
- * o - c exact, is as local, and a far origin keeps it.
+ * line passes it within twice the larger of that distance and R (a cone's narrower
+ * end's): there its frame, with o - c exact, is as local, and a far origin keeps it.
+ * A leaf's lane chooses from the same bits as a packet, and answers as it does.
  *
  * Any m is exact as long as everything measures from that same a: h = w - m v is
  * rounded once (the product exact), an error of eps |h| that moves the origin within
@@ -46,7 +47,7 @@ CYLRAY_INLINE void KFN(anchor)(KFN(lanes) *st, const cylray_kat_ *k, const cylra
     const vf vv = KDOT(vx, vy, vz, vx, vy, vz);
     const vf wv = KDOT(whx, why, whz, vx, vy, vz), dv = KDOT(dx, dy, dz, vx, vy, vz);
     const vf wd = KDOT(whx, why, whz, dx, dy, dz);
-    const vf ivv = KFN(cyl_in)(k, F, offsetof(cylray_prepared, inv_vv), KRCP(F, vv));
+    const vf ivv = KRCP(F, vv); /* (a leaf's and a packet's the same bits) */
     const vf hv = KFN(both_in)(k, F, offsetof(cylray_prepared, h_v), CYLRAY_LF_HV);
     const vf lim = vmul(hv, ivv);
     /* the common perpendicular, (d.d w.v - d.v w.d) / |d x v|^2 (st->A is e.e here), and
@@ -70,7 +71,15 @@ CYLRAY_INLINE void KFN(anchor)(KFN(lanes) *st, const cylray_kat_ *k, const cylra
              pz = vfma_x2(s, dz, hz, st->wlz);
     const vf pp = KDOT(px, py, pz, px, py, pz);
     const vf pc = KDOT(st->px, st->py, st->pz, st->px, st->py, st->pz);
-    const vm anc = mandn(sl, vle(pc, vmul(four, vmax(pp, st->rr))));
+    /* R: a cone's narrower end's, which a leaf holds as a packet does */
+    vf rr = st->rr;
+    if (F.cone) {
+        const vf kap = KFN(both_in)(k, F, offsetof(cylray_prepared, kap), CYLRAY_LF_RRVV);
+        vf ra, za;
+        KFN(cone_anchor)(k, F, kap, &ra, &za);
+        rr = vmul(ra, ra);
+    }
+    const vm anc = mandn(sl, vle(pc, vmul(four, vmax(pp, rr))));
     st->anc = anc;
     if (!many(anc))
         return;

@@ -9,7 +9,8 @@
  * the axis does, so a kernel that rounds at the size of the shape rather than of the
  * radius where the ray meets it fails here (the center's frame kept 10 bits of t at
  * 1e4 radii). Every path; packets of 4, 8 and 16, streams, occlusion and leaves (the
- * shape in a lane beside another); the flag sets below. Prints the worst
+ * shape in a lane beside another, a cone's answering bit for bit as its packet); the flag sets
+ * below. Prints the worst
  * |dt| / (kappa + ulp) and the worst ulps per length, shape and path (plain flags). */
 #include "conref.h"
 #include "cylray.h"
@@ -144,6 +145,11 @@ static void run_path(const cylray_kernels *k, const cylray_cone *c, const cylray
 {
     char where[240];
     snprintf(where, sizeof where, "%s %s", k->name, name);
+    struct {
+        int hit, part;
+        float t;
+    } p8[NRAY]; /* the packets of 8, which a cone's leaves answer bit for bit (a cylinder's
+                 * packet runs a cylinder's kernel, and FAST a leaf's own estimates) */
     /* packets of 4, 8 and 16 */
 #define PACKET(W, RT, HT, ISECT)                                                               \
     for (int b = 0; b < NRAY; b += W) {                                                        \
@@ -160,8 +166,11 @@ static void run_path(const cylray_kernels *k, const cylray_cone *c, const cylray
         for (int l = 0; l < W; l++) {                                                          \
             const double r =                                                                   \
                 judge(where, flags, &ex[b + l], (int)(m >> l) & 1, H.part[l], H.t[l]);         \
-            if (W == 8)                                                                        \
+            if (W == 8) {                                                                      \
                 note(st, &ex[b + l], r, H.t[l]);                                               \
+                p8[b + l].hit = (int)(m >> l) & 1, p8[b + l].part = H.part[l];                 \
+                p8[b + l].t = H.t[l];                                                          \
+            }                                                                                  \
         }                                                                                      \
     }
     PACKET(4, cylray_ray4, cylray_hit4, intersect4)
@@ -216,6 +225,11 @@ static void run_path(const cylray_kernels *k, const cylray_cone *c, const cylray
                             : w == 8 ? k->leaf_intersect8(&L8, &r1, &h1, flags)
                                      : k->leaf_intersect16(&L16, &r1, &h1, flags);
             judge(where, flags, &ex[i], hit, h1.part, h1.t);
+            if (c->r0 != c->r1 && !(flags & CYLRAY_FAST) && /* (see run_path) */
+                (hit != p8[i].hit || (hit && (h1.part != p8[i].part || h1.t != p8[i].t))) &&
+                failures++ < 20)
+                printf("FAIL %s leaf%d ray %d flags 0x%x: %d %d %.9g, the packet %d %d %.9g\n",
+                       where, w, i, flags, hit, h1.part, h1.t, p8[i].hit, p8[i].part, p8[i].t);
             if (hit && h1.id != 9 && failures++ < 20)
                 printf("FAIL %s leaf%d ray %d: id %u\n", where, w, i, h1.id);
         }
