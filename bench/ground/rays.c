@@ -358,6 +358,10 @@ cylray_cone con_general(int kind)
         k.r0 = c.radius;
         k.r1 = nextafterf(nextafterf(nextafterf(c.radius, 1.0f), 1.0f), 1.0f);
     }
+    if (kind == 3) { /* slender: 1000 of its wider radius long */
+        k.r0 = (float)(c.half_height / 500.0);
+        k.r1 = (float)(c.half_height / 1250.0);
+    }
     return k;
 }
 

@@ -119,6 +119,10 @@ static void init_table(void)
         {"cone-nearcyl", "cones",
          "the incoherent rays at a near-cylinder cone (radii 3 ulps apart, capped)", S_PLAIN,
          RK_INCOHERENT, 2, 1u << OP_NORMAL, ALL_WIDTHS, 1, 0, 0, 0, SH_CONE + 2},
+        {"cone-slender", "cones",
+         "the incoherent rays at a slender cone (1000 of its wider radius long, radii in "
+         "5:2, capped): each lane framed where the ray passes",
+         S_PLAIN, RK_INCOHERENT, 2, 1u << OP_NORMAL, ALL_WIDTHS, 1, 0, 0, 0, SH_CONE + 3},
     };
     for (size_t i = 0; i < sizeof fixed / sizeof fixed[0]; i++)
         table[ntable++] = fixed[i];
