@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
-# tests/run.sh - build and run the whole test suite in every configuration CI needs,
-# installing whatever tools are missing first, and end with the line
+# tests/run.sh - build and run the test suite: by default the gcc release build (what
+# users install); with `all`, every configuration CI needs. Installs whatever tools are
+# missing first, and ends with the line
 #     N passed, N failed
 # counted from each build's meson-logs/testlog.json (meson test's exit status is the
 # failure count modulo 256) plus the timed fuzzing run. Exits nonzero when anything
@@ -41,7 +42,9 @@
 # specialisations per ISA, and a sanitized build of them costs about ten CPU minutes;
 # one build serves both.
 #
-# Usage: tests/run.sh [config...]      e.g. tests/run.sh gcc clang
+# Usage: tests/run.sh                  gcc-release alone: what users install, in minutes
+#        tests/run.sh all              the whole matrix above (what .ci/run runs)
+#        tests/run.sh [config...]      e.g. tests/run.sh gcc clang
 # Environment: FUZZ_RUNS, FUZZ_SEED, FUZZ_SECONDS, CYLRAY_EMBREE_PREFIXES (above);
 # CI=true makes a configuration whose tools cannot be installed count as failed instead
 # of skipped.
@@ -60,11 +63,14 @@ CONFIGS=()
 for a in "$@"; do
     case "$a" in
     -h | --help)
-        sed -n '3,45p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'
+        sed -n '3,47p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'
         exit 0
         ;;
     gcc | clang | gcc-release | clang-release | estimates | asan | aarch64 | tsan | fuzz | embree-extra)
         CONFIGS+=("$a")
+        ;;
+    all)
+        CONFIGS+=("${ALL_CONFIGS[@]}")
         ;;
     *)
         echo "run.sh: unknown configuration '$a' (known: ${ALL_CONFIGS[*]})" >&2
@@ -72,7 +78,7 @@ for a in "$@"; do
         ;;
     esac
 done
-[ ${#CONFIGS[@]} -gt 0 ] || CONFIGS=("${ALL_CONFIGS[@]}")
+[ ${#CONFIGS[@]} -gt 0 ] || CONFIGS=(gcc-release)
 wants() {
     local c
     for c in "${CONFIGS[@]}"; do [ "$c" = "$1" ] && return 0; done
