@@ -120,7 +120,8 @@ cylray_status cylray_prepare(cylray_prepared *out, const cylray_cylinder *in)
         p.cap_up = p.vr > 0 ? CYLRAY_CAP_HI : CYLRAY_CAP_LO;
         p.cap_down = p.vr > 0 ? CYLRAY_CAP_LO : CYLRAY_CAP_HI;
     }
-    p.variant = (uint8_t)cylray_variant_of_(p.kind, p.axis_id, j != 0, p.caps, 0);
+    p.variant =
+        (uint8_t)cylray_variant_of_(p.kind, p.axis_id, j != 0, p.caps, 0, cylray_slender_(&p));
     p.magic = CYLRAY_MAGIC;
     *out = p;
     return CYLRAY_OK;
@@ -163,7 +164,7 @@ cylray_status cylray_prepare_sphere(cylray_prepared *out, const cylray_sphere *i
     p.kind = CYLRAY_KIND_SPHERE;
     for (unsigned k = 0; k < 3; k++)
         p.order[k] = (uint8_t)k;
-    p.variant = (uint8_t)cylray_variant_of_(p.kind, 0u, j != 0, 0u, 0);
+    p.variant = (uint8_t)cylray_variant_of_(p.kind, 0u, j != 0, 0u, 0, 0);
     p.magic = CYLRAY_MAGIC;
     *out = p;
     return CYLRAY_OK;
@@ -250,8 +251,8 @@ cylray_status cylray_prepare_cone(cylray_prepared *out, const cylray_cone *in)
     p.g_s = (float)ldexp(1.0, -j);
     for (int k = 0; k < 3; k++)
         p.vk[k] = (float)(p.v[k] / vv);
-    p.variant =
-        (uint8_t)cylray_variant_of_(p.kind, 0u, p.g_s != 1.0f, p.caps, cylray_cone_tiny_(&p));
+    p.variant = (uint8_t)cylray_variant_of_(p.kind, 0u, p.g_s != 1.0f, p.caps,
+                                            cylray_cone_tiny_(&p), cylray_slender_(&p));
     *out = p;
     return CYLRAY_OK;
 }

@@ -63,6 +63,11 @@ static inline int cylray_slender_(const cylray_prepared *p)
 /* A cone whose narrower end is under 1/64 of the other (cylray_cone_tiny_), or a leaf
  * that holds one: rays near that end measure from it (kernel/shapes.h). */
 #define CYLRAY_KF_TINY 0x40000u
+/* A slender shape (cylray_slender_), or a leaf that holds one: each lane takes its
+ * frame where the ray passes (kernel/anchor.h). Only the drivers that read their flags
+ * at run time carry it: a prepared slender shape has a generic variant, a leaf that
+ * holds one the run-time leaf driver, and every other kernel none of its work. */
+#define CYLRAY_KF_SLENDER 0x80000u
 /* How the x86 kernels store a hit vector (docs/performance.md, "Stores by vendor"):
  * the policy is a property of the kernel table the dispatch chose for the CPU, whose
  * entry points pass it down with the run-time flags.
@@ -90,19 +95,29 @@ static inline int cylray_slender_(const cylray_prepared *p)
 #define CYLRAY_VARIANT_SPHERE (2u * CYLRAY_KIND_COUNT)
 #define CYLRAY_VARIANT_CONE (CYLRAY_VARIANT_SPHERE + 1u)
 #define CYLRAY_VARIANT_CONE_TINY (CYLRAY_VARIANT_CONE + 1u)
-#define CYLRAY_VARIANT_GENERIC (CYLRAY_VARIANT_CONE_TINY + 1u)
+/* Slender shapes (cylray_slender_) with kernels of their own: the capped cone (which
+ * also takes a tiny end's work, kernel/shapes.h), the capped cylinder with a general
+ * axis and along a coordinate axis. Other slender shapes take the generic variant. */
+#define CYLRAY_VARIANT_CONE_SLENDER (CYLRAY_VARIANT_CONE_TINY + 1u)
+#define CYLRAY_VARIANT_CAPPED_SLENDER (CYLRAY_VARIANT_CONE_SLENDER + 1u)
+#define CYLRAY_VARIANT_ALIGNED_SLENDER (CYLRAY_VARIANT_CAPPED_SLENDER + 1u)
+#define CYLRAY_VARIANT_GENERIC (CYLRAY_VARIANT_ALIGNED_SLENDER + 1u)
 static inline unsigned cylray_variant_of_(unsigned kind, unsigned axis_id, int radius_scaled,
-                                          unsigned caps, int tiny)
+                                          unsigned caps, int tiny, int slender)
 {
     if (kind == CYLRAY_KIND_SPHERE)
         return radius_scaled ? CYLRAY_VARIANT_GENERIC + CYLRAY_KIND_COUNT
                              : CYLRAY_VARIANT_SPHERE;
     if (kind == CYLRAY_KIND_CONE) /* a cone with one disc or none: the generic one */
         return radius_scaled || caps != CYLRAY_CAPPED ? CYLRAY_VARIANT_GENERIC + 4u
+               : slender                              ? CYLRAY_VARIANT_CONE_SLENDER
                : tiny                                 ? CYLRAY_VARIANT_CONE_TINY
                                                       : CYLRAY_VARIANT_CONE;
-    if (radius_scaled || (kind == CYLRAY_KIND_CAPPED && caps != CYLRAY_CAPPED))
+    if (radius_scaled || (kind == CYLRAY_KIND_CAPPED && caps != CYLRAY_CAPPED) ||
+        (slender && kind != CYLRAY_KIND_CAPPED))
         return CYLRAY_VARIANT_GENERIC + kind;
+    if (slender)
+        return axis_id ? CYLRAY_VARIANT_ALIGNED_SLENDER : CYLRAY_VARIANT_CAPPED_SLENDER;
     return kind + (axis_id ? CYLRAY_KIND_COUNT : 0u);
 }
 static inline int cylray_generic_(const cylray_prepared *p)
@@ -117,6 +132,13 @@ static inline int cylray_generic_(const cylray_prepared *p)
          ? CYLRAY_KF_CONE | CYLRAY_KIND_CAPPED << CYLRAY_KF_KIND_SHIFT                         \
      : (v) == CYLRAY_VARIANT_CONE_TINY                                                         \
          ? CYLRAY_KF_CONE | CYLRAY_KF_TINY | CYLRAY_KIND_CAPPED << CYLRAY_KF_KIND_SHIFT        \
+     : (v) == CYLRAY_VARIANT_CONE_SLENDER                                                      \
+         ? CYLRAY_KF_CONE | CYLRAY_KF_TINY | CYLRAY_KF_SLENDER |                               \
+               CYLRAY_KIND_CAPPED << CYLRAY_KF_KIND_SHIFT                                      \
+     : (v) == CYLRAY_VARIANT_CAPPED_SLENDER                                                    \
+         ? CYLRAY_KF_SLENDER | CYLRAY_KIND_CAPPED << CYLRAY_KF_KIND_SHIFT                      \
+     : (v) == CYLRAY_VARIANT_ALIGNED_SLENDER                                                   \
+         ? CYLRAY_KF_SLENDER | CYLRAY_KF_ALIGNED | CYLRAY_KIND_CAPPED << CYLRAY_KF_KIND_SHIFT  \
          : (((v) % CYLRAY_KIND_COUNT) << CYLRAY_KF_KIND_SHIFT |                                \
             ((v) >= CYLRAY_KIND_COUNT ? CYLRAY_KF_ALIGNED : 0u)))
 /* The kernel flags of a generic variant, which the generic drivers read at run time:
@@ -132,12 +154,13 @@ static inline unsigned cylray_generic_kf_(const cylray_prepared *P, unsigned fla
                (occ ? CYLRAY_KF_OCCLUDED : 0u) |
                (flags & ((occ ? 0u : CYLRAY_NORMAL) | CYLRAY_REFINE | CYLRAY_FAST)) |
                (P->caps != CYLRAY_CAPPED ? CYLRAY_KF_ONE_END : 0u) |
-               (cylray_cone_tiny_(P) ? CYLRAY_KF_TINY : 0u) | CYLRAY_KF_SCALED;
+               (cylray_cone_tiny_(P) ? CYLRAY_KF_TINY : 0u) |
+               (cylray_slender_(P) ? CYLRAY_KF_SLENDER : 0u) | CYLRAY_KF_SCALED;
     return P->kind << CYLRAY_KF_KIND_SHIFT | (occ ? CYLRAY_KF_OCCLUDED : 0u) |
            (flags & ((occ ? 0u : CYLRAY_NORMAL) | CYLRAY_REFINE | CYLRAY_FAST)) |
            (P->kind == CYLRAY_KIND_CAPPED && P->caps != CYLRAY_CAPPED ? CYLRAY_KF_ONE_END
                                                                       : 0u) |
-           CYLRAY_KF_SCALED;
+           (cylray_slender_(P) ? CYLRAY_KF_SLENDER : 0u) | CYLRAY_KF_SCALED;
 }
 /* The one encoding of the specialised flags: bit 0 normals, bit 1 FAST, bit 2 REFINE
  * (CYLRAY_SPEC_KF_ below decodes it; cylray_occ_spec_ drops the normals): the
@@ -173,8 +196,8 @@ static inline unsigned cylray_occ_index_(unsigned variant, unsigned flags)
  * so whole vectors may be stored there; stores: the store policy (CYLRAY_STORE_*). */
 typedef struct {
     unsigned kind;
-    int sphere, cone, tiny, leaf, capped, finite, one_end, aligned, scaled, occ, normal, cull,
-        ff, refine, fast;
+    int sphere, cone, tiny, slender, leaf, capped, finite, one_end, aligned, scaled, occ,
+        normal, cull, ff, refine, fast;
     int scratch;
     unsigned stores;
 } cylray_kflags_;
@@ -195,6 +218,7 @@ CYLRAY_INLINE cylray_kflags_ cylray_kflags_of_(unsigned FL, unsigned rt)
      * sphere, which is itself. */
     F.finite = F.kind != CYLRAY_KIND_INFINITE || F.sphere;
     F.one_end = (F.leaf || (FL & CYLRAY_KF_ONE_END) != 0) && !F.sphere;
+    F.slender = (FL & CYLRAY_KF_SLENDER) != 0 && F.finite && !F.sphere;
     F.aligned = (FL & CYLRAY_KF_ALIGNED) != 0;
     F.scaled = (FL & CYLRAY_KF_SCALED) != 0;
     F.occ = (FL & CYLRAY_KF_OCCLUDED) != 0;
@@ -214,9 +238,9 @@ static inline int cylray_prepared_ok_(const cylray_prepared *p)
            (p->kind < CYLRAY_KIND_COUNT || p->kind == CYLRAY_KIND_SPHERE ||
             p->kind == CYLRAY_KIND_CONE) &&
            p->axis_id <= 3u && (p->caps & ~CYLRAY_CAPPED) == 0 &&
-           p->variant ==
-               cylray_variant_of_(p->kind, p->axis_id, p->g_s != 1.0f, p->caps,
-                                  p->kind == CYLRAY_KIND_CONE && cylray_cone_tiny_(p));
+           p->variant == cylray_variant_of_(p->kind, p->axis_id, p->g_s != 1.0f, p->caps,
+                                            p->kind == CYLRAY_KIND_CONE && cylray_cone_tiny_(p),
+                                            cylray_slender_(p));
 }
 
 #endif

@@ -5,7 +5,7 @@
  * meta marks. */
 CYLRAY_INLINE vm KFN(slender)(const cylray_kat_ *k, const cylray_kflags_ F)
 {
-    if (!F.finite || F.sphere)
+    if (!F.slender)
         return mfrom_bits(0u);
     if (F.leaf) {
         const uint32_t *meta = (const uint32_t *)(const void *)(k->L + CYLRAY_LF_COUNT * k->lm);
@@ -21,34 +21,40 @@ CYLRAY_INLINE vm KFN(slender)(const cylray_kat_ *k, const cylray_kflags_ F)
  * a. Two candidates: the segment's point nearest the line (the clamped common
  * perpendicular: |p| is then the line's distance from the segment, the least any point
  * of it gives), and the origin's own level (clamped), which serves an origin next to
- * the surface whose hit lies far along a shallow ray. The origin's level is taken where
- * the origin lies at least twice as near it as the other. The center stays where the
- * line passes it within twice the larger of that distance and R (a cone's narrower
- * end's): there its frame, with o - c exact, is as local, and a far origin keeps it.
- * A leaf's lane chooses from the same bits as a packet, and answers as it does.
+ * the surface whose hit lies far along a shallow ray; the origin's level where the
+ * origin lies at least twice as near it as the other. The center stays where the line
+ * passes it within twice the larger of the origin's distance from that point and R (a
+ * cone's narrower end's): there its frame, with o - c exact, is as local, and an origin
+ * far from the shape keeps it (its own perturbation exceeds the shape's size).
+ * The choice is made from |w - m v| before p is formed, so that p is formed once, and
+ * nothing branches on it (which lanes take a frame is the rays' toss). A leaf's lane
+ * chooses from the same bits as a packet, and answers as it does.
  *
  * Any m is exact as long as everything measures from that same a: h = w - m v is
  * rounded once (the product exact), an error of eps |h| that moves the origin within
- * its own perturbation (|h| is at most its distance from the point); p = s d + h + wl as
- * the center's shift forms it. Axial coordinates are then measured from a: the slab's
- * planes lie at -+H|v| - m v.v, with v.v as an exact two-term sum (vdot3_x), so that a
+ * its own perturbation; p = s d + h + wl as the center's shift forms it, and m = 0 is
+ * the center's frame bit for bit. Axial coordinates are then measured from a: the
+ * slab's planes lie at -+H|v| - m v.v, with v.v as an exact two-term sum, so that a
  * plane near a is placed to the ulps of its own distance from it (KFN(ends), the cone's
- * narrower end in KFN(cone_side)). */
-CYLRAY_INLINE void KFN(anchor)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
+ * narrower end in KFN(cone_side)). Sets st->anc, st->s and the planes, and returns h
+ * in hx, hy, hz (w's rounded part where the center stays). */
+CYLRAY_INLINE void KFN(anchor)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F,
+                               vf *hx, vf *hy, vf *hz)
 {
-    st->anc = mfrom_bits(0u);
-    st->alo = st->ahi = vzero();
-    const vm sl = mand(KFN(slender)(k, F), st->act);
-    if (!many(sl))
-        return;
     const vf zero = vzero(), four = vset1(4.0f);
     const vf vx = st->vx, vy = st->vy, vz = st->vz, dx = st->dx, dy = st->dy, dz = st->dz;
     const vf whx = st->whx, why = st->why, whz = st->whz;
+    const vf hv = KFN(both_in)(k, F, offsetof(cylray_prepared, h_v), CYLRAY_LF_HV);
+    *hx = whx, *hy = why, *hz = whz;
+    st->anc = mfrom_bits(0u);
+    st->alo = vneg(hv), st->ahi = hv;
+    const vm sl = mand(KFN(slender)(k, F), st->act);
+    if (!many(sl)) /* (a packet's lanes are all slender or none) */
+        return;
     const vf vv = KDOT(vx, vy, vz, vx, vy, vz);
     const vf wv = KDOT(whx, why, whz, vx, vy, vz), dv = KDOT(dx, dy, dz, vx, vy, vz);
     const vf wd = KDOT(whx, why, whz, dx, dy, dz);
     const vf ivv = KRCP(F, vv); /* (a leaf's and a packet's the same bits) */
-    const vf hv = KFN(both_in)(k, F, offsetof(cylray_prepared, h_v), CYLRAY_LF_HV);
     const vf lim = vmul(hv, ivv);
     /* the common perpendicular, (d.d w.v - d.v w.d) / |d x v|^2 (st->A is e.e here), and
      * the origin's level; a NaN (d along v) takes the center */
@@ -56,21 +62,15 @@ CYLRAY_INLINE void KFN(anchor)(KFN(lanes) *st, const cylray_kat_ *k, const cylra
     vf mo = vmul(wv, ivv);
     ml = vsel(veq(ml, ml), ml, zero);
     ml = vmax(vneg(lim), vmin(lim, ml)), mo = vmax(vneg(lim), vmin(lim, mo));
+    /* |w - m v| for each, from h = w - m v itself (w.w - m (2 w.v - m v.v) would cancel
+     * to eps |w|^2) */
     const vf lx = vfma_x(vneg(ml), vx, whx), ly = vfma_x(vneg(ml), vy, why),
              lz = vfma_x(vneg(ml), vz, whz);
     const vf ox = vfma_x(vneg(mo), vx, whx), oy = vfma_x(vneg(mo), vy, why),
              oz = vfma_x(vneg(mo), vz, whz);
-    const vm at_o = vle(vmul(four, KDOT(ox, oy, oz, ox, oy, oz)), KDOT(lx, ly, lz, lx, ly, lz));
-    const vf m = vsel(at_o, mo, ml);
-    const vf hx = vsel(at_o, ox, lx), hy = vsel(at_o, oy, ly), hz = vsel(at_o, oz, lz);
-    /* the shift to the closest approach to a, skipped as the center's is */
-    const vf hd = KDOT(hx, hy, hz, dx, dy, dz), hh = KDOT(hx, hy, hz, hx, hy, hz);
-    const vf hd2 = vmul(vmul(hd, hd), st->rdd);
-    const vf s = vkeep(vgt(vadd(hd2, hd2), hh), vmul(vneg(hd), st->rdd));
-    const vf px = vfma_x2(s, dx, hx, st->wlx), py = vfma_x2(s, dy, hy, st->wly),
-             pz = vfma_x2(s, dz, hz, st->wlz);
-    const vf pp = KDOT(px, py, pz, px, py, pz);
-    const vf pc = KDOT(st->px, st->py, st->pz, st->px, st->py, st->pz);
+    const vf nl = KDOT(lx, ly, lz, lx, ly, lz), no = KDOT(ox, oy, oz, ox, oy, oz);
+    const vm at_o = vle(vmul(four, no), nl);
+    const vf mc = vsel(at_o, mo, ml), nc = vsel(at_o, no, nl);
     /* R: a cone's narrower end's, which a leaf holds as a packet does */
     vf rr = st->rr;
     if (F.cone) {
@@ -79,21 +79,30 @@ CYLRAY_INLINE void KFN(anchor)(KFN(lanes) *st, const cylray_kat_ *k, const cylra
         KFN(cone_anchor)(k, F, kap, &ra, &za);
         rr = vmul(ra, ra);
     }
-    const vm anc = mandn(sl, vle(pc, vmul(four, vmax(pp, rr))));
+    /* the center's closest approach, squared: |w x d|^2 / d.d (w.w - (w.d)^2 / d.d would
+     * cancel to eps |w|^2 from an origin far from the center) */
+    const vf cx = vfms(why, dz, vmul(whz, dy)), cy = vfms(whz, dx, vmul(whx, dz)),
+             cz = vfms(whx, dy, vmul(why, dx));
+    const vf pc = vmul(KDOT(cx, cy, cz, cx, cy, cz), st->rdd);
+    const vm anc = mandn(sl, vle(pc, vmul(four, vmax(nc, rr))));
+    const vf m = vkeep(anc, mc);
     st->anc = anc;
-    if (!many(anc))
-        return;
-    st->s = vsel(anc, s, st->s);
-    st->px = vsel(anc, px, st->px), st->py = vsel(anc, py, st->py);
-    st->pz = vsel(anc, pz, st->pz);
+    *hx = vsel(anc, vsel(at_o, ox, lx), whx), *hy = vsel(anc, vsel(at_o, oy, ly), why);
+    *hz = vsel(anc, vsel(at_o, oz, lz), whz);
+    /* the shift to the closest approach to a, skipped as the center's is */
+    const vf hd = KDOT(*hx, *hy, *hz, dx, dy, dz), hh = KDOT(*hx, *hy, *hz, *hx, *hy, *hz);
+    const vf hd2 = vmul(vmul(hd, hd), st->rdd);
+    st->s = vsel(anc, vkeep(vgt(vadd(hd2, hd2), hh), vmul(vneg(hd), st->rdd)), st->s);
     /* the planes -+H|v| - m v.v; an aligned axis measures along its third coordinate,
      * whose m v is m vz, exact */
     if (F.aligned) {
         const vf mz = vmul(m, vz);
-        st->alo = vsub(vneg(hv), mz), st->ahi = vsub(hv, mz);
+        st->alo = vsel(anc, vsub(vneg(hv), mz), st->alo);
+        st->ahi = vsel(anc, vsub(hv, mz), st->ahi);
     } else {
         const vf vvl = vdot3_x(vx, vy, vz, vx, vy, vz, vneg(vv)), nm = vneg(m);
-        st->alo = vdot3_x(nm, nm, zero, vv, vvl, zero, vneg(hv));
-        st->ahi = vdot3_x(nm, nm, zero, vv, vvl, zero, hv);
+        const vf mvl = vmul(m, vvl);
+        st->alo = vsel(anc, vsub(vfma_x(nm, vv, vneg(hv)), mvl), st->alo);
+        st->ahi = vsel(anc, vsub(vfma_x(nm, vv, hv), mvl), st->ahi);
     }
 }

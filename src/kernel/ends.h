@@ -163,6 +163,8 @@ CYLRAY_INLINE void KFN(cone_rims)(KFN(lanes) *st, const cylray_kat_ *k, const cy
 CYLRAY_INLINE void KFN(cone_tips)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F,
                                   vf slab_in, vf slab_out)
 {
+    if (!F.tiny) /* (a tip is a tiny end: cylray_cone_tiny_) */
+        return;
     const vf zero = vzero();
     const vf kap = KFN(both_in)(k, F, offsetof(cylray_prepared, kap), CYLRAY_LF_RRVV);
     vf ra, za;
@@ -183,8 +185,8 @@ CYLRAY_INLINE void KFN(planes)(const KFN(lanes) *st, const cylray_kat_ *k,
 {
     const vf hv = KFN(both_in)(k, F, offsetof(cylray_prepared, h_v), CYLRAY_LF_HV);
     *zlo = vneg(hv), *zhi = hv;
-    if (many(st->anc))
-        *zlo = vsel(st->anc, st->alo, *zlo), *zhi = vsel(st->anc, st->ahi, *zhi);
+    if (F.slender) /* (-+H|v| on the lanes that kept the center) */
+        *zlo = st->alo, *zhi = st->ahi;
 }
 
 /* Stage 6, the ends: entry and exit relative to p, and whether each is on the
@@ -263,7 +265,7 @@ CYLRAY_INLINE void KFN(ends)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_
         st->ok_in = st->ok_out = st->side;
         if (F.kind == CYLRAY_KIND_OPEN) {
             const vf hv = vset1(k->P->h_v);
-            if (many(st->anc)) {
+            if (F.slender) {
                 vf zlo, zhi;
                 KFN(planes)(st, k, F, &zlo, &zhi);
                 const vf zn = vfma(tn, dv, z0), zf = vfma(tf, dv, z0);

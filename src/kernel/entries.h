@@ -112,10 +112,13 @@ static size_t KI_(occluded_stream)(const cylray_prepared *P, const cylray_rays *
             return 0;                                                                          \
         flags = KFAST_(flags);                                                                 \
         const KW_(leaf_fn, KL##m) *t =                                                         \
-            cylray_leaf_spheres_(leaf->meta_) ? KW_(leaf_sphere_table, KL##m)                  \
-            : cylray_leaf_tiny_(leaf->meta_)  ? KW_(leaf_tiny_table, KL##m)                    \
-            : cylray_leaf_cones_(leaf->meta_) ? KW_(leaf_cone_table, KL##m)                    \
-                                              : KW_(leaf_table, KL##m);                        \
+            cylray_leaf_spheres_(leaf->meta_)   ? KW_(leaf_sphere_table, KL##m)                \
+            : cylray_leaf_slender_(leaf->meta_) ? cylray_leaf_cones_(leaf->meta_)              \
+                                                      ? KW_(leaf_cone_slender_table, KL##m)    \
+                                                      : KW_(leaf_slender_table, KL##m)         \
+            : cylray_leaf_tiny_(leaf->meta_) ? KW_(leaf_tiny_table, KL##m)                     \
+            : cylray_leaf_cones_(leaf->meta_)   ? KW_(leaf_cone_table, KL##m)                  \
+                                                : KW_(leaf_table, KL##m);                        \
         return t[cylray_spec_(flags)](leaf->geom_[0], m, ray, hit,                             \
                                       flags & CYLRAY_FLAGS_ALL & CYLRAY_KF_RUNTIME);           \
     }                                                                                          \
@@ -129,6 +132,9 @@ static size_t KI_(occluded_stream)(const cylray_prepared *P, const cylray_rays *
         cylray_ray1 *r = (cylray_ray1 *)(uintptr_t)ray;                                        \
         const KW_(leaf_fn, KL##m) *t =                                                         \
             cylray_leaf_spheres_(leaf->meta_) ? KW_(leaf_sphere_occ_table, KL##m)              \
+            : cylray_leaf_slender_(leaf->meta_)                                                \
+                ? cylray_leaf_cones_(leaf->meta_) ? KW_(leaf_cone_slender_occ_table, KL##m)    \
+                                                  : KW_(leaf_slender_occ_table, KL##m)         \
             : cylray_leaf_tiny_(leaf->meta_)  ? KW_(leaf_tiny_occ_table, KL##m)                \
             : cylray_leaf_cones_(leaf->meta_) ? KW_(leaf_cone_occ_table, KL##m)                \
                                               : KW_(leaf_occ_table, KL##m);                    \

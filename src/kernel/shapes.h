@@ -104,7 +104,7 @@ CYLRAY_INLINE void KFN(cone_anchor)(const cylray_kat_ *k, const cylray_kflags_ F
  * those cones, and leaves that hold one, run kernels of their own (CYLRAY_KF_TINY), and
  * every other cone's kernel has none of this work. */
 
-/* The lanes of a tiny-ended cone: a prepared cone's all, a leaf's as its meta marks. */
+/* The lanes of a tiny-ended cone: a prepared one's all, a leaf's as its meta marks. */
 CYLRAY_INLINE vm KFN(cone_tiny)(const cylray_kat_ *k, const cylray_kflags_ F)
 {
     if (!F.tiny)
@@ -113,7 +113,8 @@ CYLRAY_INLINE vm KFN(cone_tiny)(const cylray_kat_ *k, const cylray_kflags_ F)
         const uint32_t *meta = (const uint32_t *)(const void *)(k->L + CYLRAY_LF_COUNT * k->lm);
         return mfrom_bits(cylray_leaf_tiny_(meta) >> k->i);
     }
-    return mfrom_bits(VFULL);
+    /* (a slender cone's kernel serves tiny-ended ones and others) */
+    return mfrom_bits(cylray_cone_tiny_(k->P) ? VFULL : 0u);
 }
 
 /* The lanes of `tiny` whose origin is near the narrower end, from w = o - c rounded:
@@ -171,7 +172,7 @@ CYLRAY_INLINE int KFN(cone_side)(KFN(lanes) *st, const cylray_kat_ *k, const cyl
     const vm tiny = KFN(cone_tiny)(k, F);
     if (F.tiny)
         KFN(cone_frame)(st, tiny, vv, &za);
-    if (many(st->anc)) { /* the narrower end's plane from a slender cone's anchor */
+    if (F.slender) { /* the narrower end's plane from a slender cone's anchor */
         st->anc = mandn(st->anc, st->near);
         za = vsel(st->anc, vsel(vlt(za, zero), st->alo, st->ahi), za);
     }
@@ -217,11 +218,15 @@ CYLRAY_INLINE int KFN(cone_side)(KFN(lanes) *st, const cylray_kat_ *k, const cyl
      * the entry. Only a line whose A may be 0 exactly (KM_ROOTLESS: along the side's
      * lines) can have no roots: A = 0 and nB = 0, and the line is inside everywhere
      * where C <= 0 and outside everywhere where C > 0. */
-    const vm neg = mand(act, vlt(st->A, zero)), nod = mand(neg, vlt(st->D, zero));
-    const vm gen = vlt(vabs(st->A), vmul(ee, vset1(KM_ROOTLESS)));
-    st->D = vsel(mandn(nod, gen), zero, st->D);
     st->side = mand(act, vge(st->D, zero));
-    st->inpar = mand(mand(nod, gen), vle(st->C, zero)); /* no roots, inside everywhere */
+    st->inpar = mfrom_bits(0u);
+    const vm nod = mandn(mand(act, vlt(st->A, zero)), st->side);
+    if (many(nod)) {
+        const vm gen = vlt(vabs(st->A), vmul(ee, vset1(KM_ROOTLESS)));
+        st->D = vsel(mandn(nod, gen), zero, st->D);
+        st->side = mor(st->side, mandn(nod, gen));
+        st->inpar = mand(mand(nod, gen), vle(st->C, zero)); /* no roots, inside everywhere */
+    }
     if (F.leaf) {
         /* A cylinder's lane in a leaf of cones (a = 0) leaves A = e.e: a ray within
          * about an ulp of the axis direction is parallel, as the cylinder's, meets no

@@ -16,10 +16,19 @@ CYLRAY_INLINE void KFN(shift)(KFN(lanes) *st, const cylray_kat_ *k, const cylray
     st->wlx = vsub(vsub(st->ox, vsub(st->whx, bx)), vadd(st->cx, bx));
     st->wly = vsub(vsub(st->oy, vsub(st->why, by)), vadd(st->cy, by));
     st->wlz = vsub(vsub(st->oz, vsub(st->whz, bz)), vadd(st->cz, bz));
+    st->anc = mfrom_bits(0u);
+    st->alo = st->ahi = vzero(); /* (read only where F.slender) */
+    if (F.slender) {             /* a slender shape's lanes framed where the ray passes */
+        vf hx, hy, hz;
+        KFN(anchor)(st, k, F, &hx, &hy, &hz);
+        st->px = vfma_x2(st->s, st->dx, hx, st->wlx);
+        st->py = vfma_x2(st->s, st->dy, hy, st->wly);
+        st->pz = vfma_x2(st->s, st->dz, hz, st->wlz);
+        return;
+    }
     st->px = vfma_xw(st->s, st->dx, st->ox, st->cx, st->whx, st->wlx);
     st->py = vfma_xw(st->s, st->dy, st->oy, st->cy, st->why, st->wly);
     st->pz = vfma_xw(st->s, st->dz, st->oz, st->cz, st->whz, st->wlz);
-    KFN(anchor)(st, k, F);
 }
 
 /* An infinite cylinder has no center: c may slide along the axis (any slide u is

@@ -106,14 +106,21 @@
     KLEAFDRV_(c##o_2, leaf_any, KLFL_(CYLRAY_OCC_SPEC_KF_(2)) | CYLRAY_KF_CONE | (x))          \
     KLEAFDRV_(c##o_3, leaf_any, KLFL_(CYLRAY_OCC_SPEC_KF_(3)) | CYLRAY_KF_CONE | (x))
 /* clang-format on */
-_Static_assert(CYLRAY_VARIANT_CONE == 7 && CYLRAY_VARIANT_CONE_TINY == 8,
-               "the cone is kind 7 of the tables, a tiny-ended one 8");
+_Static_assert(CYLRAY_VARIANT_CONE == 7 && CYLRAY_VARIANT_CONE_TINY == 8 &&
+                   CYLRAY_VARIANT_CONE_SLENDER == 9 && CYLRAY_VARIANT_CAPPED_SLENDER == 10 &&
+                   CYLRAY_VARIANT_ALIGNED_SLENDER == 11 && CYLRAY_VARIANT_GENERIC == 12,
+               "the cone is kind 7 of the tables, a tiny-ended one 8, a slender one 9; the "
+               "slender capped cylinders 10 and 11");
 #define K8_(X, k) X(k, 0) X(k, 1) X(k, 2) X(k, 3) X(k, 4) X(k, 5) X(k, 6) X(k, 7)
 #define K4_(X, k) X(k, 0) X(k, 1) X(k, 2) X(k, 3)
-#define KALL8_(X)                                                                              \
-    K8_(X, 0) K8_(X, 1) K8_(X, 2) K8_(X, 3) K8_(X, 4) K8_(X, 5) K8_(X, 6) K8_(X, 7) K8_(X, 8)
-#define KALL4_(X)                                                                              \
-    K4_(X, 0) K4_(X, 1) K4_(X, 2) K4_(X, 3) K4_(X, 4) K4_(X, 5) K4_(X, 6) K4_(X, 7) K4_(X, 8)
+/* clang-format off */
+#define KALL8_(X) \
+    K8_(X, 0) K8_(X, 1) K8_(X, 2) K8_(X, 3) K8_(X, 4) K8_(X, 5) K8_(X, 6) K8_(X, 7) K8_(X, 8) \
+    K8_(X, 9) K8_(X, 10) K8_(X, 11)
+#define KALL4_(X) \
+    K4_(X, 0) K4_(X, 1) K4_(X, 2) K4_(X, 3) K4_(X, 4) K4_(X, 5) K4_(X, 6) K4_(X, 7) K4_(X, 8) \
+    K4_(X, 9) K4_(X, 10) K4_(X, 11)
+/* clang-format on */
 
 /* b = 6, 7 (occluded: 3) are FAST with REFINE. Lists of definitions: clang-format reads
  * them as one long expression and breaks them differently from version to version. */
@@ -123,9 +130,24 @@ _Static_assert(CYLRAY_VARIANT_CONE == 7 && CYLRAY_VARIANT_CONE_TINY == 8,
     KISECT_(k, 1) KISECT_(k, 2) KISECT_(k, 3) KISECT_(k, 4) KISECT_(k, 5) KISECTANY_(k, 6)     \
         KISECTANY_(k, 7) KOCC_(k, 0) KOCC_(k, 1) KOCC_(k, 2) KOCCANY_(k, 3)
 KKIND_(0)
-KKIND_(1) KKIND_(2) KKIND_(3) KKIND_(4) KKIND_(5) KKIND_(6) KCONE_(7) KCONE_(8) KLEAF_(0) KLEAF_(1) KLEAF_(2) KLEAF_(3)
+KKIND_(1) KKIND_(2) KKIND_(3) KKIND_(4) KKIND_(5) KKIND_(6) KCONE_(7) KCONE_(8) KCONE_(9) KKIND_(10) KKIND_(11) KLEAF_(0) KLEAF_(1) KLEAF_(2) KLEAF_(3)
     KLEAF_(4) KLEAF_(5) KLEAFANY_(6) KLEAFANY_(7) KLEAFOCC_(0) KLEAFOCC_(1) KLEAFOCC_(2)
         KLEAFOCCANY_(3) KLEAFCONE_(c, 0u) KLEAFCONE_(t, CYLRAY_KF_TINY)
+/* A leaf that holds a slender shape: the driver with the flags read at run time. */
+#define KLEAFSL_(c, x)                                                                         \
+    KLEAFDRV_(c##f_0, leaf_any, KLFL_(CYLRAY_SPEC_KF_(0)) | CYLRAY_KF_SLENDER | (x))           \
+    KLEAFDRV_(c##f_1, leaf_any, KLFL_(CYLRAY_SPEC_KF_(1)) | CYLRAY_KF_SLENDER | (x))           \
+    KLEAFDRV_(c##f_2, leaf_any, KLFL_(CYLRAY_SPEC_KF_(2)) | CYLRAY_KF_SLENDER | (x))           \
+    KLEAFDRV_(c##f_3, leaf_any, KLFL_(CYLRAY_SPEC_KF_(3)) | CYLRAY_KF_SLENDER | (x))           \
+    KLEAFDRV_(c##f_4, leaf_any, KLFL_(CYLRAY_SPEC_KF_(4)) | CYLRAY_KF_SLENDER | (x))           \
+    KLEAFDRV_(c##f_5, leaf_any, KLFL_(CYLRAY_SPEC_KF_(5)) | CYLRAY_KF_SLENDER | (x))           \
+    KLEAFDRV_(c##f_6, leaf_any, KLFL_(CYLRAY_SPEC_KF_(6)) | CYLRAY_KF_SLENDER | (x))           \
+    KLEAFDRV_(c##f_7, leaf_any, KLFL_(CYLRAY_SPEC_KF_(7)) | CYLRAY_KF_SLENDER | (x))           \
+    KLEAFDRV_(c##o_0, leaf_any, KLFL_(CYLRAY_OCC_SPEC_KF_(0)) | CYLRAY_KF_SLENDER | (x))       \
+    KLEAFDRV_(c##o_1, leaf_any, KLFL_(CYLRAY_OCC_SPEC_KF_(1)) | CYLRAY_KF_SLENDER | (x))       \
+    KLEAFDRV_(c##o_2, leaf_any, KLFL_(CYLRAY_OCC_SPEC_KF_(2)) | CYLRAY_KF_SLENDER | (x))       \
+    KLEAFDRV_(c##o_3, leaf_any, KLFL_(CYLRAY_OCC_SPEC_KF_(3)) | CYLRAY_KF_SLENDER | (x))
+KLEAFSL_(y, 0u) KLEAFSL_(k, CYLRAY_KF_CONE | CYLRAY_KF_TINY)
 /* clang-format on */
 
 #define KREF_PK1_(k, b) KFN(pk1_##k##_##b),
@@ -164,6 +186,15 @@ CYLRAY_MAYBE_UNUSED static const KFN(leaf_fn) KFN(leaf_tiny_table)[] = {
     KFN(tf_0), KFN(tf_1), KFN(tf_2), KFN(tf_3), KFN(tf_4), KFN(tf_5), KFN(tf_6), KFN(tf_7)};
 CYLRAY_MAYBE_UNUSED static const KFN(leaf_fn)
     KFN(leaf_tiny_occ_table)[] = {KFN(to_0), KFN(to_1), KFN(to_2), KFN(to_3)};
+/* And for a leaf that holds a slender shape: of cylinders, and of cones. */
+CYLRAY_MAYBE_UNUSED static const KFN(leaf_fn) KFN(leaf_slender_table)[] = {
+    KFN(yf_0), KFN(yf_1), KFN(yf_2), KFN(yf_3), KFN(yf_4), KFN(yf_5), KFN(yf_6), KFN(yf_7)};
+CYLRAY_MAYBE_UNUSED static const KFN(leaf_fn)
+    KFN(leaf_slender_occ_table)[] = {KFN(yo_0), KFN(yo_1), KFN(yo_2), KFN(yo_3)};
+CYLRAY_MAYBE_UNUSED static const KFN(leaf_fn) KFN(leaf_cone_slender_table)[] = {
+    KFN(kf_0), KFN(kf_1), KFN(kf_2), KFN(kf_3), KFN(kf_4), KFN(kf_5), KFN(kf_6), KFN(kf_7)};
+CYLRAY_MAYBE_UNUSED static const KFN(leaf_fn)
+    KFN(leaf_cone_slender_occ_table)[] = {KFN(ko_0), KFN(ko_1), KFN(ko_2), KFN(ko_3)};
 /* Every table holds exactly what its index reaches (cylray_isect_index_,
  * cylray_occ_index_, cylray_spec_, cylray_occ_spec_): one entry per specialised variant
  * and flag encoding. */
@@ -182,6 +213,10 @@ KTABLE_SIZE_(leaf_cone_table, CYLRAY_SPECS);
 KTABLE_SIZE_(leaf_cone_occ_table, CYLRAY_OCC_SPECS);
 KTABLE_SIZE_(leaf_tiny_table, CYLRAY_SPECS);
 KTABLE_SIZE_(leaf_tiny_occ_table, CYLRAY_OCC_SPECS);
+KTABLE_SIZE_(leaf_slender_table, CYLRAY_SPECS);
+KTABLE_SIZE_(leaf_slender_occ_table, CYLRAY_OCC_SPECS);
+KTABLE_SIZE_(leaf_cone_slender_table, CYLRAY_SPECS);
+KTABLE_SIZE_(leaf_cone_slender_occ_table, CYLRAY_OCC_SPECS);
 
 #undef KDOT
 #undef KRCP

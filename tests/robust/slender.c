@@ -43,12 +43,14 @@ typedef struct {
 } ray;
 
 typedef struct { /* the exact answer, and how far 2 ulps of a ray float move its t */
+    ray r;
     cylref_hit h;
     double kappa; /* -1: the outcome itself moves */
 } exact;
 
 static void exact_of(const cylray_cone *c, const ray *r, unsigned flags, exact *out)
 {
+    out->r = *r;
     conref_intersect(c, r->o, r->d, 0, INFINITY, flags, &out->h);
     out->kappa = 0;
     for (int i = 0; i < 6; i++)
@@ -118,8 +120,12 @@ static double judge(const char *where, unsigned flags, const exact *e, int hit, 
     const double ulp = ldexp(1.0, ilogb(e->h.t) - 23), dt = fabs(t - e->h.t);
     const double tol = e->kappa + (flags & CYLRAY_FAST ? 8 : 4) * ulp;
     if (dt > tol && failures++ < 20)
-        printf("FAIL %s flags 0x%x: t %.9g exact %.9g kappa %.3g (%.1f ulps beyond)\n", where,
-               flags, t, e->h.t, e->kappa, (dt - e->kappa) / ulp);
+        printf(
+            "FAIL %s flags 0x%x: t %.9g exact %.9g kappa %.3g (%.1f ulps beyond); o %a %a %a "
+            "d %a %a %a\n",
+            where, flags, t, e->h.t, e->kappa, (dt - e->kappa) / ulp, (double)e->r.o[0],
+            (double)e->r.o[1], (double)e->r.o[2], (double)e->r.d[0], (double)e->r.d[1],
+            (double)e->r.d[2]);
     return dt / (e->kappa + ulp);
 }
 
