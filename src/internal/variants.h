@@ -95,13 +95,10 @@ static inline int cylray_slender_(const cylray_prepared *p)
 #define CYLRAY_VARIANT_SPHERE (2u * CYLRAY_KIND_COUNT)
 #define CYLRAY_VARIANT_CONE (CYLRAY_VARIANT_SPHERE + 1u)
 #define CYLRAY_VARIANT_CONE_TINY (CYLRAY_VARIANT_CONE + 1u)
-/* Slender shapes (cylray_slender_) with kernels of their own: the capped cone (which
- * also takes a tiny end's work, kernel/shapes.h), the capped cylinder with a general
- * axis and along a coordinate axis. Other slender shapes take the generic variant. */
-#define CYLRAY_VARIANT_CONE_SLENDER (CYLRAY_VARIANT_CONE_TINY + 1u)
-#define CYLRAY_VARIANT_CAPPED_SLENDER (CYLRAY_VARIANT_CONE_SLENDER + 1u)
-#define CYLRAY_VARIANT_ALIGNED_SLENDER (CYLRAY_VARIANT_CAPPED_SLENDER + 1u)
-#define CYLRAY_VARIANT_GENERIC (CYLRAY_VARIANT_ALIGNED_SLENDER + 1u)
+/* A slender capped cone (cylray_slender_) shares the tiny-ended one's kernels, which
+ * carry CYLRAY_KF_SLENDER and ask the prepared cone whether to take the frame; other
+ * slender shapes take the generic variant. */
+#define CYLRAY_VARIANT_GENERIC (CYLRAY_VARIANT_CONE_TINY + 1u)
 static inline unsigned cylray_variant_of_(unsigned kind, unsigned axis_id, int radius_scaled,
                                           unsigned caps, int tiny, int slender)
 {
@@ -110,14 +107,10 @@ static inline unsigned cylray_variant_of_(unsigned kind, unsigned axis_id, int r
                              : CYLRAY_VARIANT_SPHERE;
     if (kind == CYLRAY_KIND_CONE) /* a cone with one disc or none: the generic one */
         return radius_scaled || caps != CYLRAY_CAPPED ? CYLRAY_VARIANT_GENERIC + 4u
-               : slender                              ? CYLRAY_VARIANT_CONE_SLENDER
-               : tiny                                 ? CYLRAY_VARIANT_CONE_TINY
+               : tiny || slender                      ? CYLRAY_VARIANT_CONE_TINY
                                                       : CYLRAY_VARIANT_CONE;
-    if (radius_scaled || (kind == CYLRAY_KIND_CAPPED && caps != CYLRAY_CAPPED) ||
-        (slender && kind != CYLRAY_KIND_CAPPED))
+    if (radius_scaled || slender || (kind == CYLRAY_KIND_CAPPED && caps != CYLRAY_CAPPED))
         return CYLRAY_VARIANT_GENERIC + kind;
-    if (slender)
-        return axis_id ? CYLRAY_VARIANT_ALIGNED_SLENDER : CYLRAY_VARIANT_CAPPED_SLENDER;
     return kind + (axis_id ? CYLRAY_KIND_COUNT : 0u);
 }
 static inline int cylray_generic_(const cylray_prepared *p)
@@ -131,14 +124,8 @@ static inline int cylray_generic_(const cylray_prepared *p)
      : (v) == CYLRAY_VARIANT_CONE                                                              \
          ? CYLRAY_KF_CONE | CYLRAY_KIND_CAPPED << CYLRAY_KF_KIND_SHIFT                         \
      : (v) == CYLRAY_VARIANT_CONE_TINY                                                         \
-         ? CYLRAY_KF_CONE | CYLRAY_KF_TINY | CYLRAY_KIND_CAPPED << CYLRAY_KF_KIND_SHIFT        \
-     : (v) == CYLRAY_VARIANT_CONE_SLENDER                                                      \
          ? CYLRAY_KF_CONE | CYLRAY_KF_TINY | CYLRAY_KF_SLENDER |                               \
                CYLRAY_KIND_CAPPED << CYLRAY_KF_KIND_SHIFT                                      \
-     : (v) == CYLRAY_VARIANT_CAPPED_SLENDER                                                    \
-         ? CYLRAY_KF_SLENDER | CYLRAY_KIND_CAPPED << CYLRAY_KF_KIND_SHIFT                      \
-     : (v) == CYLRAY_VARIANT_ALIGNED_SLENDER                                                   \
-         ? CYLRAY_KF_SLENDER | CYLRAY_KF_ALIGNED | CYLRAY_KIND_CAPPED << CYLRAY_KF_KIND_SHIFT  \
          : (((v) % CYLRAY_KIND_COUNT) << CYLRAY_KF_KIND_SHIFT |                                \
             ((v) >= CYLRAY_KIND_COUNT ? CYLRAY_KF_ALIGNED : 0u)))
 /* The kernel flags of a generic variant, which the generic drivers read at run time:

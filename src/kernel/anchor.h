@@ -35,9 +35,9 @@ CYLRAY_INLINE vm KFN(slender)(const cylray_kat_ *k, const cylray_kflags_ F)
  * its own perturbation; p = s d + h + wl as the center's shift forms it, and m = 0 is
  * the center's frame bit for bit. Axial coordinates are then measured from a: the
  * slab's planes lie at -+H|v| - m v.v, with v.v as an exact two-term sum, so that a
- * plane near a is placed to the ulps of its own distance from it (KFN(ends), the cone's
- * narrower end in KFN(cone_side)). Sets st->anc, st->s and the planes, and returns h
- * in hx, hy, hz (w's rounded part where the center stays). */
+ * plane near a is placed to the ulps of its own distance from it (KFN(axial): the slab
+ * in KFN(ends), the cone's narrower end in KFN(cone_side)). Sets st->am and st->s, and
+ * returns h in hx, hy, hz (w's rounded part where the center stays). */
 CYLRAY_INLINE void KFN(anchor)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F,
                                vf *hx, vf *hy, vf *hz)
 {
@@ -46,8 +46,7 @@ CYLRAY_INLINE void KFN(anchor)(KFN(lanes) *st, const cylray_kat_ *k, const cylra
     const vf whx = st->whx, why = st->why, whz = st->whz;
     const vf hv = KFN(both_in)(k, F, offsetof(cylray_prepared, h_v), CYLRAY_LF_HV);
     *hx = whx, *hy = why, *hz = whz;
-    st->anc = mfrom_bits(0u);
-    st->alo = vneg(hv), st->ahi = hv;
+    st->am = zero;
     const vm sl = mand(KFN(slender)(k, F), st->act);
     if (!many(sl)) /* (a packet's lanes are all slender or none) */
         return;
@@ -74,9 +73,7 @@ CYLRAY_INLINE void KFN(anchor)(KFN(lanes) *st, const cylray_kat_ *k, const cylra
     /* R: a cone's narrower end's, which a leaf holds as a packet does */
     vf rr = st->rr;
     if (F.cone) {
-        const vf kap = KFN(both_in)(k, F, offsetof(cylray_prepared, kap), CYLRAY_LF_RRVV);
-        vf ra, za;
-        KFN(cone_anchor)(k, F, kap, &ra, &za);
+        const vf ra = F.leaf ? KFN(leaf_in)(k, F, CYLRAY_LF_R) : vset1(cylray_cone_ra_(k->P));
         rr = vmul(ra, ra);
     }
     /* the center's closest approach, squared: |w x d|^2 / d.d (w.w - (w.d)^2 / d.d would
@@ -85,24 +82,25 @@ CYLRAY_INLINE void KFN(anchor)(KFN(lanes) *st, const cylray_kat_ *k, const cylra
              cz = vfms(whx, dy, vmul(why, dx));
     const vf pc = vmul(KDOT(cx, cy, cz, cx, cy, cz), st->rdd);
     const vm anc = mandn(sl, vle(pc, vmul(four, vmax(nc, rr))));
-    const vf m = vkeep(anc, mc);
-    st->anc = anc;
+    st->am = vkeep(anc, mc);
     *hx = vsel(anc, vsel(at_o, ox, lx), whx), *hy = vsel(anc, vsel(at_o, oy, ly), why);
     *hz = vsel(anc, vsel(at_o, oz, lz), whz);
     /* the shift to the closest approach to a, skipped as the center's is */
     const vf hd = KDOT(*hx, *hy, *hz, dx, dy, dz), hh = KDOT(*hx, *hy, *hz, *hx, *hy, *hz);
     const vf hd2 = vmul(vmul(hd, hd), st->rdd);
     st->s = vsel(anc, vkeep(vgt(vadd(hd2, hd2), hh), vmul(vneg(hd), st->rdd)), st->s);
-    /* the planes -+H|v| - m v.v; an aligned axis measures along its third coordinate,
-     * whose m v is m vz, exact */
-    if (F.aligned) {
-        const vf mz = vmul(m, vz);
-        st->alo = vsel(anc, vsub(vneg(hv), mz), st->alo);
-        st->ahi = vsel(anc, vsub(hv, mz), st->ahi);
-    } else {
-        const vf vvl = vdot3_x(vx, vy, vz, vx, vy, vz, vneg(vv)), nm = vneg(m);
-        const vf mvl = vmul(m, vvl);
-        st->alo = vsel(anc, vsub(vfma_x(nm, vv, vneg(hv)), mvl), st->alo);
-        st->ahi = vsel(anc, vsub(vfma_x(nm, vv, hv), mvl), st->ahi);
-    }
+}
+
+/* The axial coordinate z (from the center) measured from the lane's frame point c + m v:
+ * z - m v.v, with v.v as an exact two-term sum; z itself where m = 0. An aligned axis
+ * measures along its third coordinate, whose m v is m vz, exact. */
+CYLRAY_INLINE vf KFN(axial)(const KFN(lanes) *st, const cylray_kflags_ F, vf z)
+{
+    const vf m = st->am;
+    if (F.aligned)
+        return vsub(z, vmul(m, st->vz));
+    const vf vx = st->vx, vy = st->vy, vz = st->vz;
+    const vf vv = KDOT(vx, vy, vz, vx, vy, vz);
+    const vf vvl = vdot3_x(vx, vy, vz, vx, vy, vz, vneg(vv));
+    return vsub(vfma_x(vneg(m), vv, z), vmul(m, vvl));
 }

@@ -186,7 +186,7 @@ CYLRAY_INLINE void KFN(planes)(const KFN(lanes) *st, const cylray_kat_ *k,
     const vf hv = KFN(both_in)(k, F, offsetof(cylray_prepared, h_v), CYLRAY_LF_HV);
     *zlo = vneg(hv), *zhi = hv;
     if (F.slender) /* (-+H|v| on the lanes that kept the center) */
-        *zlo = st->alo, *zhi = st->ahi;
+        *zlo = KFN(axial)(st, F, *zlo), *zhi = KFN(axial)(st, F, *zhi);
 }
 
 /* Stage 6, the ends: entry and exit relative to p, and whether each is on the

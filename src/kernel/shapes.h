@@ -173,8 +173,8 @@ CYLRAY_INLINE int KFN(cone_side)(KFN(lanes) *st, const cylray_kat_ *k, const cyl
     if (F.tiny)
         KFN(cone_frame)(st, tiny, vv, &za);
     if (F.slender) { /* the narrower end's plane from a slender cone's anchor */
-        st->anc = mandn(st->anc, st->near);
-        za = vsel(st->anc, vsel(vlt(za, zero), st->alo, st->ahi), za);
+        st->am = vsel(st->near, zero, st->am); /* (the tiny end's frame there) */
+        za = vsel(st->near, za, KFN(axial)(st, F, za));
     }
     const vf px = st->px, py = st->py, pz = st->pz;
     const vf ex = st->ex, ey = st->ey, ez = st->ez;

@@ -16,9 +16,8 @@ CYLRAY_INLINE void KFN(shift)(KFN(lanes) *st, const cylray_kat_ *k, const cylray
     st->wlx = vsub(vsub(st->ox, vsub(st->whx, bx)), vadd(st->cx, bx));
     st->wly = vsub(vsub(st->oy, vsub(st->why, by)), vadd(st->cy, by));
     st->wlz = vsub(vsub(st->oz, vsub(st->whz, bz)), vadd(st->cz, bz));
-    st->anc = mfrom_bits(0u);
-    st->alo = st->ahi = vzero(); /* (read only where F.slender) */
-    if (F.slender) {             /* a slender shape's lanes framed where the ray passes */
+    st->am = vzero(); /* (read only where F.slender) */
+    if (F.slender) {  /* a slender shape's lanes framed where the ray passes */
         vf hx, hy, hz;
         KFN(anchor)(st, k, F, &hx, &hy, &hz);
         st->px = vfma_x2(st->s, st->dx, hx, st->wlx);

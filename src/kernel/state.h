@@ -18,8 +18,8 @@ typedef struct {
     vf whx, why, whz, rdd, s, ex, ey, ez, A, g;
     /* shift: w's rounding error wl and the shifted origin p = w + s d */
     vf wlx, wly, wlz, px, py, pz;
-    vm anc;      /* a slender shape's lanes framed at a point of the axis, */
-    vf alo, ahi; /* and the slab's planes measured from there (kernel/anchor.h) */
+    vf am; /* a slender shape's lanes: the frame's point c + am v (0: the center;
+            * kernel/anchor.h) */
     /* side: the quadratic A t^2 - 2 nB t + C, f = v x p, and its discriminant */
     vf fx, fy, fz, nB, C, D, AR2;
     vm side, inpar; /* the side's roots exist; parallel inside the tube (a cone: the
