@@ -8,7 +8,7 @@ CYLRAY_INLINE vm KFN(slender)(const cylray_kat_ *k, const cylray_kflags_ F)
     if (!F.slender)
         return mfrom_bits(0u);
     if (F.leaf) {
-        const uint32_t *meta = (const uint32_t *)(const void *)(k->L + CYLRAY_LF_COUNT * k->lm);
+        const uint32_t *meta = KFN(leaf_meta)(k);
         return mfrom_bits(cylray_leaf_slender_(meta) >> k->i);
     }
     return mfrom_bits(cylray_slender_(k->P) ? VFULL : 0u);

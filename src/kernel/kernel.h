@@ -49,6 +49,7 @@ typedef int (*KFN(leaf_fn))(const float *, size_t, cylray_ray1 *, cylray_hit1 *,
 #include "anchor.h"
 #include "shapes.h"
 #include "solve.h"
+#include "rims.h"
 #include "ends.h"
 #include "store.h"
 #include "block.h"

@@ -110,7 +110,7 @@ CYLRAY_INLINE vm KFN(cone_tiny)(const cylray_kat_ *k, const cylray_kflags_ F)
     if (!F.tiny)
         return mfrom_bits(0u);
     if (F.leaf) {
-        const uint32_t *meta = (const uint32_t *)(const void *)(k->L + CYLRAY_LF_COUNT * k->lm);
+        const uint32_t *meta = KFN(leaf_meta)(k);
         return mfrom_bits(cylray_leaf_tiny_(meta) >> k->i);
     }
     /* (a slender cone's kernel serves tiny-ended ones and others) */

@@ -68,6 +68,12 @@ CYLRAY_INLINE vf KFN(center_in)(const cylray_kat_ *k, const cylray_kflags_ F, un
 {
     return F.leaf ? KFN(leaf_in)(k, F, CYLRAY_LF_CX + c) : vset1(k->c3[c]);
 }
+/* A leaf's meta words (internal/leaf.h: its used lanes, caps and shapes' bits), past
+ * its field rows. */
+CYLRAY_INLINE const uint32_t *KFN(leaf_meta)(const cylray_kat_ *k)
+{
+    return (const uint32_t *)(const void *)(k->L + CYLRAY_LF_COUNT * k->lm);
+}
 /* Whether some lanes of a packet or stream vector are inactive. */
 CYLRAY_INLINE int KFN(partial)(const cylray_kat_ *k, const cylray_kflags_ F)
 {
