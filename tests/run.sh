@@ -9,21 +9,23 @@
 # failed, a build included.
 #
 # Configurations, each in its own build directory build/test-<name>:
-#   gcc      gcc, debugoptimized, warnings are errors
-#   clang    clang, debugoptimized, warnings are errors (also runs the fuzz corpus
-#            and a short deterministic libFuzzer session as tests)
 #   gcc-release    gcc, release (-O3, what the README's install line builds),
-#                  warnings are errors, no bench
-#   clang-release  clang, release, warnings are errors, no bench; every answer of
-#                  outhash bit for bit the gcc-release build's when that ran first
-#   estimates  gcc, release, once for each stand-in for the hardware's reciprocal and
-#            reciprocal-square-root estimates (-Destimate=exact, high, low, table:
-#            what another vendor's CPU may give; src/simd/estimate.h): CYLRAY_FAST's
-#            accuracy (cylcheck, leafcheck) on every x86 path, and every answer of
-#            the other flag sets bit for bit the gcc-release build's (outhash
-#            --no-fast), so that a run on one CPU speaks for every CPU of its ISA
-#   asan     clang with AddressSanitizer + UndefinedBehaviorSanitizer; the library is
-#            also built with libFuzzer coverage, so the fuzz step reuses this build
+#                  warnings are errors, no bench: the whole suite
+#   clang-release  clang, release, warnings are errors, no bench: the whole suite (with
+#                  the fuzz corpus and a short deterministic libFuzzer session); every
+#                  answer of outhash bit for bit the gcc-release build's
+#   estimates  gcc, debugoptimized (-O2), -Destimate=runtime: every answer of outhash
+#            bit for bit the gcc-release build's (another optimisation level, the
+#            hardware's estimates); then each stand-in for the hardware's reciprocal
+#            and reciprocal-square-root estimates (exact, high, low, table: what another
+#            vendor's CPU may give; src/simd/estimate.h) in turn: CYLRAY_FAST's accuracy
+#            (cylcheck, leafcheck) on every x86 path, and every answer of the other flag
+#            sets bit for bit (outhash --no-fast), so that a run on one CPU speaks for
+#            every CPU of its ISA
+#   asan     clang, debugoptimized (-O2), AddressSanitizer + UndefinedBehaviorSanitizer:
+#            the whole suite, and every answer of outhash bit for bit the gcc-release
+#            build's; the library is also built with libFuzzer coverage, so the fuzz
+#            step reuses this build
 #   aarch64  cross-compiled for AArch64 (NEON), gcc's ASan + UBSan, under qemu-user
 #   tsan     clang with ThreadSanitizer, the thread test only
 #   fuzz     libFuzzer on the asan build's target: FUZZ_RUNS inputs (20000) from seed
@@ -32,11 +34,14 @@
 #            tests/fuzz/run-long.sh explores for as long as one likes.
 #   embree-extra  the Embree adapter against each further Embree install prefix in
 #            CYLRAY_EMBREE_PREFIXES (colon-separated, e.g. an Embree 4 beside the
-#            distribution's Embree 3; empty: skipped): gcc and clang, release and
-#            debugoptimized, -Dembree_prefix, only the library, the adapter's test and
-#            the install tests (pkg-config and CMake consumers included), in
-#            build/test-embree-<N>-<compiler>-<buildtype>. The other
+#            distribution's Embree 3; empty: skipped): gcc, release, -Dembree_prefix,
+#            only the library, the adapter's tests and the install tests (pkg-config
+#            and CMake consumers included), in build/test-embree-<N>. The other
 #            configurations test whichever Embree the system has.
+# Not in `all`, for whoever wants the whole suite at -O2:
+#   gcc, clang  debugoptimized, warnings are errors, the whole suite. Their answers are
+#            the release builds' (estimates and asan show it for gcc and clang), and
+#            what the suite checks beyond answers runs in the release and asan builds.
 # Sanitizer and qemu configurations set CYLRAY_TEST_QUICK=1 so that heavy tests shrink.
 # Why asan and fuzz share a build: the kernels are stamped out in hundreds of flag
 # specialisations per ISA, and a sanitized build of them costs about ten CPU minutes;
@@ -51,7 +56,7 @@
 set -euo pipefail
 
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
-ALL_CONFIGS=(gcc clang gcc-release clang-release estimates asan aarch64 tsan fuzz embree-extra)
+ALL_CONFIGS=(gcc-release clang-release estimates asan aarch64 tsan fuzz embree-extra)
 CYLRAY_EMBREE_PREFIXES=${CYLRAY_EMBREE_PREFIXES:-}
 FUZZ_SECONDS=${FUZZ_SECONDS:-120}
 FUZZ_RUNS=${FUZZ_RUNS:-20000}
@@ -63,7 +68,7 @@ CONFIGS=()
 for a in "$@"; do
     case "$a" in
     -h | --help)
-        sed -n '3,47p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'
+        sed -n '3,/^set -euo/p' "${BASH_SOURCE[0]}" | sed '$d' | sed 's/^# \{0,1\}//'
         exit 0
         ;;
     gcc | clang | gcc-release | clang-release | estimates | asan | aarch64 | tsan | fuzz | embree-extra)
@@ -73,7 +78,7 @@ for a in "$@"; do
         CONFIGS+=("${ALL_CONFIGS[@]}")
         ;;
     *)
-        echo "run.sh: unknown configuration '$a' (known: ${ALL_CONFIGS[*]})" >&2
+        echo "run.sh: unknown configuration '$a' (known: ${ALL_CONFIGS[*]} gcc clang)" >&2
         exit 2
         ;;
     esac
@@ -292,15 +297,15 @@ config_release() { # config_release <name> <cc> <cxx>
         build_failed "$1" "$dir" "$t0"
     fi
 }
-# The library's answers do not depend on the compiler: every path, width, flag set
-# (CYLRAY_FAST included) and leaf hashed by outhash, bit for bit as the gcc release
-# build's, where that configuration was built earlier in the same run.
+# The library's answers do not depend on the compiler nor on the optimisation level:
+# every path, width, flag set (CYLRAY_FAST included) and leaf hashed by outhash, bit for
+# bit as the gcc release build's, where that was built earlier in the same run.
 GCC_RELEASE_BUILT=0
+REF_OUTHASH=build/test-gcc-release/tests/check/outhash
 same_bits() { # same_bits <config> <dir>
-    local ref=build/test-gcc-release/tests/check/outhash
     [ "$1" != gcc-release ] && [ "$GCC_RELEASE_BUILT" = 1 ] && [ -x "$2/tests/check/outhash" ] ||
         return 0
-    if [ "$("$2/tests/check/outhash")" = "$("$ref")" ]; then
+    if [ "$(env "${TEST_ENV[@]}" "$2/tests/check/outhash")" = "$("$REF_OUTHASH")" ]; then
         note "$1" 1 0 0 "outhash: the gcc release build's answers bit for bit"
     else
         note "$1" 0 1 0 "FAILED: outhash differs from the gcc release build's"
@@ -310,55 +315,50 @@ config_gcc-release() { config_release gcc-release gcc g++; }
 config_clang-release() { config_release clang-release clang clang++; }
 
 # CYLRAY_FAST takes the hardware's estimates, whose tables differ between vendors
-# (rcpps, rsqrtps); nothing else does. Each stand-in build checks FAST's accuracy on
-# every path, and that the other flag sets answer bit for bit as the hardware build.
+# (rcpps, rsqrtps); nothing else does. One build takes its stand-in from the
+# environment: with the hardware's, its answers are the gcc release build's (at -O2);
+# with each stand-in, FAST's accuracy is checked on every path, and the other flag sets
+# answer bit for bit as the hardware build.
 config_estimates() {
-    local t0 ref="" v dir isa p f c ff log tests
+    local t0 ref="" v dir=build/test-estimates p=0 f=0 c ff log
     t0=$(date +%s)
     command -v gcc >/dev/null || { unavailable estimates gcc; return; }
     TEST_ENV=()
-    if CC=gcc CXX=g++ BUILD_TARGETS=tests/check/outhash setup_build build/test-gcc-release \
-        --buildtype=release --werror -Dbench=false; then
-        ref=$(build/test-gcc-release/tests/check/outhash --no-fast)
+    if [ "$GCC_RELEASE_BUILT" = 1 ] || CC=gcc CXX=g++ BUILD_TARGETS=tests/check/outhash \
+        setup_build build/test-gcc-release --buildtype=release --werror -Dbench=false; then
+        GCC_RELEASE_BUILT=1
+        ref=$("$REF_OUTHASH" --no-fast)
     fi
-    if [ -z "$ref" ]; then
-        build_failed estimates build/test-gcc-release "$t0"
+    if [ -z "$ref" ] || ! CC=gcc CXX=g++ \
+        BUILD_TARGETS="tests/check/cylcheck tests/check/leafcheck tests/check/outhash" \
+        setup_build "$dir" --buildtype=debugoptimized --werror -Dbench=false -Destimate=runtime; then
+        build_failed estimates "$dir" "$t0"
         return
     fi
-    p=0 f=0
+    same_bits estimates "$dir"
     for v in exact high low table; do
-        dir=build/test-est-$v
-        if ! CC=gcc CXX=g++ BUILD_TARGETS="tests/check/cylcheck tests/check/leafcheck tests/check/outhash" \
-            setup_build "$dir" --buildtype=release --werror -Dbench=false -Destimate="$v"; then
-            echo "   $v: build failed (see $dir.build.log)"
-            f=$((f + 1))
-            continue
-        fi
-        if [ "$("$dir/tests/check/outhash" --no-fast)" = "$ref" ]; then
+        if [ "$(CYLRAY_TEST_ESTIMATE=$v "$dir/tests/check/outhash" --no-fast)" = "$ref" ]; then
             p=$((p + 1))
         else
             echo "   $v: the answers without CYLRAY_FAST differ from the hardware build's"
             f=$((f + 1))
         fi
-        tests=()
-        for isa in sse41 avx2 avx512; do tests+=("cylcheck-$isa" "leafcheck-$isa"); done
         rm -f "$dir"/meson-logs/testlog*.json
         # the stand-ins, also where the CPU would serve FAST with the exact kernels
-        CYLRAY_ESTIMATES=on meson test -C "$dir" --no-rebuild --print-errorlogs "${tests[@]}" \
-            >"$dir.test.log" 2>&1 || true
-
+        CYLRAY_TEST_ESTIMATE=$v CYLRAY_ESTIMATES=on meson test -C "$dir" --no-rebuild \
+            --print-errorlogs cylcheck-estimates leafcheck >"$dir.$v.test.log" 2>&1 || true
         log=$(ls -t "$dir"/meson-logs/testlog*.json 2>/dev/null | head -1 || true)
         if [ -z "$log" ]; then
-            echo "   $v: no test results ($dir.test.log)"
+            echo "   $v: no test results ($dir.$v.test.log)"
             f=$((f + 1))
             continue
         fi
         read -r c ff < <(count_log "$log")
         echo "   $v: outhash --no-fast as the hardware build's; cylcheck, leafcheck: $c passed, $ff failed"
-        [ "$ff" -eq 0 ] || grep -E '^FAIL|^headline.*FAIL|missed' "$dir.test.log" | head -20 | sed 's/^/     /'
+        [ "$ff" -eq 0 ] || grep -E '^FAIL|^headline.*FAIL|missed' "$dir.$v.test.log" | head -20 | sed 's/^/     /'
         p=$((p + c)) f=$((f + ff))
     done
-    note estimates "$p" "$f" $(($(date +%s) - t0)) "$([ "$f" -eq 0 ] || echo "see build/test-est-*.test.log")"
+    note estimates "$p" "$f" $(($(date +%s) - t0)) "$([ "$f" -eq 0 ] || echo "see $dir.*.test.log")"
 }
 
 # The clang ASan + UBSan build, with libFuzzer coverage in every object. Targets to
@@ -379,6 +379,7 @@ config_asan() {
     if setup_asan; then
         ASAN_STATE=built
         run_tests asan "$ASAN_DIR" "$t0" --timeout-multiplier 3
+        same_bits asan "$ASAN_DIR"
     else
         ASAN_STATE=failed
         build_failed asan "$ASAN_DIR" "$t0"
@@ -474,39 +475,31 @@ config_embree-extra() {
     # shellcheck disable=SC2206 # split on the colons on purpose
     local prefixes=($CYLRAY_EMBREE_PREFIXES)
     IFS=$IFS_old
-    local cc cxx type
     for prefix in "${prefixes[@]}"; do
         [ -n "$prefix" ] || continue
         n=$((n + 1))
+        t0=$(date +%s)
         mirror=$PWD/build/embree-prefix-$n
+        dir=build/test-embree-$n
         echo "   $prefix"
         if ! tests/embree/mirror-prefix.sh "$prefix" "$mirror" >/dev/null 2>&1; then
             note "embree-extra" 0 1 0 "FAILED: cannot read $prefix"
             continue
         fi
-        for cc in gcc clang; do
-            command -v $cc >/dev/null || { unavailable embree-extra $cc; continue; }
-            for type in release debugoptimized; do
-                t0=$(date +%s)
-                dir=build/test-embree-$n-$cc-$type
-                echo "   $cc, $type"
-                cxx=g++
-                [ $cc = gcc ] || cxx=clang++
-                if CC=$cc CXX=$cxx BUILD_TARGETS=tests/embree/test_embree_agree setup_build "$dir" \
-                    --buildtype=$type --werror -Dbench=false -Dembree=enabled \
-                    -Dembree_prefix="$mirror"; then
-                    targets=$(ninja -C "$dir" -t targets all | sed -n -E \
-                        's#^(src/(embree/)?lib[^/ ]*\.(so[.0-9]*|a)|tests/install/readme_example[0-9]+|tests/embree/test_embree_[a-z_]+): .*#\1#p')
-                    # shellcheck disable=SC2086 # one target a word
-                    if ninja -C "$dir" $targets >>"$dir.build.log" 2>&1; then
-                        grep -h 'cylray_embree:' "$dir.setup.log" | sed 's/^ */   /'
-                        run_tests "embree-extra" "$dir" "$t0" --suite embree --suite install
-                        continue
-                    fi
-                fi
-                build_failed "embree-extra" "$dir" "$t0"
-            done
-        done
+        command -v gcc >/dev/null || { unavailable embree-extra gcc; continue; }
+        if CC=gcc CXX=g++ BUILD_TARGETS=tests/embree/test_embree_agree setup_build "$dir" \
+            --buildtype=release --werror -Dbench=false -Dembree=enabled \
+            -Dembree_prefix="$mirror"; then
+            targets=$(ninja -C "$dir" -t targets all | sed -n -E \
+                's#^(src/(embree/)?lib[^/ ]*\.(so[.0-9]*|a)|tests/install/readme_example[0-9]+|tests/embree/test_embree_[a-z_]+): .*#\1#p')
+            # shellcheck disable=SC2086 # one target a word
+            if ninja -C "$dir" $targets >>"$dir.build.log" 2>&1; then
+                grep -h 'cylray_embree:' "$dir.setup.log" | sed 's/^ */   /'
+                run_tests "embree-extra" "$dir" "$t0" --suite embree --suite install
+                continue
+            fi
+        fi
+        build_failed "embree-extra" "$dir" "$t0"
     done
 }
 
@@ -519,12 +512,12 @@ for cfg in "${CONFIGS[@]}"; do
     clang) what="clang, debugoptimized, -Werror" ;;
     gcc-release) what="gcc, release (-O3), -Werror" ;;
     clang-release) what="clang, release (-O3), -Werror" ;;
-    estimates) what="gcc, release, other vendors' estimates in place of the hardware's (exact, high, low, table)" ;;
+    estimates) what="gcc, -O2, the hardware's estimates, then other vendors' in their place (exact, high, low, table)" ;;
     asan) what="clang, ASan + UBSan (+ fuzzer coverage), CYLRAY_TEST_QUICK=1" ;;
     aarch64) what="aarch64 cross, NEON, ASan + UBSan under qemu-user, CYLRAY_TEST_QUICK=1" ;;
     tsan) what="clang, ThreadSanitizer, the thread test" ;;
     fuzz) what="libFuzzer + ASan + UBSan on the asan build, $FUZZ_RUNS inputs from seed $FUZZ_SEED" ;;
-    embree-extra) what="gcc and clang, release and debugoptimized, the Embree adapter against ${CYLRAY_EMBREE_PREFIXES:-(no prefix)}" ;;
+    embree-extra) what="gcc, release, the Embree adapter against ${CYLRAY_EMBREE_PREFIXES:-(no prefix)}" ;;
     esac
     echo "== [$i/${#CONFIGS[@]}] $cfg: $what"
     "config_$cfg"
