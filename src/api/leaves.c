@@ -46,22 +46,25 @@ static cylray_status leaf_prepare(void *out, size_t m, size_t bytes, const void 
         if (prep(&p, shapes, k) != CYLRAY_OK)
             return CYLRAY_EINVAL;
         const int cone = p.kind == CYLRAY_KIND_CONE;
-        const float f[CYLRAY_LF_COUNT] = {
+        float f[CYLRAY_LF_COUNT] = {
             [CYLRAY_LF_CX] = p.c[0],
             [CYLRAY_LF_CY] = p.c[1],
             [CYLRAY_LF_CZ] = p.c[2],
             [CYLRAY_LF_VX] = p.v[0],
             [CYLRAY_LF_VY] = p.v[1],
             [CYLRAY_LF_VZ] = p.v[2],
-            [CYLRAY_LF_R] = cone ? cylray_cone_ra_(&p) : p.radius,
+            [CYLRAY_LF_R] = p.radius,
             [CYLRAY_LF_H] = p.half_height,
-            [CYLRAY_LF_RRVV] = cone ? p.kap : p.rr_vv,
+            [CYLRAY_LF_RRVV] = p.rr_vv,
             [CYLRAY_LF_HV] = p.h_v,
             [CYLRAY_LF_SQS] = p.sqrt_vv / p.g_s, /* an exact power-of-two scaling */
             [CYLRAY_LF_GS] = p.g_s,
-            [CYLRAY_LF_NSCALE] = cone ? p.cnrm : p.nscale,
+            [CYLRAY_LF_NSCALE] = p.nscale,
             [CYLRAY_LF_BOUND2] = p.bound2,
         };
+        if (cone)
+            f[CYLRAY_LF_RA] = cylray_cone_ra_(&p), f[CYLRAY_LF_KAP] = p.kap,
+            f[CYLRAY_LF_CNRM] = p.cnrm;
         for (int j = 0; j < CYLRAY_LF_COUNT; j++)
             geom[j][k] = f[j];
         meta[CYLRAY_LM_USED] |= 1u << k;

@@ -25,6 +25,13 @@ enum {
     CYLRAY_LF_BOUND2, /* squared bounding-sphere radius; -1 for padding */
     CYLRAY_LF_COUNT
 };
+/* The rows a cone's lane reads otherwise: the radius of its narrower end
+ * (cylray_cone_ra_), its slope kap and its normal's length cnrm (cylray_prepared). */
+enum {
+    CYLRAY_LF_RA = CYLRAY_LF_R,
+    CYLRAY_LF_KAP = CYLRAY_LF_RRVV,
+    CYLRAY_LF_CNRM = CYLRAY_LF_NSCALE,
+};
 /* meta_ holds lane masks (bit k: lane k): [0] the lanes in use (in its high 16 bits,
  * bit 16 + k, the cones with a tiny end), [1] those whose low
  * disc is part of the surface, [2] those whose high disc is, [3] those that are
@@ -32,10 +39,7 @@ enum {
  * leaf holds cylinders, spheres, or cones (cylinders among them as cones of equal
  * radii). The leaf starts with the fields a kernel reads, so it is passed to one as a
  * float pointer.
- *
- * A cone's lane reads some rows otherwise: CYLRAY_LF_R is the radius of its narrower
- * end ra (cylray_cone_ra_), CYLRAY_LF_RRVV its slope kap and CYLRAY_LF_NSCALE its cnrm
- * (cylray_prepared). A cone's radius is formed from its narrower end (cylray_cone_ra_,
+ * A cone's radius is formed from its narrower end (cylray_cone_ra_,
  * internal/variants.h). */
 /* The same radius in double at the axial coordinate z, hv = H |v| (never below 0; a
  * slope of 0, a leaf's cylinder, is ra at every z). */

@@ -73,7 +73,7 @@ CYLRAY_INLINE void KFN(anchor)(KFN(lanes) *st, const cylray_kat_ *k, const cylra
     /* R: a cone's narrower end's, which a leaf holds as a packet does */
     vf rr = st->rr;
     if (F.cone) {
-        const vf ra = F.leaf ? KFN(leaf_in)(k, F, CYLRAY_LF_R) : vset1(cylray_cone_ra_(k->P));
+        const vf ra = F.leaf ? KFN(leaf_in)(k, F, CYLRAY_LF_RA) : vset1(cylray_cone_ra_(k->P));
         rr = vmul(ra, ra);
     }
     /* the center's closest approach, squared: |w x d|^2 / d.d (w.w - (w.d)^2 / d.d would

@@ -58,7 +58,7 @@ CYLRAY_INLINE void KFN(cone_rims)(KFN(lanes) *st, const cylray_kat_ *k, const cy
 {
     const vf zero = vzero(), inf = vset1(INFINITY);
     const vm live = mor(st->side, st->inpar);
-    const vf kap = KFN(both_in)(k, F, offsetof(cylray_prepared, kap), CYLRAY_LF_RRVV);
+    const vf kap = KFN(both_in)(k, F, offsetof(cylray_prepared, kap), CYLRAY_LF_KAP);
     const vf vv = KDOT(st->vx, st->vy, st->vz, st->vx, st->vy, st->vz);
     const vm flat = mand(live, vgt(vmul(vmul(kap, kap), vv), vset1(1.0f)));
     if (!many(flat))
@@ -143,7 +143,7 @@ CYLRAY_INLINE void KFN(cone_tips)(KFN(lanes) *st, const cylray_kat_ *k, const cy
     if (!F.tiny) /* (a tip is a tiny end: cylray_cone_tiny_) */
         return;
     const vf zero = vzero();
-    const vf kap = KFN(both_in)(k, F, offsetof(cylray_prepared, kap), CYLRAY_LF_RRVV);
+    const vf kap = KFN(both_in)(k, F, offsetof(cylray_prepared, kap), CYLRAY_LF_KAP);
     vf ra, za;
     KFN(cone_anchor)(k, F, kap, &ra, &za);
     const vm tip = mand(mor(st->side, st->inpar), mand(veq(ra, zero), vlt(zero, vabs(kap))));

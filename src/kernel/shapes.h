@@ -78,7 +78,7 @@ CYLRAY_INLINE void KFN(cone_anchor)(const cylray_kat_ *k, const cylray_kflags_ F
 {
     if (F.leaf) {
         const vf hv = KFN(leaf_in)(k, F, CYLRAY_LF_HV);
-        *ra = KFN(leaf_in)(k, F, CYLRAY_LF_R);
+        *ra = KFN(leaf_in)(k, F, CYLRAY_LF_RA);
         *za = vsel(veq(kap, vzero()), vzero(), vneg(vxorsign(hv, kap)));
     } else {
         const cylray_prepared *P = k->P;
@@ -152,7 +152,7 @@ CYLRAY_INLINE void KFN(cone_planes)(const KFN(lanes) *st, const cylray_kat_ *k,
 {
     if (!F.tiny || !many(st->near))
         return;
-    const vf kap = KFN(both_in)(k, F, offsetof(cylray_prepared, kap), CYLRAY_LF_RRVV);
+    const vf kap = KFN(both_in)(k, F, offsetof(cylray_prepared, kap), CYLRAY_LF_KAP);
     vf ra, za;
     KFN(cone_anchor)(k, F, kap, &ra, &za);
     const vf zn = st->zn, zf = vsub(zn, vadd(za, za));
@@ -165,7 +165,7 @@ CYLRAY_INLINE int KFN(cone_side)(KFN(lanes) *st, const cylray_kat_ *k, const cyl
 {
     const vf zero = vzero();
     const vf vx = st->vx, vy = st->vy, vz = st->vz;
-    const vf kap = KFN(both_in)(k, F, offsetof(cylray_prepared, kap), CYLRAY_LF_RRVV);
+    const vf kap = KFN(both_in)(k, F, offsetof(cylray_prepared, kap), CYLRAY_LF_KAP);
     vf ra, za;
     KFN(cone_anchor)(k, F, kap, &ra, &za);
     const vf vv = KDOT(vx, vy, vz, vx, vy, vz);

@@ -80,8 +80,8 @@ CYLRAY_INLINE void KFN(normals)(const KFN(lanes) *st, const cylray_kat_ *k,
         const vf kx = KFN(cyl_in)(k, F, offsetof(cylray_prepared, vk[0]), vmul(st->vx, rvv)),
                  ky = KFN(cyl_in)(k, F, offsetof(cylray_prepared, vk[1]), vmul(st->vy, rvv)),
                  kz = KFN(cyl_in)(k, F, offsetof(cylray_prepared, vk[2]), vmul(st->vz, rvv));
-        const vf kap = KFN(both_in)(k, F, offsetof(cylray_prepared, kap), CYLRAY_LF_RRVV);
-        const vf cn = KFN(both_in)(k, F, offsetof(cylray_prepared, cnrm), CYLRAY_LF_NSCALE);
+        const vf kap = KFN(both_in)(k, F, offsetof(cylray_prepared, kap), CYLRAY_LF_KAP);
+        const vf cn = KFN(both_in)(k, F, offsetof(cylray_prepared, cnrm), CYLRAY_LF_CNRM);
         /* |r|: rounding near an apex may give a hit point a radius just below 0,
          * which must not turn the normal inwards. */
         const vf ar = vabs(vfma_x(st->ca, tr, st->cr)), rk = vmul(ar, kap), sc = vdiv(cn, ar);

@@ -157,21 +157,19 @@ CYLRAY_MAYBE_UNUSED static void DFN(leaf_geo)(DFN(geo) *g, const float *const *l
                                               const cylray_hit1 *hit, size_t m, size_t cnt)
 {
     float f[8][DW], lo[DW], hi[DW], sp[DW], co[DW], kap[DW];
-    static const int fields[8] = {CYLRAY_LF_CX, CYLRAY_LF_CY, CYLRAY_LF_CZ, CYLRAY_LF_VX,
-                                  CYLRAY_LF_VY, CYLRAY_LF_VZ, CYLRAY_LF_R,  CYLRAY_LF_H};
     for (size_t i = 0; i < DW; i++) {
         const size_t j = i < cnt ? i : 0;
         const float *geom = leaf[j];
-        const size_t lane = hit[j].lane % m;
-        for (int k = 0; k < 8; k++)
-            f[k][i] = geom[(size_t)fields[k] * m + lane];
         const uint32_t *meta = (const uint32_t *)(const void *)(geom + CYLRAY_LF_COUNT * m);
-        const unsigned caps = cylray_leaf_caps_(meta, (unsigned)lane);
-        lo[i] = caps & CYLRAY_CAPPED_LO ? 1.0f : 0.0f;
-        hi[i] = caps & CYLRAY_CAPPED_HI ? 1.0f : 0.0f;
-        sp[i] = meta[CYLRAY_LM_SPHERE] >> lane & 1u ? 1.0f : 0.0f;
-        co[i] = cylray_leaf_cones_(meta) >> lane & 1u ? 1.0f : 0.0f;
-        kap[i] = co[i] != 0.0f ? geom[(size_t)CYLRAY_LF_RRVV * m + lane] : 0.0f;
+        const cylray_shape_ s = cylray_leaf_shape_(geom, meta, m, hit[j].lane % m);
+        for (int k = 0; k < 3; k++)
+            f[k][i] = s.c[k], f[3 + k][i] = s.v[k];
+        f[6][i] = s.r, f[7][i] = s.h;
+        lo[i] = s.caps & CYLRAY_CAPPED_LO ? 1.0f : 0.0f;
+        hi[i] = s.caps & CYLRAY_CAPPED_HI ? 1.0f : 0.0f;
+        sp[i] = s.shape == CYLRAY_SHAPE_SPHERE ? 1.0f : 0.0f;
+        co[i] = s.shape == CYLRAY_SHAPE_CONE ? 1.0f : 0.0f;
+        kap[i] = s.kap;
     }
     vd c[3], v[3];
     for (int k = 0; k < 3; k++) {

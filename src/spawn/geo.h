@@ -146,20 +146,20 @@ CYLRAY_INLINE void DFN(geo_make)(DFN(geo) *g, const vd c[3], const vd v[3], vd R
         g->pu[k] = dmul(g->praw[k], il);
 }
 
-/* A prepared cylinder in every lane. */
+/* A prepared shape in every lane. */
 static inline void DFN(geo_prepared)(DFN(geo) *g, const cylray_prepared *P)
 {
+    const cylray_shape_ s = cylray_shape_of_(P);
     vd c[3], v[3];
     for (int k = 0; k < 3; k++) {
-        c[k] = dset1((double)P->c[k]);
-        v[k] = dset1((double)P->v[k]);
+        c[k] = dset1((double)s.c[k]);
+        v[k] = dset1((double)s.v[k]);
     }
     const vd zero = dset1(0.0);
-    const int cone = P->kind == CYLRAY_KIND_CONE;
     DFN(geo_make)
-    (g, c, v, dset1((double)(cone ? cylray_cone_ra_(P) : P->radius)),
-     dset1((double)P->half_height), dgt(dset1((P->caps & CYLRAY_CAPPED_LO) ? 1.0 : 0.0), zero),
-     dgt(dset1((P->caps & CYLRAY_CAPPED_HI) ? 1.0 : 0.0), zero),
-     dgt(dset1(P->kind == CYLRAY_KIND_SPHERE ? 1.0 : 0.0), zero),
-     dgt(dset1(P->kind == CYLRAY_KIND_CONE ? 1.0 : 0.0), zero), dset1((double)P->kap));
+    (g, c, v, dset1((double)s.r), dset1((double)s.h),
+     dgt(dset1((s.caps & CYLRAY_CAPPED_LO) ? 1.0 : 0.0), zero),
+     dgt(dset1((s.caps & CYLRAY_CAPPED_HI) ? 1.0 : 0.0), zero),
+     dgt(dset1(s.shape == CYLRAY_SHAPE_SPHERE ? 1.0 : 0.0), zero),
+     dgt(dset1(s.shape == CYLRAY_SHAPE_CONE ? 1.0 : 0.0), zero), dset1((double)s.kap));
 }

@@ -19,6 +19,7 @@
 #define CYLRAY_SPAWN_SAFETY 2.0 /* spawn/one_ray.c says why */
 #define CYLRAY_SQRT3 1.7320508075688774
 #endif
+#include "internal/shape.h"
 
 /* The files below, in the order a lane flows through them. */
 #include "spawn/geo.h"

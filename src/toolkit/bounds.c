@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* toolkit/bounds.c - the float box of a prepared cylinder and of a leaf, rounded outward. */
 #include "faces.h"
+#include "internal/shape.h"
 
 #include <string.h>
 
@@ -74,17 +75,28 @@ static void cone_box(const float c[3], const float v[3], double ra, double kap, 
     }
 }
 
+/* The box of a finite shape. */
+static void shape_box(const cylray_shape_ *s, float lo[3], float hi[3])
+{
+    switch (s->shape) {
+    case CYLRAY_SHAPE_SPHERE:
+        sphere_box(s->c, s->r, lo, hi);
+        break;
+    case CYLRAY_SHAPE_CONE:
+        cone_box(s->c, s->v, s->r, s->kap, s->h, lo, hi);
+        break;
+    default:
+        cyl_box(s->c, s->v, s->r, s->h, lo, hi);
+    }
+}
+
 cylray_status cylray_bounds(const cylray_prepared *cyl, float lo[3], float hi[3])
 {
     if (!cylray_prepared_ok_(cyl) || !lo || !hi || cyl->kind == CYLRAY_KIND_INFINITE)
         return CYLRAY_EINVAL;
     float l[3], h[3];
-    if (cyl->kind == CYLRAY_KIND_SPHERE)
-        sphere_box(cyl->c, cyl->radius, l, h);
-    else if (cyl->kind == CYLRAY_KIND_CONE)
-        cone_box(cyl->c, cyl->v, cylray_cone_ra_(cyl), cyl->kap, cyl->half_height, l, h);
-    else
-        cyl_box(cyl->c, cyl->v, cyl->radius, cyl->half_height, l, h);
+    const cylray_shape_ s = cylray_shape_of_(cyl);
+    shape_box(&s, l, h);
     memcpy(lo, l, sizeof l);
     memcpy(hi, h, sizeof h);
     return CYLRAY_OK;
@@ -103,20 +115,11 @@ static cylray_status leaf_bounds(const float *geom, const uint32_t *meta, unsign
     for (unsigned i = 0; i < m; i++) {
         if (!((used >> i) & 1u))
             continue;
-        float c[3], v[3], bl[3], bh[3];
-        for (int k = 0; k < 3; k++) {
-            c[k] = geom[(CYLRAY_LF_CX + k) * m + i];
-            v[k] = geom[(CYLRAY_LF_VX + k) * m + i];
-        }
-        double H = geom[CYLRAY_LF_H * m + i];
-        if (!isfinite(H))
+        const cylray_shape_ s = cylray_leaf_shape_(geom, meta, m, i);
+        if (!isfinite(s.h))
             return CYLRAY_EINVAL;
-        if ((meta[CYLRAY_LM_SPHERE] >> i) & 1u)
-            sphere_box(c, geom[CYLRAY_LF_R * m + i], bl, bh);
-        else if ((cylray_leaf_cones_(meta) >> i) & 1u) /* R is ra, RRVV the slope */
-            cone_box(c, v, geom[CYLRAY_LF_R * m + i], geom[CYLRAY_LF_RRVV * m + i], H, bl, bh);
-        else
-            cyl_box(c, v, geom[CYLRAY_LF_R * m + i], H, bl, bh);
+        float bl[3], bh[3];
+        shape_box(&s, bl, bh);
         for (int k = 0; k < 3; k++) {
             l[k] = fminf(l[k], bl[k]);
             h[k] = fmaxf(h[k], bh[k]);

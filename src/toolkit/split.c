@@ -2,6 +2,7 @@
 /* toolkit/split.c - boxes along a long cylinder (cylray_split_boxes): slices whose boxes
  * hug a tilted axis far closer than its one box does. */
 #include "faces.h"
+#include "internal/shape.h"
 
 /* The box of the disc of radius R centred on the axis at t (world units, exact as a
  * double-double) from the center: coordinate k spans c_k + t n_k -+ R s_k. */
@@ -28,7 +29,7 @@ static void disc_box(const float c[3], const float v[3], double R, cylray_dd t, 
 /* The rule for k = 0: the smallest k at which, in each coordinate j but the one the
  * axis is closest to, a slice's extent from the tilt, 2H |n_j| / k, is at most its
  * extent from the radius, 2R sqrt(1 - n_j^2); 1 to CYLRAY_SPLIT_MAX. */
-static size_t split_count(const cylray_prepared *cyl)
+static size_t split_count(const cylray_shape_ *cyl)
 {
     const float *v = cyl->v;
     int m = 0;
@@ -40,8 +41,8 @@ static size_t split_count(const cylray_prepared *cyl)
         if (j == m || v[j] == 0)
             continue;
         double vi = v[(j + 1) % 3], vk = v[(j + 2) % 3];
-        double ratio = (double)cyl->half_height * fabs((double)v[j]) /
-                       ((double)cyl->radius * sqrt(vi * vi + vk * vk));
+        double ratio = (double)cyl->h * fabs((double)v[j]) /
+                       ((double)cyl->r_wide * sqrt(vi * vi + vk * vk));
         want = fmax(want, ceil(ratio));
     }
     return want >= CYLRAY_SPLIT_MAX ? CYLRAY_SPLIT_MAX : (size_t)want;
@@ -51,9 +52,9 @@ static size_t split_count(const cylray_prepared *cyl)
  * z): slice i of k lies between the planes z = c_z + R q_i and c_z + R q_(i+1), q_i as
  * for a cylinder, and spans c_x, c_y -+ R sqrt(1 - q^2) at the q of its range nearest 0
  * (R where the range holds 0). */
-static void sphere_slices(const cylray_prepared *cyl, size_t k, float (*lo)[3], float (*hi)[3])
+static void sphere_slices(const cylray_shape_ *cyl, size_t k, float (*lo)[3], float (*hi)[3])
 {
-    const double R = cyl->radius;
+    const double R = cyl->r;
     const cylray_dd z = dd_make(0.0, 0.0);
     double qa = -1.0;
     for (size_t i = 0; i < k; i++) {
@@ -82,37 +83,38 @@ size_t cylray_split_boxes(const cylray_prepared *cyl, size_t k, float (*lo)[3], 
 {
     if (!cylray_prepared_ok_(cyl) || cyl->kind == CYLRAY_KIND_INFINITE)
         return 0;
+    const cylray_shape_ s = cylray_shape_of_(cyl);
     if (k == 0)
-        k = cyl->kind == CYLRAY_KIND_SPHERE ? 1 : split_count(cyl);
+        k = s.shape == CYLRAY_SHAPE_SPHERE ? 1 : split_count(&s);
     if (!lo || !hi)
         return k;
-    if (cyl->kind == CYLRAY_KIND_SPHERE) {
-        sphere_slices(cyl, k, lo, hi);
+    if (s.shape == CYLRAY_SHAPE_SPHERE) {
+        sphere_slices(&s, k, lo, hi);
         return k;
     }
     /* Slice i runs between the discs at t_i = H q_i, q_i = (2i - k) / k rounded once:
      * q_0 = -1 and q_k = 1 exactly and the q_i increase, so neighbouring slices share
      * their disc exactly and together cover the cylinder; H q_i is exact as a
      * double-double. */
-    const double H = cyl->half_height, R = cyl->radius;
+    const double H = s.h, R = s.r;
     /* A cone's slice is the hull of its two discs, of radius r(hv q) at t = H q (hv =
      * H |v|, r as internal/leaf.h forms it): evaluated in double to a few units of 2^-53
      * of ra + |kap| 2 hv, which 2^-48 of it covers */
-    const int cone = cyl->kind == CYLRAY_KIND_CONE;
+    const int cone = s.shape == CYLRAY_SHAPE_CONE;
     double ra = 0, kap = 0, hv = 0, pad = 0;
     if (cone) {
-        const double vv = (double)cyl->v[0] * cyl->v[0] + (double)cyl->v[1] * cyl->v[1] +
-                          (double)cyl->v[2] * cyl->v[2];
-        ra = cylray_cone_ra_(cyl), kap = cyl->kap, hv = H * sqrt(vv);
+        const double vv =
+            (double)s.v[0] * s.v[0] + (double)s.v[1] * s.v[1] + (double)s.v[2] * s.v[2];
+        ra = s.r, kap = s.kap, hv = H * sqrt(vv);
         pad = 0x1p-48 * (ra + 2 * fabs(kap) * hv);
     }
     float plo[3], phi[3];
-    disc_box(cyl->c, cyl->v, cone ? cylray_cone_radius_(ra, kap, hv, -hv) + pad : R,
+    disc_box(s.c, s.v, cone ? cylray_cone_radius_(ra, kap, hv, -hv) + pad : R,
              dd_two_prod(H, -1.0), plo, phi);
     for (size_t i = 0; i < k; i++) {
         double q = ((double)(i + 1) * 2.0 - (double)k) / (double)k;
         float nlo[3], nhi[3];
-        disc_box(cyl->c, cyl->v, cone ? cylray_cone_radius_(ra, kap, hv, hv * q) + pad : R,
+        disc_box(s.c, s.v, cone ? cylray_cone_radius_(ra, kap, hv, hv * q) + pad : R,
                  dd_two_prod(H, q), nlo, nhi);
         for (int j = 0; j < 3; j++) {
             lo[i][j] = fminf(plo[j], nlo[j]);

@@ -3,6 +3,7 @@
  * entry points, spheres and cones (the cylinder's path, compiled twice, is
  * surface_cylinder.c's). */
 #include "surface.h"
+#include "internal/shape.h"
 
 /* A sphere, as pbrt-v4's full sphere about the z axis through its center, at the point
  * where the ray from the center through p meets it: with r = p - c, h = |(r_x, r_y)|
@@ -105,26 +106,34 @@ static void cone_surface(surf_cyl *s, double ra, double kap, const float p[3], i
         dpdu[k] = (float)(2 * H * n[k] + (rhi - rlo) * e[k] / l);
 }
 
+static void shape_surface(const cylray_shape_ *sh, const float p[3], int32_t part, float uv[2],
+                          float dpdu[3], float dpdv[3])
+{
+    if (sh->shape == CYLRAY_SHAPE_SPHERE) {
+        sphere_surface(sh->c, sh->r, p, part, uv, dpdu, dpdv);
+        return;
+    }
+    surf_cyl s;
+    for (int k = 0; k < 3; k++) {
+        s.c[k] = sh->c[k];
+        s.v[k] = sh->v[k];
+    }
+    s.R = sh->r;
+    s.H = sh->h;
+    /* (a leaf's cylinder given as a cone, of slope 0, is a cylinder here) */
+    if (sh->shape == CYLRAY_SHAPE_CONE && sh->kap != 0)
+        cone_surface(&s, sh->r, sh->kap, p, part, uv, dpdu, dpdv);
+    else
+        surface_at(&s, p, part, uv, dpdu, dpdv);
+}
+
 void cylray_surface(const cylray_prepared *cyl, const float p[3], int32_t part, float uv[2],
                     float dpdu[3], float dpdv[3])
 {
     if (!cylray_prepared_ok_(cyl) || !p)
         return;
-    if (cyl->kind == CYLRAY_KIND_SPHERE) {
-        sphere_surface(cyl->c, cyl->radius, p, part, uv, dpdu, dpdv);
-        return;
-    }
-    surf_cyl s;
-    for (int k = 0; k < 3; k++) {
-        s.c[k] = cyl->c[k];
-        s.v[k] = cyl->v[k];
-    }
-    s.R = cyl->radius;
-    s.H = cyl->kind == CYLRAY_KIND_INFINITE ? INFINITY : cyl->half_height;
-    if (cyl->kind == CYLRAY_KIND_CONE)
-        cone_surface(&s, cylray_cone_ra_(cyl), cyl->kap, p, part, uv, dpdu, dpdv);
-    else
-        surface_at(&s, p, part, uv, dpdu, dpdv);
+    const cylray_shape_ s = cylray_shape_of_(cyl);
+    shape_surface(&s, p, part, uv, dpdu, dpdv);
 }
 
 static void leaf_surface(const float *geom, const uint32_t *meta, unsigned m,
@@ -133,26 +142,8 @@ static void leaf_surface(const float *geom, const uint32_t *meta, unsigned m,
 {
     if (!hit || !p || hit->lane >= m || !((meta[CYLRAY_LM_USED] >> hit->lane) & 1u))
         return;
-    const unsigned i = hit->lane;
-    surf_cyl s;
-    if ((meta[CYLRAY_LM_SPHERE] >> i) & 1u) {
-        for (int k = 0; k < 3; k++)
-            s.c[k] = geom[(CYLRAY_LF_CX + k) * m + i];
-        sphere_surface(s.c, geom[CYLRAY_LF_R * m + i], p, hit->part, uv, dpdu, dpdv);
-        return;
-    }
-    for (int k = 0; k < 3; k++) {
-        s.c[k] = geom[(CYLRAY_LF_CX + k) * m + i];
-        s.v[k] = geom[(CYLRAY_LF_VX + k) * m + i];
-    }
-    s.R = geom[CYLRAY_LF_R * m + i];
-    s.H = geom[CYLRAY_LF_H * m + i];
-    const float kap = geom[CYLRAY_LF_RRVV * m + i];
-    /* a cone's lane: R is ra, RRVV its slope (slope 0: the cylinder it prepares as) */
-    if (((cylray_leaf_cones_(meta) >> i) & 1u) && kap != 0)
-        cone_surface(&s, s.R, kap, p, hit->part, uv, dpdu, dpdv);
-    else
-        surface_at(&s, p, hit->part, uv, dpdu, dpdv);
+    const cylray_shape_ s = cylray_leaf_shape_(geom, meta, m, hit->lane);
+    shape_surface(&s, p, hit->part, uv, dpdu, dpdv);
 }
 
 #define LEAF_SURFACE_(m)                                                                       \
