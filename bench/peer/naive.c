@@ -14,7 +14,7 @@
  * this is the speed a user gets without accuracy.
  *
  * The file is compiled once per ISA into its own static library with the flags a user
- * would pass (bench/meson.build), naming its functions tb_stream_<TB_VARIANT> (the
+ * would pass (bench/peer/meson.build), naming its functions tb_stream_<TB_VARIANT> (the
  * cylinder), tb_sphere_stream_<TB_VARIANT>, tb_sphere_run_<TB_VARIANT>,
  * tb_cone_stream_<TB_VARIANT> and tb_cone_run_<TB_VARIANT>. */
 #include "textbook.h"

@@ -63,7 +63,7 @@ unsigned cylray_cpu_store_policy_(void)
 /* The same cores divide quickly (a 256-bit division every 3.3 cycles on Zen 4): there
  * an estimate with its Newton steps is a longer chain of more operations than the
  * division it replaces, and CYLRAY_FAST ran 13-30 % slower on SSE4.1 and AVX2 and up
- * to 7 % on AVX-512 (docs/performance.md, "CYLRAY_FAST on Zen 4"). */
+ * to 7 % on AVX-512 (docs/measurements/2026-12-06-fast-zen4.md). */
 int cylray_cpu_divides_fast_(void)
 {
     return amd_or_hygon();
