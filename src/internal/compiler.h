@@ -14,6 +14,13 @@
  * Compiled as cold, their helpers (the SSE4.1 exact products in double) would be
  * calls, with every live vector register spilled around each. */
 #define CYLRAY_OUTLINE static __attribute__((noinline))
+/* Out of line and one copy: gcc would clone a function for each constant it is called
+ * with (a leaf's width), which buys nothing where the work is per lane. */
+#if defined(__clang__)
+#define CYLRAY_ONE_COPY CYLRAY_OUTLINE
+#else
+#define CYLRAY_ONE_COPY static __attribute__((noinline, noclone))
+#endif
 /* Makes the compiler read memory again after this point instead of keeping what it
  * read before in registers (or in spill slots). */
 #define CYLRAY_REREAD() __asm__ volatile("" ::: "memory")
@@ -31,6 +38,7 @@
 #define CYLRAY_INLINE static inline
 #define CYLRAY_NOINLINE static
 #define CYLRAY_OUTLINE static
+#define CYLRAY_ONE_COPY static
 #define CYLRAY_REREAD() ((void)0)
 #define CYLRAY_MAYBE_UNUSED
 #define CYLRAY_POPCOUNT(x) cylray_popcount_((unsigned)(x))

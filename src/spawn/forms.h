@@ -153,8 +153,9 @@ CYLRAY_MAYBE_UNUSED static void DFN(spawn_stream)(const cylray_prepared *P,
 
 /* Leaves in bulk: hit i of a query of leaf[i] (its geom_ array, m lanes a field). The
  * lanes' cylinders are gathered into vectors; so are the AoS rays and hits. */
-CYLRAY_MAYBE_UNUSED static void DFN(leaf_geo)(DFN(geo) *g, const float *const *leaf,
-                                              const cylray_hit1 *hit, size_t m, size_t cnt)
+CYLRAY_MAYBE_UNUSED CYLRAY_ONE_COPY void DFN(leaf_geo)(DFN(geo) *g, const float *const *leaf,
+                                                       const cylray_hit1 *hit, size_t m,
+                                                       size_t cnt)
 {
     float f[8][DW], lo[DW], hi[DW], sp[DW], co[DW], kap[DW];
     for (size_t i = 0; i < DW; i++) {
