@@ -18,7 +18,7 @@
 
 #define CYLRAY_MAGIC 0x63796c72u /* "cylr" */
 
-/* A cone's radius is formed from its narrower end (kernel/shapes.h, cone_anchor): ra,
+/* A cone's radius is formed from its narrower end (kernel/shape/cone_frame.h, cone_anchor): ra,
  * that end's radius as given (r0 where kap > 0, r1 elsewhere), plus kap (z - za) with za
  * its axial coordinate, -H|v| or +H|v|. */
 static inline float cylray_cone_ra_(const cylray_prepared *p)
@@ -61,7 +61,7 @@ static inline int cylray_slender_(const cylray_prepared *p)
  * side's quadratic and its normal take the cone's branch. */
 #define CYLRAY_KF_CONE 0x20000u
 /* A cone whose narrower end is under 1/64 of the other (cylray_cone_tiny_), or a leaf
- * that holds one: rays near that end measure from it (kernel/shapes.h). */
+ * that holds one: rays near that end measure from it (kernel/shape/cone_frame.h). */
 #define CYLRAY_KF_TINY 0x40000u
 /* A slender shape (cylray_slender_), or a leaf that holds one: each lane takes its
  * frame where the ray passes (kernel/anchor.h). Only the drivers that read their flags

@@ -36,10 +36,11 @@ CYLRAY_INLINE vm KFN(slender)(const cylray_kat_ *k, const cylray_kflags_ F)
  * the center's frame bit for bit. Axial coordinates are then measured from a: the
  * slab's planes lie at -+H|v| - m v.v, with v.v as an exact two-term sum, so that a
  * plane near a is placed to the ulps of its own distance from it (KFN(axial): the slab
- * in KFN(ends), the cone's narrower end in KFN(cone_side)). Sets st->am and st->s, and
- * returns h in hx, hy, hz (w's rounded part where the center stays). */
+ * in KFN(ends), the cone's narrower end in KFN(cone_side)). rr is the shape's R^2 (a
+ * cone's narrower end's: KFN(shape_anchor_rr)). Sets st->am and st->s, and returns h in
+ * hx, hy, hz (w's rounded part where the center stays). */
 CYLRAY_INLINE void KFN(anchor)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F,
-                               vf *hx, vf *hy, vf *hz)
+                               vf rr, vf *hx, vf *hy, vf *hz)
 {
     const vf zero = vzero(), four = vset1(4.0f);
     const vf vx = st->vx, vy = st->vy, vz = st->vz, dx = st->dx, dy = st->dy, dz = st->dz;
@@ -70,12 +71,6 @@ CYLRAY_INLINE void KFN(anchor)(KFN(lanes) *st, const cylray_kat_ *k, const cylra
     const vf nl = KDOT(lx, ly, lz, lx, ly, lz), no = KDOT(ox, oy, oz, ox, oy, oz);
     const vm at_o = vle(vmul(four, no), nl);
     const vf mc = vsel(at_o, mo, ml), nc = vsel(at_o, no, nl);
-    /* R: a cone's narrower end's, which a leaf holds as a packet does */
-    vf rr = st->rr;
-    if (F.cone) {
-        const vf ra = F.leaf ? KFN(leaf_in)(k, F, CYLRAY_LF_RA) : vset1(cylray_cone_ra_(k->P));
-        rr = vmul(ra, ra);
-    }
     /* the center's closest approach, squared: |w x d|^2 / d.d (w.w - (w.d)^2 / d.d would
      * cancel to eps |w|^2 from an origin far from the center) */
     const vf cx = vfms(why, dz, vmul(whz, dy)), cy = vfms(whz, dx, vmul(whx, dz)),

@@ -40,46 +40,21 @@ CYLRAY_INLINE void KFN(planes)(const KFN(lanes) *st, const cylray_kat_ *k,
  * surface (the slab and the caps of a finite cylinder). */
 CYLRAY_INLINE void KFN(ends)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
 {
-    const vf zero = vzero(), inf = vset1(INFINITY), tn = st->tn, tf = st->tf;
+    const vf inf = vset1(INFINITY), tn = st->tn, tf = st->tf;
     st->side_lo = tn, st->side_hi = tf;
-    /* The axial coordinate z0 + t dv, over |v|. An aligned axis is measured along the
-     * third coordinate itself, whatever its sign: the slab is symmetric, and the sign
-     * only names the caps. */
-    vf z0 = zero, dv = zero;
-    if (F.finite && !F.sphere) {
-        z0 = F.aligned ? st->pz
-             : F.cone  ? KFN(cone_z0)(st)
-                       : KDOT(st->px, st->py, st->pz, st->vx, st->vy, st->vz);
-        dv = F.aligned ? st->dz
-             : F.cone  ? KFN(cone_dv)(st)
-                       : KDOT(st->dx, st->dy, st->dz, st->vx, st->vy, st->vz);
-    }
+    vf z0, dv; /* the axial coordinate z0 + t dv, over |v| */
+    KFN(shape_axial)(st, F, &z0, &dv);
     st->z0 = z0, st->dv = dv;
     if (F.capped) {
         /* The solid is the infinite one cut by the slab |z| <= H: inside on [max of the
          * entries, min of the exits]. The rim is then shared, not tested twice. A ray
          * parallel to the axis inside the tube is inside the side everywhere. */
         vf lo = tn, hi = tf;
-        if (F.cone) {
-            /* The double cone's inside on the ray: [tn, tf] where A > 0, on one nappe
-             * (the cone's where its radius there is not negative); where A < 0 the two
-             * half-lines beyond the roots, one on each side of the apex's plane, of
-             * which the cone's runs the way the radius grows (the sign of a, exact,
-             * rather than that of the radius at a root, which is 0 at a root near the
-             * apex). The slab keeps the other nappe out; these choices keep rounding
-             * near a tip from passing a sliver of it. */
-            const vm neg = vlt(st->A, zero);
-            const vm far = vgt(st->ca, zero);
-            lo = vsel(neg, vsel(far, tf, vneg(inf)), tn);
-            hi = vsel(neg, vsel(far, inf, tn), tf);
-            const vf mid = vmul(vset1(0.5f), vadd(tn, tf));
-            st->side = mandn(st->side, mandn(vlt(vfma_x(st->ca, mid, st->cr), zero), neg));
-        }
+        KFN(shape_interval)(st, F, &lo, &hi);
         st->side_lo = vsel(st->inpar, vneg(inf), lo), st->side_hi = vsel(st->inpar, inf, hi);
         vf zlo, zhi;
         KFN(planes)(st, k, F, &zlo, &zhi);
-        if (F.cone) /* a cone's lanes measured from its narrower end */
-            KFN(cone_planes)(st, k, F, &zlo, &zhi);
+        KFN(shape_planes)(st, k, F, &zlo, &zhi);
         /* Two divisions rather than one reciprocal: a cap hit is then as exact as
          * the plane's offset, and dv = 0 gives the infinities the slab wants. */
         vf na = vsub(zlo, z0), nb = vsub(zhi, z0);
@@ -97,13 +72,11 @@ CYLRAY_INLINE void KFN(ends)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_
         ta = vsel(veq(ta, ta), ta, vneg(tb));
         tb = vsel(veq(tb, tb), tb, vneg(ta));
         vf slab_in = vmin(ta, tb), slab_out = vmax(ta, tb);
-        if (F.cone)
-            KFN(cone_tips)(st, k, F, slab_in, slab_out);
+        KFN(shape_slab)(st, k, F, slab_in, slab_out);
         st->t_in = vmax(st->side_lo, slab_in);
         st->t_out = vmin(st->side_hi, slab_out);
         st->ok_in = mand(mor(st->side, st->inpar), vle(st->t_in, st->t_out));
-        if (F.cone)
-            KFN(cone_rims)(st, k, F, slab_in, slab_out);
+        KFN(shape_rims)(st, k, F, slab_in, slab_out);
         st->ok_out = st->ok_in;
         if (F.one_end)
             KFN(open_ends)(st, k, F, slab_in, slab_out);

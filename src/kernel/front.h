@@ -47,20 +47,13 @@ CYLRAY_INLINE int KFN(load_ray)(KFN(lanes) *st, const cylray_kat_ *k, const cylr
 }
 
 /* Stage 2, the cheap rejections: the sphere around a finite cylinder and the tube
- * around the axis, from w = o - c rounded (a sphere: itself, with a margin). Returns
- * whether any lane is left. */
+ * around the axis (KFN(shape_reject)), from w = o - c rounded (a sphere: itself, with a
+ * margin). Returns whether any lane is left. */
 CYLRAY_INLINE int KFN(reject)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
 {
     const vf zero = vzero(), inf = vset1(INFINITY);
     const vf dx = st->dx, dy = st->dy, dz = st->dz, dd = st->dd;
-    vf vx = zero, vy = zero, vz = zero;
-    if (!F.aligned && !F.sphere)
-        vx = KFN(both_in)(k, F, offsetof(cylray_prepared, v[0]), CYLRAY_LF_VX),
-        vy = KFN(both_in)(k, F, offsetof(cylray_prepared, v[1]), CYLRAY_LF_VY);
-    if (!F.sphere)
-        vz = F.leaf ? KFN(leaf_in)(k, F, CYLRAY_LF_VZ)
-                    : vset1(F.aligned ? k->P->vr : k->P->v[2]);
-    st->vx = vx, st->vy = vy, st->vz = vz;
+    KFN(shape_axis)(st, k, F);
     /* A leaf derives what it does not store from what it does (64 bytes a lane). */
     st->rad = KFN(leaf_in)(k, F, CYLRAY_LF_R); /* zero elsewhere */
     st->rr = KFN(cyl_in)(k, F, offsetof(cylray_prepared, rr), vmul(st->rad, st->rad));
@@ -96,39 +89,5 @@ CYLRAY_INLINE int KFN(reject)(KFN(lanes) *st, const cylray_kat_ *k, const cylray
                    : vkeep(vgt(vadd(wd2, wd2), ww), s);
     }
     st->rdd = rdd, st->s = s;
-    if (F.sphere) {
-        /* The sphere test above is the sphere itself, with a margin: no tube follows.
-         * The quadratic's A is d.d. */
-        st->ex = st->ey = st->ez = zero;
-        st->A = dd, st->act = act;
-        return many(act);
-    }
-
-    /* e = d x v to a relative accuracy that survives a ray almost along the axis.
-     * With an aligned axis v = (0, 0, +-1) and e = (dy, -dx, 0) up to the sign of v,
-     * which no product below sees. */
-    vf g0, A = st->A;
-    st->ex = st->ey = st->ez = zero;
-    if (F.aligned) {
-        g0 = vfms(whx, dy, vmul(why, dx)); /* plain: within the margin below */
-    } else {
-        st->ex = vdop_x(dy, vz, dz, vy), st->ey = vdop_x(dz, vx, dx, vz);
-        st->ez = vdop_x(dx, vy, dy, vx);
-        A = KDOT(st->ex, st->ey, st->ez, st->ex, st->ey, st->ez);
-        g0 = KDOT(st->ex, st->ey, st->ez, whx, why, whz);
-    }
-    st->A = A;
-    if (F.cone) { /* no tube: the cone's side is no cylinder's */
-        st->act = act;
-        return many(act);
-    }
-    /* The ray's line passes at |g| / sqrt(A) from the axis (g = e.w moves neither with
-     * the shift nor along the axis). g0 is off from the exact g by less than
-     * 2^-21 sqrt(A ww); beyond that margin the line misses the tube. A vector whose
-     * rays all miss the sphere or the tube ends here, before the exact work, at one
-     * branch (two would mispredict on a mix of the two kinds of miss). */
-    act = mandn(act, vgt(vmul(g0, g0),
-                         vmul(vmul(A, vset1(KM_TUBE_A)), vfma(ww, vset1(KM_TUBE_WW), st->rr))));
-    st->act = act;
-    return many(act);
+    return KFN(shape_reject)(st, F, act, ww);
 }

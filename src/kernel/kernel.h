@@ -14,8 +14,9 @@
  * packets of several, KFN(isect_stream_table) and KFN(occ_stream_table); KFN(vw) = VW.
  *
  * The files below read in the order a vector flows: the margins and where a vector's
- * lanes come from (shared by every instantiation), the math, the lane state, the
- * stages from the ray to the store, the block that runs them, the packet, stream and
+ * lanes come from (shared by every instantiation), the math, the lane state, a
+ * slender shape's frame, each shape's own work (kernel/shape.h), the stages from the
+ * ray to the store, the block that runs them, the packet, stream and
  * leaf drivers, the drivers with the flags read at run time, and the tables.
  *
  * The math is docs/design.md section 2. Coordinates are cylinder-relative: w = o - c is
@@ -45,11 +46,10 @@ typedef int (*KFN(leaf_fn))(const float *, size_t, cylray_ray1 *, cylray_hit1 *,
 
 #include "kmath.h"
 #include "state.h"
-#include "front.h"
 #include "anchor.h"
-#include "shapes.h"
+#include "shape.h"
+#include "front.h"
 #include "solve.h"
-#include "rims.h"
 #include "ends.h"
 #include "store.h"
 #include "block.h"

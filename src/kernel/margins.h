@@ -26,9 +26,9 @@
  * KM_ROOTLESS: a cone's A = e.e - v.v a^2 below 2^-18 e.e, some 32 ulps of the terms it
  *   is rounded from, may be 0 exactly (a line along the side's lines), where a line can
  *   have no roots; above it the sign of A is sure, and a line steeper than the side
- *   (A < 0) always has roots (kernel/shapes.h).
+ *   (A < 0) always has roots (kernel/shape/cone.h).
  * KM_CANCEL: a cone's A below 2^-5 e.e: the ray runs within a few degrees of the
- *   side's lines, where nB and C cancel too, and the roots are polished (kernel/shapes.h).
+ *   side's lines, where nB and C cancel too, and the roots are polished (kernel/shape/cone.h).
  * KM_RIM: a cone's entry by a disc and exit by the side (or the reverse) within 2^-16 of
  *   their size, some 256 ulps, pass a rim; the disc there decides (kernel/ends.h).
  * KM_ROOT: a cone's side root and an end's plane t within 2^-4 of their size may be in

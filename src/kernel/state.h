@@ -24,11 +24,14 @@ typedef struct {
     vf fx, fy, fz, nB, C, D, AR2;
     vm side, inpar; /* the side's roots exist; parallel inside the tube (a cone: the
                      * whole line inside its double cone) */
-    vf cr, ca;      /* a cone: its radius at the origin's level, and the radius's rate
-                     * along the ray */
-    vm pol;         /* a cone: nB cancelled, its roots to be polished */
-    vm near;        /* a tiny-ended cone: the lanes measured from that end, */
-    vf zn;          /* and its plane's axial coordinate there (kernel/shapes.h) */
+    /* side: the shapes' own (kernel/shape/), set where the shape is not theirs to
+     * nothing read (KFN(shape_start)) */
+    struct {
+        vf cr, ca; /* the radius at the origin's level, and its rate along the ray */
+        vm pol;    /* nB cancelled, the roots to be polished */
+        vm near;   /* a tiny-ended cone: the lanes measured from that end, */
+        vf zn;     /* and its plane's axial coordinate there (shape/cone_frame.h) */
+    } cone;
     /* roots, ends: the side's roots, and entry and exit relative to p */
     vf tn, tf, z0, dv, side_lo, side_hi, t_in, t_out;
     vm ok_in, ok_out;

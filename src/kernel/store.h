@@ -16,12 +16,8 @@ CYLRAY_INLINE void KFN(renormalize)(const KFN(lanes) *st, const cylray_kflags_ F
          * beyond the documented 2^62), has no direction of its own: the side then
          * faces the ray, along -d_perp (v x e = v.v d_perp) on entry (a sphere's
          * along -d). */
-        vf ux = st->dx, uy = st->dy, uz = F.sphere ? st->dz : zero;
-        if (!F.aligned && !F.sphere) {
-            ux = vfms(st->vy, st->ez, vmul(st->vz, st->ey));
-            uy = vfms(st->vz, st->ex, vmul(st->vx, st->ez));
-            uz = vfms(st->vx, st->ey, vmul(st->vy, st->ex));
-        }
+        vf ux, uy, uz;
+        KFN(shape_facing)(st, F, &ux, &uy, &uz);
         *nx = vsel(lost, vsel(st->front, vneg(ux), ux), *nx);
         *ny = vsel(lost, vsel(st->front, vneg(uy), uy), *ny);
         *nz = vsel(lost, vsel(st->front, vneg(uz), uz), *nz);
@@ -58,69 +54,15 @@ CYLRAY_INLINE void KFN(normals)(const KFN(lanes) *st, const cylray_kat_ *k,
                                 const cylray_kflags_ F, vm on_side, vm cap_hi, vf *onx, vf *ony,
                                 vf *onz)
 {
-    const vf zero = vzero(), one = vset1(1.0f), tr = st->tr;
+    const vf zero = vzero(), one = vset1(1.0f);
     const vm hit = st->hit;
     vf nx, ny, nz;
-    if (F.sphere) {
-        /* (p + t d) / R, the hit point relative to the center */
-        const vf kn = KFN(both_in)(k, F, offsetof(cylray_prepared, nscale), CYLRAY_LF_NSCALE);
-        nx = vmul(vfma(tr, st->dx, st->px), kn);
-        ny = vmul(vfma(tr, st->dy, st->py), kn);
-        nz = vmul(vfma(tr, st->dz, st->pz), kn);
-    } else if (F.aligned) {
-        const vf kn = vset1(k->P->nscale);
-        nx = vmul(vfma(tr, st->dx, st->px), kn);
-        ny = vmul(vfma(tr, st->dy, st->py), kn);
-        nz = zero;
-    } else if (F.cone) {
-        /* The gradient of |x_perp|^2 - r^2: p_perp - r slope n_axis, of length
-         * r / cnrm on the side; p_perp = v x (p x v) / v.v as the cylinder's, and
-         * slope n_axis = kap v. */
-        const vf rvv = KRCP(F, KDOT(st->vx, st->vy, st->vz, st->vx, st->vy, st->vz));
-        const vf kx = KFN(cyl_in)(k, F, offsetof(cylray_prepared, vk[0]), vmul(st->vx, rvv)),
-                 ky = KFN(cyl_in)(k, F, offsetof(cylray_prepared, vk[1]), vmul(st->vy, rvv)),
-                 kz = KFN(cyl_in)(k, F, offsetof(cylray_prepared, vk[2]), vmul(st->vz, rvv));
-        const vf kap = KFN(both_in)(k, F, offsetof(cylray_prepared, kap), CYLRAY_LF_KAP);
-        const vf cn = KFN(both_in)(k, F, offsetof(cylray_prepared, cnrm), CYLRAY_LF_CNRM);
-        /* |r|: rounding near an apex may give a hit point a radius just below 0,
-         * which must not turn the normal inwards. */
-        const vf ar = vabs(vfma_x(st->ca, tr, st->cr)), rk = vmul(ar, kap), sc = vdiv(cn, ar);
-        vf ux = vfms_x(tr, st->ex, st->fx), uy = vfms_x(tr, st->ey, st->fy),
-           uz = vfms_x(tr, st->ez, st->fz);
-        nx = vmul(vfnma_x(rk, st->vx, vfms_x(ky, uz, vmul(kz, uy))), sc);
-        ny = vmul(vfnma_x(rk, st->vy, vfms_x(kz, ux, vmul(kx, uz))), sc);
-        nz = vmul(vfnma_x(rk, st->vz, vfms_x(kx, uy, vmul(ky, ux))), sc);
-        /* At the apex itself the gradient vanishes: the normal there is the axis,
-         * pointing away from the cone (v's length is renormalised below). */
-        const vm apex = mand(hit, veq(ar, zero));
-        if (many(apex)) {
-            const vf sg = vsel(vlt(kap, zero), one, vset1(-1.0f));
-            nx = vsel(apex, vmul(sg, st->vx), nx), ny = vsel(apex, vmul(sg, st->vy), ny);
-            nz = vsel(apex, vmul(sg, st->vz), nz);
-        }
-    } else {
-        /* v x (p x v) = v.v p_perp, with p x v = f + t e already perpendicular, so
-         * no axial magnitude leaks in; vk = v / (R v.v) makes it unit length. */
-        const vf ns = KFN(leaf_in)(k, F, CYLRAY_LF_NSCALE);
-        const vf kx = KFN(cyl_in)(k, F, offsetof(cylray_prepared, vk[0]), vmul(st->vx, ns)),
-                 ky = KFN(cyl_in)(k, F, offsetof(cylray_prepared, vk[1]), vmul(st->vy, ns)),
-                 kz = KFN(cyl_in)(k, F, offsetof(cylray_prepared, vk[2]), vmul(st->vz, ns));
-        vf ux = vfms(tr, st->ex, st->fx), uy = vfms(tr, st->ey, st->fy),
-           uz = vfms(tr, st->ez, st->fz);
-        nx = vfms(ky, uz, vmul(kz, uy));
-        ny = vfms(kz, ux, vmul(kx, uz));
-        nz = vfms(kx, uy, vmul(ky, ux));
-    }
+    KFN(shape_normal)(st, k, F, &nx, &ny, &nz);
     if (F.capped) {
         vm cap = mandn(hit, on_side);
         vf sgn = vsel(cap_hi, one, vset1(-1.0f));
-        if (F.leaf && F.cone) /* 1 / |v| = 1 / ((|v| / g_s) g_s) */
-            sgn = vdiv(
-                sgn, vmul(KFN(leaf_in)(k, F, CYLRAY_LF_SQS), KFN(leaf_in)(k, F, CYLRAY_LF_GS)));
-        else if (F.leaf) /* 1 / |v| = R |v| / (R v.v) */
-            sgn = vmul(sgn, vmul(vmul(KFN(leaf_in)(k, F, CYLRAY_LF_NSCALE), st->rad),
-                                 vmul(KFN(leaf_in)(k, F, CYLRAY_LF_SQS),
-                                      KFN(leaf_in)(k, F, CYLRAY_LF_GS))));
+        if (F.leaf) /* 1 / |v| from the leaf's rows */
+            sgn = KFN(shape_cap_scale)(st, k, F, sgn);
         const vf n0 = KFN(cyl_in)(k, F, offsetof(cylray_prepared, n[0]), st->vx),
                  n1 = KFN(cyl_in)(k, F, offsetof(cylray_prepared, n[1]), st->vy),
                  n2 = KFN(cyl_in)(k, F, offsetof(cylray_prepared, n[2]), st->vz);

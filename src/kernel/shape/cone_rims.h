@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* kernel/rims.h - a cone's ends (called from stage 6, kernel/ends.h): where a flat
+/* kernel/shape/cone_rims.h - a cone's ends (called from stage 6, kernel/ends.h): where a flat
  * side meets an end's disc at its rim, and an end of radius 0, its apex. */
 
 /* v x (p + t d) = f - t e: the point at t (relative to p) crossed with the axis. */
