@@ -6,6 +6,8 @@
  *   X86_FMA    1 when the FMA3 instructions may be used
  *   X86_KMASK  1 for AVX-512: lane masks live in mask registers (needs VL below 16)
  * simd/undef.h takes every name back, so the next width can define them again.
+ * X86_AVX, whether the unit is compiled for AVX (its compares with a predicate and its
+ * masked stores), follows the compiler's flags: FMA3 and AVX are separate extensions.
  * The stores of the hit lanes are simd/x86_stores.h, included after this one.
  *
  * Every operation has one meaning on every ISA (see simd/scalar.h for the plain
@@ -13,6 +15,14 @@
  * is NaN, as minps/maxps do, so that NaN lanes behave the same everywhere. */
 #include <immintrin.h>
 #include <stdint.h>
+
+#ifndef X86_AVX
+#ifdef __AVX__
+#define X86_AVX 1
+#else
+#define X86_AVX 0
+#endif
+#endif
 
 #if VW == 4
 #define vf __m128
@@ -216,7 +226,7 @@ static inline vf KFN(rsqrt_fast)(vf x)
 #define mxor(a, b) ((vm)((a) ^ (b)))
 #else /* vector masks */
 #define vm vf
-#if X86_FMA /* AVX: one compare with a predicate */
+#if X86_AVX /* one compare with a predicate */
 #define vlt(a, b) VX(cmp_ps)(a, b, _CMP_LT_OQ)
 #define vle(a, b) VX(cmp_ps)(a, b, _CMP_LE_OQ)
 #define vgt(a, b) VX(cmp_ps)(a, b, _CMP_GT_OQ)

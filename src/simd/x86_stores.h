@@ -3,7 +3,7 @@
  * scratch, mask-register stores on AVX-512, and on SSE and AVX blends, masked stores
  * or one lane at a time, by the store policy of the table the dispatch chose.
  *
- * Included after simd/x86.h, with the same VW, X86_FMA and X86_KMASK; simd/undef.h
+ * Included after simd/x86.h, with the same VW and X86_KMASK; simd/undef.h
  * takes every name back. */
 
 /* Whole-vector stores, for scratch that the caller reads back at the hit lanes only. */
@@ -82,7 +82,7 @@ KFN(store_hits)(vm m, uint32_t active, unsigned stores, int normal, float *pt, f
         KFIELDS_(KBLEND_);
         return;
     }
-#if X86_FMA
+#if X86_AVX
     if (stores == CYLRAY_STORE_MASKED) {
         KFIELDS_(KMASKED_);
         return;
