@@ -50,13 +50,14 @@ static int owns(const ceb *g, unsigned prim, uint32_t c, float u)
 
 /* A hit the kernel found for lane i on cylinder c: reported when primitive prim owns
  * it and the filters (when called) accept it; otherwise the next hit of c along the
- * ray is tried, until one is reported or there is none. occ: an occlusion query.
- * Returns 1 when a hit was reported. */
-static int resolve(const ceb *g, const void *a_, int occ, int filt, unsigned i, uint32_t c,
-                   float t, float n[3], int32_t part)
+ * ray is tried, until one is reported or there is none. The query is an intersection's
+ * (ai) or an occlusion's (ao), the other NULL: resolve_hit and resolve_occ below, so
+ * that neither struct is read as the other. Returns 1 when a hit was reported. */
+static int resolve(const ceb *g, const struct RTCIntersectFunctionNArguments *ai,
+                   const struct RTCOccludedFunctionNArguments *ao, int filt, unsigned i,
+                   uint32_t c, float t, float n[3], int32_t part)
 {
-    const struct RTCIntersectFunctionNArguments *ai = a_;
-    const struct RTCOccludedFunctionNArguments *ao = a_;
+    const int occ = ao != NULL;
     unsigned prim = occ ? ao->primID : ai->primID, N = occ ? ao->N : ai->N;
     const void *base = occ ? (const void *)ao->ray : (const void *)ai->rayhit;
     float o[3], d[3];
@@ -77,6 +78,20 @@ static int resolve(const ceb *g, const void *a_, int occ, int filt, unsigned i, 
             return 0;
     }
     return 0;
+}
+
+static inline int resolve_hit(const ceb *g, const struct RTCIntersectFunctionNArguments *a,
+                              int filt, unsigned i, uint32_t c, float t, float n[3],
+                              int32_t part)
+{
+    return resolve(g, a, NULL, filt, i, c, t, n, part);
+}
+
+static inline int resolve_occ(const ceb *g, const struct RTCOccludedFunctionNArguments *a,
+                              int filt, unsigned i, uint32_t c, float t, float n[3],
+                              int32_t part)
+{
+    return resolve(g, NULL, a, filt, i, c, t, n, part);
 }
 
 #endif

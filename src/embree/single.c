@@ -72,7 +72,7 @@ static unsigned active_lanes(const int *valid, unsigned N, unsigned lane[16])
         for (unsigned j = 0; m; j++, m >>= 1)                                                  \
             if (m & 1) {                                                                       \
                 float nn[3] = {hit.nx[j], hit.ny[j], hit.nz[j]};                               \
-                if (resolve(g, a, 0, filt, lane[j], c, hit.t[j], nn, hit.part[j]))             \
+                if (resolve_hit(g, a, filt, lane[j], c, hit.t[j], nn, hit.part[j]))            \
                     got |= 1u << lane[j];                                                      \
             }                                                                                  \
         return got;                                                                            \
@@ -97,7 +97,7 @@ static unsigned active_lanes(const int *valid, unsigned N, unsigned lane[16])
         for (unsigned j = 0; m; j++, m >>= 1)                                                  \
             if (m & 1) {                                                                       \
                 float nn[3] = {hit.nx[j], hit.ny[j], hit.nz[j]};                               \
-                if (resolve(g, a, 1, filt, lane[j], c, hit.t[j], nn, hit.part[j]))             \
+                if (resolve_occ(g, a, filt, lane[j], c, hit.t[j], nn, hit.part[j]))            \
                     got |= 1u << lane[j];                                                      \
             }                                                                                  \
         return got;                                                                            \
@@ -151,7 +151,7 @@ static int isect1(const struct RTCIntersectFunctionNArguments *a, const ceb *g, 
         return 0;
     return one_ray(g, c, o, d, RF(a->rayhit, a->N, R_TNEAR, i), RF(a->rayhit, a->N, R_TFAR, i),
                    &t, n, &part) &&
-           resolve(g, a, 0, filt, i, c, t, n, part);
+           resolve_hit(g, a, filt, i, c, t, n, part);
 }
 
 static int occ1(const struct RTCOccludedFunctionNArguments *a, const ceb *g, uint32_t c,
@@ -176,7 +176,7 @@ static int occ1(const struct RTCOccludedFunctionNArguments *a, const ceb *g, uin
         return 1;
     }
     return one_ray(g, c, o, d, tmin, tmax, &t, n, &part) &&
-           resolve(g, a, 1, filt, i, c, t, n, part);
+           resolve_occ(g, a, filt, i, c, t, n, part);
 }
 
 /* Several valid lanes: the narrowest packet that holds them. Out of line, so that a
