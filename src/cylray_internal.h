@@ -35,7 +35,7 @@ unsigned cylray_cpu_store_policy_(void);
 
 /* Whether this CPU's divisions beat the estimates with their Newton steps (api/cpu.c),
  * and so whether the x86 paths serve CYLRAY_FAST with the exact kernels
- * (api/dispatch.c: cylray_fast_divides_, read by kernel/entries.h). */
+ * (api/dispatch.c: cylray_fast_divides_, read by kernel/query_slots.h). */
 int cylray_cpu_divides_fast_(void);
 int cylray_fast_divides_(void);
 

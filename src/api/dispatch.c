@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* api/dispatch.c - the one place a path is chosen: its table (with the store policy the
- * path takes), through which api/entries.c sends every plain entry point, and the
+ * path takes), through which api/forward.c sends every plain entry point, and the
  * toolkit's instance that goes with it.
  *
  * The choice is made on the first call and kept in an atomic pointer: threads racing
@@ -83,7 +83,7 @@ static unsigned store_policies(void)
 /* Whether the x86 paths serve CYLRAY_FAST with their exact kernels, as where the CPU
  * divides quickly (cylray_cpu_divides_fast_), chosen once per process;
  * CYLRAY_ESTIMATES=on|off forces the estimates or the divisions (to test each on any
- * CPU; another value is ignored). Read once a call, by kernel/entries.h. */
+ * CPU; another value is ignored). Read once a call, by kernel/query_slots.h. */
 static atomic_uint fast_chosen; /* 1 + the choice; 0: not yet */
 int cylray_fast_divides_(void)
 {
@@ -99,7 +99,7 @@ int cylray_fast_divides_(void)
 
 /* An ISA's table with the store policy p (store_policies' encoding) where it has
  * several. The policy travels in the table: its intersect entry points pass it down
- * (kernel/entries.h), so no kernel reads it from anywhere else. */
+ * (kernel/query_slots.h), so no kernel reads it from anywhere else. */
 static const cylray_kernels *with_stores(cylray_isa isa, unsigned p)
 {
     const unsigned avx = p % 4u, sse = p / 4u;

@@ -52,10 +52,10 @@
 #define SPW8 avx2_d4
 #define SPW16 avx2_d4
 #define SPWS avx2_d4
-#include "spawn/entries.h"
+#include "spawn/spawn_slots.h"
 /* a table per store policy (internal/variants.h; api/dispatch.c picks one) */
 #define KSTORES(X)                                                                             \
     X(, CYLRAY_STORE_MASKED) X(_blend, CYLRAY_STORE_BLEND) X(_lanes, CYLRAY_STORE_LANES)
-#define KFAST_BY_CPU 1 /* CYLRAY_FAST by the CPU (kernel/entries.h) */
-#include "kernel/entries.h"
+#define KFAST_BY_CPU 1 /* CYLRAY_FAST by the CPU (kernel/query_slots.h) */
+#include "kernel/query_slots.h"
 #include "isa/table.h"

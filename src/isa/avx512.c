@@ -70,7 +70,7 @@
 #define SPW8 avx512_d8
 #define SPW16 avx512_d8
 #define SPWS avx512_d8
-#include "spawn/entries.h"
-#define KFAST_BY_CPU 1 /* CYLRAY_FAST by the CPU (kernel/entries.h) */
-#include "kernel/entries.h"
+#include "spawn/spawn_slots.h"
+#define KFAST_BY_CPU 1 /* CYLRAY_FAST by the CPU (kernel/query_slots.h) */
+#include "kernel/query_slots.h"
 #include "isa/table.h"

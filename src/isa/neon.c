@@ -32,6 +32,6 @@
 #define SPW8 neon_d2
 #define SPW16 neon_d2
 #define SPWS neon_d2
-#include "spawn/entries.h"
-#include "kernel/entries.h"
+#include "spawn/spawn_slots.h"
+#include "kernel/query_slots.h"
 #include "isa/table.h"

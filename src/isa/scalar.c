@@ -39,6 +39,6 @@
 #define SPW8 SPWD
 #define SPW16 SPWD
 #define SPWS SPWD
-#include "spawn/entries.h"
-#include "kernel/entries.h"
+#include "spawn/spawn_slots.h"
+#include "kernel/query_slots.h"
 #include "isa/table.h"

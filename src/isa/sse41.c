@@ -39,9 +39,9 @@
 #define SPW8 sse41_d2
 #define SPW16 sse41_d2
 #define SPWS sse41_d2
-#include "spawn/entries.h"
+#include "spawn/spawn_slots.h"
 /* a table per store policy (internal/variants.h; api/dispatch.c picks one) */
 #define KSTORES(X) X(, CYLRAY_STORE_MASKED) X(_blend, CYLRAY_STORE_BLEND)
-#define KFAST_BY_CPU 1 /* CYLRAY_FAST by the CPU (kernel/entries.h) */
-#include "kernel/entries.h"
+#define KFAST_BY_CPU 1 /* CYLRAY_FAST by the CPU (kernel/query_slots.h) */
+#include "kernel/query_slots.h"
 #include "isa/table.h"

@@ -1,9 +1,9 @@
 /* SPDX-License-Identifier: MIT */
 /* isa/table.h - one ISA's cylray_kernels table (one per store policy where KSTORES
  * names several: cylray_kernels_<KISA><suffix>_), from the entry points of
- * kernel/entries.h and spawn/entries.h, which the ISA's unit includes first.
+ * kernel/query_slots.h and spawn/spawn_slots.h, which the ISA's unit includes first.
  *
- * Parameters: KISA, KISA_ENUM, KISA_NAME, and KSTORES as kernel/entries.h reads it. */
+ * Parameters: KISA, KISA_ENUM, KISA_NAME, and KSTORES as kernel/query_slots.h reads it. */
 
 #define KT_(name) CYLRAY_CAT(name, CYLRAY_CAT(_, KISA))
 
@@ -29,7 +29,7 @@
         KT_(leaf_occluded4),                                                                   \
         KT_(leaf_occluded8),                                                                   \
         KT_(leaf_occluded16),                                                                  \
-        KSPAWN_SLOTS, /* spawn/entries.h */                                                    \
+        KSPAWN_SLOTS, /* spawn/spawn_slots.h */                                                \
     };
 KSTORES(KTABLE_)
 

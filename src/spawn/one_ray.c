@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* spawn/one_ray.c - secondary rays: the hit point moved onto the surface with a bound on its
  * distance to it, and the origin from which a new ray leaves that surface; the scalar
- * entry points (the batched ones are dispatched: api/entries.c).
+ * entry points (the batched ones are dispatched: api/forward.c).
  *
  * Everything is evaluated in double from float inputs, in spawn/spawn.h: one source,
  * compiled per ISA and width against a vocabulary of double vectors (simd/f64_*.h), whose

@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT */
-/* kernel/entries.h - one ISA's kernel entry points, from the kernel instantiations its
- * translation unit made; isa/table.h puts them in its cylray_kernels table.
+/* kernel/query_slots.h - one ISA's intersect, occluded and leaf entry points, the query
+ * slots of its cylray_kernels table, from the kernel instantiations its translation unit
+ * made; isa/table.h puts them in the table.
  *
  * Parameters: KISA (suffix, e.g. avx2), and KW4, KW8, KW16 (the instantiation suffix
  * that serves each packet width), KWSTREAM (the one that serves streams: the widest

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* spawn/entries.h - one ISA's batched secondary-ray forms, from the spawn/spawn.h
+/* spawn/spawn_slots.h - one ISA's batched secondary-ray forms, from the spawn/spawn.h
  * instances its translation unit made, as the slots of its cylray_kernels table
  * (KSPAWN_SLOTS, which isa/table.h appends).
  *

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
-/* api/entries.c - the plain entry points of what the tables hold, the kernels and the
- * batched secondary-ray forms, each through the path api/dispatch.c chose. */
+/* api/forward.c - the plain entry points of what the tables hold, the kernels and the
+ * batched secondary-ray forms, each forwarded to the path api/dispatch.c chose. */
 #include "cylray_internal.h"
 
 /* ---- the kernels ------------------------------------------------------------ */
