@@ -43,10 +43,16 @@ int cylray_fast_divides_(void);
  * chosen does (api/dispatch.c). */
 int cylray_surface_fma_(void);
 
-/* Whether cylray_prepare takes the cylinder (api/prepare.c): what it checks before it
+/* Whether cylray_prepare takes the cylinder (api/shape_ok.c): what it checks before it
  * derives anything, for cylray_cylinder_from_endpoints, which refuses what it refuses. */
 int cylray_cylinder_ok_(const cylray_cylinder *in);
 int cylray_sphere_ok_(const cylray_sphere *in);
 int cylray_cone_ok_(const cylray_cone *in);
+
+/* An axis's largest magnitude: its scale, and whether it has a direction at all. */
+static inline double cylray_axis_max_(const float a[3])
+{
+    return fmax(fabs((double)a[0]), fmax(fabs((double)a[1]), fabs((double)a[2])));
+}
 
 #endif

@@ -1,16 +1,10 @@
 /* SPDX-License-Identifier: MIT */
-/* api/prepare.c - validating a cylinder and deriving what every kernel call needs. */
+/* api/prepare.c - deriving what every kernel call needs from a shape that api/shape_ok.c
+ * takes. */
 #include "cylray_internal.h"
 
-#include <float.h>
 #include <stdlib.h>
 #include <string.h>
-
-/* Magnitudes beyond 2^62 would overflow R^2 v.v and the products of the kernel, and
- * a radius below 2^-60 would leave R^2 subnormal; such a cylinder is refused rather
- * than answered wrongly. */
-#define CYLRAY_MAX_COORD 0x1p62
-#define CYLRAY_MIN_RADIUS 0x1p-60
 
 const char *cylray_strerror(cylray_status s)
 {
@@ -30,40 +24,13 @@ const char *cylray_strerror(cylray_status s)
     return "unknown cylray status";
 }
 
-static int coord_ok(float x)
-{
-    return isfinite(x) && fabs((double)x) <= CYLRAY_MAX_COORD;
-}
-
-/* The axis's largest magnitude: its scale, and whether it has a direction at all. */
-static double axis_max(const float a[3])
-{
-    return fmax(fabs((double)a[0]), fmax(fabs((double)a[1]), fabs((double)a[2])));
-}
-
-int cylray_cylinder_ok_(const cylray_cylinder *in)
-{
-    const float *c = in->center, *a = in->axis;
-    const double R = in->radius, H = in->half_height;
-    for (int k = 0; k < 3; k++)
-        if (!coord_ok(c[k]) || !coord_ok(a[k]))
-            return 0;
-    if (!(R >= CYLRAY_MIN_RADIUS) || !(R <= CYLRAY_MAX_COORD))
-        return 0;
-    if (!(H > 0) || (isfinite(H) && H > CYLRAY_MAX_COORD))
-        return 0;
-    if (in->flags & ~CYLRAY_CAPPED)
-        return 0;
-    return axis_max(a) >= FLT_MIN; /* not zero, nor so small that its direction is lost */
-}
-
 cylray_status cylray_prepare(cylray_prepared *out, const cylray_cylinder *in)
 {
     if (!out || !in || !cylray_cylinder_ok_(in))
         return CYLRAY_EINVAL;
     const float *c = in->center, *a = in->axis;
     const double R = in->radius, H = in->half_height;
-    const double amax = axis_max(a);
+    const double amax = cylray_axis_max_(a);
 
     cylray_prepared p;
     memset(&p, 0, sizeof p);
@@ -127,15 +94,6 @@ cylray_status cylray_prepare(cylray_prepared *out, const cylray_cylinder *in)
     return CYLRAY_OK;
 }
 
-int cylray_sphere_ok_(const cylray_sphere *in)
-{
-    const double R = in->radius;
-    for (int k = 0; k < 3; k++)
-        if (!coord_ok(in->center[k]))
-            return 0;
-    return R >= CYLRAY_MIN_RADIUS && R <= CYLRAY_MAX_COORD;
-}
-
 /* A sphere is prepared as the kernels' sphere branches read it (kernel/kmath.h): the
  * center, R^2 (also in rr_vv, v.v being 1 there), 1 / R for the normal, a bounding
  * sphere with the cylinder's margin, and the same 2^-j scaling of the discriminant for
@@ -168,37 +126,6 @@ cylray_status cylray_prepare_sphere(cylray_prepared *out, const cylray_sphere *i
     p.magic = CYLRAY_MAGIC;
     *out = p;
     return CYLRAY_OK;
-}
-
-static int cone_radius_ok(double r)
-{
-    return r == 0 || (r >= CYLRAY_MIN_RADIUS && r <= CYLRAY_MAX_COORD);
-}
-
-/* A cone's radius at a point the kernels keep (within 1.42 bounding radii of the
- * center) is at most 1.42 (rmax (1 + slope) + |r1 - r0| / 2), and the kernels square it
- * (times v.v < 12) and multiply it by the slope times d.v: that bound is kept to 2^61,
- * the slope to 2^40 (cylray.h; docs/design.md, "The range"). r0 == r1 prepares a
- * cylinder, whose limits are its own. */
-static int cone_steep_ok(float r0, float r1, const float p0[3], const float p1[3])
-{
-    double len2 = 0;
-    for (int k = 0; k < 3; k++) {
-        const double a = (double)p1[k] - p0[k]; /* exact */
-        len2 += a * a;
-    }
-    const double slope = fabs((double)r1 - r0) / sqrt(len2);
-    return r0 == r1 || (slope <= 0x1p40 &&
-                        fmax(r0, r1) * (1.0 + slope) + 0.5 * fabs((double)r1 - r0) <= 0x1p61);
-}
-
-int cylray_cone_ok_(const cylray_cone *in)
-{
-    for (int k = 0; k < 3; k++)
-        if (!coord_ok(in->p0[k]) || !coord_ok(in->p1[k]))
-            return 0;
-    return cone_radius_ok(in->r0) && cone_radius_ok(in->r1) && (in->r0 > 0 || in->r1 > 0) &&
-           !(in->flags & ~CYLRAY_CAPPED) && cone_steep_ok(in->r0, in->r1, in->p0, in->p1);
 }
 
 /* A cone is prepared as the capped cylinder of its larger radius around the same axis
