@@ -139,17 +139,24 @@ KSPAWN_LEAF_(4)
 KSPAWN_LEAF_(8)
 KSPAWN_LEAF_(16)
 
+/* Each slot filled by name (isa/table.h's designated initializers): a type check alone
+ * would let two slots of one signature, such as hit_points4 and hit_points_normal4,
+ * trade places. */
+#define KSPAWN_SLOT_(slot) .slot = SKI_(slot)
 #define KSPAWN_SLOTS                                                                           \
-    SKI_(hit_points4), SKI_(hit_points8), SKI_(hit_points16), SKI_(spawn_rays4),               \
-        SKI_(spawn_rays8), SKI_(spawn_rays16), SKI_(hit_points_stream), SKI_(spawn_stream),    \
-        SKI_(leaf_hit_points4), SKI_(leaf_hit_points8), SKI_(leaf_hit_points16),               \
-        SKI_(leaf_spawn_origins4), SKI_(leaf_spawn_origins8), SKI_(leaf_spawn_origins16),      \
-        SKI_(hit_points_normal4), SKI_(hit_points_normal8), SKI_(hit_points_normal16),         \
-        SKI_(spawn_rays_side4), SKI_(spawn_rays_side8), SKI_(spawn_rays_side16),               \
-        SKI_(hit_points_normal_stream), SKI_(spawn_stream_side),                               \
-        SKI_(leaf_hit_points_normal4), SKI_(leaf_hit_points_normal8),                          \
-        SKI_(leaf_hit_points_normal16), SKI_(leaf_spawn_origins_side4),                        \
-        SKI_(leaf_spawn_origins_side8), SKI_(leaf_spawn_origins_side16)
+    KSPAWN_SLOT_(hit_points4), KSPAWN_SLOT_(hit_points8), KSPAWN_SLOT_(hit_points16),          \
+        KSPAWN_SLOT_(spawn_rays4), KSPAWN_SLOT_(spawn_rays8), KSPAWN_SLOT_(spawn_rays16),      \
+        KSPAWN_SLOT_(hit_points_stream), KSPAWN_SLOT_(spawn_stream),                           \
+        KSPAWN_SLOT_(leaf_hit_points4), KSPAWN_SLOT_(leaf_hit_points8),                        \
+        KSPAWN_SLOT_(leaf_hit_points16), KSPAWN_SLOT_(leaf_spawn_origins4),                    \
+        KSPAWN_SLOT_(leaf_spawn_origins8), KSPAWN_SLOT_(leaf_spawn_origins16),                 \
+        KSPAWN_SLOT_(hit_points_normal4), KSPAWN_SLOT_(hit_points_normal8),                    \
+        KSPAWN_SLOT_(hit_points_normal16), KSPAWN_SLOT_(spawn_rays_side4),                     \
+        KSPAWN_SLOT_(spawn_rays_side8), KSPAWN_SLOT_(spawn_rays_side16),                       \
+        KSPAWN_SLOT_(hit_points_normal_stream), KSPAWN_SLOT_(spawn_stream_side),               \
+        KSPAWN_SLOT_(leaf_hit_points_normal4), KSPAWN_SLOT_(leaf_hit_points_normal8),          \
+        KSPAWN_SLOT_(leaf_hit_points_normal16), KSPAWN_SLOT_(leaf_spawn_origins_side4),        \
+        KSPAWN_SLOT_(leaf_spawn_origins_side8), KSPAWN_SLOT_(leaf_spawn_origins_side16)
 
 #undef KSPAWN_PACKET_
 #undef KSPAWN_LEAF_
