@@ -33,11 +33,18 @@ int cylray_cpu_has_(cylray_isa isa);
  * are microcode (AMD, Hygon), else MASKED. */
 unsigned cylray_cpu_store_policy_(void);
 
+/* The x86 tables that serve CYLRAY_FAST with the exact kernels, each filled into t
+ * (isa/table.h), named as the table it copies. */
+void cylray_divided_sse41_(cylray_kernels *t);
+void cylray_divided_sse41_blend_(cylray_kernels *t);
+void cylray_divided_avx2_(cylray_kernels *t);
+void cylray_divided_avx2_blend_(cylray_kernels *t);
+void cylray_divided_avx2_lanes_(cylray_kernels *t);
+void cylray_divided_avx512_(cylray_kernels *t);
+
 /* Whether this CPU's divisions beat the estimates with their Newton steps (api/cpu.c),
- * and so whether the x86 paths serve CYLRAY_FAST with the exact kernels
- * (api/dispatch.c: cylray_fast_divides_, read by kernel/query_slots.h). */
+ * and so whether the x86 paths take those tables (api/dispatch.c). */
 int cylray_cpu_divides_fast_(void);
-int cylray_fast_divides_(void);
 
 /* Whether the toolkit's surface coordinates take their FMA instance, as the path
  * chosen does (api/dispatch.c). */

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
-/* api/dispatch.c - the one place a path is chosen: its table (with the store policy the
- * path takes), through which api/forward.c sends every plain entry point, and the
+/* api/dispatch.c - the one place a path is chosen: its table (with the store policy and
+ * FAST's choice the path takes), through which api/forward.c sends every plain entry point, and the
  * toolkit's instance that goes with it.
  *
  * The choice is made on the first call and kept in an atomic pointer: threads racing
@@ -83,9 +83,9 @@ static unsigned store_policies(void)
 /* Whether the x86 paths serve CYLRAY_FAST with their exact kernels, as where the CPU
  * divides quickly (cylray_cpu_divides_fast_), chosen once per process;
  * CYLRAY_ESTIMATES=on|off forces the estimates or the divisions (to test each on any
- * CPU; another value is ignored). Read once a call, by kernel/query_slots.h. */
+ * CPU; another value is ignored). */
 static atomic_uint fast_chosen; /* 1 + the choice; 0: not yet */
-int cylray_fast_divides_(void)
+static int fast_divides(void)
 {
     const unsigned c = atomic_load_explicit(&fast_chosen, memory_order_relaxed);
     if (c)
@@ -97,37 +97,71 @@ int cylray_fast_divides_(void)
     return divide;
 }
 
+/* The x86 tables that serve CYLRAY_FAST with the exact kernels, filled once each, when
+ * first chosen (isa/table.h): the CPU runs the fill's ISA by then. A thread that finds
+ * one being filled waits the few stores it takes. */
+enum {
+    DIV_SSE41,
+    DIV_SSE41_BLEND,
+    DIV_AVX2,
+    DIV_AVX2_BLEND,
+    DIV_AVX2_LANES,
+    DIV_AVX512,
+    DIV_N
+};
+static cylray_kernels divided_tables[DIV_N];
+static atomic_uint divided_state[DIV_N]; /* 0 empty, 1 being filled, 2 filled */
+CYLRAY_MAYBE_UNUSED static const cylray_kernels *divided(unsigned i,
+                                                         void (*fill)(cylray_kernels *))
+{
+    unsigned s = atomic_load_explicit(&divided_state[i], memory_order_acquire);
+    if (s != 2u && atomic_compare_exchange_strong(&divided_state[i], &s, 1u)) {
+        fill(&divided_tables[i]);
+        atomic_store_explicit(&divided_state[i], 2u, memory_order_release);
+    }
+    while (atomic_load_explicit(&divided_state[i], memory_order_acquire) != 2u)
+        ;
+    return &divided_tables[i];
+}
+#define PICK_(i, name) (divide ? divided(i, cylray_divided_##name) : &cylray_kernels_##name)
+
 /* An ISA's table with the store policy p (store_policies' encoding) where it has
- * several. The policy travels in the table: its intersect entry points pass it down
- * (kernel/query_slots.h), so no kernel reads it from anywhere else. */
-static const cylray_kernels *with_stores(cylray_isa isa, unsigned p)
+ * several, and FAST's choice (fast_divides) on x86. Both travel in the table: its
+ * entry points pass the policy down and drop FAST where they divide
+ * (kernel/query_slots.h), so no kernel reads either from anywhere else. */
+static const cylray_kernels *with_choices(cylray_isa isa, unsigned p, int divide)
 {
     const unsigned avx = p % 4u, sse = p / 4u;
-    (void)avx, (void)sse; /* one of them, or neither, where fewer x86 ISAs are built */
+    (void)avx, (void)sse, (void)divide; /* unread where fewer x86 ISAs are built */
 #ifdef CYLRAY_HAVE_SSE41
     if (isa == CYLRAY_ISA_SSE41)
-        return sse == CYLRAY_STORE_BLEND ? &cylray_kernels_sse41_blend_
-                                         : &cylray_kernels_sse41_;
+        return sse == CYLRAY_STORE_BLEND ? PICK_(DIV_SSE41_BLEND, sse41_blend_)
+                                         : PICK_(DIV_SSE41, sse41_);
 #endif
 #ifdef CYLRAY_HAVE_AVX2
     if (isa == CYLRAY_ISA_AVX2)
-        return avx == CYLRAY_STORE_BLEND   ? &cylray_kernels_avx2_blend_
-               : avx == CYLRAY_STORE_LANES ? &cylray_kernels_avx2_lanes_
-                                           : &cylray_kernels_avx2_;
+        return avx == CYLRAY_STORE_BLEND   ? PICK_(DIV_AVX2_BLEND, avx2_blend_)
+               : avx == CYLRAY_STORE_LANES ? PICK_(DIV_AVX2_LANES, avx2_lanes_)
+                                           : PICK_(DIV_AVX2, avx2_);
+#endif
+#ifdef CYLRAY_HAVE_AVX512
+    if (isa == CYLRAY_ISA_AVX512)
+        return PICK_(DIV_AVX512, avx512_);
 #endif
     return built[isa];
 }
+#undef PICK_
 
-static const cylray_kernels *kernels_for(cylray_isa isa, unsigned p)
+static const cylray_kernels *kernels_for(cylray_isa isa, unsigned p, int divide)
 {
     if ((unsigned)isa >= CYLRAY_ISA_COUNT || !built[isa] || !cylray_cpu_has_(isa))
         return NULL;
-    return with_stores(isa, p);
+    return with_choices(isa, p, divide);
 }
 
 const cylray_kernels *cylray_kernels_for(cylray_isa isa)
 {
-    return kernels_for(isa, store_policies());
+    return kernels_for(isa, store_policies(), fast_divides());
 }
 
 /* The warning, as one line from one fprintf call; a name that is no path at all (a
@@ -146,13 +180,14 @@ static void warn_isa(const char *want, int known, const char *used)
             used);
 }
 
-/* The path and its store policy, chosen together. */
+/* The path, its store policy and FAST's choice, chosen together. */
 static const cylray_kernels *choose(void)
 {
     const unsigned stores = store_policies();
+    const int divide = fast_divides();
     const cylray_kernels *best = built[CYLRAY_ISA_SCALAR];
     for (int i = CYLRAY_ISA_COUNT - 1; i > CYLRAY_ISA_SCALAR; i--) {
-        const cylray_kernels *k = kernels_for((cylray_isa)i, stores);
+        const cylray_kernels *k = kernels_for((cylray_isa)i, stores, divide);
         if (k) {
             best = k;
             break;
@@ -163,7 +198,7 @@ static const cylray_kernels *choose(void)
         int known = 0;
         for (int i = 0; i < CYLRAY_ISA_COUNT; i++) {
             if (strcmp(want, names[i]) == 0) {
-                const cylray_kernels *k = kernels_for((cylray_isa)i, stores);
+                const cylray_kernels *k = kernels_for((cylray_isa)i, stores, divide);
                 if (k)
                     return k;
                 known = 1;

@@ -36,6 +36,34 @@
     };
 KSTORES(KTABLE_)
 
+/* The tables that serve CYLRAY_FAST with the exact kernels (kernel/query_slots.h): each
+ * fills t with its store policy's table and the slots that drop the flag, on the first
+ * call that chooses it (api/dispatch.c). Filled by code, not stamped as data: six more
+ * tables of pointers would each cost the library a relocation per slot. */
+#ifdef KFAST_BY_CPU
+#define KDIVIDED_(sfx, st)                                                                     \
+    void CYLRAY_CAT(CYLRAY_CAT(CYLRAY_CAT(cylray_divided_, KISA), sfx), _)(cylray_kernels * t) \
+    {                                                                                          \
+        *t = CYLRAY_CAT(CYLRAY_CAT(CYLRAY_CAT(cylray_kernels_, KISA), sfx), _);                \
+        t->intersect4 = KT_(intersect4##sfx##_divide);                                         \
+        t->intersect8 = KT_(intersect8##sfx##_divide);                                         \
+        t->intersect16 = KT_(intersect16##sfx##_divide);                                       \
+        t->occluded4 = KT_(occluded4_divide);                                                  \
+        t->occluded8 = KT_(occluded8_divide);                                                  \
+        t->occluded16 = KT_(occluded16_divide);                                                \
+        t->intersect_stream = KT_(intersect_stream##sfx##_divide);                             \
+        t->occluded_stream = KT_(occluded_stream_divide);                                      \
+        t->leaf_intersect4 = KT_(leaf_intersect4_divide);                                      \
+        t->leaf_intersect8 = KT_(leaf_intersect8_divide);                                      \
+        t->leaf_intersect16 = KT_(leaf_intersect16_divide);                                    \
+        t->leaf_occluded4 = KT_(leaf_occluded4_divide);                                        \
+        t->leaf_occluded8 = KT_(leaf_occluded8_divide);                                        \
+        t->leaf_occluded16 = KT_(leaf_occluded16_divide);                                      \
+    }
+KSTORES(KDIVIDED_)
+#undef KDIVIDED_
+#endif
+
 #undef KT_
 #undef KS_
 #undef KTABLE_
