@@ -10,21 +10,6 @@
 #include <stdio.h>
 #include <string.h>
 
-int test_conref(void);
-
-static int failures;
-
-typedef struct {
-    const char *what;
-    cylray_cone c;
-    float o[3], d[3], tmin, tmax;
-    unsigned flags;
-    int hit;
-    double t;
-    int part;
-    double n[3];
-} hand_case;
-
 #define R2 0.70710678118654752440
 
 static void test_cone_hand(void)
@@ -40,14 +25,24 @@ static void test_cone_hand(void)
     const cylray_cone fr = {{0, 0, 0}, {0, 0, 2}, 1, 2, CYLRAY_CAPPED};
     const cylray_cone fr_lo = {{0, 0, 0}, {0, 0, 2}, 1, 2, CYLRAY_CAPPED_LO};
     const cylray_cone cyl = {{0, 0, -1}, {0, 0, 1}, 1, 1, CYLRAY_CAPPED};
-    const hand_case cases[] = {
-        {"side at r(1)", tip, {5, 0, 1}, {-1, 0, 0}, 0, I, 0, 1, 4, S, {R2, 0, R2}},
-        {"side exit", tip, {0, 0, 1}, {-1, 0, 0}, 0, I, 0, 1, 1, SB, {-R2, 0, R2}},
-        {"side exit, ff", tip, {0, 0, 1}, {-1, 0, 0}, 0, I, FF, 1, 1, SB, {R2, 0, -R2}},
-        {"side exit, culled", tip, {0, 0, 1}, {-1, 0, 0}, 0, I, CB, 0, 0, 0, {0}},
-        {"disc at p0", tip, {0.5f, 0, -5}, {0, 0, 1}, 0, I, 0, 1, 5, LO, {0, 0, -1}},
+    const ref_hand cases[] = {
+        {"side at r(1)", {.cone = tip}, {5, 0, 1}, {-1, 0, 0}, 0, I, 0, 1, 4, S, {R2, 0, R2}},
+        {"side exit", {.cone = tip}, {0, 0, 1}, {-1, 0, 0}, 0, I, 0, 1, 1, SB, {-R2, 0, R2}},
+        {"side exit, ff",
+         {.cone = tip},
+         {0, 0, 1},
+         {-1, 0, 0},
+         0,
+         I,
+         FF,
+         1,
+         1,
+         SB,
+         {R2, 0, -R2}},
+        {"side exit, culled", {.cone = tip}, {0, 0, 1}, {-1, 0, 0}, 0, I, CB, 0, 0, 0, {0}},
+        {"disc at p0", {.cone = tip}, {0.5f, 0, -5}, {0, 0, 1}, 0, I, 0, 1, 5, LO, {0, 0, -1}},
         {"open end: in through the hole, out the side",
-         tip_open,
+         {.cone = tip_open},
          {0.5f, 0, -5},
          {0, 0, 1},
          0,
@@ -57,12 +52,42 @@ static void test_cone_hand(void)
          6.5,
          SB,
          {R2, 0, R2}},
-        {"disc at p1", fr, {0, 0, 5}, {0, 0, -1}, 0, I, 0, 1, 3, HI, {0, 0, 1}},
-        {"disc at p1 from inside", fr, {0, 0, 1}, {0, 0, 1}, 0, I, 0, 1, 1, HI | B, {0, 0, 1}},
-        {"disc at p1 from inside, culled", fr, {0, 0, 1}, {0, 0, 1}, 0, I, CB, 0, 0, 0, {0}},
-        {"open p1: out through the hole", fr_lo, {0, 0, 1}, {0, 0, 1}, 0, I, 0, 0, 0, 0, {0}},
+        {"disc at p1", {.cone = fr}, {0, 0, 5}, {0, 0, -1}, 0, I, 0, 1, 3, HI, {0, 0, 1}},
+        {"disc at p1 from inside",
+         {.cone = fr},
+         {0, 0, 1},
+         {0, 0, 1},
+         0,
+         I,
+         0,
+         1,
+         1,
+         HI | B,
+         {0, 0, 1}},
+        {"disc at p1 from inside, culled",
+         {.cone = fr},
+         {0, 0, 1},
+         {0, 0, 1},
+         0,
+         I,
+         CB,
+         0,
+         0,
+         0,
+         {0}},
+        {"open p1: out through the hole",
+         {.cone = fr_lo},
+         {0, 0, 1},
+         {0, 0, 1},
+         0,
+         I,
+         0,
+         0,
+         0,
+         0,
+         {0}},
         {"open p1: in through the hole, out the disc",
-         fr_lo,
+         {.cone = fr_lo},
          {0, 0, 5},
          {0, 0, -1},
          0,
@@ -74,7 +99,7 @@ static void test_cone_hand(void)
          {0, 0, -1}},
         /* Widening side: n = (e - k u)/|..| with k = 1/2. */
         {"frustum side",
-         fr,
+         {.cone = fr},
          {5, 0, 1},
          {-1, 0, 0},
          0,
@@ -84,38 +109,37 @@ static void test_cone_hand(void)
          3.5,
          S,
          {2 / 2.2360679774997897, 0, -1 / 2.2360679774997897}},
-        {"mirror nappe left out", tip, {5, 0, 3}, {-1, 0, 0}, 0, I, 0, 0, 0, 0, {0}},
-        {"beyond the slab", fr, {5, 0, 2.5f}, {-1, 0, 0}, 0, I, 0, 0, 0, 0, {0}},
-        {"through the apex", tip, {-1, 0, 4}, {1, 0, -2}, 0, I, 0, 1, 1, S, {0}},
-        {"tmax short", tip, {5, 0, 1}, {-1, 0, 0}, 0, 3.5f, 0, 0, 0, 0, {0}},
-        {"tmin past the entry", tip, {5, 0, 1}, {-1, 0, 0}, 4.5f, I, 0, 1, 6, SB, {-R2, 0, R2}},
-        {"r0 == r1 is the cylinder", cyl, {5, 0, 0}, {-1, 0, 0}, 0, I, 0, 1, 4, S, {1, 0, 0}},
-        {"unnormalized d", tip, {5, 0, 1}, {-4, 0, 0}, 0, I, 0, 1, 1, S, {R2, 0, R2}},
-        {"NaN origin", tip, {NAN, 0, 1}, {-1, 0, 0}, 0, I, 0, 0, 0, 0, {0}},
-        {"zero direction", tip, {5, 0, 1}, {0, 0, 0}, 0, I, 0, 0, 0, 0, {0}},
+        {"mirror nappe left out", {.cone = tip}, {5, 0, 3}, {-1, 0, 0}, 0, I, 0, 0, 0, 0, {0}},
+        {"beyond the slab", {.cone = fr}, {5, 0, 2.5f}, {-1, 0, 0}, 0, I, 0, 0, 0, 0, {0}},
+        {"through the apex", {.cone = tip}, {-1, 0, 4}, {1, 0, -2}, 0, I, 0, 1, 1, S, {0}},
+        {"tmax short", {.cone = tip}, {5, 0, 1}, {-1, 0, 0}, 0, 3.5f, 0, 0, 0, 0, {0}},
+        {"tmin past the entry",
+         {.cone = tip},
+         {5, 0, 1},
+         {-1, 0, 0},
+         4.5f,
+         I,
+         0,
+         1,
+         6,
+         SB,
+         {-R2, 0, R2}},
+        {"r0 == r1 is the cylinder",
+         {.cone = cyl},
+         {5, 0, 0},
+         {-1, 0, 0},
+         0,
+         I,
+         0,
+         1,
+         4,
+         S,
+         {1, 0, 0}},
+        {"unnormalized d", {.cone = tip}, {5, 0, 1}, {-4, 0, 0}, 0, I, 0, 1, 1, S, {R2, 0, R2}},
+        {"NaN origin", {.cone = tip}, {NAN, 0, 1}, {-1, 0, 0}, 0, I, 0, 0, 0, 0, {0}},
+        {"zero direction", {.cone = tip}, {5, 0, 1}, {0, 0, 0}, 0, I, 0, 0, 0, 0, {0}},
     };
-    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
-        const hand_case *h = &cases[i];
-        cylref_hit r;
-        int ret = conref_intersect(&h->c, h->o, h->d, h->tmin, h->tmax, h->flags, &r);
-        CHECK(ret == h->hit && r.hit == h->hit, "%s: hit %d (ret %d), want %d", h->what, r.hit,
-              ret, h->hit);
-        if (!h->hit || !r.hit)
-            continue;
-        CHECK(fabs(r.t - h->t) <= 1e-15 * fabs(h->t), "%s: t %.17g want %.17g", h->what, r.t,
-              h->t);
-        CHECK(r.part == h->part, "%s: part %#x want %#x", h->what, r.part, h->part);
-        if (h->n[0] != 0 || h->n[1] != 0 || h->n[2] != 0)
-            for (int k = 0; k < 3; k++)
-                CHECK(fabs(r.n[k] - h->n[k]) <= 1e-15, "%s: n[%d] %.17g want %.17g", h->what, k,
-                      r.n[k], h->n[k]);
-        /* The exact answer is always inside its own band. */
-        cylref_band b;
-        double beyond;
-        conref_band_eval(&h->c, h->o, h->d, h->tmin, h->tmax, h->flags, &b);
-        CHECK(conref_judge(&b, 1, r.part, (float)r.t, &beyond) == 0 && beyond == 0,
-              "%s: the exact answer fails its band", h->what);
-    }
+    ref_run_hand(&ref_cone, cases, sizeof cases / sizeof cases[0]);
 
     /* A ray down x = 2 touches the rim of the frustum's disc at p1 from outside the
      * side: the side (a back face there, the side leaning outward) and the disc are
@@ -133,33 +157,28 @@ static void test_cone_hand(void)
         CHECK(conref_judge(&b, 1, CYLRAY_CAP_LO, 3, &beyond) != 0, "rim: the wrong disc");
     }
 
-    const cylray_cone bad[] = {
-        {{NAN, 0, 0}, {0, 0, 1}, 1, 1, 0},
-        {{0, 0, 0}, {0, INFINITY, 1}, 1, 1, 0},
-        {{0, 0, 0x1p63f}, {0, 0, 1}, 1, 1, 0},
-        {{0, 0, 1}, {0, 0, 1}, 1, 2, 0},
-        {{0, 0, 0}, {0, 0, 1}, 0, 0, 0},
-        {{0, 0, 0}, {0, 0, 1}, -1, 1, 0},
-        {{0, 0, 0}, {0, 0, 1}, NAN, 1, 0},
-        {{0, 0, 0}, {0, 0, 1}, 1, 0x1p-61f, 0},
-        {{0, 0, 0}, {0, 0, 1}, 0x1p63f, 1, 0},
-        {{0, 0, 0}, {0, 0, 1}, 1, 1, 4},
-        {{0, 0, 0}, {0, 0, 0x1p-140f}, 1, 1, 0},
-        {{0, 0, 0}, {0, 0, 0x1p-126f}, 0, 0x1p62f, 1}, /* too steep */
-        {{0, 0, 0}, {0, 0, 1}, 0, 0x1.000002p31f, 0},  /* too wide for its slope */
+    const ref_shape bad[] = {
+        {.cone = {{NAN, 0, 0}, {0, 0, 1}, 1, 1, 0}},
+        {.cone = {{0, 0, 0}, {0, INFINITY, 1}, 1, 1, 0}},
+        {.cone = {{0, 0, 0x1p63f}, {0, 0, 1}, 1, 1, 0}},
+        {.cone = {{0, 0, 1}, {0, 0, 1}, 1, 2, 0}},
+        {.cone = {{0, 0, 0}, {0, 0, 1}, 0, 0, 0}},
+        {.cone = {{0, 0, 0}, {0, 0, 1}, -1, 1, 0}},
+        {.cone = {{0, 0, 0}, {0, 0, 1}, NAN, 1, 0}},
+        {.cone = {{0, 0, 0}, {0, 0, 1}, 1, 0x1p-61f, 0}},
+        {.cone = {{0, 0, 0}, {0, 0, 1}, 0x1p63f, 1, 0}},
+        {.cone = {{0, 0, 0}, {0, 0, 1}, 1, 1, 4}},
+        {.cone = {{0, 0, 0}, {0, 0, 0x1p-140f}, 1, 1, 0}},
+        {.cone = {{0, 0, 0}, {0, 0, 0x1p-126f}, 0, 0x1p62f, 1}}, /* too steep */
+        {.cone = {{0, 0, 0}, {0, 0, 1}, 0, 0x1.000002p31f, 0}},  /* too wide for its slope */
     };
-    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
-        cylref_hit r;
-        const float o[3] = {0, 0, -5}, d[3] = {0, 0, 1};
-        CHECK(conref_intersect(&bad[i], o, d, 0, INFINITY, 0, &r) == -1 && !r.hit,
-              "bad cone %zu accepted", i);
-    }
-    const cylray_cone edge[] = {{{0x1p62f, 0, 0}, {0, 0, -0x1p62f}, 0x1p-60f, 0, 3},
-                                {{0, 0, 0}, {0, 0, 0x1p-100f}, 0, 0x1p-60f, 1},
-                                {{0, 0, 0}, {0, 0, 1}, 0, 0x1p30f, 1},
-                                {{0, 0, 0}, {0, 0, 0x1p22f}, 0x1p62f, 0x1p62f, 3}};
-    for (size_t i = 0; i < sizeof edge / sizeof edge[0]; i++)
-        CHECK(conref_valid(&edge[i]), "edge cone %zu refused", i);
+    const float o[3] = {0, 0, -5}, d[3] = {0, 0, 1};
+    ref_run_refused(&ref_cone, bad, sizeof bad / sizeof bad[0], o, d);
+    const ref_shape edge[] = {{.cone = {{0x1p62f, 0, 0}, {0, 0, -0x1p62f}, 0x1p-60f, 0, 3}},
+                              {.cone = {{0, 0, 0}, {0, 0, 0x1p-100f}, 0, 0x1p-60f, 1}},
+                              {.cone = {{0, 0, 0}, {0, 0, 1}, 0, 0x1p30f, 1}},
+                              {.cone = {{0, 0, 0}, {0, 0, 0x1p22f}, 0x1p62f, 0x1p62f, 3}}};
+    ref_run_valid(&ref_cone, edge, sizeof edge / sizeof edge[0]);
 }
 
 /* The same question in long double and another form: world coordinates from p0, the
@@ -273,46 +292,9 @@ static void test_independent(void)
     CHECK(compared > 1000, "only %ld stable cases compared", compared);
 }
 
-/* Every category: valid cones, batches, prefix stability, and the exact answer inside
- * its own band. */
-static void test_generators(void)
-{
-    enum { N = 64 };
-    static congen_case a[N], b[N];
-    CHECK(congen_category_name(CONGEN_COUNT) == NULL, "count");
-    for (int cat = 0; cat < CONGEN_COUNT; cat++) {
-        const char *name = congen_category_name(cat);
-        CHECK(name && congen_category_find(name) == cat, "name %d", cat);
-        CHECK(congen_category_description(cat) != NULL, "description %d", cat);
-        congen_make(cat, 5, N, a);
-        congen_make(cat, 5, N / 2, b);
-        CHECK(memcmp(a, b, sizeof a[0] * (N / 2)) == 0, "%s: not prefix-stable", name);
-        int hits = 0;
-        for (int i = 0; i < N; i++) {
-            CHECK(conref_valid(&a[i].cone), "%s #%d: invalid cone", name, i);
-            if (i % CYLGEN_BATCH)
-                CHECK(memcmp(&a[i].cone, &a[i - 1].cone, sizeof a[i].cone) == 0, "%s: batch",
-                      name);
-            cylref_band bd;
-            double beyond;
-            conref_band_eval(&a[i].cone, a[i].o, a[i].d, a[i].tmin, a[i].tmax, 0, &bd);
-            hits += bd.exact.hit;
-            CHECK(conref_judge(&bd, bd.exact.hit, bd.exact.part, (float)bd.exact.t, &beyond) ==
-                          0 &&
-                      (!bd.exact.hit || beyond <= 0.5),
-                  "%s #%d: the exact answer fails its band", name, i);
-        }
-        CHECK(cat == CONGEN_BAD || hits >= N / 8, "%s: only %d hits of %d", name, hits, N);
-    }
-    congen_make_shared(CONGEN_FAR, 5, N, a);
-    for (int i = 1; i < N; i++)
-        CHECK(memcmp(&a[i].cone, &a[0].cone, sizeof a[0].cone) == 0, "shared");
-}
-
-int test_conref(void)
+void test_conref(void)
 {
     test_cone_hand();
-    test_generators();
+    ref_run_generators(&ref_cone_gen);
     test_independent();
-    return failures;
 }

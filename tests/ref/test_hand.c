@@ -1,47 +1,18 @@
 /* SPDX-License-Identifier: MIT */
-/* test_hand.c - the exact cylinder reference against hand-computed answers: a table of
- * its own, the longest part of the reference's tests. */
+/* test_hand.c - the exact cylinder reference against hand-computed answers: the
+ * cylinder's rows for the shared runner (test_common.c), the longest table of them. */
 #include "test_ref.h"
 
 #include <math.h>
-#include <stdio.h>
 
-static int failures;
-
-typedef struct {
-    const char *what;
-    cylray_cylinder cyl;
-    float o[3], d[3], tmin, tmax;
-    unsigned flags;
-    int hit;
-    double t;
-    int part;
-    double n[3];
-} hand_case;
-
-static void run_hand(const hand_case *h)
-{
-    cylref_hit r;
-    int ret = cylref_intersect(&h->cyl, h->o, h->d, h->tmin, h->tmax, h->flags, &r);
-    CHECK(ret == h->hit && r.hit == h->hit, "%s: hit %d (ret %d), want %d", h->what, r.hit, ret,
-          h->hit);
-    if (!h->hit || !r.hit)
-        return;
-    CHECK(fabs(r.t - h->t) <= 1e-15 * fabs(h->t), "%s: t %.17g want %.17g", h->what, r.t, h->t);
-    CHECK(r.part == h->part, "%s: part %#x want %#x", h->what, r.part, h->part);
-    for (int k = 0; k < 3; k++)
-        CHECK(fabs(r.n[k] - h->n[k]) <= 1e-15, "%s: n[%d] %.17g want %.17g", h->what, k, r.n[k],
-              h->n[k]);
-}
-
-int test_hand(void)
+void test_hand(void)
 {
     const float I = INFINITY;
     const unsigned CAP = CYLRAY_CAPPED, BF = CYLRAY_BACKFACE;
-    const hand_case cases[] = {
+    const ref_hand cases[] = {
         /* Capped R = 1, H = 2 along z through the origin. */
         {"through the center",
-         cyl_z(1, 2, CAP),
+         {.cyl = cyl_z(1, 2, CAP)},
          {-5, 0, 0},
          {1, 0, 0},
          0,
@@ -52,7 +23,7 @@ int test_hand(void)
          CYLRAY_SIDE,
          {-1, 0, 0}},
         {"unnormalized d",
-         cyl_z(1, 2, CAP),
+         {.cyl = cyl_z(1, 2, CAP)},
          {-5, 0, 0},
          {2, 0, 0},
          0,
@@ -63,7 +34,7 @@ int test_hand(void)
          CYLRAY_SIDE,
          {-1, 0, 0}},
         {"axis of length 3",
-         {{0, 0, 0}, {0, 0, 3}, 1, 2, CAP},
+         {.cyl = {{0, 0, 0}, {0, 0, 3}, 1, 2, CAP}},
          {-5, 0, 0},
          {1, 0, 0},
          0,
@@ -74,7 +45,7 @@ int test_hand(void)
          CYLRAY_SIDE,
          {-1, 0, 0}},
         {"axis of length 3, cap",
-         {{0, 0, 0}, {0, 0, 3}, 1, 2, CAP},
+         {.cyl = {{0, 0, 0}, {0, 0, 3}, 1, 2, CAP}},
          {0.5f, 0, 10},
          {0, 0, -1},
          0,
@@ -85,7 +56,7 @@ int test_hand(void)
          CYLRAY_CAP_HI,
          {0, 0, 1}},
         {"off-center chord",
-         cyl_z(1, 2, CAP),
+         {.cyl = cyl_z(1, 2, CAP)},
          {-5, 0.6f, 1},
          {1, 0, 0},
          0,
@@ -96,7 +67,7 @@ int test_hand(void)
          CYLRAY_SIDE,
          {-sqrt(1 - (double)0.6f * 0.6f), 0.6f, 0}},
         {"tangent (closed)",
-         cyl_z(1, 2, CAP),
+         {.cyl = cyl_z(1, 2, CAP)},
          {-5, 1, 0},
          {1, 0, 0},
          0,
@@ -107,7 +78,7 @@ int test_hand(void)
          CYLRAY_SIDE,
          {0, 1, 0}},
         {"just past the tangent",
-         cyl_z(1, 2, CAP),
+         {.cyl = cyl_z(1, 2, CAP)},
          {-5, 1.0000001f, 0},
          {1, 0, 0},
          0,
@@ -118,7 +89,7 @@ int test_hand(void)
          0,
          {0}},
         {"cap from above",
-         cyl_z(1, 2, CAP),
+         {.cyl = cyl_z(1, 2, CAP)},
          {0.5f, 0, 10},
          {0, 0, -1},
          0,
@@ -129,7 +100,7 @@ int test_hand(void)
          CYLRAY_CAP_HI,
          {0, 0, 1}},
         {"parallel, cap from below",
-         cyl_z(1, 2, CAP),
+         {.cyl = cyl_z(1, 2, CAP)},
          {0.5f, 0.25f, -10},
          {0, 0, 1},
          0,
@@ -140,7 +111,7 @@ int test_hand(void)
          CYLRAY_CAP_LO,
          {0, 0, -1}},
         {"parallel outside the tube",
-         cyl_z(1, 2, CAP),
+         {.cyl = cyl_z(1, 2, CAP)},
          {1.5f, 0, -10},
          {0, 0, 1},
          0,
@@ -151,7 +122,7 @@ int test_hand(void)
          0,
          {0}},
         {"parallel on the surface (closed)",
-         cyl_z(1, 2, CAP),
+         {.cyl = cyl_z(1, 2, CAP)},
          {1, 0, -10},
          {0, 0, 1},
          0,
@@ -162,7 +133,7 @@ int test_hand(void)
          CYLRAY_CAP_LO,
          {0, 0, -1}},
         {"slanted cap hit",
-         cyl_z(1, 2, CAP),
+         {.cyl = cyl_z(1, 2, CAP)},
          {0, 0, 4},
          {0.25f, 0, -1},
          0,
@@ -173,7 +144,7 @@ int test_hand(void)
          CYLRAY_CAP_HI,
          {0, 0, 1}},
         {"inside, to the side: backface",
-         cyl_z(1, 2, CAP),
+         {.cyl = cyl_z(1, 2, CAP)},
          {0, 0, 0},
          {1, 0, 0},
          0,
@@ -184,7 +155,7 @@ int test_hand(void)
          CYLRAY_SIDE | BF,
          {1, 0, 0}},
         {"inside, face forward",
-         cyl_z(1, 2, CAP),
+         {.cyl = cyl_z(1, 2, CAP)},
          {0, 0, 0},
          {1, 0, 0},
          0,
@@ -195,7 +166,7 @@ int test_hand(void)
          CYLRAY_SIDE | BF,
          {-1, 0, 0}},
         {"inside, culled",
-         cyl_z(1, 2, CAP),
+         {.cyl = cyl_z(1, 2, CAP)},
          {0, 0, 0},
          {1, 0, 0},
          0,
@@ -206,7 +177,7 @@ int test_hand(void)
          0,
          {0}},
         {"inside, to the cap",
-         cyl_z(1, 2, CAP),
+         {.cyl = cyl_z(1, 2, CAP)},
          {0, 0, 0},
          {0, 0, 1},
          0,
@@ -217,7 +188,7 @@ int test_hand(void)
          CYLRAY_CAP_HI | BF,
          {0, 0, 1}},
         {"inside, down to the cap",
-         cyl_z(1, 2, CAP),
+         {.cyl = cyl_z(1, 2, CAP)},
          {0.5f, 0, 0},
          {0, 0, -4},
          0,
@@ -228,7 +199,7 @@ int test_hand(void)
          CYLRAY_CAP_LO | BF,
          {0, 0, -1}},
         {"outside, tmin past the entry",
-         cyl_z(1, 2, CAP),
+         {.cyl = cyl_z(1, 2, CAP)},
          {-5, 0, 0},
          {1, 0, 0},
          4.5f,
@@ -239,7 +210,7 @@ int test_hand(void)
          CYLRAY_SIDE | BF,
          {1, 0, 0}},
         {"tmax at the hit (closed)",
-         cyl_z(1, 2, CAP),
+         {.cyl = cyl_z(1, 2, CAP)},
          {-5, 0, 0},
          {1, 0, 0},
          0,
@@ -250,7 +221,7 @@ int test_hand(void)
          CYLRAY_SIDE,
          {-1, 0, 0}},
         {"tmax below the hit",
-         cyl_z(1, 2, CAP),
+         {.cyl = cyl_z(1, 2, CAP)},
          {-5, 0, 0},
          {1, 0, 0},
          0,
@@ -261,7 +232,7 @@ int test_hand(void)
          0,
          {0}},
         {"tmin at the exit (closed)",
-         cyl_z(1, 2, CAP),
+         {.cyl = cyl_z(1, 2, CAP)},
          {-5, 0, 0},
          {1, 0, 0},
          6,
@@ -272,7 +243,7 @@ int test_hand(void)
          CYLRAY_SIDE | BF,
          {1, 0, 0}},
         {"tmin past the exit",
-         cyl_z(1, 2, CAP),
+         {.cyl = cyl_z(1, 2, CAP)},
          {-5, 0, 0},
          {1, 0, 0},
          6.0000005f,
@@ -283,7 +254,7 @@ int test_hand(void)
          0,
          {0}},
         {"above the cap, sideways",
-         cyl_z(1, 2, CAP),
+         {.cyl = cyl_z(1, 2, CAP)},
          {-5, 0, 2.5f},
          {1, 0, 0},
          0,
@@ -294,7 +265,7 @@ int test_hand(void)
          0,
          {0}},
         {"in the cap plane (closed)",
-         cyl_z(1, 2, CAP),
+         {.cyl = cyl_z(1, 2, CAP)},
          {-5, 0, 2},
          {1, 0, 0},
          0,
@@ -305,7 +276,7 @@ int test_hand(void)
          CYLRAY_SIDE,
          {-1, 0, 0}},
         {"exactly through the rim",
-         cyl_z(1, 2, CAP),
+         {.cyl = cyl_z(1, 2, CAP)},
          {-2, 0, 3},
          {1, 0, -1},
          0,
@@ -316,7 +287,7 @@ int test_hand(void)
          CYLRAY_SIDE,
          {-1, 0, 0}},
         {"shifted center",
-         {{10, -4, 2}, {0, 0, 1}, 1, 2, CAP},
+         {.cyl = {{10, -4, 2}, {0, 0, 1}, 1, 2, CAP}},
          {5, -4, 2},
          {1, 0, 0},
          0,
@@ -327,7 +298,7 @@ int test_hand(void)
          CYLRAY_SIDE,
          {-1, 0, 0}},
         {"axis along -x",
-         {{0, 0, 0}, {-2, 0, 0}, 1, 2, CAP},
+         {.cyl = {{0, 0, 0}, {-2, 0, 0}, 1, 2, CAP}},
          {10, 0, 0.5f},
          {-1, 0, 0},
          0,
@@ -339,7 +310,7 @@ int test_hand(void)
          {1, 0, 0}},
         /* Open tube R = 1, H = 2. */
         {"open: outside",
-         cyl_z(1, 2, 0),
+         {.cyl = cyl_z(1, 2, 0)},
          {-5, 0, 0},
          {1, 0, 0},
          0,
@@ -350,7 +321,7 @@ int test_hand(void)
          CYLRAY_SIDE,
          {-1, 0, 0}},
         {"open: from inside",
-         cyl_z(1, 2, 0),
+         {.cyl = cyl_z(1, 2, 0)},
          {0, 0, 0},
          {1, 0, 0},
          0,
@@ -361,7 +332,7 @@ int test_hand(void)
          CYLRAY_SIDE | BF,
          {1, 0, 0}},
         {"open: along the axis from inside",
-         cyl_z(1, 2, 0),
+         {.cyl = cyl_z(1, 2, 0)},
          {0, 0, 0},
          {0, 0, 1},
          0,
@@ -372,7 +343,7 @@ int test_hand(void)
          0,
          {0}},
         {"open: in through the open end",
-         cyl_z(1, 2, 0),
+         {.cyl = cyl_z(1, 2, 0)},
          {-0.5f, 0, 3},
          {0.5f, 0, -1},
          0,
@@ -383,7 +354,7 @@ int test_hand(void)
          CYLRAY_SIDE | BF,
          {1, 0, 0}},
         {"open: through the end, cull",
-         cyl_z(1, 2, 0),
+         {.cyl = cyl_z(1, 2, 0)},
          {-0.5f, 0, 3},
          {0.5f, 0, -1},
          0,
@@ -393,9 +364,19 @@ int test_hand(void)
          0,
          0,
          {0}},
-        {"open: over the end", cyl_z(1, 2, 0), {-5, 0, 2.5f}, {1, 0, 0}, 0, I, 0, 0, 0, 0, {0}},
+        {"open: over the end",
+         {.cyl = cyl_z(1, 2, 0)},
+         {-5, 0, 2.5f},
+         {1, 0, 0},
+         0,
+         I,
+         0,
+         0,
+         0,
+         0,
+         {0}},
         {"open: at the end (closed)",
-         cyl_z(1, 2, 0),
+         {.cyl = cyl_z(1, 2, 0)},
          {-5, 0, -2},
          {1, 0, 0},
          0,
@@ -406,7 +387,7 @@ int test_hand(void)
          CYLRAY_SIDE,
          {-1, 0, 0}},
         {"open: parallel, no caps",
-         cyl_z(1, 2, 0),
+         {.cyl = cyl_z(1, 2, 0)},
          {0.5f, 0, -10},
          {0, 0, 1},
          0,
@@ -418,7 +399,7 @@ int test_hand(void)
          {0}},
         /* Infinite R = 2. */
         {"infinite: far up",
-         cyl_z(2, INFINITY, 0),
+         {.cyl = cyl_z(2, INFINITY, 0)},
          {-5, 0, 1e6f},
          {1, 0, 0},
          0,
@@ -429,7 +410,7 @@ int test_hand(void)
          CYLRAY_SIDE,
          {-1, 0, 0}},
         {"infinite: inside",
-         cyl_z(2, INFINITY, 0),
+         {.cyl = cyl_z(2, INFINITY, 0)},
          {0, 0, 0},
          {0, 1, 1},
          0,
@@ -440,7 +421,7 @@ int test_hand(void)
          CYLRAY_SIDE | BF,
          {0, 1, 0}},
         {"infinite: parallel inside",
-         cyl_z(2, INFINITY, 0),
+         {.cyl = cyl_z(2, INFINITY, 0)},
          {0, 0, 0},
          {0, 0, 1},
          0,
@@ -451,7 +432,7 @@ int test_hand(void)
          0,
          {0}},
         {"infinite: capped flag ignored",
-         cyl_z(2, INFINITY, CAP),
+         {.cyl = cyl_z(2, INFINITY, CAP)},
          {0, 0, 0},
          {0, 0, 1},
          0,
@@ -461,22 +442,35 @@ int test_hand(void)
          0,
          0,
          {0}},
+        {"zero direction",
+         {.cyl = cyl_z(1, 2, CAP)},
+         {-5, 0, 0},
+         {0, 0, 0},
+         0,
+         I,
+         0,
+         0,
+         0,
+         0,
+         {0}},
+        {"NaN direction",
+         {.cyl = cyl_z(1, 2, CAP)},
+         {-5, 0, 0},
+         {NAN, 1, 0},
+         0,
+         I,
+         0,
+         0,
+         0,
+         0,
+         {0}},
     };
-    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++)
-        run_hand(&cases[i]);
+    ref_run_hand(&ref_cylinder, cases, sizeof cases / sizeof cases[0]);
 
-    /* Bad cylinders: -1 and a miss. */
-    cylref_hit r;
+    /* Cylinders with no radius, height or axis: -1 and a miss. */
+    const ref_shape bad[] = {{.cyl = cyl_z(0, 2, CAP)},
+                             {.cyl = cyl_z(1, NAN, CAP)},
+                             {.cyl = {{0, 0, 0}, {0, 0, 0}, 1, 1, 0}}};
     const float o[3] = {-5, 0, 0}, d[3] = {1, 0, 0};
-    cylray_cylinder bad = cyl_z(0, 2, CAP);
-    CHECK(cylref_intersect(&bad, o, d, 0, INFINITY, 0, &r) == -1 && !r.hit, "radius 0");
-    bad = cyl_z(1, NAN, CAP);
-    CHECK(cylref_intersect(&bad, o, d, 0, INFINITY, 0, &r) == -1, "H NaN");
-    bad = (cylray_cylinder){{0, 0, 0}, {0, 0, 0}, 1, 1, 0};
-    CHECK(cylref_intersect(&bad, o, d, 0, INFINITY, 0, &r) == -1, "zero axis");
-    const float dz[3] = {0, 0, 0}, dn[3] = {NAN, 1, 0};
-    cylray_cylinder good = cyl_z(1, 2, CAP);
-    CHECK(cylref_intersect(&good, o, dz, 0, INFINITY, 0, &r) == 0, "zero direction");
-    CHECK(cylref_intersect(&good, o, dn, 0, INFINITY, 0, &r) == 0, "NaN direction");
-    return failures;
+    ref_run_refused(&ref_cylinder, bad, sizeof bad / sizeof bad[0], o, d);
 }

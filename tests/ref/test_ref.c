@@ -9,11 +9,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-static int failures;
-
-int test_sphref(void); /* test_sphref.c */
-int test_conref(void); /* test_conref.c */
-
 /* ---- symmetries ------------------------------------------------------------------ */
 
 static int close_t(double a, double b)
@@ -300,19 +295,25 @@ static void test_generators(void)
         CHECK(memcmp(&a[i].cyl, &a[0].cyl, sizeof a[0].cyl) == 0, "shared");
 }
 
+/* Each part with its count of checks, so that a change to the tests shows what it took or
+ * added. */
+static void part(const char *name, void (*run)(void))
+{
+    long c0 = ref_checks, f0 = ref_failures;
+    run();
+    printf("ref-selftest %-18s %6ld checks, %ld failures\n", name, ref_checks - c0,
+           ref_failures - f0);
+}
+
 int main(void)
 {
-    failures += test_hand();
-    test_generators();
-    test_symmetry();
-    test_membership();
-    test_band();
-    failures += test_sphref();
-    failures += test_conref();
-    if (failures) {
-        printf("%d failures\n", failures);
-        return 1;
-    }
-    printf("all reference tests passed\n");
-    return 0;
+    part("cylinder hand", test_hand);
+    part("cylinder generators", test_generators);
+    part("cylinder symmetry", test_symmetry);
+    part("cylinder membership", test_membership);
+    part("cylinder band", test_band);
+    part("sphere", test_sphref);
+    part("cone", test_conref);
+    printf("ref-selftest: %ld checks, %ld failures\n", ref_checks, ref_failures);
+    return ref_failures != 0;
 }

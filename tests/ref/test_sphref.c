@@ -10,49 +10,104 @@
 #include <stdio.h>
 #include <string.h>
 
-int test_sphref(void);
-
-static int failures;
-
-typedef struct {
-    const char *what;
-    cylray_sphere s;
-    float o[3], d[3], tmin, tmax;
-    unsigned flags;
-    int hit;
-    double t;
-    int part;
-    double n[3];
-} hand_case;
-
 static void test_sphere_hand(void)
 {
     const float I = INFINITY;
     const int S = CYLRAY_SIDE, SB = CYLRAY_SIDE | CYLRAY_BACKFACE;
     const unsigned FF = CYLRAY_FACE_FORWARD, CB = CYLRAY_CULL_BACK;
     const cylray_sphere u = {{0, 0, 0}, 1}, big = {{3, 4, 12}, 13};
-    const hand_case cases[] = {
-        {"head on", u, {0, 0, -5}, {0, 0, 1}, 0, I, 0, 1, 4, S, {0, 0, -1}},
-        {"unnormalized d", u, {0, 0, -5}, {0, 0, 2}, 0, I, 0, 1, 2, S, {0, 0, -1}},
-        {"tiny d", u, {0, 0, -5}, {0, 0, 0x1p-30f}, 0, I, 0, 1, 0x1p32, S, {0, 0, -1}},
-        {"from the center", u, {0, 0, 0}, {0, 0, 1}, 0, I, 0, 1, 1, SB, {0, 0, 1}},
-        {"from the center, ff", u, {0, 0, 0}, {0, 0, 1}, 0, I, FF, 1, 1, SB, {0, 0, -1}},
-        {"from the center, culled", u, {0, 0, 0}, {0, 0, 1}, 0, I, CB, 0, 0, 0, {0, 0, 0}},
-        {"front face, ff keeps it", u, {0, -5, 0}, {0, 1, 0}, 0, I, FF, 1, 4, S, {0, -1, 0}},
-        {"tmax short", u, {0, 0, -5}, {0, 0, 1}, 0, 3.9f, 0, 0, 0, 0, {0, 0, 0}},
-        {"tmax closed", u, {0, 0, -5}, {0, 0, 1}, 0, 4, 0, 1, 4, S, {0, 0, -1}},
-        {"tmin closed", u, {0, 0, -5}, {0, 0, 1}, 4, I, 0, 1, 4, S, {0, 0, -1}},
-        {"tmin past the entry", u, {0, 0, -5}, {0, 0, 1}, 4.5f, I, 0, 1, 6, SB, {0, 0, 1}},
-        {"tmin past the entry, culled", u, {0, 0, -5}, {0, 0, 1}, 4.5f, I, CB, 0, 0, 0, {0}},
-        {"behind", u, {0, 0, 5}, {0, 0, 1}, 0, I, 0, 0, 0, 0, {0, 0, 0}},
-        {"negative interval", u, {0, 0, 5}, {0, 0, 1}, -I, 0, 0, 1, -6, S, {0, 0, -1}},
-        {"tangent", u, {1, 0, -5}, {0, 0, 1}, 0, I, 0, 1, 5, S, {1, 0, 0}},
-        {"just outside", u, {1.0000001f, 0, -5}, {0, 0, 1}, 0, I, 0, 0, 0, 0, {0}},
-        {"on the surface, inward", u, {0, 0, -1}, {0, 0, 1}, 0, I, 0, 1, 0, S, {0, 0, -1}},
-        {"on the surface, outward", u, {0, 0, -1}, {0, 0, -1}, 0, I, 0, 1, 0, SB, {0, 0, -1}},
+    const ref_hand cases[] = {
+        {"head on", {.sph = u}, {0, 0, -5}, {0, 0, 1}, 0, I, 0, 1, 4, S, {0, 0, -1}},
+        {"unnormalized d", {.sph = u}, {0, 0, -5}, {0, 0, 2}, 0, I, 0, 1, 2, S, {0, 0, -1}},
+        {"tiny d", {.sph = u}, {0, 0, -5}, {0, 0, 0x1p-30f}, 0, I, 0, 1, 0x1p32, S, {0, 0, -1}},
+        {"from the center", {.sph = u}, {0, 0, 0}, {0, 0, 1}, 0, I, 0, 1, 1, SB, {0, 0, 1}},
+        {"from the center, ff",
+         {.sph = u},
+         {0, 0, 0},
+         {0, 0, 1},
+         0,
+         I,
+         FF,
+         1,
+         1,
+         SB,
+         {0, 0, -1}},
+        {"from the center, culled",
+         {.sph = u},
+         {0, 0, 0},
+         {0, 0, 1},
+         0,
+         I,
+         CB,
+         0,
+         0,
+         0,
+         {0, 0, 0}},
+        {"front face, ff keeps it",
+         {.sph = u},
+         {0, -5, 0},
+         {0, 1, 0},
+         0,
+         I,
+         FF,
+         1,
+         4,
+         S,
+         {0, -1, 0}},
+        {"tmax short", {.sph = u}, {0, 0, -5}, {0, 0, 1}, 0, 3.9f, 0, 0, 0, 0, {0, 0, 0}},
+        {"tmax closed", {.sph = u}, {0, 0, -5}, {0, 0, 1}, 0, 4, 0, 1, 4, S, {0, 0, -1}},
+        {"tmin closed", {.sph = u}, {0, 0, -5}, {0, 0, 1}, 4, I, 0, 1, 4, S, {0, 0, -1}},
+        {"tmin past the entry",
+         {.sph = u},
+         {0, 0, -5},
+         {0, 0, 1},
+         4.5f,
+         I,
+         0,
+         1,
+         6,
+         SB,
+         {0, 0, 1}},
+        {"tmin past the entry, culled",
+         {.sph = u},
+         {0, 0, -5},
+         {0, 0, 1},
+         4.5f,
+         I,
+         CB,
+         0,
+         0,
+         0,
+         {0}},
+        {"behind", {.sph = u}, {0, 0, 5}, {0, 0, 1}, 0, I, 0, 0, 0, 0, {0, 0, 0}},
+        {"negative interval", {.sph = u}, {0, 0, 5}, {0, 0, 1}, -I, 0, 0, 1, -6, S, {0, 0, -1}},
+        {"tangent", {.sph = u}, {1, 0, -5}, {0, 0, 1}, 0, I, 0, 1, 5, S, {1, 0, 0}},
+        {"just outside", {.sph = u}, {1.0000001f, 0, -5}, {0, 0, 1}, 0, I, 0, 0, 0, 0, {0}},
+        {"on the surface, inward",
+         {.sph = u},
+         {0, 0, -1},
+         {0, 0, 1},
+         0,
+         I,
+         0,
+         1,
+         0,
+         S,
+         {0, 0, -1}},
+        {"on the surface, outward",
+         {.sph = u},
+         {0, 0, -1},
+         {0, 0, -1},
+         0,
+         I,
+         0,
+         1,
+         0,
+         SB,
+         {0, 0, -1}},
         /* The world origin lies on this one: roots 0 and 2 from there, 1 and 3 from -c. */
         {"3-4-12-13",
-         big,
+         {.sph = big},
          {0, 0, 0},
          {3, 4, 12},
          0,
@@ -63,7 +118,7 @@ static void test_sphere_hand(void)
          S,
          {-3 / 13., -4 / 13., -12 / 13.}},
         {"3-4-12-13, tmin 1",
-         big,
+         {.sph = big},
          {0, 0, 0},
          {3, 4, 12},
          1,
@@ -74,7 +129,7 @@ static void test_sphere_hand(void)
          SB,
          {3 / 13., 4 / 13., 12 / 13.}},
         {"3-4-12-13 from -c",
-         big,
+         {.sph = big},
          {-3, -4, -12},
          {3, 4, 12},
          0,
@@ -85,7 +140,7 @@ static void test_sphere_hand(void)
          S,
          {-3 / 13., -4 / 13., -12 / 13.}},
         {"far center",
-         {{0x1p40f, 0, 0}, 0x1p-20f},
+         {.sph = {{0x1p40f, 0, 0}, 0x1p-20f}},
          {0x1p40f, 0, -1},
          {0, 0, 1},
          0,
@@ -95,40 +150,23 @@ static void test_sphere_hand(void)
          1 - 0x1p-20,
          S,
          {0, 0, -1}},
-        {"NaN origin", u, {NAN, 0, -5}, {0, 0, 1}, 0, I, 0, 0, 0, 0, {0}},
-        {"Inf direction", u, {0, 0, -5}, {0, 0, I}, 0, I, 0, 0, 0, 0, {0}},
-        {"zero direction", u, {0, 0, -5}, {0, 0, 0}, 0, I, 0, 0, 0, 0, {0}},
-        {"NaN tmax", u, {0, 0, -5}, {0, 0, 1}, 0, NAN, 0, 0, 0, 0, {0}},
+        {"NaN origin", {.sph = u}, {NAN, 0, -5}, {0, 0, 1}, 0, I, 0, 0, 0, 0, {0}},
+        {"Inf direction", {.sph = u}, {0, 0, -5}, {0, 0, I}, 0, I, 0, 0, 0, 0, {0}},
+        {"zero direction", {.sph = u}, {0, 0, -5}, {0, 0, 0}, 0, I, 0, 0, 0, 0, {0}},
+        {"NaN tmax", {.sph = u}, {0, 0, -5}, {0, 0, 1}, 0, NAN, 0, 0, 0, 0, {0}},
     };
-    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
-        const hand_case *h = &cases[i];
-        cylref_hit r;
-        int ret = sphref_intersect(&h->s, h->o, h->d, h->tmin, h->tmax, h->flags, &r);
-        CHECK(ret == h->hit && r.hit == h->hit, "%s: hit %d (ret %d), want %d", h->what, r.hit,
-              ret, h->hit);
-        if (!h->hit || !r.hit)
-            continue;
-        CHECK(fabs(r.t - h->t) <= 1e-15 * fabs(h->t), "%s: t %.17g want %.17g", h->what, r.t,
-              h->t);
-        CHECK(r.part == h->part, "%s: part %#x want %#x", h->what, r.part, h->part);
-        for (int k = 0; k < 3; k++)
-            CHECK(fabs(r.n[k] - h->n[k]) <= 1e-15, "%s: n[%d] %.17g want %.17g", h->what, k,
-                  r.n[k], h->n[k]);
-    }
+    ref_run_hand(&ref_sphere, cases, sizeof cases / sizeof cases[0]);
 
     /* Spheres cylray_prepare_sphere refuses. */
-    const cylray_sphere bad[] = {
-        {{NAN, 0, 0}, 1}, {{0, INFINITY, 0}, 1}, {{0, 0, 0x1p63f}, 1},  {{0, 0, 0}, 0},
-        {{0, 0, 0}, -1},  {{0, 0, 0}, NAN},      {{0, 0, 0}, 0x1p-61f}, {{0, 0, 0}, 0x1p63f}};
-    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
-        cylref_hit r;
-        const float o[3] = {0, 0, -5}, d[3] = {0, 0, 1};
-        CHECK(sphref_intersect(&bad[i], o, d, 0, INFINITY, 0, &r) == -1 && !r.hit,
-              "bad sphere %zu accepted", i);
-    }
-    const cylray_sphere edge[] = {{{0x1p62f, -0x1p62f, 0}, 0x1p-60f}, {{0, 0, 0}, 0x1p62f}};
-    for (size_t i = 0; i < sizeof edge / sizeof edge[0]; i++)
-        CHECK(sphref_valid(&edge[i]), "edge sphere %zu refused", i);
+    const ref_shape bad[] = {{.sph = {{NAN, 0, 0}, 1}},      {.sph = {{0, INFINITY, 0}, 1}},
+                             {.sph = {{0, 0, 0x1p63f}, 1}},  {.sph = {{0, 0, 0}, 0}},
+                             {.sph = {{0, 0, 0}, -1}},       {.sph = {{0, 0, 0}, NAN}},
+                             {.sph = {{0, 0, 0}, 0x1p-61f}}, {.sph = {{0, 0, 0}, 0x1p63f}}};
+    const float o[3] = {0, 0, -5}, d[3] = {0, 0, 1};
+    ref_run_refused(&ref_sphere, bad, sizeof bad / sizeof bad[0], o, d);
+    const ref_shape edge[] = {{.sph = {{0x1p62f, -0x1p62f, 0}, 0x1p-60f}},
+                              {.sph = {{0, 0, 0}, 0x1p62f}}};
+    ref_run_valid(&ref_sphere, edge, sizeof edge / sizeof edge[0]);
 }
 
 /* The same question in long double (64 bits on x86, binary128 on AArch64) in another
@@ -326,35 +364,10 @@ static void test_band(void)
     }
 }
 
-static void test_generators(void)
-{
-    enum { N = 64 };
-    static sphgen_case a[N], b[N];
-    CHECK(sphgen_category_name(SPHGEN_COUNT) == NULL, "count");
-    for (int cat = 0; cat < SPHGEN_COUNT; cat++) {
-        const char *name = sphgen_category_name(cat);
-        CHECK(name && sphgen_category_find(name) == cat, "name %d", cat);
-        CHECK(sphgen_category_description(cat) != NULL, "description %d", cat);
-        sphgen_make(cat, 5, N, a);
-        sphgen_make(cat, 5, N / 2, b);
-        CHECK(memcmp(a, b, sizeof a[0] * (N / 2)) == 0, "%s: not prefix-stable", name);
-        for (int i = 0; i < N; i++) {
-            CHECK(sphref_valid(&a[i].sph), "%s #%d: invalid sphere", name, i);
-            if (i % CYLGEN_BATCH)
-                CHECK(memcmp(&a[i].sph, &a[i - 1].sph, sizeof a[i].sph) == 0, "%s: batch",
-                      name);
-        }
-    }
-    sphgen_make_shared(SPHGEN_FAR, 5, N, a);
-    for (int i = 1; i < N; i++)
-        CHECK(memcmp(&a[i].sph, &a[0].sph, sizeof a[0].sph) == 0, "shared");
-}
-
-int test_sphref(void)
+void test_sphref(void)
 {
     test_sphere_hand();
-    test_generators();
+    ref_run_generators(&ref_sphere_gen);
     test_independent();
     test_band();
-    return failures;
 }
