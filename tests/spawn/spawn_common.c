@@ -9,11 +9,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-const cylray_kernels *isas[CYLRAY_ISA_COUNT];
-int nisa;
-int quick;
-long failures;
-
 void fail(const char *what, const cylgen_case *c, const char *detail)
 {
     if (failures++ < 20)

@@ -1,22 +1,19 @@
 /* SPDX-License-Identifier: MIT */
-/* spawn_common.h - what the modes of spawn_test share: the paths under test, the
- * failure count and report, tracing a group of cases on a path, and the exact checks
- * of a spawned origin's side. Each mode (spawn_<mode>.c) is one run_<mode>(),
- * returning nonzero when every check held; spawn_test.c picks one by name. */
+/* spawn_common.h - what the modes of spawn_test share: the failure report, tracing a
+ * group of cases on a path, and the exact checks of a spawned origin's side (the paths
+ * and the failure count are every spawn executable's: spawn_main.h). Each mode
+ * (spawn_<mode>.c) is one run_<mode>(), returning nonzero when every check held;
+ * spawn_test.c's table names them. */
 #ifndef SPAWN_COMMON_H
 #define SPAWN_COMMON_H
 
 #include "cylray.h"
 #include "cylray_internal.h"
 #include "cylref.h"
+#include "spawn_main.h"
 #include "spawnref.h"
 
 #include <stdint.h>
-
-extern const cylray_kernels *isas[CYLRAY_ISA_COUNT]; /* the paths this CPU runs */
-extern int nisa;
-extern int quick;     /* CYLRAY_TEST_QUICK: counts about a hundredfold smaller */
-extern long failures; /* the first 20 are printed */
 
 void fail(const char *what, const cylgen_case *c, const char *detail);
 uint32_t trace_group(const cylray_kernels *k, const cylray_prepared *P, const cylgen_case *c,

@@ -17,6 +17,7 @@
 #include "cylray.h"
 #include "cylref.h"
 #include "quad.h"
+#include "spawn_main.h"
 #include "spawnref.h"
 #include "tcheck.h"
 
@@ -26,10 +27,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const cylray_kernels *isas[CYLRAY_ISA_COUNT];
-static int nisa, quick;
-static long failures;
-
 static void fail(const char *what, const cylray_cone *c, double a, double b)
 {
     if (failures++ < 20)
@@ -37,16 +34,6 @@ static void fail(const char *what, const cylray_cone *c, double a, double b)
                what, (double)c->p0[0], (double)c->p0[1], (double)c->p0[2], (double)c->p1[0],
                (double)c->p1[1], (double)c->p1[2], (double)c->r0, (double)c->r1, c->flags, a,
                b);
-}
-
-static double uni(cylgen_rng *r, double a, double b)
-{
-    return a + (b - a) * cylgen_uniform(r);
-}
-
-static long scaled(long full)
-{
-    return quick ? (full + 99) / 100 : full;
 }
 
 enum { K_GENERAL, K_TIP, K_NEARCYL, K_STEEP, K_FLAT, K_COUNT };
@@ -282,10 +269,7 @@ static int run_bounds(void)
                 continue;
             for (int form = 0; form < 2; form++) {
                 float p[3], err;
-                if (form)
-                    cylray_hit_point_normal(&P, o[i], d[i], t[i], part[i], n[i], p, &err);
-                else
-                    cylray_hit_point(&P, o[i], d[i], t[i], part[i], p, &err);
+                hit_point_form(&P, o[i], d[i], t[i], part[i], n[i], form, p, &err);
                 const double dist = q_dist(&q, p, part[i] & CYLRAY_PART_MASK);
                 checked++;
                 if (!(dist <= err)) {
@@ -510,26 +494,10 @@ static int run_batched(void)
     return compared > 0 && differ == 0;
 }
 
+static const spawn_mode modes[] = {
+    {"bounds", run_bounds}, {"self", run_self}, {"batched", run_batched}};
+
 int main(int argc, char **argv)
 {
-    quick = tc_quick();
-    for (int i = 0; i < CYLRAY_ISA_COUNT; i++) {
-        const cylray_kernels *k = cylray_kernels_for((cylray_isa)i);
-        if (k)
-            isas[nisa++] = k;
-    }
-    const char *mode = argc > 1 ? argv[1] : "";
-    int ok;
-    if (strcmp(mode, "bounds") == 0)
-        ok = run_bounds();
-    else if (strcmp(mode, "self") == 0)
-        ok = run_self();
-    else if (strcmp(mode, "batched") == 0)
-        ok = run_batched();
-    else {
-        fprintf(stderr, "usage: spawn_cone bounds|self|batched\n");
-        return 2;
-    }
-    printf("%s: %s\n", mode, ok ? "ok" : "FAILED");
-    return ok ? 0 : 1;
+    return spawn_main(argc, argv, "spawn_cone", modes, sizeof modes / sizeof modes[0]);
 }

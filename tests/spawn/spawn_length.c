@@ -16,6 +16,7 @@
  * of the tangent plane), the origin lies strictly on its side and no ISA's kernel meets
  * the surface it leaves (spawnref.h's test). Any violation fails the test. */
 #include "cylray.h"
+#include "spawn_main.h"
 #include "spawnref.h"
 #include "tcheck.h"
 
@@ -24,10 +25,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-static const cylray_kernels *isas[CYLRAY_ISA_COUNT];
-static int nisa;
-static long failures;
 
 static void fail(const cylray_cylinder *cyl, const float p[3], const float w[3],
                  const char *what)
@@ -178,7 +175,7 @@ static int run_fuzz(void)
 static const int lengths[] = {0, 40, 100, 120, 125, 126, 127, 128};
 #define NLEN ((int)(sizeof lengths / sizeof lengths[0]))
 
-static int run_sweep(int quick)
+static int run_sweep(void)
 {
     stats st[NLEN];
     memset(st, 0, sizeof st);
@@ -249,24 +246,9 @@ static int run_sweep(int quick)
     return failures == 0;
 }
 
+static const spawn_mode modes[] = {{"fuzz", run_fuzz}, {"sweep", run_sweep}};
+
 int main(int argc, char **argv)
 {
-    const int quick = tc_quick();
-    for (int i = 0; i < CYLRAY_ISA_COUNT; i++) {
-        const cylray_kernels *k = cylray_kernels_for((cylray_isa)i);
-        if (k)
-            isas[nisa++] = k;
-    }
-    const char *mode = argc > 1 ? argv[1] : "";
-    int ok;
-    if (strcmp(mode, "fuzz") == 0)
-        ok = run_fuzz();
-    else if (strcmp(mode, "sweep") == 0)
-        ok = run_sweep(quick);
-    else {
-        fprintf(stderr, "usage: spawn_length fuzz|sweep\n");
-        return 2;
-    }
-    printf("%s: %s\n", mode, ok ? "ok" : "FAILED");
-    return ok ? 0 : 1;
+    return spawn_main(argc, argv, "spawn_length", modes, sizeof modes / sizeof modes[0]);
 }

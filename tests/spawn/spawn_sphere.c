@@ -28,11 +28,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-const cylray_kernels *isas[CYLRAY_ISA_COUNT];
-int nisa;
-static int quick;
-long failures;
-
 void fail(const char *what, const cylray_sphere *s, const char *fmt, double a, double b)
 {
     if (failures++ < 20) {
@@ -42,13 +37,6 @@ void fail(const char *what, const cylray_sphere *s, const char *fmt, double a, d
         printf("\n");
     }
 }
-
-double uni(cylgen_rng *r, double a, double b)
-{
-    return a + (b - a) * cylgen_uniform(r);
-}
-
-static const char *const kind_name[K_COUNT] = {"near", "far", "tiny", "huge"};
 
 void make_sphere(cylgen_rng *r, int kind, cylray_sphere *s)
 {
@@ -280,11 +268,6 @@ uint32_t trace(const cylray_kernels *K, const cylray_prepared *P, int cnt, const
     return m;
 }
 
-long scaled(long full)
-{
-    return quick ? (full + 99) / 100 : full;
-}
-
 /* ---- bounds ------------------------------------------------------------------------ */
 
 static int run_bounds(void)
@@ -319,13 +302,8 @@ static int run_bounds(void)
                     continue;
                 for (int form = 0; form < 2; form++) {
                     float p[3], err;
-                    if (form)
-                        cylray_hit_point_normal(&P, o[i], d[i], src ? tk[i] : t[i],
-                                                src ? pk[i] : part[i], src ? nk[i] : n[i], p,
-                                                &err);
-                    else
-                        cylray_hit_point(&P, o[i], d[i], src ? tk[i] : t[i],
-                                         src ? pk[i] : part[i], p, &err);
+                    hit_point_form(&P, o[i], d[i], src ? tk[i] : t[i], src ? pk[i] : part[i],
+                                   src ? nk[i] : n[i], form, p, &err);
                     const double dist = exact_dist(&s, p);
                     checked++;
                     if (!(dist <= err)) {
@@ -346,29 +324,19 @@ static int run_bounds(void)
     return viol == 0 && checked > 0;
 }
 
+static int run_self(void)
+{
+    return run_spawns(0);
+}
+static int run_side(void)
+{
+    return run_spawns(1);
+}
+
+static const spawn_mode modes[] = {
+    {"bounds", run_bounds}, {"self", run_self}, {"side", run_side}, {"batched", run_batched}};
+
 int main(int argc, char **argv)
 {
-    quick = tc_quick();
-    for (int i = 0; i < CYLRAY_ISA_COUNT; i++) {
-        const cylray_kernels *k = cylray_kernels_for((cylray_isa)i);
-        if (k)
-            isas[nisa++] = k;
-    }
-    const char *mode = argc > 1 ? argv[1] : "";
-    int ok;
-    if (strcmp(mode, "bounds") == 0)
-        ok = run_bounds();
-    else if (strcmp(mode, "self") == 0)
-        ok = run_spawns(0);
-    else if (strcmp(mode, "side") == 0)
-        ok = run_spawns(1);
-    else if (strcmp(mode, "batched") == 0)
-        ok = run_batched();
-    else {
-        fprintf(stderr, "usage: spawn_sphere bounds|self|side|batched\n");
-        return 2;
-    }
-    (void)kind_name;
-    printf("%s: %s\n", mode, ok ? "ok" : "FAILED");
-    return ok ? 0 : 1;
+    return spawn_main(argc, argv, "spawn_sphere", modes, sizeof modes / sizeof modes[0]);
 }

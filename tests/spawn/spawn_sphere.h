@@ -1,23 +1,19 @@
 /* SPDX-License-Identifier: MIT */
-/* spawn_sphere.h - what spawn_sphere's modes share: the paths under test, the spheres
- * and rays they are given, the exact geometry they are judged by. */
+/* spawn_sphere.h - what spawn_sphere's modes share: the spheres and rays they are given,
+ * the exact geometry they are judged by (the paths: spawn_main.h). */
 #ifndef SPAWN_SPHERE_H
 #define SPAWN_SPHERE_H
 
 #include "cylray.h"
 #include "cylref.h"
+#include "spawn_main.h"
 #include "spawnref.h"
 
 #include <stdint.h>
 
-extern const cylray_kernels *isas[CYLRAY_ISA_COUNT]; /* the paths this CPU runs */
-extern int nisa;
-extern long failures; /* the first 20 are printed */
-
 enum { K_NEAR, K_FAR, K_TINY, K_HUGE, K_COUNT };
 
 void fail(const char *what, const cylray_sphere *s, const char *fmt, double a, double b);
-double uni(cylgen_rng *r, double a, double b);
 void make_sphere(cylgen_rng *r, int kind, cylray_sphere *s);
 void make_ray(cylgen_rng *r, const cylray_sphere *s, float o[3], float d[3]);
 int too_soon(const cylray_sphere *s, const float x0[3], const float w[3], float tk);
@@ -28,7 +24,6 @@ int double_hit(const cylray_sphere *s, const float o[3], const float d[3], float
 uint32_t trace(const cylray_kernels *K, const cylray_prepared *P, int cnt, const float o[][3],
                const float d[][3], const float *tmax, float t[16], int32_t part[16],
                float n[16][3]);
-long scaled(long full);
 
 int run_spawns(int side_form); /* spawn_sphere_self.c */
 int run_batched(void);         /* spawn_sphere_batched.c */

@@ -25,43 +25,13 @@
  * CYLRAY_TEST_QUICK=1 shrinks the counts about a hundredfold (sanitizers, emulators).
  * Every count is printed; any violation fails the test. */
 #include "spawn_common.h"
-#include "tcheck.h"
 
-#include <stdio.h>
-#include <stdlib.h>
-#include <string.h>
+static const spawn_mode modes[] = {
+    {"bounds", run_bounds},           {"self", run_self},  {"nested", run_nested},
+    {"batched", run_batched},         {"axis", run_axis},  {"side", run_side},
+    {"reintersect", run_reintersect}, {"round", run_round}};
 
 int main(int argc, char **argv)
 {
-    quick = tc_quick();
-    for (int i = 0; i < CYLRAY_ISA_COUNT; i++) {
-        const cylray_kernels *k = cylray_kernels_for((cylray_isa)i);
-        if (k)
-            isas[nisa++] = k;
-    }
-    const char *mode = argc > 1 ? argv[1] : "";
-    int ok;
-    if (strcmp(mode, "bounds") == 0)
-        ok = run_bounds();
-    else if (strcmp(mode, "self") == 0)
-        ok = run_self();
-    else if (strcmp(mode, "nested") == 0)
-        ok = run_nested();
-    else if (strcmp(mode, "batched") == 0)
-        ok = run_batched();
-    else if (strcmp(mode, "axis") == 0)
-        ok = run_axis();
-    else if (strcmp(mode, "side") == 0)
-        ok = run_side();
-    else if (strcmp(mode, "reintersect") == 0)
-        ok = run_reintersect();
-    else if (strcmp(mode, "round") == 0)
-        ok = run_round();
-    else {
-        fprintf(stderr,
-                "usage: spawn_test bounds|self|nested|batched|axis|side|reintersect|round\n");
-        return 2;
-    }
-    printf("%s: %s\n", mode, ok ? "ok" : "FAILED");
-    return ok ? 0 : 1;
+    return spawn_main(argc, argv, "spawn_test", modes, sizeof modes / sizeof modes[0]);
 }

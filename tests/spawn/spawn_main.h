@@ -1,0 +1,38 @@
+/* SPDX-License-Identifier: MIT */
+/* spawn_main.h - what every spawn executable shares (cylinders, spheres, cones, lengths):
+ * the paths under test, the quick switch, the failure count, and main's dispatch over a
+ * table of modes. A shape's executable is its modes and its main one line long. */
+#ifndef SPAWN_MAIN_H
+#define SPAWN_MAIN_H
+
+#include "cylray.h"
+#include "gen.h"
+
+#include <stddef.h>
+#include <stdint.h>
+
+extern const cylray_kernels *isas[CYLRAY_ISA_COUNT]; /* the paths this CPU runs */
+extern int nisa;
+extern int quick;     /* CYLRAY_TEST_QUICK: counts about a hundredfold smaller */
+extern long failures; /* each executable prints its first 20 */
+
+/* A uniform double in [a, b). */
+double uni(cylgen_rng *r, double a, double b);
+/* A count of `full`, a hundredth of it rounded up when quick. */
+long scaled(long full);
+
+/* The hit point of (t, part) and its bound, in the plain form (form 0) or from the
+ * kernel's normal n (form 1): every shape's bounds test checks both. */
+void hit_point_form(const cylray_prepared *P, const float o[3], const float d[3], float t,
+                    int32_t part, const float n[3], int form, float p[3], float *err);
+
+typedef struct spawn_mode {
+    const char *name;
+    int (*run)(void); /* nonzero when every check held */
+} spawn_mode;
+
+/* Fills isas and quick, runs the mode argv[1] names and prints "<mode>: ok" or
+ * "<mode>: FAILED"; returns main's status (2 with the usage for an unknown mode). */
+int spawn_main(int argc, char **argv, const char *prog, const spawn_mode *modes, size_t n);
+
+#endif
