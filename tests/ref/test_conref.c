@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
-/* test_conref.c - tests of the exact cone reference: hand-computed answers (tips, rims,
- * the apex, the discs and open ends), an independent computation in another precision
- * and algebraic form, the band's consistency, and the generators. */
+/* test_conref.c - tests of the exact cone reference: an independent computation in another
+ * precision and algebraic form, and the generators (its hand-computed answers, of tips,
+ * rims, the apex, the discs and open ends: test_hand.c). */
 #include "congen.h"
 #include "conref.h"
 #include "test_ref.h"
@@ -9,177 +9,6 @@
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
-
-#define R2 0.70710678118654752440
-
-static void test_cone_hand(void)
-{
-    const float I = INFINITY;
-    const int S = CYLRAY_SIDE, SB = CYLRAY_SIDE | CYLRAY_BACKFACE, LO = CYLRAY_CAP_LO,
-              HI = CYLRAY_CAP_HI, B = CYLRAY_BACKFACE;
-    const unsigned FF = CYLRAY_FACE_FORWARD, CB = CYLRAY_CULL_BACK;
-    /* A tip cone: radius 2 at z = 0, the apex at z = 2, slope -1. */
-    const cylray_cone tip = {{0, 0, 0}, {0, 0, 2}, 2, 0, CYLRAY_CAPPED_LO};
-    const cylray_cone tip_open = {{0, 0, 0}, {0, 0, 2}, 2, 0, 0};
-    /* A frustum: radius 1 at z = 0, 2 at z = 2. */
-    const cylray_cone fr = {{0, 0, 0}, {0, 0, 2}, 1, 2, CYLRAY_CAPPED};
-    const cylray_cone fr_lo = {{0, 0, 0}, {0, 0, 2}, 1, 2, CYLRAY_CAPPED_LO};
-    const cylray_cone cyl = {{0, 0, -1}, {0, 0, 1}, 1, 1, CYLRAY_CAPPED};
-    const ref_hand cases[] = {
-        {"side at r(1)", {.cone = tip}, {5, 0, 1}, {-1, 0, 0}, 0, I, 0, 1, 4, S, {R2, 0, R2}},
-        {"side exit", {.cone = tip}, {0, 0, 1}, {-1, 0, 0}, 0, I, 0, 1, 1, SB, {-R2, 0, R2}},
-        {"side exit, ff",
-         {.cone = tip},
-         {0, 0, 1},
-         {-1, 0, 0},
-         0,
-         I,
-         FF,
-         1,
-         1,
-         SB,
-         {R2, 0, -R2}},
-        {"side exit, culled", {.cone = tip}, {0, 0, 1}, {-1, 0, 0}, 0, I, CB, 0, 0, 0, {0}},
-        {"disc at p0", {.cone = tip}, {0.5f, 0, -5}, {0, 0, 1}, 0, I, 0, 1, 5, LO, {0, 0, -1}},
-        {"open end: in through the hole, out the side",
-         {.cone = tip_open},
-         {0.5f, 0, -5},
-         {0, 0, 1},
-         0,
-         I,
-         0,
-         1,
-         6.5,
-         SB,
-         {R2, 0, R2}},
-        {"disc at p1", {.cone = fr}, {0, 0, 5}, {0, 0, -1}, 0, I, 0, 1, 3, HI, {0, 0, 1}},
-        {"disc at p1 from inside",
-         {.cone = fr},
-         {0, 0, 1},
-         {0, 0, 1},
-         0,
-         I,
-         0,
-         1,
-         1,
-         HI | B,
-         {0, 0, 1}},
-        {"disc at p1 from inside, culled",
-         {.cone = fr},
-         {0, 0, 1},
-         {0, 0, 1},
-         0,
-         I,
-         CB,
-         0,
-         0,
-         0,
-         {0}},
-        {"open p1: out through the hole",
-         {.cone = fr_lo},
-         {0, 0, 1},
-         {0, 0, 1},
-         0,
-         I,
-         0,
-         0,
-         0,
-         0,
-         {0}},
-        {"open p1: in through the hole, out the disc",
-         {.cone = fr_lo},
-         {0, 0, 5},
-         {0, 0, -1},
-         0,
-         I,
-         0,
-         1,
-         5,
-         LO | B,
-         {0, 0, -1}},
-        /* Widening side: n = (e - k u)/|..| with k = 1/2. */
-        {"frustum side",
-         {.cone = fr},
-         {5, 0, 1},
-         {-1, 0, 0},
-         0,
-         I,
-         0,
-         1,
-         3.5,
-         S,
-         {2 / 2.2360679774997897, 0, -1 / 2.2360679774997897}},
-        {"mirror nappe left out", {.cone = tip}, {5, 0, 3}, {-1, 0, 0}, 0, I, 0, 0, 0, 0, {0}},
-        {"beyond the slab", {.cone = fr}, {5, 0, 2.5f}, {-1, 0, 0}, 0, I, 0, 0, 0, 0, {0}},
-        {"through the apex", {.cone = tip}, {-1, 0, 4}, {1, 0, -2}, 0, I, 0, 1, 1, S, {0}},
-        {"tmax short", {.cone = tip}, {5, 0, 1}, {-1, 0, 0}, 0, 3.5f, 0, 0, 0, 0, {0}},
-        {"tmin past the entry",
-         {.cone = tip},
-         {5, 0, 1},
-         {-1, 0, 0},
-         4.5f,
-         I,
-         0,
-         1,
-         6,
-         SB,
-         {-R2, 0, R2}},
-        {"r0 == r1 is the cylinder",
-         {.cone = cyl},
-         {5, 0, 0},
-         {-1, 0, 0},
-         0,
-         I,
-         0,
-         1,
-         4,
-         S,
-         {1, 0, 0}},
-        {"unnormalized d", {.cone = tip}, {5, 0, 1}, {-4, 0, 0}, 0, I, 0, 1, 1, S, {R2, 0, R2}},
-        {"NaN origin", {.cone = tip}, {NAN, 0, 1}, {-1, 0, 0}, 0, I, 0, 0, 0, 0, {0}},
-        {"zero direction", {.cone = tip}, {5, 0, 1}, {0, 0, 0}, 0, I, 0, 0, 0, 0, {0}},
-    };
-    ref_run_hand(&ref_cone, cases, sizeof cases / sizeof cases[0]);
-
-    /* A ray down x = 2 touches the rim of the frustum's disc at p1 from outside the
-     * side: the side (a back face there, the side leaning outward) and the disc are
-     * both at t = 3, and the band must allow either, and a miss (2 ulps further out). */
-    {
-        const float o[3] = {2, 0, 5}, d[3] = {0, 0, -1};
-        cylref_band b;
-        double beyond;
-        conref_band_eval(&fr, o, d, 0, INFINITY, 0, &b);
-        CHECK(b.exact.hit && fabs(b.exact.t - 3) < 1e-15, "rim: t %.17g", b.exact.t);
-        CHECK(conref_judge(&b, 1, CYLRAY_CAP_HI, 3, &beyond) == 0, "rim: the disc refused");
-        CHECK(conref_judge(&b, 1, CYLRAY_SIDE | CYLRAY_BACKFACE, 3, &beyond) == 0,
-              "rim: the side refused");
-        CHECK(b.hit_unstable && conref_judge(&b, 0, 0, 0, &beyond) == 0, "rim: a miss refused");
-        CHECK(conref_judge(&b, 1, CYLRAY_CAP_LO, 3, &beyond) != 0, "rim: the wrong disc");
-    }
-
-    const ref_shape bad[] = {
-        {.cone = {{NAN, 0, 0}, {0, 0, 1}, 1, 1, 0}},
-        {.cone = {{0, 0, 0}, {0, INFINITY, 1}, 1, 1, 0}},
-        {.cone = {{0, 0, 0x1p63f}, {0, 0, 1}, 1, 1, 0}},
-        {.cone = {{0, 0, 1}, {0, 0, 1}, 1, 2, 0}},
-        {.cone = {{0, 0, 0}, {0, 0, 1}, 0, 0, 0}},
-        {.cone = {{0, 0, 0}, {0, 0, 1}, -1, 1, 0}},
-        {.cone = {{0, 0, 0}, {0, 0, 1}, NAN, 1, 0}},
-        {.cone = {{0, 0, 0}, {0, 0, 1}, 1, 0x1p-61f, 0}},
-        {.cone = {{0, 0, 0}, {0, 0, 1}, 0x1p63f, 1, 0}},
-        {.cone = {{0, 0, 0}, {0, 0, 1}, 1, 1, 4}},
-        {.cone = {{0, 0, 0}, {0, 0, 0x1p-140f}, 1, 1, 0}},
-        {.cone = {{0, 0, 0}, {0, 0, 0x1p-126f}, 0, 0x1p62f, 1}}, /* too steep */
-        {.cone = {{0, 0, 0}, {0, 0, 1}, 0, 0x1.000002p31f, 0}},  /* too wide for its slope */
-    };
-    const float o[3] = {0, 0, -5}, d[3] = {0, 0, 1};
-    ref_run_refused(&ref_cone, bad, sizeof bad / sizeof bad[0], o, d);
-    const ref_shape edge[] = {{.cone = {{0x1p62f, 0, 0}, {0, 0, -0x1p62f}, 0x1p-60f, 0, 3}},
-                              {.cone = {{0, 0, 0}, {0, 0, 0x1p-100f}, 0, 0x1p-60f, 1}},
-                              {.cone = {{0, 0, 0}, {0, 0, 1}, 0, 0x1p30f, 1}},
-                              {.cone = {{0, 0, 0}, {0, 0, 0x1p22f}, 0x1p62f, 0x1p62f, 3}}};
-    ref_run_valid(&ref_cone, edge, sizeof edge / sizeof edge[0]);
-}
 
 /* The same question in long double and another form: world coordinates from p0, the
  * textbook quadratic F(t) = |q + t d|^2 - (zq + t zd)^2 - (r0 + k (zq + t zd))^2 with no
@@ -294,7 +123,6 @@ static void test_independent(void)
 
 void test_conref(void)
 {
-    test_cone_hand();
     ref_run_generators(&ref_cone_gen);
     test_independent();
 }

@@ -1,6 +1,8 @@
 /* SPDX-License-Identifier: MIT */
-/* test_ref.c - tests of the exact reference itself: hand-computed answers (test_hand.c),
- * symmetries, an independent membership check along the ray, and the band's verdicts. */
+/* test_ref.c - tests of the exact references themselves: the cylinder's generators,
+ * symmetries, an independent membership check along the ray and the band's verdicts; every
+ * shape's hand-computed answers (test_hand.c), the sphere's and the cone's own tests
+ * (test_sphref.c, test_conref.c). */
 #include "gen.h"
 #include "test_ref.h"
 
@@ -307,12 +309,14 @@ static void part(const char *name, void (*run)(void))
 
 int main(void)
 {
-    part("cylinder hand", test_hand);
+    part("cylinder hand", test_hand_cylinder);
     part("cylinder generators", test_generators);
     part("cylinder symmetry", test_symmetry);
     part("cylinder membership", test_membership);
     part("cylinder band", test_band);
+    part("sphere hand", test_hand_sphere);
     part("sphere", test_sphref);
+    part("cone hand", test_hand_cone);
     part("cone", test_conref);
     printf("ref-selftest: %ld checks, %ld failures\n", ref_checks, ref_failures);
     return ref_failures != 0;

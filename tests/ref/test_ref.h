@@ -91,7 +91,9 @@ extern const ref_gen ref_sphere_gen, ref_cone_gen;
  * answer inside its own band, and enough hits; shared shapes all the same. */
 void ref_run_generators(const ref_gen *g);
 
-void test_hand(void);   /* test_hand.c: the cylinder's hand cases */
+void test_hand_cylinder(void); /* test_hand.c */
+void test_hand_sphere(void);
+void test_hand_cone(void);
 void test_sphref(void); /* test_sphref.c */
 void test_conref(void); /* test_conref.c */
 

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
-/* test_sphref.c - tests of the exact sphere reference: hand-computed answers, an
- * independent computation in another precision and algebraic form, the band's
- * verdicts on a double-precision solver, and the generators. */
+/* test_sphref.c - tests of the exact sphere reference: an independent computation in
+ * another precision and algebraic form, the band's verdicts on a double-precision solver,
+ * and the generators (its hand-computed answers: test_hand.c). */
 #include "sphgen.h"
 #include "sphref.h"
 #include "test_ref.h"
@@ -9,165 +9,6 @@
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
-
-static void test_sphere_hand(void)
-{
-    const float I = INFINITY;
-    const int S = CYLRAY_SIDE, SB = CYLRAY_SIDE | CYLRAY_BACKFACE;
-    const unsigned FF = CYLRAY_FACE_FORWARD, CB = CYLRAY_CULL_BACK;
-    const cylray_sphere u = {{0, 0, 0}, 1}, big = {{3, 4, 12}, 13};
-    const ref_hand cases[] = {
-        {"head on", {.sph = u}, {0, 0, -5}, {0, 0, 1}, 0, I, 0, 1, 4, S, {0, 0, -1}},
-        {"unnormalized d", {.sph = u}, {0, 0, -5}, {0, 0, 2}, 0, I, 0, 1, 2, S, {0, 0, -1}},
-        {"tiny d", {.sph = u}, {0, 0, -5}, {0, 0, 0x1p-30f}, 0, I, 0, 1, 0x1p32, S, {0, 0, -1}},
-        {"from the center", {.sph = u}, {0, 0, 0}, {0, 0, 1}, 0, I, 0, 1, 1, SB, {0, 0, 1}},
-        {"from the center, ff",
-         {.sph = u},
-         {0, 0, 0},
-         {0, 0, 1},
-         0,
-         I,
-         FF,
-         1,
-         1,
-         SB,
-         {0, 0, -1}},
-        {"from the center, culled",
-         {.sph = u},
-         {0, 0, 0},
-         {0, 0, 1},
-         0,
-         I,
-         CB,
-         0,
-         0,
-         0,
-         {0, 0, 0}},
-        {"front face, ff keeps it",
-         {.sph = u},
-         {0, -5, 0},
-         {0, 1, 0},
-         0,
-         I,
-         FF,
-         1,
-         4,
-         S,
-         {0, -1, 0}},
-        {"tmax short", {.sph = u}, {0, 0, -5}, {0, 0, 1}, 0, 3.9f, 0, 0, 0, 0, {0, 0, 0}},
-        {"tmax closed", {.sph = u}, {0, 0, -5}, {0, 0, 1}, 0, 4, 0, 1, 4, S, {0, 0, -1}},
-        {"tmin closed", {.sph = u}, {0, 0, -5}, {0, 0, 1}, 4, I, 0, 1, 4, S, {0, 0, -1}},
-        {"tmin past the entry",
-         {.sph = u},
-         {0, 0, -5},
-         {0, 0, 1},
-         4.5f,
-         I,
-         0,
-         1,
-         6,
-         SB,
-         {0, 0, 1}},
-        {"tmin past the entry, culled",
-         {.sph = u},
-         {0, 0, -5},
-         {0, 0, 1},
-         4.5f,
-         I,
-         CB,
-         0,
-         0,
-         0,
-         {0}},
-        {"behind", {.sph = u}, {0, 0, 5}, {0, 0, 1}, 0, I, 0, 0, 0, 0, {0, 0, 0}},
-        {"negative interval", {.sph = u}, {0, 0, 5}, {0, 0, 1}, -I, 0, 0, 1, -6, S, {0, 0, -1}},
-        {"tangent", {.sph = u}, {1, 0, -5}, {0, 0, 1}, 0, I, 0, 1, 5, S, {1, 0, 0}},
-        {"just outside", {.sph = u}, {1.0000001f, 0, -5}, {0, 0, 1}, 0, I, 0, 0, 0, 0, {0}},
-        {"on the surface, inward",
-         {.sph = u},
-         {0, 0, -1},
-         {0, 0, 1},
-         0,
-         I,
-         0,
-         1,
-         0,
-         S,
-         {0, 0, -1}},
-        {"on the surface, outward",
-         {.sph = u},
-         {0, 0, -1},
-         {0, 0, -1},
-         0,
-         I,
-         0,
-         1,
-         0,
-         SB,
-         {0, 0, -1}},
-        /* The world origin lies on this one: roots 0 and 2 from there, 1 and 3 from -c. */
-        {"3-4-12-13",
-         {.sph = big},
-         {0, 0, 0},
-         {3, 4, 12},
-         0,
-         I,
-         0,
-         1,
-         0,
-         S,
-         {-3 / 13., -4 / 13., -12 / 13.}},
-        {"3-4-12-13, tmin 1",
-         {.sph = big},
-         {0, 0, 0},
-         {3, 4, 12},
-         1,
-         I,
-         0,
-         1,
-         2,
-         SB,
-         {3 / 13., 4 / 13., 12 / 13.}},
-        {"3-4-12-13 from -c",
-         {.sph = big},
-         {-3, -4, -12},
-         {3, 4, 12},
-         0,
-         I,
-         0,
-         1,
-         1,
-         S,
-         {-3 / 13., -4 / 13., -12 / 13.}},
-        {"far center",
-         {.sph = {{0x1p40f, 0, 0}, 0x1p-20f}},
-         {0x1p40f, 0, -1},
-         {0, 0, 1},
-         0,
-         I,
-         0,
-         1,
-         1 - 0x1p-20,
-         S,
-         {0, 0, -1}},
-        {"NaN origin", {.sph = u}, {NAN, 0, -5}, {0, 0, 1}, 0, I, 0, 0, 0, 0, {0}},
-        {"Inf direction", {.sph = u}, {0, 0, -5}, {0, 0, I}, 0, I, 0, 0, 0, 0, {0}},
-        {"zero direction", {.sph = u}, {0, 0, -5}, {0, 0, 0}, 0, I, 0, 0, 0, 0, {0}},
-        {"NaN tmax", {.sph = u}, {0, 0, -5}, {0, 0, 1}, 0, NAN, 0, 0, 0, 0, {0}},
-    };
-    ref_run_hand(&ref_sphere, cases, sizeof cases / sizeof cases[0]);
-
-    /* Spheres cylray_prepare_sphere refuses. */
-    const ref_shape bad[] = {{.sph = {{NAN, 0, 0}, 1}},      {.sph = {{0, INFINITY, 0}, 1}},
-                             {.sph = {{0, 0, 0x1p63f}, 1}},  {.sph = {{0, 0, 0}, 0}},
-                             {.sph = {{0, 0, 0}, -1}},       {.sph = {{0, 0, 0}, NAN}},
-                             {.sph = {{0, 0, 0}, 0x1p-61f}}, {.sph = {{0, 0, 0}, 0x1p63f}}};
-    const float o[3] = {0, 0, -5}, d[3] = {0, 0, 1};
-    ref_run_refused(&ref_sphere, bad, sizeof bad / sizeof bad[0], o, d);
-    const ref_shape edge[] = {{.sph = {{0x1p62f, -0x1p62f, 0}, 0x1p-60f}},
-                              {.sph = {{0, 0, 0}, 0x1p62f}}};
-    ref_run_valid(&ref_sphere, edge, sizeof edge / sizeof edge[0]);
-}
 
 /* The same question in long double (64 bits on x86, binary128 on AArch64) in another
  * form: the closest approach s = -(w.d)/(d.d), then t = s -+ sqrt((R^2 - |p|^2)/(d.d))
@@ -366,7 +207,6 @@ static void test_band(void)
 
 void test_sphref(void)
 {
-    test_sphere_hand();
     ref_run_generators(&ref_sphere_gen);
     test_independent();
     test_band();
