@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* conref.c - the exact ray/cone intersection and its tolerance band.
+/* conref.c - the exact ray/cone intersection (its tolerance band: conref_band.c).
  *
  * Frame: u = a / |a| with a = p1 - p0, w = o - c with c = (p0 + p1) / 2, z measured
  * from p0: z(t) = zw + t zd with zw = w.u + L/2, zd = d.u, L = |a|. The radius
@@ -12,7 +12,7 @@
  * alone keeps the mirror nappe out. The solid is convex, so along a line its entry
  * precedes its exit and dropping back faces before or after taking the first hit is
  * the same. A disc of radius 0 (a tip) is a point, no surface. */
-#include "conref.h"
+#include "conref_eval.h"
 
 #include "exact.h"
 #include "quad.h"
@@ -22,26 +22,7 @@
 #include <stdint.h>
 #include <string.h>
 
-/* The candidates. */
-enum { K_FRONT, K_BACK, K_LO, K_HI, K_COUNT };
-/* Each candidate's margins, true when >= 0: [0] the discriminant (side) or the disc
- * (caps), [1] [2] the slab's two planes (side only), [3] t - tmin, [4] tmax - t. */
-enum { G_MEET, G_ZLO, G_ZHI, G_GE, G_LE, G_COUNT };
-
-typedef struct cin_q {
-    cylq w[3], d[3], a[3], r0, r1;
-} cin_q;
-
-typedef struct crec {
-    int exists[K_COUNT]; /* a root or plane crossing at a finite t */
-    cylq t[K_COUNT];
-    int back[K_COUNT];
-    cylq m[K_COUNT][G_COUNT], mw[K_COUNT][G_COUNT];
-    cylq u[3], wp[3], dp[3], zw, zd, k, L, r0;
-    cylq A, B, C; /* the side: |x_perp(t)|^2 - r(z(t))^2 = A t^2 + 2 B t + C */
-} crec;
-
-static int present(unsigned flags, int kand)
+int conref_present_(unsigned flags, int kand)
 {
     return kand < K_LO || (flags & (kand == K_LO ? CYLRAY_CAPPED_LO : CYLRAY_CAPPED_HI));
 }
@@ -85,7 +66,7 @@ int conref_valid(const cylray_cone *c)
     return (c->flags & ~(unsigned)CYLRAY_CAPPED) == 0;
 }
 
-static int ray_ok(const float o[3], const float d[3])
+int conref_ray_ok_(const float o[3], const float d[3])
 {
     for (int k = 0; k < 3; k++)
         if (!isfinite(o[k]) || !isfinite(d[k]))
@@ -112,7 +93,7 @@ static void range_margins(crec *r, int kand, cylq tmin, cylq tmax)
     r->mw[kand][G_LE] = widen(q_max(q_abs(t), q_abs(tmax)));
 }
 
-static void c_eval(const cin_q *q, cylq tmin, cylq tmax, crec *r)
+void conref_eval_(const cin_q *q, cylq tmin, cylq tmax, crec *r)
 {
     memset(r, 0, sizeof *r);
     const cylq L = q_sqrt(dot3(q->a, q->a));
@@ -190,7 +171,7 @@ static void c_eval(const cin_q *q, cylq tmin, cylq tmax, crec *r)
 }
 
 /* valid[kand]: 1 taken, 0 dropped. Returns the first taken candidate by t, or -1. */
-static int c_first(const crec *r, const unsigned char valid[K_COUNT])
+int conref_first_(const crec *r, const unsigned char valid[K_COUNT])
 {
     int best = -1;
     for (int kand = 0; kand < K_COUNT; kand++)
@@ -199,10 +180,10 @@ static int c_first(const crec *r, const unsigned char valid[K_COUNT])
     return best;
 }
 
-static void c_valid(const crec *r, unsigned flags, unsigned char valid[K_COUNT])
+void conref_valid_parts_(const crec *r, unsigned flags, unsigned char valid[K_COUNT])
 {
     for (int kand = 0; kand < K_COUNT; kand++) {
-        int v = r->exists[kand] && present(flags, kand) &&
+        int v = r->exists[kand] && conref_present_(flags, kand) &&
                 !((flags & CYLRAY_CULL_BACK) && r->back[kand]);
         for (int g = 0; g < G_COUNT && v; g++)
             v = r->m[kand][g] >= 0;
@@ -210,13 +191,13 @@ static void c_valid(const crec *r, unsigned flags, unsigned char valid[K_COUNT])
     }
 }
 
-static int c_part(const crec *r, int kand)
+int conref_part_(const crec *r, int kand)
 {
     int p = kand == K_LO ? CYLRAY_CAP_LO : kand == K_HI ? CYLRAY_CAP_HI : CYLRAY_SIDE;
     return p | (r->back[kand] ? CYLRAY_BACKFACE : 0);
 }
 
-static void c_normal(const crec *r, int kand, int ff, double n[3])
+void conref_normal_(const crec *r, int kand, int ff, double n[3])
 {
     cylq g[3];
     if (kand == K_LO || kand == K_HI) {
@@ -236,7 +217,7 @@ static void c_normal(const crec *r, int kand, int ff, double n[3])
         n[k] = (double)(g[k] * s);
 }
 
-static void c_in(const cylray_cone *c, const float o[3], const float d[3], cin_q *q)
+void conref_in_(const cylray_cone *c, const float o[3], const float d[3], cin_q *q)
 {
     for (int k = 0; k < 3; k++) {
         const cylq ctr = ((cylq)c->p0[k] + (cylq)c->p1[k]) / 2;
@@ -254,21 +235,21 @@ int conref_intersect(const cylray_cone *c, const float o[3], const float d[3], f
     memset(out, 0, sizeof *out);
     if (!conref_valid(c))
         return -1;
-    if (!o || !d || !ray_ok(o, d) || tmin != tmin || tmax != tmax)
+    if (!o || !d || !conref_ray_ok_(o, d) || tmin != tmin || tmax != tmax)
         return 0;
     cin_q q;
-    c_in(c, o, d, &q);
+    conref_in_(c, o, d, &q);
     crec r;
-    c_eval(&q, tmin, tmax, &r);
+    conref_eval_(&q, tmin, tmax, &r);
     unsigned char v[K_COUNT];
-    c_valid(&r, c->flags | (flags & CYLRAY_CULL_BACK), v);
-    int x = c_first(&r, v);
+    conref_valid_parts_(&r, c->flags | (flags & CYLRAY_CULL_BACK), v);
+    int x = conref_first_(&r, v);
     if (x < 0)
         return 0;
     out->hit = 1;
     out->t = (double)r.t[x];
-    out->part = c_part(&r, x);
-    c_normal(&r, x, (flags & CYLRAY_FACE_FORWARD) != 0, out->n);
+    out->part = conref_part_(&r, x);
+    conref_normal_(&r, x, (flags & CYLRAY_FACE_FORWARD) != 0, out->n);
     return 1;
 }
 
@@ -285,579 +266,4 @@ void conref_as_cylinder(const cylray_cone *c, cylray_cylinder *out)
     out->radius = c->r0;
     out->half_height = (float)(sqrt(aa) / 2);
     out->flags = c->flags;
-}
-
-/* ---- the band ----------------------------------------------------------------------- */
-
-enum { IN_W = 0, IN_D = 3, IN_A = 6, IN_R0 = 9, IN_R1 = 10, IN_COUNT = 11 };
-#define RANDOM_VERTICES 8
-
-typedef struct {
-    int part; /* -1: the miss */
-    double lo, hi;
-} c_outcome;
-
-typedef struct {
-    c_outcome v[2 * K_COUNT + 1];
-    int n;
-} c_set;
-
-static void c_add(c_set *set, int part, double t)
-{
-    for (int i = 0; i < set->n; i++) {
-        c_outcome *x = &set->v[i];
-        if (x->part == part) {
-            if (part >= 0) {
-                x->lo = fmin(x->lo, t);
-                x->hi = fmax(x->hi, t);
-            }
-            return;
-        }
-    }
-    if (set->n == (int)(sizeof set->v / sizeof *set->v))
-        return;
-    c_outcome *x = &set->v[set->n++];
-    x->part = part;
-    x->lo = x->hi = part < 0 ? NAN : t;
-}
-
-static void c_add_range(c_set *set, int part, double lo, double hi)
-{
-    c_add(set, part, lo);
-    c_add(set, part, hi);
-}
-
-static cylq vec_step(const cylq a[3])
-{
-    cylq m = q_max(q_abs(a[0]), q_max(q_abs(a[1]), q_abs(a[2])));
-    return (cylq)ref_float_ulp((double)m);
-}
-
-static void c_perturb(const cin_q *base, const cylq step[IN_COUNT],
-                      const signed char k[IN_COUNT], cin_q *out)
-{
-    *out = *base;
-    for (int i = 0; i < IN_COUNT; i++) {
-        cylq s = step[i] * k[i];
-        if (i < IN_D)
-            out->w[i] += s;
-        else if (i < IN_A)
-            out->d[i - IN_D] += s;
-        else if (i < IN_R0)
-            out->a[i - IN_A] += s;
-        else if (i == IN_R0)
-            out->r0 = base->r0 > 0 ? q_max(base->r0 + s, base->r0 / 2) : 0;
-        else
-            out->r1 = base->r1 > 0 ? q_max(base->r1 + s, base->r1 / 2) : 0;
-    }
-}
-
-static double qdiff(cylq x, cylq y)
-{
-    if (x == y)
-        return 0;
-    cylq d = x - y;
-    return q_isfinite(d) ? (double)q_abs(d) : INFINITY;
-}
-
-static uint32_t fbits(float f)
-{
-    uint32_t u;
-    memcpy(&u, &f, sizeof u);
-    return u;
-}
-
-static double angle3(const double a[3], const double b[3])
-{
-    double c[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
-                   a[0] * b[1] - a[1] * b[0]};
-    return atan2(sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]),
-                 a[0] * b[0] + a[1] * b[1] + a[2] * b[2]);
-}
-
-/* Per candidate over the evaluations: its t range (where it exists), the parts it
- * showed, and whether its validity was seen both ways. */
-typedef struct {
-    double lo, hi;
-    int seen_valid, seen_invalid, parts_back, parts_front;
-} c_track;
-
-static void track(c_track tr[K_COUNT], const crec *r, const unsigned char v[K_COUNT])
-{
-    for (int kand = 0; kand < K_COUNT; kand++) {
-        c_track *x = &tr[kand];
-        if (v[kand]) {
-            x->seen_valid = 1;
-            double t = (double)r->t[kand];
-            x->lo = fmin(x->lo, t);
-            x->hi = fmax(x->hi, t);
-            if (r->back[kand])
-                x->parts_back = 1;
-            else
-                x->parts_front = 1;
-        } else {
-            x->seen_invalid = 1;
-        }
-    }
-}
-
-/* A ray that runs beside the side over a stretch (along a generator line, within the
- * box's reach of the surface) has no isolated roots: input i of the box moves the
- * quadratic at t by dA_i t^2 + 2 dB_i t + dC_i, S(t) the sum of their sizes, and
- * wherever |F(t)| <= S(t) some input in the box puts a root at t (to first order). Sampled along the ray's stretch inside the slab, each run of two or more
- * samples within reach is an outcome of the side (either facing where F' is within
- * reach of 0 too), unless a candidate sure to be taken comes first. Isolated roots are
- * runs of one sample at most and keep their own bands. */
-static void c_reach(c_set *set, const crec *r, const cylq (*dc)[3], cylq tmin, cylq tmax,
-                    const int may_drop[K_COUNT], const double hi[K_COUNT])
-{
-    enum { N = 512 };
-    cylq sa = 0;
-    for (int i = 0; i < IN_COUNT; i++)
-        sa += q_abs(dc[i][0]);
-    if (!(q_abs(r->A) <= 256 * sa) || r->zd == 0)
-        return;
-    cylq ta = (0 - r->zw) / r->zd, tb = (r->L - r->zw) / r->zd;
-    if (ta > tb) {
-        cylq x = ta;
-        ta = tb;
-        tb = x;
-    }
-    ta = q_max(ta, tmin);
-    tb = tb < tmax ? tb : tmax;
-    if (!(ta < tb) || !q_isfinite(ta) || !q_isfinite(tb))
-        return;
-    const cylq h = (tb - ta) / (N - 1);
-    int run = 0, both = 0, fsign = 0;
-    cylq first = 0;
-    for (int i = 0; i <= N; i++) {
-        const cylq t = ta + h * i;
-        int in = 0;
-        if (i < N) {
-            const cylq F = (r->A * t + 2 * r->B) * t + r->C;
-            const cylq F1 = r->A * t + r->B;
-            cylq S = 0, S1 = 0;
-            for (int k = 0; k < IN_COUNT; k++) {
-                S += q_abs((dc[k][0] * t + 2 * dc[k][1]) * t + dc[k][2]);
-                S1 += q_abs(dc[k][0] * t + dc[k][1]);
-            }
-            in = q_abs(F) <= S;
-            if (in) {
-                if (!run)
-                    first = t, both = 0, fsign = 0;
-                both |= q_abs(F1) <= S1;
-                fsign |= F1 < 0 ? 1 : 2;
-                run++;
-            }
-        }
-        if (!in && run) {
-            const double lo = (double)(first - h), hi_t = (double)t;
-            int sure_before = 0;
-            for (int j = 0; j < K_COUNT; j++)
-                sure_before |= !may_drop[j] && hi[j] < lo;
-            if (run >= 2 && !sure_before) {
-                if (both || (fsign & 1))
-                    c_add_range(set, CYLRAY_SIDE, lo, hi_t);
-                if (both || (fsign & 2))
-                    c_add_range(set, CYLRAY_SIDE | CYLRAY_BACKFACE, lo, hi_t);
-            }
-            run = 0;
-        }
-    }
-}
-
-/* One point of the box: its outcome joins the set, its candidates the tracks, and the
- * turn of its normal from the exact one where it keeps the exact outcome. */
-typedef struct {
-    cylq tmin, tmax;
-    unsigned vflags;
-    int ff, x0, p0;
-    const double *n0;
-    c_track *tr;
-    c_set *set;
-    double nmax;
-    int evals;
-} c_box;
-
-static void c_sample(c_box *b, const cin_q *q)
-{
-    crec r;
-    unsigned char v[K_COUNT];
-    c_eval(q, b->tmin, b->tmax, &r);
-    b->evals++;
-    c_valid(&r, b->vflags, v);
-    track(b->tr, &r, v);
-    const int x = c_first(&r, v);
-    c_add(b->set, x < 0 ? -1 : c_part(&r, x), x < 0 ? NAN : (double)r.t[x]);
-    if (b->x0 >= 0 && x == b->x0 && c_part(&r, x) == b->p0) {
-        double n[3];
-        c_normal(&r, x, b->ff, n);
-        b->nmax = fmax(b->nmax, angle3(n, b->n0));
-    }
-}
-
-void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], float tmin,
-                      float tmax, unsigned flags, cylref_band *out)
-{
-    memset(out, 0, sizeof *out);
-    out->t_lo = out->t_hi = NAN;
-    if (!conref_valid(c) || !o || !d || !ray_ok(o, d) || tmin != tmin || tmax != tmax)
-        return;
-    const unsigned vflags = c->flags | (flags & CYLRAY_CULL_BACK);
-    const int ff = (flags & CYLRAY_FACE_FORWARD) != 0;
-    cin_q base;
-    c_in(c, o, d, &base);
-    int center_float = 1;
-    cylq cmax = 0;
-    for (int k = 0; k < 3; k++) {
-        const cylq ctr = ((cylq)c->p0[k] + (cylq)c->p1[k]) / 2;
-        center_float &= (cylq)(float)ctr == ctr;
-        cmax = q_max(cmax, q_abs(ctr));
-    }
-    cylq step[IN_COUNT];
-    for (int k = 0; k < 3; k++) {
-        step[IN_W + k] = vec_step(base.w);
-        if (!center_float)
-            step[IN_W + k] += (cylq)ref_float_ulp((double)cmax);
-        step[IN_D + k] = vec_step(base.d);
-        step[IN_A + k] = vec_step(base.a);
-    }
-    step[IN_R0] = (cylq)ref_float_ulp(c->r0);
-    step[IN_R1] = (cylq)ref_float_ulp(c->r1);
-
-    crec r0, r;
-    c_eval(&base, tmin, tmax, &r0);
-    unsigned char v0[K_COUNT], v[K_COUNT];
-    c_valid(&r0, vflags, v0);
-    const int x0 = c_first(&r0, v0);
-    const int p0 = x0 < 0 ? -1 : c_part(&r0, x0);
-    out->evals = 1;
-    double n0[3] = {0, 0, 0};
-    if (x0 >= 0) {
-        out->exact.hit = 1;
-        out->exact.t = (double)r0.t[x0];
-        out->exact.part = p0;
-        c_normal(&r0, x0, ff, n0);
-        memcpy(out->exact.n, n0, sizeof n0);
-    }
-    c_set set = {0};
-    c_add(&set, p0, out->exact.t);
-    c_track tr[K_COUNT];
-    for (int kand = 0; kand < K_COUNT; kand++) {
-        tr[kand].lo = INFINITY;
-        tr[kand].hi = -INFINITY;
-        tr[kand].seen_valid = tr[kand].seen_invalid = 0;
-        tr[kand].parts_back = tr[kand].parts_front = 0;
-    }
-    track(tr, &r0, v0);
-
-    double sum_m[K_COUNT][G_COUNT] = {{0}}, sum_t[K_COUNT] = {0}, dt[IN_COUNT] = {0};
-    cylq sum_zd = 0;         /* the box's first-order reach of zd (d's rate along the axis) */
-    cylq dcoef[IN_COUNT][3]; /* each input's move of A, B and C */
-    double nmax = 0;
-    for (int i = 0; i < IN_COUNT; i++) {
-        signed char k[IN_COUNT] = {0};
-        k[i] = 2;
-        cin_q q;
-        c_perturb(&base, step, k, &q);
-        c_eval(&q, tmin, tmax, &r);
-        out->evals++;
-        for (int kand = 0; kand < K_COUNT; kand++) {
-            for (int g = 0; g < G_COUNT; g++)
-                sum_m[kand][g] += qdiff(r.m[kand][g], r0.m[kand][g]);
-            sum_t[kand] += qdiff(r.t[kand], r0.t[kand]);
-        }
-        dcoef[i][0] = r.A - r0.A, dcoef[i][1] = r.B - r0.B, dcoef[i][2] = r.C - r0.C;
-        sum_zd += q_abs(r.zd - r0.zd);
-        if (x0 >= 0) {
-            cylq dd = r.t[x0] - r0.t[x0];
-            dt[i] = q_isfinite(dd) ? (double)dd : 0;
-        }
-        c_valid(&r, vflags, v);
-        track(tr, &r, v);
-        int x = c_first(&r, v);
-        c_add(&set, x < 0 ? -1 : c_part(&r, x), x < 0 ? NAN : (double)r.t[x]);
-        if (x0 >= 0 && x == x0 && c_part(&r, x) == p0) {
-            double n[3];
-            c_normal(&r, x, ff, n);
-            nmax = fmax(nmax, angle3(n, n0));
-        }
-    }
-    uint64_t seed = 0x636f6e65u;
-    for (int k = 0; k < 3; k++)
-        seed = seed * 0x100000001b3u ^ fbits(o[k]) ^ (uint64_t)fbits(d[k]) << 32 ^
-               (uint64_t)fbits(c->p0[k]) << 7 ^ (uint64_t)fbits(c->p1[k]) << 19;
-    seed ^= (uint64_t)fbits(c->r0) << 11 ^ (uint64_t)fbits(c->r1) << 29;
-    c_box box = {tmin, tmax, vflags, ff, x0, p0, n0, tr, &set, nmax, 0};
-    for (int vtx = 0; vtx < 2 + RANDOM_VERTICES; vtx++) {
-        signed char k[IN_COUNT];
-        uint64_t bits = rng_splitmix64(&seed);
-        for (int i = 0; i < IN_COUNT; i++) {
-            int sg = (bits >> i) & 1 ? 1 : -1;
-            if (vtx < 2 && x0 >= 0)
-                sg = (dt[i] >= 0 ? 1 : -1) * (vtx == 0 ? 1 : -1);
-            k[i] = (signed char)(2 * sg);
-        }
-        cin_q q;
-        c_perturb(&base, step, k, &q);
-        c_sample(&box, &q);
-    }
-
-    /* Each input alone at a quarter and a half of the box's reach either way: t is not
-     * monotonic across an apex (the double cone's radius is |r|), and on a cone as
-     * short as the box's reach along its axis the vertices all leave the slab or meet
-     * the tip while the box's inside meets the side at every t between. */
-    cylq half[IN_COUNT];
-    for (int i = 0; i < IN_COUNT; i++)
-        half[i] = step[i] / 2;
-    for (int i = 0; i < 4 * IN_COUNT; i++) {
-        signed char k[IN_COUNT] = {0};
-        k[i / 4] = (signed char)((i & 1 ? -1 : 1) * (i & 2 ? 2 : 1));
-        cin_q q;
-        c_perturb(&base, half, k, &q);
-        c_sample(&box, &q);
-    }
-    /* Where the box takes d.v through 0, the ray that keeps its level along the axis:
-     * its side's t is the farthest (a nearly level ray through a flat cone leaves it
-     * sooner the faster it climbs), and no vertex has it. */
-    if (q_abs(r0.zd) <= sum_zd && r0.zd != 0) {
-        cin_q q = base;
-        for (int k = 0; k < 3; k++)
-            q.d[k] -= r0.zd * r0.u[k];
-        c_sample(&box, &q);
-    }
-    /* And the rays of the box that cross an end's plane where the line passes the disc
-     * (along its chord there, clipped to the range): with d.v near 0 the plane is met
-     * far along the ray, at a t set by a hair of d's part along the axis and of the
-     * origin's level, which no vertex has. Moving d along the axis by at most md and
-     * the origin's level by at most mw reaches the plane at ts exactly where
-     * |need(ts)| <= mw + |ts| md, need being the plane's level less the ray's there:
-     * an interval on either side of ts = 0 (a convex condition on each), whose ends and
-     * inside are sampled. The move is made d's part first and the origin's level for
-     * the rest, with the ray climbing and falling (it meets the plane from either
-     * side). */
-    {
-        cylq pp = 0, pd = 0, dd = 0, md = INFINITY, mw = INFINITY;
-        for (int k = 0; k < 3; k++) {
-            pp += r0.wp[k] * r0.wp[k], pd += r0.wp[k] * r0.dp[k], dd += r0.dp[k] * r0.dp[k];
-            if (r0.u[k] != 0) {
-                md = q_min(md, 2 * step[IN_D + k] / q_abs(r0.u[k]));
-                mw = q_min(mw, 2 * step[IN_W + k] / q_abs(r0.u[k]));
-            }
-        }
-        const cylq hair = (cylq)0x1p-20;
-        for (int e = 0; e < 2 && dd > 0 && q_isfinite(md) && q_isfinite(mw); e++) {
-            const cylq rad = e ? base.r1 : base.r0, tc = -pd / dd;
-            const cylq dist2 = pp + tc * pd; /* |wp + tc dp|^2 */
-            if (!(rad > 0) || !(dist2 < rad * rad))
-                continue;
-            const cylq half = q_sqrt((rad * rad - dist2) / dd) * (1 - hair);
-            const cylq n0 = (e ? r0.L : 0) - r0.zw; /* need(ts) = n0 - ts zd */
-            const cylq mwi = mw * (1 - hair), mdi = md * (1 - hair);
-            for (int side = 0; side < 2; side++) {
-                /* ts >= 0: ts (zd + md) >= n0 - mw and ts (zd - md) <= n0 + mw;
-                 * ts <= 0: ts (md - zd) <= mw - n0 and ts (zd + md) <= n0 + mw. */
-                cylq a = q_max(tc - half, (cylq)tmin), b = q_min(tc + half, (cylq)tmax);
-                if (side)
-                    b = q_min(b, 0);
-                else
-                    a = q_max(a, 0);
-                const cylq k1 = side ? mdi - r0.zd : -(r0.zd + mdi), m1 = mwi - n0;
-                const cylq k2 = side ? r0.zd + mdi : r0.zd - mdi, m2 = n0 + mwi;
-                const cylq kk[2] = {k1, k2}, mm[2] = {m1, m2};
-                for (int c2 = 0; c2 < 2; c2++) {
-                    if (kk[c2] > 0)
-                        b = q_min(b, mm[c2] / kk[c2]);
-                    else if (kk[c2] < 0)
-                        a = q_max(a, mm[c2] / kk[c2]);
-                    else if (mm[c2] < 0)
-                        b = a - 1;
-                }
-                if (!(a <= b) || !q_isfinite(a) || !q_isfinite(b))
-                    continue;
-                /* the ends themselves (the range's bound may be one), but a hair off
-                 * ts = 0, where only the origin moves */
-                if (a == 0)
-                    a = b * (cylq)0x1p-100;
-                if (b == 0)
-                    b = a * (cylq)0x1p-100;
-                static const double at[] = {0, 0.25, 0.5, 0.75, 1};
-                for (int j = 0; j < 5; j++) {
-                    const cylq ts = j == 4 ? b : a + (cylq)at[j] * (b - a);
-                    if (ts == 0)
-                        continue;
-                    const cylq need = n0 - ts * r0.zd;
-                    /* d's least move either way, and the ends of the moves that still
-                     * meet the plane there: where those take d.v through 0, the ray
-                     * meets it climbing as well as falling (a disc entered or left) */
-                    const cylq da = (need - mwi) / ts, db = (need + mwi) / ts;
-                    const cylq dzs[4] = {-q_abs(need / ts), q_abs(need / ts), q_min(da, db),
-                                         q_max(da, db)};
-                    for (int c3 = 0; c3 < 4; c3++) {
-                        cylq dz = dzs[c3];
-                        dz = dz > md ? md : dz < -md ? -md : dz;
-                        const cylq dw = need - ts * dz;
-                        if (!(q_abs(dw) <= mw))
-                            continue;
-                        cin_q q = base;
-                        for (int k = 0; k < 3; k++)
-                            q.d[k] += dz * r0.u[k], q.w[k] += dw * r0.u[k];
-                        c_sample(&box, &q);
-                    }
-                }
-            }
-        }
-    }
-    nmax = box.nmax;
-    out->evals += box.evals;
-
-    /* Which candidates may be taken, which dropped: a margin within its first-order
-     * spread over the box (or 4 ulps of its terms) of zero, or seen both ways. */
-    int may_take[K_COUNT], may_drop[K_COUNT];
-    double lo[K_COUNT], hi[K_COUNT];
-    for (int kand = 0; kand < K_COUNT; kand++) {
-        int allowed = present(vflags, kand);
-        /* und: some margin may flip; flips: every failing margin may. */
-        int und = 0, flips = 1;
-        if (r0.exists[kand])
-            for (int g = 0; g < G_COUNT; g++) {
-                if (!q_isfinite(r0.m[kand][g]))
-                    continue;
-                double mag = (double)q_abs(r0.m[kand][g]);
-                int u = mag <= sum_m[kand][g] + (double)r0.mw[kand][g] ||
-                        !(sum_m[kand][g] < INFINITY);
-                und |= u;
-                if (r0.m[kand][g] < 0 && !u)
-                    flips = 0;
-            }
-        may_take[kand] =
-            allowed &&
-            (v0[kand] || tr[kand].seen_valid ||
-             (flips && r0.exists[kand] && !((vflags & CYLRAY_CULL_BACK) && r0.back[kand])));
-        may_drop[kand] = !v0[kand] || tr[kand].seen_invalid || und;
-        double t = (double)r0.t[kand];
-        lo[kand] = fmin(tr[kand].lo, t - sum_t[kand]);
-        hi[kand] = fmax(tr[kand].hi, t + sum_t[kand]);
-        const double wdn = 4 * ref_float_ulp(fmax(fabs(lo[kand]), fabs(hi[kand])));
-        lo[kand] -= wdn;
-        hi[kand] += wdn;
-    }
-    /* An outcome j: j taken and every candidate surely before it dropped. */
-    int all_drop = 1;
-    for (int j = 0; j < K_COUNT; j++) {
-        all_drop &= may_drop[j] || !present(vflags, j) || !r0.exists[j];
-        if (!may_take[j] || !r0.exists[j])
-            continue;
-        int ok = 1;
-        for (int i = 0; i < K_COUNT && ok; i++)
-            if (i != j && !may_drop[i] && hi[i] < lo[j])
-                ok = 0;
-        if (!ok)
-            continue;
-        /* At a tangency (or a perturbation that reaches one) the two side roots meet
-         * and either facing may be reported. */
-        const int pp = c_part(&r0, j) & ~CYLRAY_BACKFACE;
-        const int tangent =
-            j < K_LO && (tr[K_FRONT].seen_invalid || !v0[K_FRONT]) &&
-            (r0.m[K_FRONT][G_MEET] <= sum_m[K_FRONT][G_MEET] + (double)r0.mw[K_FRONT][G_MEET]);
-        if (r0.back[j] || tr[j].parts_back || (j == K_BACK && tangent))
-            c_add_range(&set, pp | CYLRAY_BACKFACE, lo[j], hi[j]);
-        if (!r0.back[j] || tr[j].parts_front || (j == K_BACK && tangent))
-            c_add_range(&set, pp, lo[j], hi[j]);
-    }
-    if (all_drop)
-        c_add(&set, -1, NAN);
-    c_reach(&set, &r0, (const cylq(*)[3])dcoef, tmin, tmax, may_drop, hi);
-    /* A ray whose rate along the axis the box takes through 0 (d.v = 0 within it) meets
-     * the ends' planes at any t beyond those the samples saw, of either sign: a disc
-     * the samples found is an outcome out to where the ray leaves the disc's reach
-     * (|t| at most (r + |w_perp|) / |d_perp|, with a margin for the box) or the range's
-     * bound. */
-    if (q_abs(r0.zd) <= sum_zd) {
-        double wp = 0, dp = 0;
-        for (int k = 0; k < 3; k++)
-            wp += (double)(r0.wp[k] * r0.wp[k]), dp += (double)(r0.dp[k] * r0.dp[k]);
-        const double reach =
-            (fmax(c->r0, c->r1) + sqrt(wp)) / sqrt(dp) * (1 + 0x1p-16); /* inf: dp = 0 */
-        for (int i = 0; i < set.n; i++) {
-            c_outcome *x = &set.v[i];
-            const int pp = x->part < 0 ? 0 : x->part & ~CYLRAY_BACKFACE;
-            if (pp != CYLRAY_CAP_LO && pp != CYLRAY_CAP_HI)
-                continue;
-            if (x->hi > 0)
-                x->hi = fmax(x->hi, fmin((double)tmax, reach));
-            if (x->lo < 0)
-                x->lo = fmin(x->lo, fmax((double)tmin, -reach));
-        }
-    }
-
-    int hits = 0, misses = 0;
-    for (int i = 0; i < set.n; i++) {
-        c_outcome *x = &set.v[i];
-        if (x->part < 0) {
-            misses++;
-            continue;
-        }
-        hits++;
-        if (x0 >= 0 && x->part == p0) {
-            out->t_lo = x->lo;
-            out->t_hi = x->hi;
-        } else if (out->n_alt < CYLREF_MAX_ALT) {
-            cylref_alt *a = &out->alt[out->n_alt++];
-            a->part = x->part;
-            a->t_lo = x->lo;
-            a->t_hi = x->hi;
-        }
-    }
-    out->hit_unstable = hits > 0 && misses > 0;
-    out->part_unstable = hits > 1;
-    out->decision_unstable = out->hit_unstable || out->part_unstable;
-    /* The gradient samples turn the normal by 2 ulps of one input each; the box's
-     * corners by all at once: twice the worst sample bounds a sum of a few. */
-    out->n_spread = 2 * nmax;
-    for (int kand = K_FRONT; kand <= K_BACK; kand++) {
-        /* Near the apex the side's normal turns all the way round it: its direction
-         * across the axis is that of x_perp, which the box moves by about delta. Where
-         * the samples do not happen to straddle the axis, this bound does. The side's
-         * root taken exactly, or, where the exact answer is not the side, either root
-         * (an alternative outcome's normal is judged by the same rule). */
-        if (x0 == K_FRONT || x0 == K_BACK ? kand != x0 : !r0.exists[kand])
-            continue;
-        double dm = 0, am = 0, xp = 0;
-        const cylq t = r0.t[kand];
-        for (int k = 0; k < 3; k++) {
-            dm = fmax(dm, fabs((double)base.d[k]));
-            am = fmax(am, fabs((double)base.a[k]));
-            const double x = (double)(r0.wp[k] + t * r0.dp[k]);
-            xp += x * x;
-        }
-        const double zr = fabs((double)(r0.zw + t * r0.zd)) / (double)r0.L;
-        const double delta =
-            8 * ((double)step[IN_W] + fabs((double)t) * ref_float_ulp(dm) +
-                 (1 + zr) * ref_float_ulp(am) * fmax(1, fabs((double)t) * dm / am) +
-                 ref_float_ulp(fmax(c->r0, c->r1)));
-        xp = sqrt(xp);
-        out->n_spread =
-            fmax(out->n_spread, xp > delta ? 2 * asin(delta / xp) : 3.14159265358979323846);
-        /* The side's normal is a function of x_perp's direction alone. A t anywhere in
-         * the exact outcome's band moves the point across the axis by up to |d_perp| dt,
-         * turning that direction by up to asin(|d_perp| dt / |x_perp|): on a grazing ray,
-         * or one leaving the surface, the band is wide and the samples, which keep the
-         * exact outcome, do not move far along it. */
-        if (kand == x0 && out->t_lo == out->t_lo) {
-            double dp2 = 0;
-            for (int k = 0; k < 3; k++)
-                dp2 += (double)r0.dp[k] * (double)r0.dp[k];
-            const double tt = (double)t,
-                         move = sqrt(dp2) * fmax(tt - out->t_lo, out->t_hi - tt);
-            out->n_spread = fmax(out->n_spread, move < xp ? asin(move / xp) + 2 * nmax
-                                                          : 3.14159265358979323846);
-        }
-    }
-    out->n_spread = fmin(out->n_spread, 3.14159265358979323846); /* opposite at most */
-}
-
-int conref_judge(const cylref_band *b, int hit, int part, float t, double *ulps_beyond)
-{
-    return cylref_judge(b, hit, part, t, ulps_beyond);
 }
