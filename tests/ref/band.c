@@ -9,6 +9,7 @@
  * margins is replayed through the decision logic. Extra evaluations at the box's
  * vertices (where t is extreme, and random ones) catch what is not linear. */
 #include "exact.h"
+#include "bandutil.h"
 
 #include "../support/rng.h"
 
@@ -108,24 +109,6 @@ static void add_outcome(outcome_set *s, qout o, double lo, double hi)
     s->n++;
 }
 
-static double angle3(const double a[3], const double b[3])
-{
-    double c[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
-                   a[0] * b[1] - a[1] * b[0]};
-    double s = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
-    double co = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-    return atan2(s, co);
-}
-
-/* |x - y| of two margins or t values, INFINITY when not comparable. */
-static double qdiff(cylq x, cylq y)
-{
-    if (x == y)
-        return 0;
-    cylq d = x - y;
-    return q_isfinite(d) ? (double)q_abs(d) : INFINITY;
-}
-
 void cylref_band_eval(const cylray_cylinder *cyl, const float o[3], const float d[3],
                       float tmin, float tmax, unsigned flags, cylref_band *out)
 {
@@ -179,9 +162,9 @@ void cylref_band_eval(const cylray_cylinder *cyl, const float o[3], const float 
         q_eval(&q, tmin, tmax, &r);
         out->evals++;
         for (int m = 0; m < M_COUNT; m++)
-            sum_m[m] += qdiff(r.m[m], r0.m[m]);
+            sum_m[m] += ref_qdiff(r.m[m], r0.m[m]);
         for (int p = 0; p < P_COUNT; p++)
-            sum_t[p] += qdiff(r.tp[p], r0.tp[p]);
+            sum_t[p] += ref_qdiff(r.tp[p], r0.tp[p]);
         if (x0.hit) {
             cylq dd = r.tp[x0.prim] - r0.tp[x0.prim];
             dt[i] = q_isfinite(dd) ? (double)dd : 0;
@@ -225,7 +208,7 @@ void cylref_band_eval(const cylray_cylinder *cyl, const float o[3], const float 
         if (x0.hit && same(x, x0)) {
             double n[3];
             q_normal(&r, x, ff, n);
-            nmax = fmax(nmax, angle3(n, n0));
+            nmax = fmax(nmax, ref_angle3(n, n0));
         }
     }
 
@@ -362,5 +345,5 @@ double cylref_angle(const float n[3], const double exact[3])
     double l = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
     if (!(l > 0) || !(l < INFINITY))
         return INFINITY;
-    return angle3(a, exact);
+    return ref_angle3(a, exact);
 }

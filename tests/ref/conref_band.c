@@ -2,6 +2,7 @@
 /* conref_band.c - the cone's tolerance band: every outcome the exact intersection
  * (conref.c) gives for the inputs moved within their rounding, and the judge. */
 #include "conref_eval.h"
+#include "bandutil.h"
 
 #include "exact.h"
 
@@ -73,29 +74,6 @@ static void c_perturb(const cin_q *base, const cylq step[IN_COUNT],
         else
             out->r1 = base->r1 > 0 ? q_max(base->r1 + s, base->r1 / 2) : 0;
     }
-}
-
-static double qdiff(cylq x, cylq y)
-{
-    if (x == y)
-        return 0;
-    cylq d = x - y;
-    return q_isfinite(d) ? (double)q_abs(d) : INFINITY;
-}
-
-static uint32_t fbits(float f)
-{
-    uint32_t u;
-    memcpy(&u, &f, sizeof u);
-    return u;
-}
-
-static double angle3(const double a[3], const double b[3])
-{
-    double c[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
-                   a[0] * b[1] - a[1] * b[0]};
-    return atan2(sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]),
-                 a[0] * b[0] + a[1] * b[1] + a[2] * b[2]);
 }
 
 /* Per candidate over the evaluations: its t range (where it exists), the parts it
@@ -215,7 +193,7 @@ static void c_sample(c_box *b, const cin_q *q)
     if (b->x0 >= 0 && x == b->x0 && conref_part_(&r, x) == b->p0) {
         double n[3];
         conref_normal_(&r, x, b->ff, n);
-        b->nmax = fmax(b->nmax, angle3(n, b->n0));
+        b->nmax = fmax(b->nmax, ref_angle3(n, b->n0));
     }
 }
 
@@ -287,8 +265,8 @@ void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], 
         out->evals++;
         for (int kand = 0; kand < K_COUNT; kand++) {
             for (int g = 0; g < G_COUNT; g++)
-                sum_m[kand][g] += qdiff(r.m[kand][g], r0.m[kand][g]);
-            sum_t[kand] += qdiff(r.t[kand], r0.t[kand]);
+                sum_m[kand][g] += ref_qdiff(r.m[kand][g], r0.m[kand][g]);
+            sum_t[kand] += ref_qdiff(r.t[kand], r0.t[kand]);
         }
         dcoef[i][0] = r.A - r0.A, dcoef[i][1] = r.B - r0.B, dcoef[i][2] = r.C - r0.C;
         sum_zd += q_abs(r.zd - r0.zd);
@@ -303,14 +281,14 @@ void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], 
         if (x0 >= 0 && x == x0 && conref_part_(&r, x) == p0) {
             double n[3];
             conref_normal_(&r, x, ff, n);
-            nmax = fmax(nmax, angle3(n, n0));
+            nmax = fmax(nmax, ref_angle3(n, n0));
         }
     }
     uint64_t seed = 0x636f6e65u;
     for (int k = 0; k < 3; k++)
-        seed = seed * 0x100000001b3u ^ fbits(o[k]) ^ (uint64_t)fbits(d[k]) << 32 ^
-               (uint64_t)fbits(c->p0[k]) << 7 ^ (uint64_t)fbits(c->p1[k]) << 19;
-    seed ^= (uint64_t)fbits(c->r0) << 11 ^ (uint64_t)fbits(c->r1) << 29;
+        seed = seed * 0x100000001b3u ^ ref_fbits(o[k]) ^ (uint64_t)ref_fbits(d[k]) << 32 ^
+               (uint64_t)ref_fbits(c->p0[k]) << 7 ^ (uint64_t)ref_fbits(c->p1[k]) << 19;
+    seed ^= (uint64_t)ref_fbits(c->r0) << 11 ^ (uint64_t)ref_fbits(c->r1) << 29;
     c_box box = {tmin, tmax, vflags, ff, x0, p0, n0, tr, &set, nmax, 0};
     for (int vtx = 0; vtx < 2 + RANDOM_VERTICES; vtx++) {
         signed char k[IN_COUNT];

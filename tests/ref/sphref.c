@@ -8,6 +8,7 @@
  * (a back face unless tangent). w is exact in binary128 for every valid sphere and
  * realistic origin (a difference of two floats); the rest rounds at 2^-113. */
 #include "sphref.h"
+#include "bandutil.h"
 
 #include "exact.h"
 
@@ -234,29 +235,6 @@ static void s_perturb(const sin_q *base, const cylq step[IN_COUNT],
         out->R = base->R;
 }
 
-static double qdiff(cylq x, cylq y)
-{
-    if (x == y)
-        return 0;
-    cylq d = x - y;
-    return q_isfinite(d) ? (double)q_abs(d) : INFINITY;
-}
-
-static uint32_t fbits(float f)
-{
-    uint32_t u;
-    memcpy(&u, &f, sizeof u);
-    return u;
-}
-
-static double angle3(const double a[3], const double b[3])
-{
-    double c[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
-                   a[0] * b[1] - a[1] * b[0]};
-    return atan2(sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]),
-                 a[0] * b[0] + a[1] * b[1] + a[2] * b[2]);
-}
-
 /* How far the normal at a hit may turn over the box, from the geometry: the ray's line
  * moves sideways by up to db (w by 2 ulps of its largest component in each, d likewise
  * over the distance t |d|, R by 2 ulps), so the impact parameter b = |w x d| / |d| lies
@@ -332,9 +310,9 @@ void sphref_band_eval(const cylray_sphere *s, const float o[3], const float d[3]
         s_eval(&q, tmin, tmax, &r);
         out->evals++;
         for (int m = 0; m < S_COUNT; m++)
-            sum_m[m] += qdiff(r.m[m], r0.m[m]);
-        sum_tn += qdiff(r.tn, r0.tn);
-        sum_tf += qdiff(r.tf, r0.tf);
+            sum_m[m] += ref_qdiff(r.m[m], r0.m[m]);
+        sum_tn += ref_qdiff(r.tn, r0.tn);
+        sum_tf += ref_qdiff(r.tf, r0.tf);
         if (x0 != SO_MISS) {
             cylq dd = s_t(&r, x0) - s_t(&r0, x0);
             dt[i] = q_isfinite(dd) ? (double)dd : 0;
@@ -355,9 +333,9 @@ void sphref_band_eval(const cylray_sphere *s, const float o[3], const float d[3]
      * the inputs, so that a band is reproducible. */
     uint64_t seed = 0x73706872u;
     for (int k = 0; k < 3; k++)
-        seed = seed * 0x100000001b3u ^ fbits(o[k]) ^ (uint64_t)fbits(d[k]) << 32 ^
-               (uint64_t)fbits(s->center[k]) << 7;
-    seed ^= (uint64_t)fbits(s->radius) << 11;
+        seed = seed * 0x100000001b3u ^ ref_fbits(o[k]) ^ (uint64_t)ref_fbits(d[k]) << 32 ^
+               (uint64_t)ref_fbits(s->center[k]) << 7;
+    seed ^= (uint64_t)ref_fbits(s->radius) << 11;
     for (int vtx = 0; vtx < 2 + RANDOM_VERTICES; vtx++) {
         signed char k[IN_COUNT];
         uint64_t bits = rng_splitmix64(&seed);
@@ -378,7 +356,7 @@ void sphref_band_eval(const cylray_sphere *s, const float o[3], const float d[3]
         if (x0 != SO_MISS && x == x0 && p == p0) {
             double n[3];
             s_normal(&r, x, ff, n);
-            nmax = fmax(nmax, angle3(n, n0));
+            nmax = fmax(nmax, ref_angle3(n, n0));
         }
     }
 
