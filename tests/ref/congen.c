@@ -6,84 +6,11 @@
  * "a rim" is one of the float cone, off only by the rounding of o and d. */
 #include "congen.h"
 
+#include "genutil.h"
+
 #include <float.h>
 #include <math.h>
 #include <string.h>
-
-typedef struct {
-    double x[3];
-} v3;
-
-static v3 mk(double a, double b, double c)
-{
-    v3 v = {{a, b, c}};
-    return v;
-}
-static v3 axpy(v3 y, double s, v3 a) /* y + s a */
-{
-    return mk(y.x[0] + s * a.x[0], y.x[1] + s * a.x[1], y.x[2] + s * a.x[2]);
-}
-static double dot(v3 a, v3 b)
-{
-    return a.x[0] * b.x[0] + a.x[1] * b.x[1] + a.x[2] * b.x[2];
-}
-static v3 cross(v3 a, v3 b)
-{
-    return mk(a.x[1] * b.x[2] - a.x[2] * b.x[1], a.x[2] * b.x[0] - a.x[0] * b.x[2],
-              a.x[0] * b.x[1] - a.x[1] * b.x[0]);
-}
-static v3 unit(v3 a)
-{
-    double s = 1.0 / sqrt(dot(a, a));
-    return mk(a.x[0] * s, a.x[1] * s, a.x[2] * s);
-}
-static v3 neg(v3 a)
-{
-    return mk(-a.x[0], -a.x[1], -a.x[2]);
-}
-
-static double uni(cylgen_rng *r, double a, double b)
-{
-    return a + (b - a) * cylgen_uniform(r);
-}
-
-static int chance(cylgen_rng *r, double p)
-{
-    return cylgen_uniform(r) < p;
-}
-
-static double logu(cylgen_rng *r, int ea, int eb)
-{
-    int e = ea + (int)(cylgen_next(r) % (uint64_t)(eb - ea));
-    double m = uni(r, 1, 2);
-    return ldexp(m, e);
-}
-
-static v3 rand_dir(cylgen_rng *r)
-{
-    for (;;) {
-        double x = uni(r, -1, 1), y = uni(r, -1, 1), z = uni(r, -1, 1);
-        double l = x * x + y * y + z * z;
-        if (l > 1e-4 && l <= 1)
-            return mk(x / sqrt(l), y / sqrt(l), z / sqrt(l));
-    }
-}
-
-static v3 rand_perp(cylgen_rng *r, v3 a)
-{
-    for (;;) {
-        v3 u = rand_dir(r);
-        v3 p = axpy(u, -dot(u, a), a);
-        if (dot(p, p) > 1e-4)
-            return unit(p);
-    }
-}
-
-static void to_f(float f[3], v3 a)
-{
-    for (int k = 0; k < 3; k++)
-        f[k] = (float)a.x[k];
-}
 
 /* ---- cones --------------------------------------------------------------------- */
 
@@ -102,16 +29,17 @@ static const unsigned modes[4] = {0, CYLRAY_CAPPED_LO, CYLRAY_CAPPED_HI, CYLRAY_
  * radius (see gen_tinyend). */
 static void tinyend_cone(cylgen_rng *r, cylray_cone *out)
 {
-    const double R = uni(r, 0.1, 10), L = R * logu(r, -6, 4), rt = R * logu(r, -40, -12);
-    const v3 u = rand_dir(r);
+    const double R = gen_uni(r, 0.1, 10), L = R * gen_logu(r, -6, 4),
+                 rt = R * gen_logu(r, -40, -12);
+    const v3 u = gen_dir(r);
     v3 at = mk(0, 0, 0);
-    if (chance(r, 0.3))
-        at = mk(uni(r, -10, 10), uni(r, -10, 10), uni(r, -10, 10));
-    const int lo = chance(r, 0.5);
+    if (gen_chance(r, 0.3))
+        at = mk(gen_uni(r, -10, 10), gen_uni(r, -10, 10), gen_uni(r, -10, 10));
+    const int lo = gen_chance(r, 0.5);
     float *tiny = lo ? out->p0 : out->p1, *wide = lo ? out->p1 : out->p0;
     to_f(tiny, at);
     to_f(wide, axpy(mk(tiny[0], tiny[1], tiny[2]), L, u));
-    *(lo ? &out->r0 : &out->r1) = chance(r, 0.25) ? 0.0f : radius_f(rt); /* or a tip */
+    *(lo ? &out->r0 : &out->r1) = gen_chance(r, 0.25) ? 0.0f : radius_f(rt); /* or a tip */
     *(lo ? &out->r1 : &out->r0) = radius_f(R);
     out->flags = modes[cylgen_next(r) % 4];
 }
@@ -122,29 +50,29 @@ void congen_cone(int cat, cylgen_rng *r, cylray_cone *out)
         tinyend_cone(r, out);
         return;
     }
-    double R = uni(r, 0.1, 10), span = 10, L = R * uni(r, 0.3, 6);
+    double R = gen_uni(r, 0.1, 10), span = 10, L = R * gen_uni(r, 0.3, 6);
     switch (cat) {
     case CONGEN_FLAT:
-        L = R * logu(r, -10, -3);
+        L = R * gen_logu(r, -10, -3);
         break;
     case CONGEN_LONG:
-        L = R * uni(r, 0.5e4, 2e4);
+        L = R * gen_uni(r, 0.5e4, 2e4);
         span = L;
         break;
     case CONGEN_TINY:
-        R = uni(r, 1e-4, 1e-3);
+        R = gen_uni(r, 1e-4, 1e-3);
         /* Float ends 1e4 out are 2^-10 apart at best: at least ten of those long. */
-        L = R * uni(r, 0.3, 6) + 0.01;
+        L = R * gen_uni(r, 0.3, 6) + 0.01;
         span = 1e4;
         break;
     case CONGEN_HUGE:
-        R = uni(r, 1e4, 1e6);
-        L = R * uni(r, 0.3, 6);
-        span = uni(r, 1e5, 1e6);
+        R = gen_uni(r, 1e4, 1e6);
+        L = R * gen_uni(r, 0.3, 6);
+        span = gen_uni(r, 1e5, 1e6);
         break;
     case CONGEN_SCALED: {
         int e = 21 + (int)(cylgen_next(r) % 30);
-        double k = ldexp(1.0, chance(r, 0.5) ? e : -e);
+        double k = ldexp(1.0, gen_chance(r, 0.5) ? e : -e);
         R *= k;
         L *= k;
         span *= k;
@@ -153,11 +81,11 @@ void congen_cone(int cat, cylgen_rng *r, cylray_cone *out)
     default:
         break;
     }
-    v3 c, u = rand_dir(r);
+    v3 c, u = gen_dir(r);
     for (int k = 0; k < 3; k++) {
-        c.x[k] = uni(r, -span, span);
+        c.x[k] = gen_uni(r, -span, span);
         if (cat == CONGEN_TINY)
-            c.x[k] = (chance(r, 0.5) ? -1 : 1) * uni(r, 0.5 * span, span);
+            c.x[k] = (gen_chance(r, 0.5) ? -1 : 1) * gen_uni(r, 0.5 * span, span);
     }
     to_f(out->p0, axpy(c, -L / 2, u));
     to_f(out->p1, axpy(c, L / 2, u));
@@ -172,17 +100,17 @@ void congen_cone(int cat, cylgen_rng *r, cylray_cone *out)
                 out->p1[k] = nextafterf(out->p1[k], out->p0[k]);
             }
     }
-    double r0 = R * uni(r, 0.05, 1), r1 = R * uni(r, 0.05, 1);
-    if (cat == CONGEN_APEX || chance(r, 0.1)) {
-        if (chance(r, 0.5))
+    double r0 = R * gen_uni(r, 0.05, 1), r1 = R * gen_uni(r, 0.05, 1);
+    if (cat == CONGEN_APEX || gen_chance(r, 0.1)) {
+        if (gen_chance(r, 0.5))
             r0 = 0;
         else
             r1 = 0;
-    } else if (chance(r, 0.1)) { /* an end tiny beside the other: a near tip, no apex */
-        if (chance(r, 0.5))
-            r0 = R * logu(r, -34, -8);
+    } else if (gen_chance(r, 0.1)) { /* an end tiny beside the other: a near tip, no apex */
+        if (gen_chance(r, 0.5))
+            r0 = R * gen_logu(r, -34, -8);
         else
-            r1 = R * logu(r, -34, -8);
+            r1 = R * gen_logu(r, -34, -8);
     }
     out->r0 = r0 == 0 ? 0 : radius_f(r0);
     out->r1 = r1 == 0 ? 0 : radius_f(r1);
@@ -190,7 +118,7 @@ void congen_cone(int cat, cylgen_rng *r, cylray_cone *out)
         out->r1 = out->r0 = radius_f(R);
         int steps = 1 + (int)(cylgen_next(r) % 6);
         for (int i = 0; i < steps; i++)
-            out->r1 = nextafterf(out->r1, chance(r, 0.5) ? INFINITY : 0);
+            out->r1 = nextafterf(out->r1, gen_chance(r, 0.5) ? INFINITY : 0);
     }
     out->flags = modes[cylgen_next(r) % 4];
 }
@@ -235,49 +163,36 @@ static v3 side_normal(const cgeo *g, v3 e)
 
 static v3 point_in(cylgen_rng *r, const cgeo *g, double slack)
 {
-    double z = uni(r, 0, g->L);
-    v3 e = rand_perp(r, g->u);
+    double z = gen_uni(r, 0, g->L);
+    v3 e = gen_perp(r, g->u);
     double s = sqrt(cylgen_uniform(r)) * slack;
     return axpy(axpy(g->p0, z, g->u), s * rad_at(g, z), e);
-}
-
-static void pick_interval(cylgen_rng *r, double dist, congen_case *c)
-{
-    double u = cylgen_uniform(r);
-    c->tmin = 0.0f;
-    c->tmax = INFINITY;
-    if (u < 0.12)
-        c->tmax = (float)(dist * uni(r, 0.5, 1.5));
-    else if (u < 0.22)
-        c->tmin = (float)(dist * uni(r, 0.3, 1.2));
-    else if (u < 0.27)
-        c->tmax = FLT_MAX;
 }
 
 static void aim(cylgen_rng *r, v3 target, v3 d, double dist, congen_case *c)
 {
     to_f(c->o, axpy(target, -dist, d));
     to_f(c->d, d);
-    pick_interval(r, dist, c);
+    gen_interval(r, dist, &c->tmin, &c->tmax);
 }
 
 static void towards(cylgen_rng *r, const cgeo *g, double dist, double slack, congen_case *c)
 {
-    aim(r, point_in(r, g, slack), rand_dir(r), dist, c);
+    aim(r, point_in(r, g, slack), gen_dir(r), dist, c);
 }
 
 static void gen_grazing(cylgen_rng *r, const cgeo *g, congen_case *c)
 {
-    v3 e = rand_perp(r, g->u), n = side_normal(g, e);
-    v3 p = side_point(g, uni(r, 0, g->L), e);
-    v3 d = rand_perp(r, n);
-    double eps = logu(r, -23, -7) * (chance(r, 0.5) ? 1 : -1);
-    aim(r, axpy(p, g->R * eps, n), d, g->R * uni(r, 2, 10), c);
+    v3 e = gen_perp(r, g->u), n = side_normal(g, e);
+    v3 p = side_point(g, gen_uni(r, 0, g->L), e);
+    v3 d = gen_perp(r, n);
+    double eps = gen_logu(r, -23, -7) * (gen_chance(r, 0.5) ? 1 : -1);
+    aim(r, axpy(p, g->R * eps, n), d, g->R * gen_uni(r, 2, 10), c);
 }
 
 static void gen_surface(cylgen_rng *r, const cgeo *g, const cylray_cone *cone, congen_case *c)
 {
-    v3 e = rand_perp(r, g->u), p, n;
+    v3 e = gen_perp(r, g->u), p, n;
     unsigned caps = cone->flags;
     int where = (int)(cylgen_next(r) % 3);
     if (where == 1 && (caps & CYLRAY_CAPPED_LO) && g->r0 > 0) {
@@ -287,11 +202,11 @@ static void gen_surface(cylgen_rng *r, const cgeo *g, const cylray_cone *cone, c
         p = axpy(axpy(g->p0, g->L, g->u), g->r1 * sqrt(cylgen_uniform(r)), e);
         n = g->u;
     } else {
-        p = side_point(g, uni(r, 0, g->L), e);
+        p = side_point(g, gen_uni(r, 0, g->L), e);
         n = side_normal(g, e);
     }
-    v3 d = rand_dir(r);
-    if ((dot(d, n) > 0) != chance(r, 0.5))
+    v3 d = gen_dir(r);
+    if ((dot(d, n) > 0) != gen_chance(r, 0.5))
         d = neg(d);
     to_f(c->o, p);
     to_f(c->d, d);
@@ -301,51 +216,52 @@ static void gen_surface(cylgen_rng *r, const cgeo *g, const cylray_cone *cone, c
 
 static void gen_rim(cylgen_rng *r, const cgeo *g, congen_case *c)
 {
-    v3 e = rand_perp(r, g->u);
-    int hi = chance(r, 0.5);
+    v3 e = gen_perp(r, g->u);
+    int hi = gen_chance(r, 0.5);
     if ((hi ? g->r1 : g->r0) == 0)
         hi = !hi;
     v3 p = side_point(g, hi ? g->L : 0, e);
     /* off the rim by a part of the cone's size or of that end's own radius (a tiny end's
      * rim is far smaller than the cone) */
-    const int own = chance(r, 0.5);
+    const int own = gen_chance(r, 0.5);
     const double size = own ? (hi ? g->r1 : g->r0) : g->R;
-    if (chance(r, 0.5))
-        p = axpy(p, size * logu(r, -24, own ? 7 : -10) * (chance(r, 0.5) ? 1 : -1),
-                 rand_dir(r));
-    aim(r, p, rand_dir(r), g->R * uni(r, 1.5, 10), c);
+    if (gen_chance(r, 0.5))
+        p = axpy(p, size * gen_logu(r, -24, own ? 7 : -10) * (gen_chance(r, 0.5) ? 1 : -1),
+                 gen_dir(r));
+    aim(r, p, gen_dir(r), g->R * gen_uni(r, 1.5, 10), c);
 }
 
 static void gen_apex(cylgen_rng *r, const cgeo *g, congen_case *c)
 {
     v3 apex = axpy(g->p0, g->r0 == 0 ? 0 : g->L, g->u);
     if (g->r0 != 0 && g->r1 != 0) {
-        towards(r, g, g->R * uni(r, 1.5, 10), 1.2, c);
+        towards(r, g, g->R * gen_uni(r, 1.5, 10), 1.2, c);
         return;
     }
-    double off = chance(r, 0.3) ? 0 : g->R * logu(r, -24, -4);
-    aim(r, axpy(apex, off, rand_dir(r)), rand_dir(r), g->R * uni(r, 1.5, 10), c);
+    double off = gen_chance(r, 0.3) ? 0 : g->R * gen_logu(r, -24, -4);
+    aim(r, axpy(apex, off, gen_dir(r)), gen_dir(r), g->R * gen_uni(r, 1.5, 10), c);
 }
 
 static void gen_axial(cylgen_rng *r, const cgeo *g, congen_case *c)
 {
-    if (chance(r, 0.5)) {
+    if (gen_chance(r, 0.5)) {
         /* Along the axis, from the axis or off it within the larger radius. */
-        v3 d = chance(r, 0.5) ? g->u : neg(g->u);
-        double off = chance(r, 0.3) ? 0 : uni(r, 0, 1.2) * fmax(g->r0, g->r1);
-        v3 o = axpy(axpy(g->p0, g->L / 2, g->u), off, rand_perp(r, g->u));
-        aim(r, o, d, g->L * uni(r, 1, 5), c);
+        v3 d = gen_chance(r, 0.5) ? g->u : neg(g->u);
+        double off = gen_chance(r, 0.3) ? 0 : gen_uni(r, 0, 1.2) * fmax(g->r0, g->r1);
+        v3 o = axpy(axpy(g->p0, g->L / 2, g->u), off, gen_perp(r, g->u));
+        aim(r, o, d, g->L * gen_uni(r, 1, 5), c);
         return;
     }
     /* Along a generator line, on it or slightly out or in. */
-    v3 e = rand_perp(r, g->u);
+    v3 e = gen_perp(r, g->u);
     v3 a = side_point(g, 0, e), b = side_point(g, g->L, e);
     v3 d = unit(axpy(b, -1, a));
-    if (chance(r, 0.5))
+    if (gen_chance(r, 0.5))
         d = neg(d);
-    double off = chance(r, 0.3) ? 0 : g->R * logu(r, -24, -6) * (chance(r, 0.5) ? 1 : -1);
+    double off =
+        gen_chance(r, 0.3) ? 0 : g->R * gen_logu(r, -24, -6) * (gen_chance(r, 0.5) ? 1 : -1);
     v3 mid = axpy(side_point(g, g->L / 2, e), off, side_normal(g, e));
-    aim(r, mid, d, g->R * uni(r, 2, 10), c);
+    aim(r, mid, d, g->R * gen_uni(r, 2, 10), c);
 }
 
 /* About a tiny end (tinyend_cone): at radial offsets from a quarter of its radius (a
@@ -358,56 +274,31 @@ static void gen_tinyend(cylgen_rng *r, const cgeo *g, congen_case *c)
     const double rt = lo ? g->r0 : g->r1, rw = lo ? g->r1 : g->r0;
     const v3 end = lo ? g->p0 : axpy(g->p0, g->L, g->u), in = lo ? g->u : neg(g->u);
     const double rq = rt > 0 ? rt : rw * 0x1p-30;
-    const double rho = rq * exp2(uni(r, -2, fmax(log2(rw / rq) - 18, 3)));
-    const v3 e = rand_perp(r, g->u);
+    const double rho = rq * exp2(gen_uni(r, -2, fmax(log2(rw / rq) - 18, 3)));
+    const v3 e = gen_perp(r, g->u);
     v3 p = axpy(end, rho, e);
     const uint64_t where = cylgen_next(r) % 3;
     if (where == 1) {
-        p = axpy(p, rho * logu(r, -8, 3) * (chance(r, 0.5) ? 1 : -1), in);
+        p = axpy(p, rho * gen_logu(r, -8, 3) * (gen_chance(r, 0.5) ? 1 : -1), in);
     } else if (where == 2) {
-        const double z = fmin(rho * logu(r, -6, 4), g->L);
+        const double z = fmin(rho * gen_logu(r, -6, 4), g->L);
         const double rz = rt + (rw - rt) * (z / g->L);
-        p = axpy(axpy(end, z, in), rz * (1 + logu(r, -24, -2) * (chance(r, 0.5) ? 1 : -1)), e);
+        p = axpy(axpy(end, z, in),
+                 rz * (1 + gen_logu(r, -24, -2) * (gen_chance(r, 0.5) ? 1 : -1)), e);
     }
     const uint64_t how = cylgen_next(r) % 3;
-    v3 d = how == 0 ? rand_dir(r) : rand_perp(r, g->u);
+    v3 d = how == 0 ? gen_dir(r) : gen_perp(r, g->u);
     if (how == 2)
-        d = unit(axpy(chance(r, 0.5) ? in : neg(in), uni(r, -0.3, 0.3), d));
-    const double dist = chance(r, 0.8) ? fmax(rho, rq) * uni(r, 2, 64) : g->R * uni(r, 1.5, 10);
+        d = unit(axpy(gen_chance(r, 0.5) ? in : neg(in), gen_uni(r, -0.3, 0.3), d));
+    const double dist =
+        gen_chance(r, 0.8) ? fmax(rho, rq) * gen_uni(r, 2, 64) : g->R * gen_uni(r, 1.5, 10);
     aim(r, p, d, dist, c);
-}
-
-static void gen_camera(const cgeo *g, cylgen_rng *cam, size_t index, congen_case *c)
-{
-    v3 fwd = rand_dir(cam);
-    double dist = g->R * uni(cam, 3, 50);
-    v3 ctr = axpy(g->p0, g->L / 2, g->u);
-    v3 eye = axpy(ctr, -dist, fwd);
-    v3 right = rand_perp(cam, fwd), up = cross(fwd, right);
-    double half = 0.8 * g->R / dist, px = uni(cam, -0.5, 0.5), py = uni(cam, -0.5, 0.5);
-    double sx = ((double)(index % 4) - 1.5 + px) / 1.5 * half,
-           sy = ((double)(index / 4 % 4) - 1.5 + py) / 1.5 * half;
-    to_f(c->o, eye);
-    to_f(c->d, axpy(axpy(fwd, sx, right), sy, up));
-    c->tmin = 0.0f;
-    c->tmax = INFINITY;
 }
 
 static void gen_bad(cylgen_rng *r, const cgeo *g, congen_case *c)
 {
-    towards(r, g, g->R * uni(r, 1.5, 10), 1.2, c);
+    towards(r, g, g->R * gen_uni(r, 1.5, 10), 1.2, c);
     cylgen_spoil(cylgen_next(r), c->o, c->d, &c->tmin, &c->tmax);
-}
-
-static void scale_d(cylgen_rng *r, int span, congen_case *c)
-{
-    double s = ldexp(uni(r, 1, 2), (int)(cylgen_next(r) % (uint64_t)(2 * span + 1)) - span);
-    for (int k = 0; k < 3; k++)
-        c->d[k] = (float)((double)c->d[k] * s);
-    if (c->tmin != 0)
-        c->tmin = (float)((double)c->tmin / s);
-    if (c->tmax != INFINITY && c->tmax != FLT_MAX)
-        c->tmax = (float)((double)c->tmax / s);
 }
 
 void congen_ray(int cat, cylgen_rng *r, cylgen_rng *cam, size_t index, const cylray_cone *cone,
@@ -418,7 +309,7 @@ void congen_ray(int cat, cylgen_rng *r, cylgen_rng *cam, size_t index, const cyl
     c->cone = *cone;
     switch (cat) {
     case CONGEN_FAR:
-        towards(r, g, g->R * logu(r, 10, 20), 1.1, c);
+        towards(r, g, g->R * gen_logu(r, 10, 20), 1.1, c);
         break;
     case CONGEN_GRAZING:
         gen_grazing(r, g, c);
@@ -428,8 +319,8 @@ void congen_ray(int cat, cylgen_rng *r, cylgen_rng *cam, size_t index, const cyl
         break;
     case CONGEN_INSIDE:
         to_f(c->o, point_in(r, g, 0.99));
-        to_f(c->d, rand_dir(r));
-        pick_interval(r, g->R, c);
+        to_f(c->d, gen_dir(r));
+        gen_interval(r, g->R, &c->tmin, &c->tmax);
         break;
     case CONGEN_RIM:
         gen_rim(r, g, c);
@@ -442,26 +333,28 @@ void congen_ray(int cat, cylgen_rng *r, cylgen_rng *cam, size_t index, const cyl
         break;
     case CONGEN_TINY:
     case CONGEN_HUGE:
-        towards(r, g, g->R * uni(r, 1.05, cat == CONGEN_TINY ? 100 : 3), 1.2, c);
+        towards(r, g, g->R * gen_uni(r, 1.05, cat == CONGEN_TINY ? 100 : 3), 1.2, c);
         break;
     case CONGEN_UNNORM:
-        towards(r, g, g->R * uni(r, 1.5, 10), 1.2, c);
-        scale_d(r, 30, c);
+        towards(r, g, g->R * gen_uni(r, 1.5, 10), 1.2, c);
+        gen_scale_d(r, 30, c->d, &c->tmin, &c->tmax);
         break;
     case CONGEN_CAMERA:
-        gen_camera(g, cam, index, c);
+        gen_camera(cam, index, axpy(g->p0, g->L / 2, g->u), g->R, 0.8, c->o, c->d);
+        c->tmin = 0.0f;
+        c->tmax = INFINITY;
         break;
     case CONGEN_BAD:
         gen_bad(r, g, c);
         break;
     case CONGEN_SCALED:
-        if (chance(r, 0.3))
+        if (gen_chance(r, 0.3))
             gen_grazing(r, g, c);
-        else if (chance(r, 0.2))
+        else if (gen_chance(r, 0.2))
             gen_rim(r, g, c);
         else
-            towards(r, g, g->R * uni(r, 1.5, 10), 1.2, c);
-        scale_d(r, 20, c);
+            towards(r, g, g->R * gen_uni(r, 1.5, 10), 1.2, c);
+        gen_scale_d(r, 20, c->d, &c->tmin, &c->tmax);
         break;
     case CONGEN_NEARCYL:
     case CONGEN_FLAT:
@@ -472,7 +365,7 @@ void congen_ray(int cat, cylgen_rng *r, cylgen_rng *cam, size_t index, const cyl
         else if (u == 1)
             gen_rim(r, g, c);
         else
-            towards(r, g, g->R * uni(r, 1.5, 10), 1.2, c);
+            towards(r, g, g->R * gen_uni(r, 1.5, 10), 1.2, c);
         break;
     }
     case CONGEN_TINYEND:
@@ -480,7 +373,7 @@ void congen_ray(int cat, cylgen_rng *r, cylgen_rng *cam, size_t index, const cyl
         break;
     case CONGEN_ORDINARY:
     default:
-        towards(r, g, g->R * uni(r, 1.5, 10), 1.2, c);
+        towards(r, g, g->R * gen_uni(r, 1.5, 10), 1.2, c);
         break;
     }
 }
@@ -511,61 +404,43 @@ static const char *const descriptions[CONGEN_COUNT] = {
     "cone: scenes scaled by 2^+-(21..50), |d| 2^-20..2^20",
     "cone: one end 2^-40..2^-12 of the other or a tip, rays at and about it from close by"};
 
+static void shape_hook(int cat, cylgen_rng *r, void *shape)
+{
+    congen_cone(cat, r, shape);
+}
+
+static void ray_hook(int cat, cylgen_rng *r, cylgen_rng *cam, size_t index, const void *shape,
+                     void *out)
+{
+    congen_ray(cat, r, cam, index, shape, out);
+}
+
+_Static_assert(sizeof(cylray_cone) <= GEN_SHAPE_MAX, "a cone fits gen_fill's shape");
+static const gen_shape cone_gen = {names,           descriptions,        CONGEN_COUNT,
+                                   0x636f6e6573ull, sizeof(congen_case), shape_hook,
+                                   ray_hook};
+
 const char *congen_category_name(int category)
 {
-    return category >= 0 && category < CONGEN_COUNT ? names[category] : NULL;
+    return gen_name(&cone_gen, category);
 }
 
 const char *congen_category_description(int category)
 {
-    return category >= 0 && category < CONGEN_COUNT ? descriptions[category] : NULL;
+    return gen_description(&cone_gen, category);
 }
 
 int congen_category_find(const char *name)
 {
-    for (int c = 0; name && c < CONGEN_COUNT; c++)
-        if (strcmp(name, names[c]) == 0)
-            return c;
-    return -1;
-}
-
-static void rng_for(cylgen_rng *r, uint64_t seed, int cat, uint64_t index, uint64_t role)
-{
-    uint64_t h = seed ^ 0x636f6e6573ull; /* apart from the other shapes' draws */
-    h ^= cylgen_splitmix64(&h) + (uint64_t)(cat + 1) * 0xd1b54a32d192ed03u;
-    h ^= cylgen_splitmix64(&h) + index * 0x9e3779b97f4a7c15u;
-    h ^= cylgen_splitmix64(&h) + role;
-    cylgen_seed(r, h);
-}
-
-static void make_range(int cat, uint64_t seed, size_t n, congen_case *out, int shared)
-{
-    if (cat < 0 || cat >= CONGEN_COUNT)
-        cat = CONGEN_ORDINARY;
-    cylray_cone cone;
-    memset(&cone, 0, sizeof cone);
-    size_t batch = (size_t)-1;
-    for (size_t i = 0; i < n; i++) {
-        size_t b = shared ? 0 : i / CYLGEN_BATCH;
-        if (b != batch) {
-            cylgen_rng sr;
-            rng_for(&sr, seed, cat, b, 1);
-            congen_cone(cat, &sr, &cone);
-            batch = b;
-        }
-        cylgen_rng r, cam;
-        rng_for(&r, seed, cat, i, 2);
-        rng_for(&cam, seed, cat, i / 16, 3);
-        congen_ray(cat, &r, &cam, i, &cone, &out[i]);
-    }
+    return gen_find(&cone_gen, name);
 }
 
 void congen_make(int category, uint64_t seed, size_t n, congen_case *out)
 {
-    make_range(category, seed, n, out, 0);
+    gen_fill(&cone_gen, category, seed, n, out, 0);
 }
 
 void congen_make_shared(int category, uint64_t seed, size_t n, congen_case *out)
 {
-    make_range(category, seed, n, out, 1);
+    gen_fill(&cone_gen, category, seed, n, out, 1);
 }

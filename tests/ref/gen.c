@@ -6,6 +6,8 @@
  * cylinder, off only by the final rounding of o and d. */
 #include "gen.h"
 
+#include "genutil.h"
+
 #include "../support/rng.h"
 
 #include <float.h>
@@ -48,16 +50,6 @@ double cylgen_uniform(cylgen_rng *r)
     return rng_unit(cylgen_next(r));
 }
 
-static double uni(cylgen_rng *r, double a, double b)
-{
-    return a + (b - a) * cylgen_uniform(r);
-}
-
-static int chance(cylgen_rng *r, double p)
-{
-    return cylgen_uniform(r) < p;
-}
-
 static double sign(cylgen_rng *r)
 {
     return (cylgen_next(r) >> 63) ? -1.0 : 1.0;
@@ -89,53 +81,7 @@ static double log2_(double x)
 /* Log-uniform in [a, b], a > 0. */
 static double logu(cylgen_rng *r, double a, double b)
 {
-    return exp2_(uni(r, log2_(a), log2_(b)));
-}
-
-/* ---- small vector helpers (double) ------------------------------------------------ */
-
-typedef struct {
-    double x[3];
-} v3;
-
-static v3 mk(double a, double b, double c)
-{
-    v3 v = {{a, b, c}};
-    return v;
-}
-static v3 add(v3 a, v3 b)
-{
-    return mk(a.x[0] + b.x[0], a.x[1] + b.x[1], a.x[2] + b.x[2]);
-}
-static v3 scl(v3 a, double s)
-{
-    return mk(a.x[0] * s, a.x[1] * s, a.x[2] * s);
-}
-static v3 axpy(v3 y, double s, v3 a) /* y + s a */
-{
-    return add(y, scl(a, s));
-}
-static double dot(v3 a, v3 b)
-{
-    return a.x[0] * b.x[0] + a.x[1] * b.x[1] + a.x[2] * b.x[2];
-}
-static v3 cross(v3 a, v3 b)
-{
-    return mk(a.x[1] * b.x[2] - a.x[2] * b.x[1], a.x[2] * b.x[0] - a.x[0] * b.x[2],
-              a.x[0] * b.x[1] - a.x[1] * b.x[0]);
-}
-static v3 unit(v3 a)
-{
-    return scl(a, 1.0 / sqrt(dot(a, a)));
-}
-static v3 from_f(const float f[3])
-{
-    return mk(f[0], f[1], f[2]);
-}
-static void to_f(float f[3], v3 a)
-{
-    for (int k = 0; k < 3; k++)
-        f[k] = (float)a.x[k];
+    return exp2_(gen_uni(r, log2_(a), log2_(b)));
 }
 
 /* Uniform on the unit sphere, by rejection from the cube. */
@@ -144,7 +90,7 @@ static v3 rand_dir(cylgen_rng *r)
     for (;;) {
         /* One draw per statement: the order of function arguments is unspecified,
          * and gcc and clang do differ. */
-        double x = uni(r, -1, 1), y = uni(r, -1, 1), z = uni(r, -1, 1);
+        double x = gen_uni(r, -1, 1), y = gen_uni(r, -1, 1), z = gen_uni(r, -1, 1);
         v3 p = mk(x, y, z);
         double l = dot(p, p);
         if (l > 1e-4 && l <= 1)
@@ -180,7 +126,7 @@ static frame frame_of(const cylray_cylinder *cyl)
 static v3 rand_perp(cylgen_rng *r, const frame *f)
 {
     for (;;) {
-        double a = uni(r, -1, 1), b = uni(r, -1, 1), l = a * a + b * b;
+        double a = gen_uni(r, -1, 1), b = gen_uni(r, -1, 1), l = a * a + b * b;
         if (l > 1e-4 && l <= 1)
             return scl(add(scl(f->p, a), scl(f->q, b)), 1 / sqrt(l));
     }
@@ -207,14 +153,14 @@ static void make_cylinder(cylgen_rng *r, const cyl_spec *s, cylray_cylinder *out
     memset(out, 0, sizeof *out);
     for (int k = 0; k < 3; k++) {
         double sg = sign(r); /* one draw per statement: argument order is unspecified */
-        out->center[k] = (float)(sg * uni(r, s->c_lo, s->c_hi));
+        out->center[k] = (float)(sg * gen_uni(r, s->c_lo, s->c_hi));
     }
     /* Any nonzero length (unit, 0.25..8, sometimes 1e-4..1e4): the axis is taken as
      * exact, never normalised. A third lie along a coordinate axis exactly (either
      * sign), where kernels may take shortcuts. */
     double u = cylgen_uniform(r);
     double len = u < 0.45 ? 1.0 : u < 0.85 ? logu(r, 0.25, 8) : logu(r, 1e-4, 1e4);
-    if (chance(r, 0.35)) {
+    if (gen_chance(r, 0.35)) {
         int k = (int)(cylgen_next(r) % 3);
         out->axis[k] = (float)(sign(r) * len);
     } else {
@@ -230,7 +176,7 @@ static void make_cylinder(cylgen_rng *r, const cyl_spec *s, cylray_cylinder *out
     if (kind == KIND_INFINITE) {
         out->half_height = INFINITY;
         /* The capped flag means nothing without ends; a kernel must not invent them. */
-        out->flags = chance(r, 0.25) ? CYLRAY_CAPPED : 0u;
+        out->flags = gen_chance(r, 0.25) ? CYLRAY_CAPPED : 0u;
     } else {
         out->half_height = (float)(R * logu(r, 0.2, 5));
         out->flags = kind == KIND_CAPPED ? CYLRAY_CAPPED : 0u;
@@ -279,23 +225,8 @@ static v3 point_in(cylgen_rng *r, const frame *f, double slack)
 {
     v3 u = rand_perp(r, f);
     double rho = f->R * slack * sqrt(cylgen_uniform(r));
-    double z = zspan(f) * slack * uni(r, -1, 1);
+    double z = zspan(f) * slack * gen_uni(r, -1, 1);
     return axpy(axpy(f->c, rho, u), z, f->a);
-}
-
-/* The ray interval: mostly [0, inf); sometimes a tmax or tmin near the expected hit
- * distance `dist` (in units of t), so the clip to [tmin, tmax] is exercised. */
-static void pick_interval(cylgen_rng *r, double dist, cylgen_case *c)
-{
-    double u = cylgen_uniform(r);
-    c->tmin = 0.0f;
-    c->tmax = INFINITY;
-    if (u < 0.12)
-        c->tmax = (float)(dist * uni(r, 0.5, 1.5));
-    else if (u < 0.22)
-        c->tmin = (float)(dist * uni(r, 0.3, 1.2));
-    else if (u < 0.27)
-        c->tmax = FLT_MAX;
 }
 
 static void set_ray(cylgen_case *c, v3 o, v3 d)
@@ -311,14 +242,14 @@ static void ray_towards(cylgen_rng *r, const frame *f, double dist, double slack
     v3 target = point_in(r, f, slack);
     v3 d = rand_dir(r);
     set_ray(c, axpy(target, -dist, d), d);
-    pick_interval(r, dist, c);
+    gen_interval(r, dist, &c->tmin, &c->tmax);
 }
 
 static void ray_inside(cylgen_rng *r, const frame *f, cylgen_case *c)
 {
     v3 o = point_in(r, f, 0.99);
     set_ray(c, o, rand_dir(r));
-    pick_interval(r, f->R, c);
+    gen_interval(r, f->R, &c->tmin, &c->tmax);
 }
 
 static void gen_parallel(cylgen_rng *r, const frame *f, cylgen_case *c)
@@ -328,11 +259,11 @@ static void gen_parallel(cylgen_rng *r, const frame *f, cylgen_case *c)
     double co = 1 - th * th / 2 + th * th * th * th / 24, si = th - th * th * th / 6;
     double sg = sign(r);
     v3 d = add(scl(f->a, sg * co), scl(rand_perp(r, f), si));
-    double rho = chance(r, 0.6) ? f->R * sqrt(cylgen_uniform(r)) : f->R * uni(r, 1, 3);
-    double z = zspan(f) * uni(r, -3, 3);
+    double rho = gen_chance(r, 0.6) ? f->R * sqrt(cylgen_uniform(r)) : f->R * gen_uni(r, 1, 3);
+    double z = zspan(f) * gen_uni(r, -3, 3);
     v3 o = axpy(axpy(f->c, rho, rand_perp(r, f)), z, f->a);
     set_ray(c, o, d);
-    pick_interval(r, 2 * f->R / th, c);
+    gen_interval(r, 2 * f->R / th, &c->tmin, &c->tmax);
 }
 
 static void gen_grazing(cylgen_rng *r, const frame *f, cylgen_case *c)
@@ -340,35 +271,35 @@ static void gen_grazing(cylgen_rng *r, const frame *f, cylgen_case *c)
     double sg = sign(r);
     double delta = sg * logu(r, 1e-6, 1e-2);
     v3 u = rand_perp(r, f), w = cross(f->a, u);
-    double z = zspan(f) * uni(r, -0.9, 0.9);
+    double z = zspan(f) * gen_uni(r, -0.9, 0.9);
     /* The closest approach to the axis is at q, distance R (1 + delta), whatever the
      * tilt of d along the axis. */
     v3 q = axpy(axpy(f->c, f->R * (1 + delta), u), z, f->a);
-    double tilt = uni(r, -0.7, 0.7);
+    double tilt = gen_uni(r, -0.7, 0.7);
     v3 d = unit(add(w, scl(f->a, tilt)));
-    if (chance(r, 0.5))
+    if (gen_chance(r, 0.5))
         d = scl(d, -1);
     /* Mostly from nearby; a quarter from far away, where the packet rejections of
      * the kernels must keep their margins against a large |o - c|. */
-    double dist = f->R * (chance(r, 0.25) ? logu(r, 1e3, 1e6) : uni(r, 2, 20));
+    double dist = f->R * (gen_chance(r, 0.25) ? logu(r, 1e3, 1e6) : gen_uni(r, 2, 20));
     set_ray(c, axpy(q, -dist, d), d);
-    pick_interval(r, dist, c);
+    gen_interval(r, dist, &c->tmin, &c->tmax);
 }
 
 /* A secondary ray: the origin is a surface point (rounded to float), tmin = 0. */
 static void gen_surface(cylgen_rng *r, const frame *f, cylgen_case *c)
 {
     v3 u = rand_perp(r, f), p, n;
-    if (f->capped && chance(r, 0.3)) {
+    if (f->capped && gen_chance(r, 0.3)) {
         double s = sign(r);
         p = axpy(axpy(f->c, f->R * 0.95 * sqrt(cylgen_uniform(r)), u), s * f->H, f->a);
         n = scl(f->a, s);
     } else {
-        p = axpy(axpy(f->c, f->R, u), zspan(f) * uni(r, -0.95, 0.95), f->a);
+        p = axpy(axpy(f->c, f->R, u), zspan(f) * gen_uni(r, -0.95, 0.95), f->a);
         n = u;
     }
     v3 d = rand_dir(r);
-    int outward = chance(r, 0.5);
+    int outward = gen_chance(r, 0.5);
     if ((dot(d, n) > 0) != outward)
         d = scl(d, -1);
     set_ray(c, p, d);
@@ -386,20 +317,20 @@ static void gen_rim(cylgen_rng *r, const frame *f, cylgen_case *c)
     v3 rim = axpy(axpy(f->c, f->R, u), s * f->H, f->a);
     v3 nc = scl(f->a, s); /* the cap's outward normal */
     /* Inward along both outward normals, with a tangential part. */
-    double a = uni(r, 0.1, 1), b = uni(r, 0.1, 1), tg = uni(r, -0.5, 0.5) * a;
+    double a = gen_uni(r, 0.1, 1), b = gen_uni(r, 0.1, 1), tg = gen_uni(r, -0.5, 0.5) * a;
     v3 d = unit(add(add(scl(u, -a), scl(nc, -b)), scl(t, tg)));
-    if (chance(r, 0.25)) {
+    if (gen_chance(r, 0.25)) {
         /* From inside, leaving at the rim: start a short way back inside. */
-        double back = uni(r, 0.05, 0.45) * fmin(f->R * a, 2 * f->H * b);
+        double back = gen_uni(r, 0.05, 0.45) * fmin(f->R * a, 2 * f->H * b);
         set_ray(c, axpy(rim, back, d), scl(d, -1));
         c->tmin = 0.0f;
         c->tmax = INFINITY;
         return;
     }
-    double dist = f->R * uni(r, 1, 10);
+    double dist = f->R * gen_uni(r, 1, 10);
     set_ray(c, axpy(rim, -dist, d), d);
     c->tmin = 0.0f;
-    c->tmax = chance(r, 0.1) ? (float)(dist * uni(r, 1.01, 3)) : INFINITY;
+    c->tmax = gen_chance(r, 0.1) ? (float)(dist * gen_uni(r, 1.01, 3)) : INFINITY;
 }
 
 static void gen_case(int cat, cylgen_rng *r, cylgen_case *c)
@@ -425,7 +356,7 @@ static void gen_case(int cat, cylgen_rng *r, cylgen_case *c)
         gen_rim(r, &f, c);
         break;
     case CYLGEN_TINY:
-        if (chance(r, 0.2))
+        if (gen_chance(r, 0.2))
             ray_towards(r, &f, f.R * logu(r, 1e3, 1e6), 0.9, c);
         else
             ray_towards(r, &f, f.R * logu(r, 2, 1e3), 1.3, c);
@@ -433,10 +364,10 @@ static void gen_case(int cat, cylgen_rng *r, cylgen_case *c)
     case CYLGEN_HUGE:
         /* From outside, as "tiny": the scale is the difficulty here; rays from inside
          * are the "inside" category's. */
-        ray_towards(r, &f, f.R * uni(r, 2, 20), 1.3, c);
+        ray_towards(r, &f, f.R * gen_uni(r, 2, 20), 1.3, c);
         break;
     case CYLGEN_UNNORMALIZED: {
-        ray_towards(r, &f, f.R * uni(r, 2, 20), 1.3, c);
+        ray_towards(r, &f, f.R * gen_uni(r, 2, 20), 1.3, c);
         double k = logu(r, 1e-3, 1e3);
         for (int j = 0; j < 3; j++)
             c->d[j] = (float)(c->d[j] * k);
@@ -446,10 +377,10 @@ static void gen_case(int cat, cylgen_rng *r, cylgen_case *c)
         break;
     }
     case CYLGEN_INFINITE:
-        if (chance(r, 0.4))
+        if (gen_chance(r, 0.4))
             ray_inside(r, &f, c);
         else
-            ray_towards(r, &f, f.R * uni(r, 2, 20), 1.3, c);
+            ray_towards(r, &f, f.R * gen_uni(r, 2, 20), 1.3, c);
         break;
     case CYLGEN_SCALED: {
         /* The direction times 2^k, |k| <= 100, and the interval over it: the same
@@ -460,8 +391,8 @@ static void gen_case(int cat, cylgen_rng *r, cylgen_case *c)
         else if (u < 0.5)
             gen_grazing(r, &f, c);
         else
-            ray_towards(r, &f, f.R * uni(r, 2, 20), 1.3, c);
-        const int k = (int)floor(uni(r, -100, 101));
+            ray_towards(r, &f, f.R * gen_uni(r, 2, 20), 1.3, c);
+        const int k = (int)floor(gen_uni(r, -100, 101));
         for (int j = 0; j < 3; j++)
             c->d[j] = (float)ldexp(c->d[j], k);
         c->tmin = (float)ldexp(c->tmin, -k);
@@ -479,12 +410,12 @@ static void gen_case(int cat, cylgen_rng *r, cylgen_case *c)
         else if (u < 0.7)
             gen_parallel(r, &f, c);
         else
-            ray_towards(r, &f, f.R * uni(r, 2, 20), 1.3, c);
+            ray_towards(r, &f, f.R * gen_uni(r, 2, 20), 1.3, c);
         break;
     }
     case CYLGEN_ORDINARY:
     default:
-        ray_towards(r, &f, f.R * uni(r, 2, 20), 1.3, c);
+        ray_towards(r, &f, f.R * gen_uni(r, 2, 20), 1.3, c);
         break;
     }
 }
@@ -511,6 +442,27 @@ static const char *const descriptions[CYLGEN_COUNT] = {
     "one disc only: aimed at either rim, from inside, down the axis, ordinary",
 };
 
+static void shape_hook(int cat, cylgen_rng *r, void *shape)
+{
+    category_cylinder(cat, r, shape);
+}
+
+/* The cylinders' rays need no camera. */
+static void ray_hook(int cat, cylgen_rng *r, cylgen_rng *cam, size_t index, const void *shape,
+                     void *out)
+{
+    (void)cam;
+    (void)index;
+    cylgen_case *c = out;
+    memset(c, 0, sizeof *c);
+    c->cyl = *(const cylray_cylinder *)shape;
+    gen_case(cat, r, c);
+}
+
+_Static_assert(sizeof(cylray_cylinder) <= GEN_SHAPE_MAX, "a cylinder fits gen_fill's shape");
+static const gen_shape cylinder_gen = {
+    names, descriptions, CYLGEN_COUNT, 0, sizeof(cylgen_case), shape_hook, ray_hook};
+
 int cylgen_category_count(void)
 {
     return CYLGEN_COUNT;
@@ -518,62 +470,27 @@ int cylgen_category_count(void)
 
 const char *cylgen_category_name(int category)
 {
-    return category >= 0 && category < CYLGEN_COUNT ? names[category] : NULL;
+    return gen_name(&cylinder_gen, category);
 }
 
 const char *cylgen_category_description(int category)
 {
-    return category >= 0 && category < CYLGEN_COUNT ? descriptions[category] : NULL;
+    return gen_description(&cylinder_gen, category);
 }
 
 int cylgen_category_find(const char *name)
 {
-    for (int k = 0; name && k < CYLGEN_COUNT; k++)
-        if (strcmp(name, names[k]) == 0)
-            return k;
-    return -1;
-}
-
-/* One generator per (seed, category, index, role): independent of n and of order. */
-static void rng_for(cylgen_rng *r, uint64_t seed, int cat, uint64_t index, uint64_t role)
-{
-    uint64_t h = seed;
-    h ^= cylgen_splitmix64(&h) + (uint64_t)(cat + 1) * 0xd1b54a32d192ed03u;
-    h ^= cylgen_splitmix64(&h) + index * 0x9e3779b97f4a7c15u;
-    h ^= cylgen_splitmix64(&h) + role;
-    cylgen_seed(r, h);
-}
-
-static void make_range(int cat, uint64_t seed, size_t n, cylgen_case *out, int shared)
-{
-    if (cat < 0 || cat >= CYLGEN_COUNT)
-        cat = CYLGEN_ORDINARY;
-    cylray_cylinder cyl;
-    size_t batch = (size_t)-1;
-    for (size_t i = 0; i < n; i++) {
-        size_t b = shared ? 0 : i / CYLGEN_BATCH;
-        if (b != batch) {
-            cylgen_rng cr;
-            rng_for(&cr, seed, cat, b, 1);
-            category_cylinder(cat, &cr, &cyl);
-            batch = b;
-        }
-        cylgen_rng r;
-        rng_for(&r, seed, cat, i, 2);
-        memset(&out[i], 0, sizeof out[i]);
-        out[i].cyl = cyl;
-        gen_case(cat, &r, &out[i]);
-    }
+    return gen_find(&cylinder_gen, name);
 }
 
 void cylgen_make(int category, uint64_t seed, size_t n, cylgen_case *out)
 {
-    make_range(category, seed, n, out, 0);
+    gen_fill(&cylinder_gen, category, seed, n, out, 0);
 }
 
 void cylgen_make_shared(int category, uint64_t seed, size_t n, cylgen_case *out)
 {
-    make_range(category, seed, n, out, 1);
+    gen_fill(&cylinder_gen, category, seed, n, out, 1);
 }
 
 /* Spoils one input of a ray by the draw u (the sphere's and the cone's NaN lanes): NaN

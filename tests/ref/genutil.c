@@ -1,0 +1,134 @@
+/* SPDX-License-Identifier: MIT */
+/* genutil.c - the generators' shared draws and batch filling (see genutil.h). */
+#include "genutil.h"
+
+#include <float.h>
+#include <string.h>
+
+double gen_uni(cylgen_rng *r, double a, double b)
+{
+    return a + (b - a) * cylgen_uniform(r);
+}
+
+int gen_chance(cylgen_rng *r, double p)
+{
+    return cylgen_uniform(r) < p;
+}
+
+double gen_logu(cylgen_rng *r, int ea, int eb)
+{
+    int e = ea + (int)(cylgen_next(r) % (uint64_t)(eb - ea));
+    double m = gen_uni(r, 1, 2);
+    return ldexp(m, e);
+}
+
+v3 gen_dir(cylgen_rng *r)
+{
+    for (;;) {
+        /* One draw per statement: the order of function arguments is unspecified. */
+        double x = gen_uni(r, -1, 1), y = gen_uni(r, -1, 1), z = gen_uni(r, -1, 1);
+        double l = x * x + y * y + z * z;
+        if (l > 1e-4 && l <= 1)
+            return mk(x / sqrt(l), y / sqrt(l), z / sqrt(l));
+    }
+}
+
+v3 gen_perp(cylgen_rng *r, v3 a)
+{
+    for (;;) {
+        v3 u = gen_dir(r);
+        v3 p = axpy(u, -dot(u, a), a);
+        if (dot(p, p) > 1e-4)
+            return unit(p);
+    }
+}
+
+void gen_interval(cylgen_rng *r, double dist, float *tmin, float *tmax)
+{
+    double u = cylgen_uniform(r);
+    *tmin = 0.0f;
+    *tmax = INFINITY;
+    if (u < 0.12)
+        *tmax = (float)(dist * gen_uni(r, 0.5, 1.5));
+    else if (u < 0.22)
+        *tmin = (float)(dist * gen_uni(r, 0.3, 1.2));
+    else if (u < 0.27)
+        *tmax = FLT_MAX;
+}
+
+void gen_scale_d(cylgen_rng *r, int span, float d[3], float *tmin, float *tmax)
+{
+    double s = ldexp(gen_uni(r, 1, 2), (int)(cylgen_next(r) % (uint64_t)(2 * span + 1)) - span);
+    for (int k = 0; k < 3; k++)
+        d[k] = (float)((double)d[k] * s);
+    if (*tmin != 0)
+        *tmin = (float)((double)*tmin / s);
+    if (*tmax != INFINITY && *tmax != FLT_MAX)
+        *tmax = (float)((double)*tmax / s);
+}
+
+void gen_camera(cylgen_rng *cam, size_t index, v3 ctr, double R, double spread, float o[3],
+                float d[3])
+{
+    v3 fwd = gen_dir(cam);
+    double dist = R * gen_uni(cam, 3, 50);
+    v3 eye = axpy(ctr, -dist, fwd);
+    v3 right = gen_perp(cam, fwd), up = cross(fwd, right);
+    double half = spread * R / dist, px = gen_uni(cam, -0.5, 0.5), py = gen_uni(cam, -0.5, 0.5);
+    double sx = ((double)(index % 4) - 1.5 + px) / 1.5 * half,
+           sy = ((double)(index / 4 % 4) - 1.5 + py) / 1.5 * half;
+    to_f(o, eye);
+    to_f(d, axpy(axpy(fwd, sx, right), sy, up));
+}
+
+const char *gen_name(const gen_shape *g, int cat)
+{
+    return cat >= 0 && cat < g->count ? g->names[cat] : NULL;
+}
+
+const char *gen_description(const gen_shape *g, int cat)
+{
+    return cat >= 0 && cat < g->count ? g->descriptions[cat] : NULL;
+}
+
+int gen_find(const gen_shape *g, const char *name)
+{
+    for (int c = 0; name && c < g->count; c++)
+        if (strcmp(name, g->names[c]) == 0)
+            return c;
+    return -1;
+}
+
+/* One generator per (seed, shape, category, index, role): a case is independent of n
+ * and of the order it is made in. */
+static void rng_for(cylgen_rng *r, uint64_t seed, int cat, uint64_t index, uint64_t role)
+{
+    uint64_t h = seed;
+    h ^= cylgen_splitmix64(&h) + (uint64_t)(cat + 1) * 0xd1b54a32d192ed03u;
+    h ^= cylgen_splitmix64(&h) + index * 0x9e3779b97f4a7c15u;
+    h ^= cylgen_splitmix64(&h) + role;
+    cylgen_seed(r, h);
+}
+
+void gen_fill(const gen_shape *g, int cat, uint64_t seed, size_t n, void *out, int shared)
+{
+    if (cat < 0 || cat >= g->count)
+        cat = 0;
+    seed ^= g->salt;
+    _Alignas(max_align_t) unsigned char shape[GEN_SHAPE_MAX];
+    memset(shape, 0, sizeof shape);
+    size_t batch = (size_t)-1;
+    for (size_t i = 0; i < n; i++) {
+        size_t b = shared ? 0 : i / CYLGEN_BATCH;
+        if (b != batch) {
+            cylgen_rng sr;
+            rng_for(&sr, seed, cat, b, 1);
+            g->shape(cat, &sr, shape);
+            batch = b;
+        }
+        cylgen_rng r, cam;
+        rng_for(&r, seed, cat, i, 2);
+        rng_for(&cam, seed, cat, i / 16, 3);
+        g->ray(cat, &r, &cam, i, shape, (unsigned char *)out + i * g->case_size);
+    }
+}

@@ -1,0 +1,106 @@
+/* SPDX-License-Identifier: MIT */
+/* genutil.h - what the shapes' stress-ray generators share: the double vectors, the
+ * draws, the ray interval and scalings, the camera block, the category tables and the
+ * batch filling, so that a shape brings only its own shapes and rays.
+ *
+ * Every draw uses only +, -, *, /, sqrt and exact scalings in double, so a seed gives
+ * the same cases on every platform. */
+#ifndef GENUTIL_H
+#define GENUTIL_H
+
+#include <math.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "gen.h"
+
+typedef struct {
+    double x[3];
+} v3;
+
+static inline v3 mk(double a, double b, double c)
+{
+    v3 v = {{a, b, c}};
+    return v;
+}
+static inline v3 add(v3 a, v3 b)
+{
+    return mk(a.x[0] + b.x[0], a.x[1] + b.x[1], a.x[2] + b.x[2]);
+}
+static inline v3 scl(v3 a, double s)
+{
+    return mk(a.x[0] * s, a.x[1] * s, a.x[2] * s);
+}
+static inline v3 axpy(v3 y, double s, v3 a) /* y + s a */
+{
+    return add(y, scl(a, s));
+}
+static inline double dot(v3 a, v3 b)
+{
+    return a.x[0] * b.x[0] + a.x[1] * b.x[1] + a.x[2] * b.x[2];
+}
+static inline v3 cross(v3 a, v3 b)
+{
+    return mk(a.x[1] * b.x[2] - a.x[2] * b.x[1], a.x[2] * b.x[0] - a.x[0] * b.x[2],
+              a.x[0] * b.x[1] - a.x[1] * b.x[0]);
+}
+static inline v3 unit(v3 a)
+{
+    return scl(a, 1.0 / sqrt(dot(a, a)));
+}
+static inline v3 neg(v3 a)
+{
+    return mk(-a.x[0], -a.x[1], -a.x[2]);
+}
+static inline v3 from_f(const float f[3])
+{
+    return mk(f[0], f[1], f[2]);
+}
+static inline void to_f(float f[3], v3 a)
+{
+    for (int k = 0; k < 3; k++)
+        f[k] = (float)a.x[k];
+}
+
+double gen_uni(cylgen_rng *r, double a, double b); /* uniform in [a, b) */
+int gen_chance(cylgen_rng *r, double p);
+/* About log-uniform in [2^ea, 2^eb): a uniform exponent and a uniform mantissa, for
+ * want of a libm transcendental that is the same everywhere. */
+double gen_logu(cylgen_rng *r, int ea, int eb);
+v3 gen_dir(cylgen_rng *r);        /* a unit vector, by rejection from the cube */
+v3 gen_perp(cylgen_rng *r, v3 a); /* a unit vector perpendicular to the unit a */
+
+/* Mostly [0, inf); sometimes a tmax or tmin near the expected hit distance, so that the
+ * clip to the interval is exercised. */
+void gen_interval(cylgen_rng *r, double dist, float *tmin, float *tmax);
+/* d times 2^-span..2^span (a uniform mantissa), the interval over it, so that the same
+ * hits come at other |d|. */
+void gen_scale_d(cylgen_rng *r, int span, float d[3], float *tmin, float *tmax);
+/* A pixel of a 4 x 4 block of a pinhole camera looking at ctr, the block spread times
+ * R wide at ctr: coherent rays sharing an origin, as a primary-ray packet. The camera is
+ * the block's (cam); the pixel is index % 16. */
+void gen_camera(cylgen_rng *cam, size_t index, v3 ctr, double R, double spread, float o[3],
+                float d[3]);
+
+/* A shape's generator as a row: its categories, its draws kept apart from the other
+ * shapes' by salt, and its two hooks. The shape changes every CYLGEN_BATCH cases. */
+#define GEN_SHAPE_MAX 64
+typedef struct gen_shape {
+    const char *const *names;
+    const char *const *descriptions;
+    int count;
+    uint64_t salt;
+    size_t case_size;
+    void (*shape)(int cat, cylgen_rng *r, void *shape);
+    /* Fills the case c whole; cam is the generator of the 16-case camera block. */
+    void (*ray)(int cat, cylgen_rng *r, cylgen_rng *cam, size_t index, const void *shape,
+                void *c);
+} gen_shape;
+
+const char *gen_name(const gen_shape *g, int cat);        /* NULL when out of range */
+const char *gen_description(const gen_shape *g, int cat); /* NULL when out of range */
+int gen_find(const gen_shape *g, const char *name);       /* -1 when unknown */
+/* n cases of a category (out of range: the first); shared: all of batch 0's shape. */
+void gen_fill(const gen_shape *g, int cat, uint64_t seed, size_t n, void *out, int shared);
+
+#endif /* GENUTIL_H */
