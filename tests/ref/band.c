@@ -33,15 +33,6 @@ static uint64_t fbits(float f)
     return u;
 }
 
-/* 2 ulps, norm-wise: a float dot or cross product is backward stable relative to the
- * vector's size, not to each component, so a zero component may move as much as the
- * largest one. */
-static cylq vec_step(const cylq a[3])
-{
-    cylq m = q_max(q_abs(a[0]), q_max(q_abs(a[1]), q_abs(a[2])));
-    return (cylq)ref_float_ulp((double)m);
-}
-
 typedef struct {
     qin base;
     cylq step[IN_COUNT];
@@ -123,9 +114,9 @@ void cylref_band_eval(const cylray_cylinder *cyl, const float o[3], const float 
     for (int k = 0; k < 3; k++)
         w[k] = pc.base.o[k] - pc.base.c[k];
     for (int k = 0; k < 3; k++) {
-        pc.step[IN_W + k] = vec_step(w);
-        pc.step[IN_D + k] = vec_step(pc.base.d);
-        pc.step[IN_V + k] = vec_step(pc.base.v);
+        pc.step[IN_W + k] = ref_vec_step(w);
+        pc.step[IN_D + k] = ref_vec_step(pc.base.d);
+        pc.step[IN_V + k] = ref_vec_step(pc.base.v);
     }
     pc.step[IN_R] = (cylq)ref_float_ulp(cyl->radius);
     pc.step[IN_H] = isfinite(cyl->half_height) ? (cylq)ref_float_ulp(cyl->half_height) : 0;

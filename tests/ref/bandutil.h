@@ -1,14 +1,28 @@
 /* SPDX-License-Identifier: MIT */
-/* bandutil.h - what the three shapes' bands (band.c, sphref.c, conref_band.c) measure
- * their outcomes with. */
+/* bandutil.h - what the three shapes' references (band.c, sphref.c, conref.c and
+ * conref_band.c) share: the ray they take, and what their bands measure and keep their
+ * outcomes with. */
 #ifndef CYLREF_BANDUTIL_H
 #define CYLREF_BANDUTIL_H
 
+#include "exact.h"
 #include "quad.h"
 
 #include <math.h>
 #include <stdint.h>
 #include <string.h>
+
+/* 1 when the ray can hit anything: o and d given and finite, d not zero, neither end
+ * of the interval NaN (an empty interval is a miss the solver finds itself). */
+static inline int ref_ray_ok(const float *o, const float *d, float tmin, float tmax)
+{
+    if (!o || !d || tmin != tmin || tmax != tmax)
+        return 0;
+    for (int k = 0; k < 3; k++)
+        if (!isfinite(o[k]) || !isfinite(d[k]))
+            return 0;
+    return d[0] != 0 || d[1] != 0 || d[2] != 0;
+}
 
 /* |x - y| of two margins or t values, INFINITY when not comparable. */
 static inline double ref_qdiff(cylq x, cylq y)
@@ -33,6 +47,53 @@ static inline double ref_angle3(const double a[3], const double b[3])
                    a[0] * b[1] - a[1] * b[0]};
     return atan2(sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]),
                  a[0] * b[0] + a[1] * b[1] + a[2] * b[2]);
+}
+
+/* 2 ulps, norm-wise: a float dot or cross product is backward stable relative to the
+ * vector's size, not to each component, so a zero component may move as much as the
+ * largest one. */
+static inline cylq ref_vec_step(const cylq a[3])
+{
+    cylq m = q_max(q_abs(a[0]), q_max(q_abs(a[1]), q_abs(a[2])));
+    return (cylq)ref_float_ulp((double)m);
+}
+
+/* The outcomes a band saw: a part (-1: the miss) and the t range it was seen over. The
+ * parts are the side and the two discs, each front or back, and the miss: 7, so the set
+ * never fills. */
+typedef struct {
+    int part;
+    double lo, hi;
+} ref_outcome;
+
+typedef struct {
+    ref_outcome v[7];
+    int n;
+} ref_set;
+
+static inline void ref_add(ref_set *set, int part, double t)
+{
+    for (int i = 0; i < set->n; i++) {
+        ref_outcome *x = &set->v[i];
+        if (x->part == part) {
+            if (part >= 0) {
+                x->lo = fmin(x->lo, t);
+                x->hi = fmax(x->hi, t);
+            }
+            return;
+        }
+    }
+    if (set->n == (int)(sizeof set->v / sizeof *set->v))
+        return;
+    ref_outcome *x = &set->v[set->n++];
+    x->part = part;
+    x->lo = x->hi = part < 0 ? NAN : t;
+}
+
+static inline void ref_add_range(ref_set *set, int part, double lo, double hi)
+{
+    ref_add(set, part, lo);
+    ref_add(set, part, hi);
 }
 
 #endif

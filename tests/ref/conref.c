@@ -13,6 +13,7 @@
  * precedes its exit and dropping back faces before or after taking the first hit is
  * the same. A disc of radius 0 (a tip) is a point, no surface. */
 #include "conref_eval.h"
+#include "bandutil.h"
 
 #include "exact.h"
 #include "quad.h"
@@ -64,14 +65,6 @@ int conref_valid(const cylray_cone *c)
          !(fmax(c->r0, c->r1) * (1.0 + slope) + 0.5 * fabs((double)c->r1 - c->r0) <= 0x1p61)))
         return 0;
     return (c->flags & ~(unsigned)CYLRAY_CAPPED) == 0;
-}
-
-int conref_ray_ok_(const float o[3], const float d[3])
-{
-    for (int k = 0; k < 3; k++)
-        if (!isfinite(o[k]) || !isfinite(d[k]))
-            return 0;
-    return d[0] != 0 || d[1] != 0 || d[2] != 0;
 }
 
 static cylq dot3(const cylq a[3], const cylq b[3])
@@ -235,7 +228,7 @@ int conref_intersect(const cylray_cone *c, const float o[3], const float d[3], f
     memset(out, 0, sizeof *out);
     if (!conref_valid(c))
         return -1;
-    if (!o || !d || !conref_ray_ok_(o, d) || tmin != tmin || tmax != tmax)
+    if (!ref_ray_ok(o, d, tmin, tmax))
         return 0;
     cin_q q;
     conref_in_(c, o, d, &q);

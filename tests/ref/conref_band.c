@@ -16,47 +16,6 @@
 enum { IN_W = 0, IN_D = 3, IN_A = 6, IN_R0 = 9, IN_R1 = 10, IN_COUNT = 11 };
 #define RANDOM_VERTICES 8
 
-typedef struct {
-    int part; /* -1: the miss */
-    double lo, hi;
-} c_outcome;
-
-typedef struct {
-    c_outcome v[2 * K_COUNT + 1];
-    int n;
-} c_set;
-
-static void c_add(c_set *set, int part, double t)
-{
-    for (int i = 0; i < set->n; i++) {
-        c_outcome *x = &set->v[i];
-        if (x->part == part) {
-            if (part >= 0) {
-                x->lo = fmin(x->lo, t);
-                x->hi = fmax(x->hi, t);
-            }
-            return;
-        }
-    }
-    if (set->n == (int)(sizeof set->v / sizeof *set->v))
-        return;
-    c_outcome *x = &set->v[set->n++];
-    x->part = part;
-    x->lo = x->hi = part < 0 ? NAN : t;
-}
-
-static void c_add_range(c_set *set, int part, double lo, double hi)
-{
-    c_add(set, part, lo);
-    c_add(set, part, hi);
-}
-
-static cylq vec_step(const cylq a[3])
-{
-    cylq m = q_max(q_abs(a[0]), q_max(q_abs(a[1]), q_abs(a[2])));
-    return (cylq)ref_float_ulp((double)m);
-}
-
 static void c_perturb(const cin_q *base, const cylq step[IN_COUNT],
                       const signed char k[IN_COUNT], cin_q *out)
 {
@@ -109,7 +68,7 @@ static void track(c_track tr[K_COUNT], const crec *r, const unsigned char v[K_CO
  * samples within reach is an outcome of the side (either facing where F' is within
  * reach of 0 too), unless a candidate sure to be taken comes first. Isolated roots are
  * runs of one sample at most and keep their own bands. */
-static void c_reach(c_set *set, const crec *r, const cylq (*dc)[3], cylq tmin, cylq tmax,
+static void c_reach(ref_set *set, const crec *r, const cylq (*dc)[3], cylq tmin, cylq tmax,
                     const int may_drop[K_COUNT], const double hi[K_COUNT])
 {
     enum { N = 512 };
@@ -158,9 +117,9 @@ static void c_reach(c_set *set, const crec *r, const cylq (*dc)[3], cylq tmin, c
                 sure_before |= !may_drop[j] && hi[j] < lo;
             if (run >= 2 && !sure_before) {
                 if (both || (fsign & 1))
-                    c_add_range(set, CYLRAY_SIDE, lo, hi_t);
+                    ref_add_range(set, CYLRAY_SIDE, lo, hi_t);
                 if (both || (fsign & 2))
-                    c_add_range(set, CYLRAY_SIDE | CYLRAY_BACKFACE, lo, hi_t);
+                    ref_add_range(set, CYLRAY_SIDE | CYLRAY_BACKFACE, lo, hi_t);
             }
             run = 0;
         }
@@ -175,7 +134,7 @@ typedef struct {
     int ff, x0, p0;
     const double *n0;
     c_track *tr;
-    c_set *set;
+    ref_set *set;
     double nmax;
     int evals;
 } c_box;
@@ -189,7 +148,7 @@ static void c_sample(c_box *b, const cin_q *q)
     conref_valid_parts_(&r, b->vflags, v);
     track(b->tr, &r, v);
     const int x = conref_first_(&r, v);
-    c_add(b->set, x < 0 ? -1 : conref_part_(&r, x), x < 0 ? NAN : (double)r.t[x]);
+    ref_add(b->set, x < 0 ? -1 : conref_part_(&r, x), x < 0 ? NAN : (double)r.t[x]);
     if (b->x0 >= 0 && x == b->x0 && conref_part_(&r, x) == b->p0) {
         double n[3];
         conref_normal_(&r, x, b->ff, n);
@@ -202,7 +161,7 @@ void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], 
 {
     memset(out, 0, sizeof *out);
     out->t_lo = out->t_hi = NAN;
-    if (!conref_valid(c) || !o || !d || !conref_ray_ok_(o, d) || tmin != tmin || tmax != tmax)
+    if (!conref_valid(c) || !ref_ray_ok(o, d, tmin, tmax))
         return;
     const unsigned vflags = c->flags | (flags & CYLRAY_CULL_BACK);
     const int ff = (flags & CYLRAY_FACE_FORWARD) != 0;
@@ -217,11 +176,11 @@ void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], 
     }
     cylq step[IN_COUNT];
     for (int k = 0; k < 3; k++) {
-        step[IN_W + k] = vec_step(base.w);
+        step[IN_W + k] = ref_vec_step(base.w);
         if (!center_float)
             step[IN_W + k] += (cylq)ref_float_ulp((double)cmax);
-        step[IN_D + k] = vec_step(base.d);
-        step[IN_A + k] = vec_step(base.a);
+        step[IN_D + k] = ref_vec_step(base.d);
+        step[IN_A + k] = ref_vec_step(base.a);
     }
     step[IN_R0] = (cylq)ref_float_ulp(c->r0);
     step[IN_R1] = (cylq)ref_float_ulp(c->r1);
@@ -241,8 +200,8 @@ void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], 
         conref_normal_(&r0, x0, ff, n0);
         memcpy(out->exact.n, n0, sizeof n0);
     }
-    c_set set = {0};
-    c_add(&set, p0, out->exact.t);
+    ref_set set = {0};
+    ref_add(&set, p0, out->exact.t);
     c_track tr[K_COUNT];
     for (int kand = 0; kand < K_COUNT; kand++) {
         tr[kand].lo = INFINITY;
@@ -277,7 +236,7 @@ void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], 
         conref_valid_parts_(&r, vflags, v);
         track(tr, &r, v);
         int x = conref_first_(&r, v);
-        c_add(&set, x < 0 ? -1 : conref_part_(&r, x), x < 0 ? NAN : (double)r.t[x]);
+        ref_add(&set, x < 0 ? -1 : conref_part_(&r, x), x < 0 ? NAN : (double)r.t[x]);
         if (x0 >= 0 && x == x0 && conref_part_(&r, x) == p0) {
             double n[3];
             conref_normal_(&r, x, ff, n);
@@ -462,12 +421,12 @@ void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], 
             j < K_LO && (tr[K_FRONT].seen_invalid || !v0[K_FRONT]) &&
             (r0.m[K_FRONT][G_MEET] <= sum_m[K_FRONT][G_MEET] + (double)r0.mw[K_FRONT][G_MEET]);
         if (r0.back[j] || tr[j].parts_back || (j == K_BACK && tangent))
-            c_add_range(&set, pp | CYLRAY_BACKFACE, lo[j], hi[j]);
+            ref_add_range(&set, pp | CYLRAY_BACKFACE, lo[j], hi[j]);
         if (!r0.back[j] || tr[j].parts_front || (j == K_BACK && tangent))
-            c_add_range(&set, pp, lo[j], hi[j]);
+            ref_add_range(&set, pp, lo[j], hi[j]);
     }
     if (all_drop)
-        c_add(&set, -1, NAN);
+        ref_add(&set, -1, NAN);
     c_reach(&set, &r0, (const cylq(*)[3])dcoef, tmin, tmax, may_drop, hi);
     /* A ray whose rate along the axis the box takes through 0 (d.v = 0 within it) meets
      * the ends' planes at any t beyond those the samples saw, of either sign: a disc
@@ -481,7 +440,7 @@ void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], 
         const double reach =
             (fmax(c->r0, c->r1) + sqrt(wp)) / sqrt(dp) * (1 + 0x1p-16); /* inf: dp = 0 */
         for (int i = 0; i < set.n; i++) {
-            c_outcome *x = &set.v[i];
+            ref_outcome *x = &set.v[i];
             const int pp = x->part < 0 ? 0 : x->part & ~CYLRAY_BACKFACE;
             if (pp != CYLRAY_CAP_LO && pp != CYLRAY_CAP_HI)
                 continue;
@@ -494,7 +453,7 @@ void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], 
 
     int hits = 0, misses = 0;
     for (int i = 0; i < set.n; i++) {
-        c_outcome *x = &set.v[i];
+        ref_outcome *x = &set.v[i];
         if (x->part < 0) {
             misses++;
             continue;

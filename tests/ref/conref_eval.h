@@ -27,7 +27,6 @@ typedef struct crec {
 } crec;
 
 int conref_present_(unsigned flags, int kand);
-int conref_ray_ok_(const float o[3], const float d[3]);
 void conref_eval_(const cin_q *q, cylq tmin, cylq tmax, crec *r);
 int conref_first_(const crec *r, const unsigned char valid[K_COUNT]);
 void conref_valid_parts_(const crec *r, unsigned flags, unsigned char valid[K_COUNT]);

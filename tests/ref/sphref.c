@@ -50,14 +50,6 @@ int sphref_valid(const cylray_sphere *s)
     return s->radius >= 0x1p-60f && s->radius <= 0x1p62f;
 }
 
-static int ray_ok(const float o[3], const float d[3])
-{
-    for (int k = 0; k < 3; k++)
-        if (!isfinite(o[k]) || !isfinite(d[k]))
-            return 0;
-    return d[0] != 0 || d[1] != 0 || d[2] != 0;
-}
-
 static cylq dot3(const cylq a[3], const cylq b[3])
 {
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
@@ -158,7 +150,7 @@ int sphref_intersect(const cylray_sphere *s, const float o[3], const float d[3],
     memset(out, 0, sizeof *out);
     if (!sphref_valid(s))
         return -1;
-    if (!o || !d || !ray_ok(o, d) || tmin != tmin || tmax != tmax)
+    if (!ref_ray_ok(o, d, tmin, tmax))
         return 0;
     sin_q q;
     s_in(s, o, d, &q);
@@ -180,43 +172,6 @@ int sphref_intersect(const cylray_sphere *s, const float o[3], const float d[3],
 
 enum { IN_W = 0, IN_D = 3, IN_R = 6, IN_COUNT = 7 };
 #define RANDOM_VERTICES 8
-
-typedef struct {
-    int o; /* SO_* */
-    int part;
-    double lo, hi;
-} s_outcome;
-
-typedef struct {
-    s_outcome v[4]; /* miss, front, back; the fourth never fills */
-    int n;
-} s_set;
-
-static void s_add(s_set *set, int o, int part, double t)
-{
-    for (int i = 0; i < set->n; i++) {
-        s_outcome *x = &set->v[i];
-        if ((o == SO_MISS) == (x->o == SO_MISS) && (o == SO_MISS || x->part == part)) {
-            if (o != SO_MISS) {
-                x->lo = fmin(x->lo, t);
-                x->hi = fmax(x->hi, t);
-            }
-            return;
-        }
-    }
-    if (set->n == 4)
-        return;
-    s_outcome *x = &set->v[set->n++];
-    x->o = o;
-    x->part = part;
-    x->lo = x->hi = o == SO_MISS ? NAN : t;
-}
-
-static cylq vec_step(const cylq a[3])
-{
-    cylq m = q_max(q_abs(a[0]), q_max(q_abs(a[1]), q_abs(a[2])));
-    return (cylq)ref_float_ulp((double)m);
-}
 
 static void s_perturb(const sin_q *base, const cylq step[IN_COUNT],
                       const signed char k[IN_COUNT], sin_q *out)
@@ -270,15 +225,15 @@ void sphref_band_eval(const cylray_sphere *s, const float o[3], const float d[3]
 {
     memset(out, 0, sizeof *out);
     out->t_lo = out->t_hi = NAN;
-    if (!sphref_valid(s) || !o || !d || !ray_ok(o, d) || tmin != tmin || tmax != tmax)
+    if (!sphref_valid(s) || !ref_ray_ok(o, d, tmin, tmax))
         return;
     const int cull = (flags & CYLRAY_CULL_BACK) != 0, ff = (flags & CYLRAY_FACE_FORWARD) != 0;
     sin_q base;
     s_in(s, o, d, &base);
     cylq step[IN_COUNT];
     for (int k = 0; k < 3; k++) {
-        step[IN_W + k] = vec_step(base.w);
-        step[IN_D + k] = vec_step(base.d);
+        step[IN_W + k] = ref_vec_step(base.w);
+        step[IN_D + k] = ref_vec_step(base.d);
     }
     step[IN_R] = (cylq)ref_float_ulp(s->radius);
 
@@ -297,8 +252,8 @@ void sphref_band_eval(const cylray_sphere *s, const float o[3], const float d[3]
         s_normal(&r0, x0, ff, n0);
         memcpy(out->exact.n, n0, sizeof n0);
     }
-    s_set set = {0};
-    s_add(&set, x0, p0, out->exact.t);
+    ref_set set = {0};
+    ref_add(&set, x0 == SO_MISS ? -1 : p0, out->exact.t);
 
     double sum_m[S_COUNT] = {0}, sum_tn = 0, sum_tf = 0, dt[IN_COUNT] = {0};
     double nsum = 0, nmax = 0;
@@ -320,7 +275,7 @@ void sphref_band_eval(const cylray_sphere *s, const float o[3], const float d[3]
         s_bools(&r, b);
         int x = s_decide(b, cull);
         int p = x == SO_MISS ? 0 : s_part(&r, x);
-        s_add(&set, x, p, x == SO_MISS ? NAN : (double)s_t(&r, x));
+        ref_add(&set, x == SO_MISS ? -1 : p, x == SO_MISS ? NAN : (double)s_t(&r, x));
         if (x0 != SO_MISS && x == x0 && p == p0) {
             double n[3];
             s_normal(&r, x, ff, n);
@@ -352,7 +307,7 @@ void sphref_band_eval(const cylray_sphere *s, const float o[3], const float d[3]
         s_bools(&r, b);
         int x = s_decide(b, cull);
         int p = x == SO_MISS ? 0 : s_part(&r, x);
-        s_add(&set, x, p, x == SO_MISS ? NAN : (double)s_t(&r, x));
+        ref_add(&set, x == SO_MISS ? -1 : p, x == SO_MISS ? NAN : (double)s_t(&r, x));
         if (x0 != SO_MISS && x == x0 && p == p0) {
             double n[3];
             s_normal(&r, x, ff, n);
@@ -378,13 +333,13 @@ void sphref_band_eval(const cylray_sphere *s, const float o[3], const float d[3]
         /* A replayed far root is a back face even at a tangency: the perturbation
          * that makes the far root the answer also separates the two. */
         int p = x == SO_MISS ? 0 : x == SO_FAR ? CYLRAY_SIDE | CYLRAY_BACKFACE : CYLRAY_SIDE;
-        s_add(&set, x, p, x == SO_MISS ? NAN : (double)s_t(&r0, x));
+        ref_add(&set, x == SO_MISS ? -1 : p, x == SO_MISS ? NAN : (double)s_t(&r0, x));
     }
 
     int hits = 0, misses = 0;
     for (int i = 0; i < set.n; i++) {
-        s_outcome *x = &set.v[i];
-        if (x->o == SO_MISS) {
+        ref_outcome *x = &set.v[i];
+        if (x->part < 0) {
             misses++;
             continue;
         }
