@@ -22,7 +22,6 @@
  * |c|. Moving c by 2 of its own ulps would excuse any answer for a 1e-4 cylinder at
  * 1e4 (ulp 1e-3); moving w instead excuses only what float can't resolve there. */
 enum { IN_W = 0, IN_D = 3, IN_V = 6, IN_R = 9, IN_H = 10, IN_COUNT = 11 };
-#define RANDOM_VERTICES 8
 #define MAX_ENUM_BITS 14
 #define MAX_OUTCOMES 12
 
@@ -179,7 +178,7 @@ void cylref_band_eval(const cylray_cylinder *cyl, const float o[3], const float 
         seed = seed * 0x100000001b3u ^ fbits(o[k]) ^ fbits(d[k]) << 32 ^
                fbits(cyl->center[k]) << 7 ^ fbits(cyl->axis[k]) << 19;
     seed ^= fbits(cyl->radius) << 11 ^ fbits(cyl->half_height) << 29;
-    for (int vtx = 0; vtx < 2 + RANDOM_VERTICES; vtx++) {
+    for (int vtx = 0; vtx < 2 + REF_RANDOM_VERTICES; vtx++) {
         signed char k[IN_COUNT] = {0};
         uint64_t bits = rng_splitmix64(&seed);
         for (int i = 0; i < pc.n_in; i++) {

@@ -58,6 +58,23 @@ static inline cylq ref_vec_step(const cylq a[3])
     return (cylq)ref_float_ulp((double)m);
 }
 
+/* The random vertices of the box a band visits after the two where t is extreme. */
+#define REF_RANDOM_VERTICES 8
+
+/* The steps (+-2) of n inputs at the box's vertex vtx: for a hit (along, with dt its t's
+ * change per input) vertices 0 and 1 are where t is extreme to first order; the others,
+ * and all of them for a miss, are drawn from bits. */
+static inline void ref_vertex(signed char *k, int n, int vtx, uint64_t bits, const double *dt,
+                              int along)
+{
+    for (int i = 0; i < n; i++) {
+        int s = (bits >> i) & 1 ? 1 : -1;
+        if (vtx < 2 && along)
+            s = (dt[i] >= 0 ? 1 : -1) * (vtx == 0 ? 1 : -1);
+        k[i] = (signed char)(2 * s);
+    }
+}
+
 /* The outcomes a band saw: a part (-1: the miss) and the t range it was seen over. The
  * parts are the side and the two discs, each front or back, and the miss: 7, so the set
  * never fills. */

@@ -14,7 +14,6 @@
 /* ---- the band ----------------------------------------------------------------------- */
 
 enum { IN_W = 0, IN_D = 3, IN_A = 6, IN_R0 = 9, IN_R1 = 10, IN_COUNT = 11 };
-#define RANDOM_VERTICES 8
 
 static void c_perturb(const cin_q *base, const cylq step[IN_COUNT],
                       const signed char k[IN_COUNT], cin_q *out)
@@ -249,15 +248,10 @@ void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], 
                (uint64_t)ref_fbits(c->p0[k]) << 7 ^ (uint64_t)ref_fbits(c->p1[k]) << 19;
     seed ^= (uint64_t)ref_fbits(c->r0) << 11 ^ (uint64_t)ref_fbits(c->r1) << 29;
     c_box box = {tmin, tmax, vflags, ff, x0, p0, n0, tr, &set, nmax, 0};
-    for (int vtx = 0; vtx < 2 + RANDOM_VERTICES; vtx++) {
+    for (int vtx = 0; vtx < 2 + REF_RANDOM_VERTICES; vtx++) {
         signed char k[IN_COUNT];
         uint64_t bits = rng_splitmix64(&seed);
-        for (int i = 0; i < IN_COUNT; i++) {
-            int sg = (bits >> i) & 1 ? 1 : -1;
-            if (vtx < 2 && x0 >= 0)
-                sg = (dt[i] >= 0 ? 1 : -1) * (vtx == 0 ? 1 : -1);
-            k[i] = (signed char)(2 * sg);
-        }
+        ref_vertex(k, IN_COUNT, vtx, bits, dt, x0 >= 0);
         cin_q q;
         c_perturb(&base, step, k, &q);
         c_sample(&box, &q);

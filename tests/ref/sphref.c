@@ -171,7 +171,6 @@ int sphref_intersect(const cylray_sphere *s, const float o[3], const float d[3],
 /* ---- the band ----------------------------------------------------------------------- */
 
 enum { IN_W = 0, IN_D = 3, IN_R = 6, IN_COUNT = 7 };
-#define RANDOM_VERTICES 8
 
 static void s_perturb(const sin_q *base, const cylq step[IN_COUNT],
                       const signed char k[IN_COUNT], sin_q *out)
@@ -291,15 +290,10 @@ void sphref_band_eval(const cylray_sphere *s, const float o[3], const float d[3]
         seed = seed * 0x100000001b3u ^ ref_fbits(o[k]) ^ (uint64_t)ref_fbits(d[k]) << 32 ^
                (uint64_t)ref_fbits(s->center[k]) << 7;
     seed ^= (uint64_t)ref_fbits(s->radius) << 11;
-    for (int vtx = 0; vtx < 2 + RANDOM_VERTICES; vtx++) {
+    for (int vtx = 0; vtx < 2 + REF_RANDOM_VERTICES; vtx++) {
         signed char k[IN_COUNT];
         uint64_t bits = rng_splitmix64(&seed);
-        for (int i = 0; i < IN_COUNT; i++) {
-            int sg = (bits >> i) & 1 ? 1 : -1;
-            if (vtx < 2 && x0 != SO_MISS)
-                sg = (dt[i] >= 0 ? 1 : -1) * (vtx == 0 ? 1 : -1);
-            k[i] = (signed char)(2 * sg);
-        }
+        ref_vertex(k, IN_COUNT, vtx, bits, dt, x0 != SO_MISS);
         sin_q q;
         s_perturb(&base, step, k, &q);
         s_eval(&q, tmin, tmax, &r);
