@@ -24,6 +24,11 @@ static inline int ref_ray_ok(const float *o, const float *d, float tmin, float t
     return d[0] != 0 || d[1] != 0 || d[2] != 0;
 }
 
+static inline cylq ref_dot3(const cylq a[3], const cylq b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
 /* |x - y| of two margins or t values, INFINITY when not comparable. */
 static inline double ref_qdiff(cylq x, cylq y)
 {

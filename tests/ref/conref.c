@@ -67,11 +67,6 @@ int conref_valid(const cylray_cone *c)
     return (c->flags & ~(unsigned)CYLRAY_CAPPED) == 0;
 }
 
-static cylq dot3(const cylq a[3], const cylq b[3])
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
 static cylq widen(cylq mag)
 {
     return (cylq)(4 * ref_float_ulp((double)q_abs(mag)));
@@ -89,10 +84,10 @@ static void range_margins(crec *r, int kand, cylq tmin, cylq tmax)
 void conref_eval_(const cin_q *q, cylq tmin, cylq tmax, crec *r)
 {
     memset(r, 0, sizeof *r);
-    const cylq L = q_sqrt(dot3(q->a, q->a));
+    const cylq L = q_sqrt(ref_dot3(q->a, q->a));
     for (int k = 0; k < 3; k++)
         r->u[k] = q->a[k] / L;
-    const cylq zc = dot3(q->w, r->u), zd = dot3(q->d, r->u), zw = zc + L / 2;
+    const cylq zc = ref_dot3(q->w, r->u), zd = ref_dot3(q->d, r->u), zw = zc + L / 2;
     for (int k = 0; k < 3; k++) {
         r->wp[k] = q->w[k] - zc * r->u[k];
         r->dp[k] = q->d[k] - zd * r->u[k];
@@ -103,9 +98,9 @@ void conref_eval_(const cin_q *q, cylq tmin, cylq tmax, crec *r)
     r->k = kk;
     r->L = L;
     r->r0 = q->r0;
-    const cylq dd = dot3(r->dp, r->dp), kz = kk * zd;
-    const cylq A = dd - kz * kz, B = dot3(r->wp, r->dp) - kz * rw;
-    const cylq C = dot3(r->wp, r->wp) - rw * rw;
+    const cylq dd = ref_dot3(r->dp, r->dp), kz = kk * zd;
+    const cylq A = dd - kz * kz, B = ref_dot3(r->wp, r->dp) - kz * rw;
+    const cylq C = ref_dot3(r->wp, r->wp) - rw * rw;
     const cylq D = B * B - A * C;
     r->A = A, r->B = B, r->C = C;
     const cylq rmax = q_max(q->r0, q->r1);
@@ -156,7 +151,7 @@ void conref_eval_(const cin_q *q, cylq tmin, cylq tmax, crec *r)
         cylq x[3];
         for (int k = 0; k < 3; k++)
             x[k] = r->wp[k] + t * r->dp[k];
-        r->m[kand][G_MEET] = rad * rad - dot3(x, x);
+        r->m[kand][G_MEET] = rad * rad - ref_dot3(x, x);
         r->mw[kand][G_MEET] = widen(rad * rad);
         r->m[kand][G_ZLO] = r->m[kand][G_ZHI] = 1;
         range_margins(r, kand, tmin, tmax);
@@ -201,7 +196,7 @@ void conref_normal_(const crec *r, int kand, int ff, double n[3])
         for (int k = 0; k < 3; k++)
             g[k] = r->wp[k] + t * r->dp[k] - rz * r->k * r->u[k];
     }
-    cylq len = q_sqrt(dot3(g, g));
+    cylq len = q_sqrt(ref_dot3(g, g));
     n[0] = n[1] = n[2] = 0;
     if (!(len > 0))
         return;

@@ -50,11 +50,6 @@ int sphref_valid(const cylray_sphere *s)
     return s->radius >= 0x1p-60f && s->radius <= 0x1p62f;
 }
 
-static cylq dot3(const cylq a[3], const cylq b[3])
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
 /* 4 float ulps of the larger of the values a comparison looks at: within that a float
  * kernel's comparison may go either way (as the cylinder reference's margins). */
 static cylq widen(cylq mag)
@@ -70,9 +65,9 @@ static void s_eval(const sin_q *q, cylq tmin, cylq tmax, srec *r)
     const cylq *w = q->w, *d = q->d;
     const cylq x[3] = {w[1] * d[2] - w[2] * d[1], w[2] * d[0] - w[0] * d[2],
                        w[0] * d[1] - w[1] * d[0]};
-    const cylq A = dot3(d, d), B = dot3(w, d), RR = q->R * q->R;
-    const cylq C = dot3(w, w) - RR, AR2 = A * RR;
-    const cylq D = AR2 - dot3(x, x);
+    const cylq A = ref_dot3(d, d), B = ref_dot3(w, d), RR = q->R * q->R;
+    const cylq C = ref_dot3(w, w) - RR, AR2 = A * RR;
+    const cylq D = AR2 - ref_dot3(x, x);
     /* sqrt(max(D, 0)): the roots move continuously through a tangency, so that a
      * perturbation making D negative still has a t to compare. */
     const cylq sq = q_sqrt(q_max(D, 0));
@@ -126,7 +121,7 @@ static void s_normal(const srec *r, int o, int ff, double n[3])
     cylq p[3], t = s_t(r, o);
     for (int k = 0; k < 3; k++)
         p[k] = r->w[k] + t * r->d[k];
-    cylq len = q_sqrt(dot3(p, p));
+    cylq len = q_sqrt(ref_dot3(p, p));
     n[0] = n[1] = n[2] = 0;
     if (!(len > 0))
         return;
