@@ -127,16 +127,7 @@ static long batched_isa(const cylray_kernels *K, const cylray_prepared *P, const
     cylray_ray4 r4;
     cylray_hit4 h4;
     cylray_points4 p4;
-    for (int i = 0; i < 8; i++) {
-        r8.ox[i] = ray->ox[i], r8.oy[i] = ray->oy[i], r8.oz[i] = ray->oz[i];
-        r8.dx[i] = ray->dx[i], r8.dy[i] = ray->dy[i], r8.dz[i] = ray->dz[i];
-        h8.t[i] = hit->t[i], h8.part[i] = hit->part[i];
-        if (i < 4) {
-            r4.ox[i] = ray->ox[i], r4.oy[i] = ray->oy[i], r4.oz[i] = ray->oz[i];
-            r4.dx[i] = ray->dx[i], r4.dy[i] = ray->dy[i], r4.dz[i] = ray->dz[i];
-            h4.t[i] = hit->t[i], h4.part[i] = hit->part[i];
-        }
-    }
+    narrow_packet(ray, hit, &r8, &h8, &r4, &h4);
     K->hit_points8(P, &r8, &h8, m & 0xffu, &p8);
     K->hit_points4(P, &r4, &h4, m & 0xfu, &p4);
     for (int i = 0; i < 8; i++) {
@@ -285,16 +276,7 @@ int run_batched(void)
         cylray_ray4 r4;
         cylray_hit4 h4;
         cylray_points4 p4;
-        for (int i = 0; i < 8; i++) {
-            r8.ox[i] = ray.ox[i], r8.oy[i] = ray.oy[i], r8.oz[i] = ray.oz[i];
-            r8.dx[i] = ray.dx[i], r8.dy[i] = ray.dy[i], r8.dz[i] = ray.dz[i];
-            h8.t[i] = hit.t[i], h8.part[i] = hit.part[i];
-            if (i < 4) {
-                r4.ox[i] = ray.ox[i], r4.oy[i] = ray.oy[i], r4.oz[i] = ray.oz[i];
-                r4.dx[i] = ray.dx[i], r4.dy[i] = ray.dy[i], r4.dz[i] = ray.dz[i];
-                h4.t[i] = hit.t[i], h4.part[i] = hit.part[i];
-            }
-        }
+        narrow_packet(&ray, &hit, &r8, &h8, &r4, &h4);
         cylray_hit_points8(&P, &r8, &h8, m & 0xffu, &p8);
         cylray_hit_points4(&P, &r4, &h4, m & 0xfu, &p4);
         for (int i = 0; i < 8; i++) {
@@ -460,18 +442,7 @@ int run_batched(void)
         cylray_hit4 h4;
         memset(&r8, 0, sizeof r8), memset(&h8, 0, sizeof h8);
         memset(&r4, 0, sizeof r4), memset(&h4, 0, sizeof h4);
-        for (int i = 0; i < 8; i++) {
-            r8.ox[i] = ray.ox[i], r8.oy[i] = ray.oy[i], r8.oz[i] = ray.oz[i];
-            r8.dx[i] = ray.dx[i], r8.dy[i] = ray.dy[i], r8.dz[i] = ray.dz[i];
-            h8.t[i] = hit.t[i], h8.part[i] = hit.part[i];
-            h8.nx[i] = hit.nx[i], h8.ny[i] = hit.ny[i], h8.nz[i] = hit.nz[i];
-            if (i < 4) {
-                r4.ox[i] = ray.ox[i], r4.oy[i] = ray.oy[i], r4.oz[i] = ray.oz[i];
-                r4.dx[i] = ray.dx[i], r4.dy[i] = ray.dy[i], r4.dz[i] = ray.dz[i];
-                h4.t[i] = hit.t[i], h4.part[i] = hit.part[i];
-                h4.nx[i] = hit.nx[i], h4.ny[i] = hit.ny[i], h4.nz[i] = hit.nz[i];
-            }
-        }
+        narrow_packet(&ray, &hit, &r8, &h8, &r4, &h4);
         cylray_hit_points_normal16(&P, &ray, &hit, m, &p16);
         cylray_hit_points_normal8(&P, &r8, &h8, m & 0xffu, &p8);
         cylray_hit_points_normal4(&P, &r4, &h4, m & 0xfu, &p4);

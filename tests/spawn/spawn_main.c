@@ -30,6 +30,23 @@ void hit_point_form(const cylray_prepared *P, const float o[3], const float d[3]
         cylray_hit_point(P, o, d, t, part, p, err);
 }
 
+void narrow_packet(const cylray_ray16 *ray, const cylray_hit16 *hit, cylray_ray8 *r8,
+                   cylray_hit8 *h8, cylray_ray4 *r4, cylray_hit4 *h4)
+{
+    for (int i = 0; i < 8; i++) {
+        r8->ox[i] = ray->ox[i], r8->oy[i] = ray->oy[i], r8->oz[i] = ray->oz[i];
+        r8->dx[i] = ray->dx[i], r8->dy[i] = ray->dy[i], r8->dz[i] = ray->dz[i];
+        h8->t[i] = hit->t[i], h8->part[i] = hit->part[i];
+        h8->nx[i] = hit->nx[i], h8->ny[i] = hit->ny[i], h8->nz[i] = hit->nz[i];
+        if (i < 4) {
+            r4->ox[i] = ray->ox[i], r4->oy[i] = ray->oy[i], r4->oz[i] = ray->oz[i];
+            r4->dx[i] = ray->dx[i], r4->dy[i] = ray->dy[i], r4->dz[i] = ray->dz[i];
+            h4->t[i] = hit->t[i], h4->part[i] = hit->part[i];
+            h4->nx[i] = hit->nx[i], h4->ny[i] = hit->ny[i], h4->nz[i] = hit->nz[i];
+        }
+    }
+}
+
 int spawn_main(int argc, char **argv, const char *prog, const spawn_mode *modes, size_t n)
 {
     quick = tc_quick();

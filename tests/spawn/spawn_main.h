@@ -26,6 +26,11 @@ long scaled(long full);
 void hit_point_form(const cylray_prepared *P, const float o[3], const float d[3], float t,
                     int32_t part, const float n[3], int form, float p[3], float *err);
 
+/* The first 8 and 4 lanes of a packet of 16 and of its hits (t, part, normal), so that the
+ * narrower packet forms are given the same rays and hits as the 16-wide one. */
+void narrow_packet(const cylray_ray16 *ray, const cylray_hit16 *hit, cylray_ray8 *r8,
+                   cylray_hit8 *h8, cylray_ray4 *r4, cylray_hit4 *h4);
+
 typedef struct spawn_mode {
     const char *name;
     int (*run)(void); /* nonzero when every check held */

@@ -74,6 +74,17 @@ void make_sphere(cylgen_rng *r, int kind, cylray_sphere *s)
 /* A ray at the sphere: from outside (2 in 3), 1.01 to 1000 R from the center, at a
  * random point of it (grazing ones included); or from inside. Directions of length
  * 1e-2 to 1e2. */
+int sphere_rays(cylgen_rng *r, long g, cylray_sphere *s, cylray_prepared *P, float o[16][3],
+                float d[16][3])
+{
+    make_sphere(r, (int)(g % K_COUNT), s);
+    if (cylray_prepare_sphere(P, s) != CYLRAY_OK)
+        return 0;
+    for (int i = 0; i < 16; i++)
+        make_ray(r, s, o[i], d[i]);
+    return 1;
+}
+
 void make_ray(cylgen_rng *r, const cylray_sphere *s, float o[3], float d[3])
 {
     double u[3], v[3], R = s->radius, len = pow(10, uni(r, -2, 2));
@@ -279,13 +290,10 @@ static int run_bounds(void)
     cylgen_seed(&rng, 4101);
     for (long g = 0; g < N; g++) {
         cylray_sphere s;
-        make_sphere(&rng, (int)(g % K_COUNT), &s);
         cylray_prepared P;
-        if (cylray_prepare_sphere(&P, &s) != CYLRAY_OK)
-            continue;
         float o[16][3], d[16][3];
-        for (int i = 0; i < 16; i++)
-            make_ray(&rng, &s, o[i], d[i]);
+        if (!sphere_rays(&rng, g, &s, &P, o, d))
+            continue;
         /* hits in double, and the hits one ISA's kernel finds (t, n as given) */
         float t[16], n[16][3], tk[16], nk[16][3];
         int32_t part[16], pk[16];

@@ -16,6 +16,11 @@ enum { K_NEAR, K_FAR, K_TINY, K_HUGE, K_COUNT };
 void fail(const char *what, const cylray_sphere *s, const char *fmt, double a, double b);
 void make_sphere(cylgen_rng *r, int kind, cylray_sphere *s);
 void make_ray(cylgen_rng *r, const cylray_sphere *s, float o[3], float d[3]);
+/* Group g's sphere (its kind g % K_COUNT) prepared, and 16 rays at it; 0, and no rays
+ * drawn, where the sphere is refused, so that the generator's sequence is the one every
+ * mode has always drawn. */
+int sphere_rays(cylgen_rng *r, long g, cylray_sphere *s, cylray_prepared *P, float o[16][3],
+                float d[16][3]);
 int too_soon(const cylray_sphere *s, const float x0[3], const float w[3], float tk);
 int side_of(const cylray_sphere *s, const float x[3]);
 int w_side(const cylray_sphere *s, const float p[3], const float w[3]);

@@ -134,18 +134,7 @@ int run_batched(void)
                 cylray_hit8 hit8;
                 cylray_ray4 ray4;
                 cylray_hit4 hit4;
-                for (int i = 0; i < 8; i++) {
-                    ray8.ox[i] = ray.ox[i], ray8.oy[i] = ray.oy[i], ray8.oz[i] = ray.oz[i];
-                    ray8.dx[i] = ray.dx[i], ray8.dy[i] = ray.dy[i], ray8.dz[i] = ray.dz[i];
-                    hit8.t[i] = hit.t[i], hit8.part[i] = hit.part[i];
-                    hit8.nx[i] = hit.nx[i], hit8.ny[i] = hit.ny[i], hit8.nz[i] = hit.nz[i];
-                    if (i < 4) {
-                        ray4.ox[i] = ray.ox[i], ray4.oy[i] = ray.oy[i], ray4.oz[i] = ray.oz[i];
-                        ray4.dx[i] = ray.dx[i], ray4.dy[i] = ray.dy[i], ray4.dz[i] = ray.dz[i];
-                        hit4.t[i] = hit.t[i], hit4.part[i] = hit.part[i];
-                        hit4.nx[i] = hit.nx[i], hit4.ny[i] = hit.ny[i], hit4.nz[i] = hit.nz[i];
-                    }
-                }
+                narrow_packet(&ray, &hit, &ray8, &hit8, &ray4, &hit4);
                 cylray_points8 q8;
                 cylray_points4 q4;
                 memset(&q8, 0, sizeof q8);

@@ -28,14 +28,11 @@ int run_spawns(int side_form)
         const cylray_kernels *K = isas[ki];
         for (long g = 0; g < N; g++) {
             cylray_sphere s;
-            make_sphere(&rng, (int)(g % K_COUNT), &s);
             cylray_prepared P;
-            if (cylray_prepare_sphere(&P, &s) != CYLRAY_OK)
-                continue;
             float o[16][3], d[16][3], t[16], n[16][3];
             int32_t part[16];
-            for (int i = 0; i < 16; i++)
-                make_ray(&rng, &s, o[i], d[i]);
+            if (!sphere_rays(&rng, g, &s, &P, o, d))
+                continue;
             const uint32_t m =
                 trace(K, &P, 16, (const float(*)[3])o, (const float(*)[3])d, NULL, t, part, n);
             if (!m)
