@@ -11,6 +11,7 @@
  * cones among them, the kernels' answers those of cylray_prepare_cone's shapes and the
  * exact ones tests/ref's cone reference's (the rest of a geometry of cones:
  * test_cones.c). */
+#include "agree.h"
 #include "geom.h"
 #include "judge.h"
 #include "trace.h"
@@ -34,7 +35,7 @@ static int LEAVES; /* 0: the prepared shapes' kernel; 4 or 8: the one-cone leave
 
 /* Every hit of cylinder i on the ray in [tmin, tmax], in order of t, through the
  * 4-wide kernel: the first, then the next beyond it. */
-static int all_hits(uint32_t i, const float o[3], const float d[3], float tmin, float tmax,
+static int all_hits(size_t i, const float o[3], const float d[3], float tmin, float tmax,
                     float t[4], float n[4][3])
 {
     CYLRAY_ALIGN(16) cylray_ray4 r;
@@ -66,16 +67,8 @@ static int all_hits(uint32_t i, const float o[3], const float d[3], float tmin, 
     return m;
 }
 
-/* The filter rule of the tests: front faces of cylinders with an even index are
- * rejected (a transparency that lets rays in but not out, say), so a ray that meets one
- * first must be given that cylinder's next hit, or another cylinder's. */
-static int rejected(uint32_t prim, const float n[3], const float d[3])
-{
-    return prim % 2 == 0 && n[0] * d[0] + n[1] * d[1] + n[2] * d[2] < 0;
-}
-
 /* The closest hit over every cylinder, one at a time; with `filtered`, the closest the
- * filter rule accepts. */
+ * filter rule (eb_rejected) accepts. */
 static uint32_t brute(const float o[3], const float d[3], float tmin, float tmax, int filtered,
                       float *t, float nrm[3])
 {
@@ -84,7 +77,7 @@ static uint32_t brute(const float o[3], const float d[3], float tmin, float tmax
         float ts[4], ns[4][3];
         int m = all_hits(i, o, d, tmin, tmax, ts, ns);
         for (int j = 0; j < m; j++) {
-            if (filtered && rejected(i, ns[j], d))
+            if (filtered && eb_rejected(i, ns[j], d))
                 continue;
             /* a hit at exactly tmax counts in cylray, so an equal t would replace; keep
              * the first, and compare t only where two cylinders tie */
@@ -181,84 +174,19 @@ static int check(const char *what, const eb_rays *r, const float *tfar0, const u
     return bad;
 }
 
-/* The geometry's filter, for intersection and occlusion alike: the rule above. */
-static void rule_filter(const struct RTCFilterFunctionNArguments *a)
+/* The shapes as the shared checks walk them: the cylinders (or cones), geometry 0, each
+ * answered as its index; every third camera ray offered. */
+static size_t count(void)
 {
-    unsigned N = a->N;
-    const float *ray = (const float *)a->ray, *hit = (const float *)a->hit;
-    for (unsigned i = 0; i < N; i++) {
-        if (!a->valid[i])
-            continue;
-        float n[3] = {hit[0 * N + i], hit[1 * N + i], hit[2 * N + i]};
-        float d[3] = {ray[4 * N + i], ray[5 * N + i], ray[6 * N + i]};
-        uint32_t prim = ((const uint32_t *)hit)[5 * N + i];
-        /* the ray's tfar is the hit's t while the filter runs, as with Embree's own */
-        float t = ray[8 * N + i];
-        if (rejected(prim, n, d) || !(t >= 0))
-            a->valid[i] = 0;
-    }
+    return S->ns;
 }
 
-/* The query's filter that rejects every hit and records each one offered. */
-typedef struct offered {
-    uint32_t prim[64];
-    float t[64];
-    int n;
-} offered;
-static offered OFFERED;
-
-static void record_filter(const struct RTCFilterFunctionNArguments *a)
+static uint32_t id_of(size_t k)
 {
-    const float *ray = (const float *)a->ray, *hit = (const float *)a->hit;
-    for (unsigned i = 0; i < a->N; i++)
-        if (a->valid[i]) {
-            if (OFFERED.n < 64) {
-                OFFERED.prim[OFFERED.n] = ((const uint32_t *)hit)[5 * a->N + i];
-                OFFERED.t[OFFERED.n++] = ray[8 * a->N + i];
-            }
-            a->valid[i] = 0;
-        }
+    return (uint32_t)k;
 }
 
-/* Every hit of every cylinder on the ray must be offered once, none twice, and the
- * query must then report a miss (intersection) or not occluded (occlusion). */
-static int offer_all(const char *what, RTCScene scene, const eb_rays *r)
-{
-    int bad = 0;
-    for (size_t i = 0; i < r->n; i += 3) {
-        float o[3], d[3];
-        eb_rays_get(r, i, o, d);
-        for (int occ = 0; occ < 2; occ++) {
-            eb_query q;
-            eb_query_init(&q, record_filter, 0);
-            OFFERED.n = 0;
-            struct RTCRayHit rh = eb_rayhit1(o, d, 0, INFINITY);
-            if (occ)
-                EB_OCCLUDED1(scene, &q, &rh.ray);
-            else
-                EB_INTERSECT1(scene, &q, &rh);
-            int fine = rh.ray.tfar == INFINITY && rh.hit.geomID == RTC_INVALID_GEOMETRY_ID;
-            int want = 0;
-            for (uint32_t c = 0; c < S->ns; c++) {
-                float ts[4], ns[4][3];
-                int m = all_hits(c, o, d, 0, INFINITY, ts, ns);
-                want += m;
-                for (int j = 0; j < m; j++) {
-                    int seen = 0;
-                    for (int k = 0; k < OFFERED.n; k++)
-                        seen += OFFERED.prim[k] == c && OFFERED.t[k] == ts[j];
-                    fine &= seen == 1;
-                }
-            }
-            fine &= OFFERED.n == want;
-            if (!fine && bad++ < 5)
-                printf("  %s ray %zu %s: %d hits offered, %d exist%s\n", what, i,
-                       occ ? "occluded" : "intersect", OFFERED.n, want,
-                       rh.ray.tfar == INFINITY ? "" : ", and the ray was changed");
-        }
-    }
-    return bad;
-}
+static const eb_shapes SHAPES = {count, id_of, all_hits, 3};
 
 /* The adapter's hit calls on a hit of prim at t: the part read from Ng is the part the
  * kernel gives for the same hit (where it finds the same t), and the point and surface
@@ -347,22 +275,6 @@ static int exact(const char *what, const eb_geom *g, const eb_ref *ref, const eb
     return bad;
 }
 
-/* Camera rays, every seventh left out, and a finite tmax on a third so that some hits
- * lie beyond it. */
-static void rays_for(eb_rays *r, float *tfar0, uint8_t *valid0)
-{
-    eb_camera_rays(r, S, W, H);
-    r->incoherent = 0;
-    eb_rng gen = {99};
-    for (size_t i = 0; i < r->n; i++) {
-        r->valid[i] = i % 7 != 3;
-        if (i % 3 == 0)
-            r->tfar[i] = (float)eb_range(&gen, 5, 40);
-        tfar0[i] = r->tfar[i];
-        valid0[i] = r->valid[i];
-    }
-}
-
 /* The same rays with every other one turned around from beyond the scene, and the
  * context told they are incoherent: the packets then mix direction octants, and
  * cylray_embree_intersectN / occludedN trace them one ray a call. */
@@ -390,7 +302,7 @@ static void packet_passes(RTCScene sc, const char *vn, int exact_t, int filtered
     for (int p = 0; p < 4; p++)
         for (int m = 0; m < 4; m++) {
             const int occ = m & 1, mixed = m >> 1;
-            rays_for(r, tfar0, valid0);
+            eb_agree_rays(r, S, W, H, tfar0, valid0);
             if (mixed)
                 mix_rays(r);
             eb_trace_filtered(sc, r, packets[p], 2, occ, NULL, query_filter);
@@ -572,12 +484,9 @@ int main(int argc, char **argv)
                 REPORT(1, "%s: build with filters", vn);
                 continue;
             }
-            rtcSetGeometryIntersectFilterFunction(geo, rule_filter);
-            rtcSetGeometryOccludedFilterFunction(geo, rule_filter);
-            rtcCommitGeometry(geo);
-            RTCScene sc = rtcNewScene(dev);
-            rtcAttachGeometry(sc, geo);
-            rtcCommitScene(sc);
+            rtcSetGeometryIntersectFilterFunction(geo, eb_rule_filter);
+            rtcSetGeometryOccludedFilterFunction(geo, eb_rule_filter);
+            RTCScene sc = eb_scene_of(dev, geo, NULL);
             packet_passes(sc, vn, v != EB_LEAF, 1, NULL, &r, tfar0, valid0, &passed, &failed);
             rtcReleaseScene(sc);
             cylray_embree_release_geometry(geo);
@@ -591,11 +500,8 @@ int main(int argc, char **argv)
                 REPORT(1, "%s: build with the extended context", vn);
                 continue;
             }
-            rtcCommitGeometry(geo);
-            sc = rtcNewScene(dev);
-            rtcAttachGeometry(sc, geo);
-            rtcCommitScene(sc);
-            packet_passes(sc, vn, v != EB_LEAF, 1, rule_filter, &r, tfar0, valid0, &passed,
+            sc = eb_scene_of(dev, geo, NULL);
+            packet_passes(sc, vn, v != EB_LEAF, 1, eb_rule_filter, &r, tfar0, valid0, &passed,
                           &failed);
             rtcReleaseScene(sc);
             cylray_embree_release_geometry(geo);
@@ -606,12 +512,9 @@ int main(int argc, char **argv)
                 REPORT(1, "%s: build with the extended context", vn);
                 continue;
             }
-            rtcCommitGeometry(geo);
-            sc = rtcNewScene(dev);
-            rtcAttachGeometry(sc, geo);
-            rtcCommitScene(sc);
+            sc = eb_scene_of(dev, geo, NULL);
             eb_camera_rays(&r, &s, W, H);
-            bad = offer_all(vn, sc, &r);
+            bad = eb_offer_all(&SHAPES, vn, sc, &r);
             REPORT(bad, "%s: the query's filter offered every hit once", vn);
             rtcReleaseScene(sc);
             cylray_embree_release_geometry(geo);
@@ -673,7 +576,7 @@ int main(int argc, char **argv)
         geo = cylray_embree_new_geometry(dev, &d, &st);
         rtcCommitGeometry(geo);
         int lanes = 0;
-        rays_for(&r, tfar0, valid0);
+        eb_agree_rays(&r, S, W, H, tfar0, valid0);
         bad = (int)none + packet_spawns(dev, geo, &r, &lanes);
         cylray_embree_release_geometry(geo);
         REPORT(bad, "packet spawn origins as the one-ray ones, %d lanes", lanes);

@@ -5,6 +5,7 @@
  * radius1 (the same prepared shapes, boxes and leaves); a geometry mask; the geometry
  * in a translated instance, each variant: the same hits as the geometry itself, with
  * instID the instance's. */
+#include "agree.h"
 #include "geom.h"
 #include "trace.h"
 
@@ -69,17 +70,6 @@ static int equal_radii(RTCDevice dev, const eb_scene *s)
     return bad;
 }
 
-/* One ray through scene with the given mask: the hit's geomID, primID, t and Ng. */
-static void trace(RTCScene scene, const float o[3], const float d[3], unsigned mask,
-                  struct RTCRayHit *rh)
-{
-    eb_query q;
-    eb_query_init(&q, NULL, 0);
-    *rh = eb_rayhit1(o, d, 0, INFINITY);
-    rh->ray.mask = mask;
-    EB_INTERSECT1(scene, &q, rh);
-}
-
 /* The variant's geometry with mask 2: rays of mask 1 miss it, rays of mask 2 get what
  * the geometry with every mask bit gives; then that geometry instanced with a shift of
  * (3, 0, 0): the same hits for origins the shift leaves exact, instID the instance's.
@@ -94,43 +84,30 @@ static int masks_instance(RTCDevice dev, const eb_scene *s, eb_variant v, const 
         return 1;
     rtcSetGeometryMask(all, 0xffffffffu);
     rtcSetGeometryMask(two, 2u);
-    RTCScene sa = rtcNewScene(dev), s2 = rtcNewScene(dev), outer = rtcNewScene(dev);
-    rtcCommitGeometry(all);
-    rtcCommitGeometry(two);
-    unsigned ga = rtcAttachGeometry(sa, all);
-    rtcAttachGeometry(s2, two);
-    rtcCommitScene(sa);
-    rtcCommitScene(s2);
-    RTCGeometry inst = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_INSTANCE);
-    rtcSetGeometryInstancedScene(inst, sa);
-    const float xf[12] = {1, 0, 0, 0, 1, 0, 0, 0, 1, 3, 0, 0};
-    rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xf);
-    rtcSetGeometryMask(inst, 0xffffffffu);
-    rtcCommitGeometry(inst);
-    const unsigned iid = 5; /* not 0: a record that says 0 is told apart */
-    rtcAttachGeometryByID(outer, inst, iid);
-    rtcReleaseGeometry(inst);
-    rtcCommitScene(outer);
+    unsigned ga;
+    RTCScene sa = eb_scene_of(dev, all, &ga), s2 = eb_scene_of(dev, two, NULL);
+    unsigned iid = 5; /* not 0: a record that says 0 is told apart */
+    RTCScene outer = eb_shifted(dev, sa, &iid);
     int masks = (int)rtcGetDeviceProperty(dev, RTC_DEVICE_PROPERTY_RAY_MASK_SUPPORTED);
     int bad = 0;
     for (size_t i = 0; i < r->n; i++) {
         float o[3], dd[3];
         eb_rays_get(r, i, o, dd);
         struct RTCRayHit want, got;
-        trace(sa, o, dd, 1u, &want);
+        eb_trace_mask(sa, o, dd, 1u, &want);
         if (want.hit.geomID == RTC_INVALID_GEOMETRY_ID)
             continue;
         (*hits)++;
         if (masks) {
-            trace(s2, o, dd, 1u, &got);
+            eb_trace_mask(s2, o, dd, 1u, &got);
             bad += got.hit.geomID != RTC_INVALID_GEOMETRY_ID;
         }
-        trace(s2, o, dd, 2u, &got);
+        eb_trace_mask(s2, o, dd, 2u, &got);
         bad += got.hit.geomID != ga || !eb_same_hit(&got, &want);
         const float os[3] = {o[0] + 3, o[1], o[2]};
         if (os[0] - 3 != o[0])
             continue; /* an origin the shift rounds */
-        trace(outer, os, dd, 1u, &got);
+        eb_trace_mask(outer, os, dd, 1u, &got);
         /* the instance's ray is o + 3 - 3 exactly: the same t within the rounding of the
          * transform's arithmetic */
         float t = want.ray.tfar;
@@ -159,20 +136,14 @@ static int no_angles(RTCDevice dev, const eb_scene *s, eb_variant v, const eb_ra
                 gn = cylray_embree_new_geometry(dev, &dn, NULL);
     if (!ga || !gn)
         return 1;
-    RTCScene sa = rtcNewScene(dev), sn = rtcNewScene(dev);
-    rtcCommitGeometry(ga);
-    rtcCommitGeometry(gn);
-    rtcAttachGeometry(sa, ga);
-    rtcAttachGeometry(sn, gn);
-    rtcCommitScene(sa);
-    rtcCommitScene(sn);
+    RTCScene sa = eb_scene_of(dev, ga, NULL), sn = eb_scene_of(dev, gn, NULL);
     int bad = 0;
     for (size_t i = 0; i < r->n; i++) {
         float o[3], dd[3];
         eb_rays_get(r, i, o, dd);
         struct RTCRayHit want, got;
-        trace(sa, o, dd, 0xffffffffu, &want);
-        trace(sn, o, dd, 0xffffffffu, &got);
+        eb_trace_mask(sa, o, dd, 0xffffffffu, &want);
+        eb_trace_mask(sn, o, dd, 0xffffffffu, &got);
         bad += got.hit.geomID != want.hit.geomID;
         if (want.hit.geomID == RTC_INVALID_GEOMETRY_ID)
             continue;

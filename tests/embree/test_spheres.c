@@ -8,6 +8,7 @@
  * and Ng outward; the geometry's and the query's filters, every hit offered once;
  * geometry masks; an instance; the packet spawn origins; the descriptions the adapter
  * refuses. */
+#include "agree.h"
 #include "geom.h"
 #include "judge.h"
 #include "trace.h"
@@ -104,14 +105,11 @@ static int all_hits(size_t k, const float o[3], const float d[3], float tmin, fl
     return m;
 }
 
-/* The filter rule: front faces of shapes with an even primID are rejected. */
-static int rejected(uint32_t prim, const float n[3], const float d[3])
-{
-    return prim % 2 == 0 && n[0] * d[0] + n[1] * d[1] + n[2] * d[2] < 0;
-}
+/* The shapes as the shared checks walk them; every fifth camera ray offered. */
+static const eb_shapes SHAPES = {nshapes, id_of, all_hits, 5};
 
 /* The closest hit over every shape whose geometry's mask meets `mask` (bit 0: the
- * segments, bit 1: the spheres); with `filtered`, the closest the rule accepts. */
+ * segments, bit 1: the spheres); with `filtered`, the closest the rule (eb_rejected) accepts. */
 static uint32_t brute(const float o[3], const float d[3], float tmin, float tmax, int filtered,
                       unsigned mask, float *t, float nrm[3])
 {
@@ -122,7 +120,7 @@ static uint32_t brute(const float o[3], const float d[3], float tmin, float tmax
         float ts[4], ns[4][3];
         int m = all_hits(k, o, d, tmin, tmax, ts, ns);
         for (int j = 0; j < m; j++) {
-            if (filtered && rejected(id_of(k) & ~EB_SPHERE_BIT, ns[j], d))
+            if (filtered && eb_rejected(id_of(k) & ~EB_SPHERE_BIT, ns[j], d))
                 continue;
             if (best == RTC_INVALID_GEOMETRY_ID || ts[j] < *t) {
                 best = id_of(k);
@@ -202,96 +200,6 @@ static int check(const char *what, const eb_rays *r, const float *tfar0, const u
     return bad;
 }
 
-/* The geometry's filter (and the query's): the rule above. */
-static void rule_filter(const struct RTCFilterFunctionNArguments *a)
-{
-    unsigned N = a->N;
-    const float *ray = (const float *)a->ray, *hit = (const float *)a->hit;
-    for (unsigned i = 0; i < N; i++) {
-        if (!a->valid[i])
-            continue;
-        float n[3] = {hit[0 * N + i], hit[1 * N + i], hit[2 * N + i]};
-        float d[3] = {ray[4 * N + i], ray[5 * N + i], ray[6 * N + i]};
-        uint32_t prim = ((const uint32_t *)hit)[5 * N + i];
-        if (rejected(prim, n, d) || !(ray[8 * N + i] >= 0))
-            a->valid[i] = 0;
-    }
-}
-
-/* The query's filter that rejects every hit and records each one offered. */
-static struct {
-    uint32_t id[64];
-    float t[64];
-    int n;
-} OFFERED;
-
-static void record_filter(const struct RTCFilterFunctionNArguments *a)
-{
-    const float *ray = (const float *)a->ray, *hit = (const float *)a->hit;
-    for (unsigned i = 0; i < a->N; i++)
-        if (a->valid[i]) {
-            const uint32_t *h = (const uint32_t *)hit;
-            if (OFFERED.n < 64) {
-                OFFERED.id[OFFERED.n] = eb_hit_id(h[6 * a->N + i], h[5 * a->N + i]);
-                OFFERED.t[OFFERED.n++] = ray[8 * a->N + i];
-            }
-            a->valid[i] = 0;
-        }
-}
-
-/* Every hit of every shape offered once, none twice, and then no hit reported. */
-static int offer_all(const char *what, RTCScene scene, const eb_rays *r)
-{
-    int bad = 0;
-    for (size_t i = 0; i < r->n; i += 5) {
-        float o[3], d[3];
-        eb_rays_get(r, i, o, d);
-        for (int occ = 0; occ < 2; occ++) {
-            eb_query q;
-            eb_query_init(&q, record_filter, 0);
-            OFFERED.n = 0;
-            struct RTCRayHit rh = eb_rayhit1(o, d, 0, INFINITY);
-            if (occ)
-                EB_OCCLUDED1(scene, &q, &rh.ray);
-            else
-                EB_INTERSECT1(scene, &q, &rh);
-            int fine = rh.ray.tfar == INFINITY && rh.hit.geomID == RTC_INVALID_GEOMETRY_ID;
-            int want = 0;
-            for (size_t k = 0; k < nshapes(); k++) {
-                float ts[4], ns[4][3];
-                int m = all_hits(k, o, d, 0, INFINITY, ts, ns);
-                want += m;
-                for (int j = 0; j < m; j++) {
-                    int seen = 0;
-                    for (int x = 0; x < OFFERED.n; x++)
-                        seen += OFFERED.id[x] == id_of(k) && OFFERED.t[x] == ts[j];
-                    fine &= seen == 1;
-                }
-            }
-            fine &= OFFERED.n == want;
-            if (!fine && bad++ < 5)
-                printf("  %s ray %zu %s: %d hits offered, %d exist\n", what, i,
-                       occ ? "occluded" : "intersect", OFFERED.n, want);
-        }
-    }
-    return bad;
-}
-
-/* Camera rays, every seventh left out, a finite tmax on a third. */
-static void rays_for(eb_rays *r, float *tfar0, uint8_t *valid0)
-{
-    eb_camera_rays(r, S, W, H);
-    r->incoherent = 0;
-    eb_rng gen = {99};
-    for (size_t i = 0; i < r->n; i++) {
-        r->valid[i] = i % 7 != 3;
-        if (i % 3 == 0)
-            r->tfar[i] = (float)eb_range(&gen, 5, 40);
-        tfar0[i] = r->tfar[i];
-        valid0[i] = r->valid[i];
-    }
-}
-
 /* Every other ray turned around from beyond the scene, the packets told incoherent. */
 static void mix_rays(eb_rays *r)
 {
@@ -320,7 +228,7 @@ static void packet_passes(RTCScene sc, const char *vn, int filtered, RTCFilterFu
     for (int p = 0; p < 4; p++)
         for (int m = 0; m < 4; m++) {
             const int occ = m & 1, mixed = m >> 1;
-            rays_for(r, tfar0, valid0);
+            eb_agree_rays(r, S, W, H, tfar0, valid0);
             if (mixed)
                 mix_rays(r);
             eb_trace_filtered(sc, r, packets[p], 2, occ, NULL, qf);
@@ -382,11 +290,8 @@ static int masks(RTCScene sc, const eb_rays *r)
         for (unsigned mask = 1; mask <= 3; mask++) {
             float t = 0, n[3];
             uint32_t want = brute(o, d, 0, INFINITY, 0, mask, &t, n);
-            eb_query q;
-            eb_query_init(&q, NULL, 0);
-            struct RTCRayHit rh = eb_rayhit1(o, d, 0, INFINITY);
-            rh.ray.mask = mask;
-            EB_INTERSECT1(sc, &q, &rh);
+            struct RTCRayHit rh;
+            eb_trace_mask(sc, o, d, mask, &rh);
             uint32_t got = eb_hit_id(rh.hit.geomID, rh.hit.primID);
             if ((got == RTC_INVALID_GEOMETRY_ID) != (want == RTC_INVALID_GEOMETRY_ID) ||
                 (got != RTC_INVALID_GEOMETRY_ID && rh.ray.tfar != t))
@@ -400,27 +305,15 @@ static int masks(RTCScene sc, const eb_rays *r)
  * hits (shifted), instID the instance's geomID, geomID the spheres'. */
 static int instance(RTCDevice dev, RTCScene inner, const eb_rays *r)
 {
-    RTCScene outer = rtcNewScene(dev);
-    RTCGeometry inst = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_INSTANCE);
-    rtcSetGeometryInstancedScene(inst, inner);
-    const float xf[12] = {1, 0, 0, 0, 1, 0, 0, 0, 1, 3, 0, 0};
-    rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xf);
-    rtcSetGeometryMask(inst, 0xffffffffu);
-    rtcCommitGeometry(inst);
-    unsigned iid = rtcAttachGeometry(outer, inst);
-    rtcReleaseGeometry(inst);
-    rtcCommitScene(outer);
+    unsigned iid = RTC_INVALID_GEOMETRY_ID;
+    RTCScene outer = eb_shifted(dev, inner, &iid);
     int bad = 0, hits = 0;
     for (size_t i = 0; i < r->n; i += 3) {
         float o[3], d[3], t = 0, n[3];
         eb_rays_get(r, i, o, d);
         uint32_t want = brute(o, d, 0, INFINITY, 0, 3u, &t, n);
-        eb_query q;
-        eb_query_init(&q, NULL, 0);
-        struct RTCRayHit rh =
-            eb_rayhit1((const float[3]){o[0] + 3, o[1], o[2]}, d, 0, INFINITY);
-        rh.ray.mask = 3;
-        EB_INTERSECT1(outer, &q, &rh);
+        struct RTCRayHit rh;
+        eb_trace_mask(outer, (const float[3]){o[0] + 3, o[1], o[2]}, d, 3u, &rh);
         uint32_t got = eb_hit_id(rh.hit.geomID, rh.hit.primID);
         if (want == RTC_INVALID_GEOMETRY_ID || (o[0] + 3) - 3 != o[0])
             continue; /* a miss, or an origin the shift rounds */
@@ -676,18 +569,18 @@ static void run(RTCDevice dev, const eb_scene *s, eb_rays *r, float *tfar0, uint
 
             const unsigned opt = v == EB_LEAF ? CYLRAY_EMBREE_LEAVES : 0u;
             RTCGeometry geo[2];
-            RTCScene sc = adapter_scene(dev, opt | CYLRAY_EMBREE_FILTER, rule_filter, geo);
+            RTCScene sc = adapter_scene(dev, opt | CYLRAY_EMBREE_FILTER, eb_rule_filter, geo);
             if (sc) {
                 packet_passes(sc, vn, 1, NULL, r, tfar0, valid0);
                 adapter_free(sc, geo);
             }
             sc = adapter_scene(dev, opt | CYLRAY_EMBREE_CONTEXT, NULL, geo);
             if (sc) {
-                packet_passes(sc, vn, 1, rule_filter, r, tfar0, valid0);
+                packet_passes(sc, vn, 1, eb_rule_filter, r, tfar0, valid0);
                 eb_camera_rays(r, s, W, H);
                 snprintf(what, sizeof what, "%s: the query's filter offered every hit once",
                          vn);
-                report(offer_all(vn, sc, r), what);
+                report(eb_offer_all(&SHAPES, vn, sc, r), what);
                 /* Embree 3 built without ray masks ignores them */
                 if (rtcGetDeviceProperty(dev, RTC_DEVICE_PROPERTY_RAY_MASK_SUPPORTED)) {
                     snprintf(what, sizeof what, "%s: geometry masks", vn);

@@ -1,0 +1,141 @@
+/* SPDX-License-Identifier: MIT */
+/* agree.c - what every shape's agreement test shares (agree.h). */
+#include "agree.h"
+
+#include <math.h>
+#include <stdio.h>
+
+int eb_rejected(uint32_t prim, const float n[3], const float d[3])
+{
+    return prim % 2 == 0 && n[0] * d[0] + n[1] * d[1] + n[2] * d[2] < 0;
+}
+
+void eb_rule_filter(const struct RTCFilterFunctionNArguments *a)
+{
+    unsigned N = a->N;
+    const float *ray = (const float *)a->ray, *hit = (const float *)a->hit;
+    for (unsigned i = 0; i < N; i++) {
+        if (!a->valid[i])
+            continue;
+        float n[3] = {hit[0 * N + i], hit[1 * N + i], hit[2 * N + i]};
+        float d[3] = {ray[4 * N + i], ray[5 * N + i], ray[6 * N + i]};
+        uint32_t prim = ((const uint32_t *)hit)[5 * N + i];
+        /* the ray's tfar is the hit's t while the filter runs, as with Embree's own */
+        float t = ray[8 * N + i];
+        if (eb_rejected(prim, n, d) || !(t >= 0))
+            a->valid[i] = 0;
+    }
+}
+
+/* The hits offered to record_filter, each as an answer's id and its t. */
+static struct {
+    uint32_t id[64];
+    float t[64];
+    int n;
+} OFFERED;
+
+/* The query's filter that rejects every hit and records each one offered. */
+static void record_filter(const struct RTCFilterFunctionNArguments *a)
+{
+    const float *ray = (const float *)a->ray, *hit = (const float *)a->hit;
+    for (unsigned i = 0; i < a->N; i++)
+        if (a->valid[i]) {
+            const uint32_t *h = (const uint32_t *)hit;
+            if (OFFERED.n < 64) {
+                OFFERED.id[OFFERED.n] = eb_hit_id(h[6 * a->N + i], h[5 * a->N + i]);
+                OFFERED.t[OFFERED.n++] = ray[8 * a->N + i];
+            }
+            a->valid[i] = 0;
+        }
+}
+
+int eb_offer_all(const eb_shapes *sh, const char *what, RTCScene scene, const eb_rays *r)
+{
+    int bad = 0;
+    for (size_t i = 0; i < r->n; i += sh->offer_step) {
+        float o[3], d[3];
+        eb_rays_get(r, i, o, d);
+        for (int occ = 0; occ < 2; occ++) {
+            eb_query q;
+            eb_query_init(&q, record_filter, 0);
+            OFFERED.n = 0;
+            struct RTCRayHit rh = eb_rayhit1(o, d, 0, INFINITY);
+            if (occ)
+                EB_OCCLUDED1(scene, &q, &rh.ray);
+            else
+                EB_INTERSECT1(scene, &q, &rh);
+            int fine = rh.ray.tfar == INFINITY && rh.hit.geomID == RTC_INVALID_GEOMETRY_ID;
+            int want = 0;
+            for (size_t k = 0; k < sh->count(); k++) {
+                float ts[4], ns[4][3];
+                int m = sh->all_hits(k, o, d, 0, INFINITY, ts, ns);
+                want += m;
+                for (int j = 0; j < m; j++) {
+                    int seen = 0;
+                    for (int x = 0; x < OFFERED.n; x++)
+                        seen += OFFERED.id[x] == sh->id_of(k) && OFFERED.t[x] == ts[j];
+                    fine &= seen == 1;
+                }
+            }
+            fine &= OFFERED.n == want;
+            if (!fine && bad++ < 5)
+                printf("  %s ray %zu %s: %d hits offered, %d exist%s\n", what, i,
+                       occ ? "occluded" : "intersect", OFFERED.n, want,
+                       rh.ray.tfar == INFINITY ? "" : ", and the ray was changed");
+        }
+    }
+    return bad;
+}
+
+RTCScene eb_scene_of(RTCDevice dev, RTCGeometry g, unsigned *id)
+{
+    rtcCommitGeometry(g);
+    RTCScene sc = rtcNewScene(dev);
+    const unsigned got = rtcAttachGeometry(sc, g);
+    if (id)
+        *id = got;
+    rtcCommitScene(sc);
+    return sc;
+}
+
+RTCScene eb_shifted(RTCDevice dev, RTCScene inner, unsigned *iid)
+{
+    RTCScene outer = rtcNewScene(dev);
+    RTCGeometry inst = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_INSTANCE);
+    rtcSetGeometryInstancedScene(inst, inner);
+    const float xf[12] = {1, 0, 0, 0, 1, 0, 0, 0, 1, 3, 0, 0};
+    rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xf);
+    rtcSetGeometryMask(inst, 0xffffffffu);
+    rtcCommitGeometry(inst);
+    if (*iid == RTC_INVALID_GEOMETRY_ID)
+        *iid = rtcAttachGeometry(outer, inst);
+    else
+        rtcAttachGeometryByID(outer, inst, *iid);
+    rtcReleaseGeometry(inst);
+    rtcCommitScene(outer);
+    return outer;
+}
+
+void eb_trace_mask(RTCScene scene, const float o[3], const float d[3], unsigned mask,
+                   struct RTCRayHit *rh)
+{
+    eb_query q;
+    eb_query_init(&q, NULL, 0);
+    *rh = eb_rayhit1(o, d, 0, INFINITY);
+    rh->ray.mask = mask;
+    EB_INTERSECT1(scene, &q, rh);
+}
+
+void eb_agree_rays(eb_rays *r, const eb_scene *s, int w, int h, float *tfar0, uint8_t *valid0)
+{
+    eb_camera_rays(r, s, w, h);
+    r->incoherent = 0;
+    eb_rng gen = {99};
+    for (size_t i = 0; i < r->n; i++) {
+        r->valid[i] = i % 7 != 3;
+        if (i % 3 == 0)
+            r->tfar[i] = (float)eb_range(&gen, 5, 40);
+        tfar0[i] = r->tfar[i];
+        valid0[i] = r->valid[i];
+    }
+}

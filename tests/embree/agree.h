@@ -1,0 +1,57 @@
+/* SPDX-License-Identifier: MIT */
+/* agree.h - what the adapter's tests of every shape share (test_agree.c: cylinders and
+ * cones, test_spheres.c: spheres beside cylinders, test_cones.c: the rest of the cones):
+ * the filter rule and its filter, the query's filter that offers every hit, the camera
+ * rays with their left-out and shortened ones, the scenes of one geometry and the shifted
+ * instance. A shape's test describes its shapes in an eb_shapes and keeps only what is
+ * its own. */
+#ifndef EB_AGREE_H
+#define EB_AGREE_H
+
+#include "geom.h"
+#include "trace.h"
+
+#include <stddef.h>
+#include <stdint.h>
+
+/* A test's shapes, as the shared checks walk them. */
+typedef struct eb_shapes {
+    size_t (*count)(void);
+    uint32_t (*id_of)(size_t k); /* shape k as an answer's id (eb_hit_id) */
+    /* every hit of shape k on the ray in [tmin, tmax], in order of t, by the path the
+     * variant under test uses */
+    int (*all_hits)(size_t k, const float o[3], const float d[3], float tmin, float tmax,
+                    float t[4], float n[4][3]);
+    size_t offer_step; /* eb_offer_all: every offer_step-th camera ray */
+} eb_shapes;
+
+/* The filter rule of the tests: front faces of shapes with an even primID are rejected
+ * (a transparency that lets rays in but not out, say), so a ray that meets one first
+ * must be given that shape's next hit, or another shape's. */
+int eb_rejected(uint32_t prim, const float n[3], const float d[3]);
+
+/* The geometry's filter (and the query's), for intersection and occlusion alike. */
+void eb_rule_filter(const struct RTCFilterFunctionNArguments *a);
+
+/* Every hit of every shape on the ray offered to the query's filter once, none twice,
+ * and the query then reports a miss (intersection) or not occluded (occlusion). Returns
+ * the rays where that fails. */
+int eb_offer_all(const eb_shapes *sh, const char *what, RTCScene scene, const eb_rays *r);
+
+/* g committed, alone in a new committed scene; *id (where id is not NULL) its geomID. */
+RTCScene eb_scene_of(RTCDevice dev, RTCGeometry g, unsigned *id);
+
+/* inner instanced with a shift of (3, 0, 0), every mask bit set, in a committed scene of
+ * its own as geometry *iid (RTC_INVALID_GEOMETRY_ID: the first free one, *iid then set
+ * to it), so that a record saying 0 is told apart where *iid is not 0. */
+RTCScene eb_shifted(RTCDevice dev, RTCScene inner, unsigned *iid);
+
+/* One ray through scene with the given mask: the hit's geomID, primID, t and Ng. */
+void eb_trace_mask(RTCScene scene, const float o[3], const float d[3], unsigned mask,
+                   struct RTCRayHit *rh);
+
+/* Camera rays of s, every seventh left out, and a finite tmax on a third so that some
+ * hits lie beyond it; tfar0 and valid0 keep the inputs. */
+void eb_agree_rays(eb_rays *r, const eb_scene *s, int w, int h, float *tfar0, uint8_t *valid0);
+
+#endif
