@@ -4,6 +4,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <string.h>
 
 int eb_rejected(uint32_t prim, const float n[3], const float d[3])
 {
@@ -124,6 +125,27 @@ void eb_trace_mask(RTCScene scene, const float o[3], const float d[3], unsigned 
     *rh = eb_rayhit1(o, d, 0, INFINITY);
     rh->ray.mask = mask;
     EB_INTERSECT1(scene, &q, rh);
+}
+
+void eb_intersect8(RTCScene sc, const eb_rays *r, size_t b, int off, int valid[8],
+                   struct RTCRayHit8 *rh)
+{
+    memset(rh, 0, sizeof *rh);
+    for (int j = 0; j < 8; j++) {
+        size_t i = b + (size_t)j;
+        rh->ray.org_x[j] = r->ox[i], rh->ray.org_y[j] = r->oy[i], rh->ray.org_z[j] = r->oz[i];
+        rh->ray.dir_x[j] = r->dx[i], rh->ray.dir_y[j] = r->dy[i], rh->ray.dir_z[j] = r->dz[i];
+        rh->ray.tnear[j] = 0, rh->ray.tfar[j] = INFINITY, rh->ray.mask[j] = ~0u;
+        rh->hit.geomID[j] = RTC_INVALID_GEOMETRY_ID;
+        valid[j] = j == off ? 0 : -1;
+    }
+#if CYLRAY_EMBREE_RTC_MAJOR >= 4
+    rtcIntersect8(valid, sc, rh, NULL);
+#else
+    struct RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    rtcIntersect8(valid, sc, &ctx, rh);
+#endif
 }
 
 void eb_agree_rays(eb_rays *r, const eb_scene *s, int w, int h, float *tfar0, uint8_t *valid0)

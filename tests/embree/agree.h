@@ -50,6 +50,12 @@ RTCScene eb_shifted(RTCDevice dev, RTCScene inner, unsigned *iid);
 void eb_trace_mask(RTCScene scene, const float o[3], const float d[3], unsigned mask,
                    struct RTCRayHit *rh);
 
+/* Embree's own rtcIntersect8 on rays b to b + 7 of r from t = 0, every mask bit set,
+ * lane `off` left out (valid[] says which lanes were traced), so that the packet forms
+ * after it meet a lane Embree did not write. */
+void eb_intersect8(RTCScene sc, const eb_rays *r, size_t b, int off, int valid[8],
+                   struct RTCRayHit8 *rh);
+
 /* Camera rays of s, every seventh left out, and a finite tmax on a third so that some
  * hits lie beyond it; tfar0 and valid0 keep the inputs. */
 void eb_agree_rays(eb_rays *r, const eb_scene *s, int w, int h, float *tfar0, uint8_t *valid0);

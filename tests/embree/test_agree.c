@@ -345,23 +345,8 @@ static int packet_spawns(RTCDevice dev, RTCGeometry geo, const eb_rays *r, int *
     *lanes = 0;
     for (size_t b = 0; b + 8 <= r->n; b += 8 * 7) {
         struct RTCRayHit8 rh;
-        memset(&rh, 0, sizeof rh);
         RTC_ALIGN(32) int valid[8];
-        for (int j = 0; j < 8; j++) {
-            size_t i = b + (size_t)j;
-            rh.ray.org_x[j] = r->ox[i], rh.ray.org_y[j] = r->oy[i], rh.ray.org_z[j] = r->oz[i];
-            rh.ray.dir_x[j] = r->dx[i], rh.ray.dir_y[j] = r->dy[i], rh.ray.dir_z[j] = r->dz[i];
-            rh.ray.tnear[j] = 0, rh.ray.tfar[j] = INFINITY, rh.ray.mask[j] = ~0u;
-            rh.hit.geomID[j] = RTC_INVALID_GEOMETRY_ID;
-            valid[j] = j == 3 ? 0 : -1;
-        }
-#if CYLRAY_EMBREE_RTC_MAJOR >= 4
-        rtcIntersect8(valid, sc, &rh, NULL);
-#else
-        struct RTCIntersectContext ctx;
-        rtcInitIntersectContext(&ctx);
-        rtcIntersect8(valid, sc, &ctx, &rh);
-#endif
+        eb_intersect8(sc, r, b, 3, valid, &rh);
         float w[24], out[2][24];
         int outward[8];
         for (int j = 0; j < 8; j++) {
