@@ -148,6 +148,30 @@ void eb_intersect8(RTCScene sc, const eb_rays *r, size_t b, int off, int valid[8
 #endif
 }
 
+void eb_packet_passes(const eb_passes *p, RTCScene sc, const char *vn, int filtered,
+                      RTCFilterFunctionN qf, eb_rays *r, float *tfar0, uint8_t *valid0,
+                      int *passed, int *failed)
+{
+    static const int packets[4] = {1, 4, 8, 16};
+    for (int k = 0; k < 4; k++)
+        for (int m = 0; m < 4; m++) {
+            const int occ = m & 1, mixed = m >> 1;
+            eb_agree_rays(r, p->scene, p->w, p->h, tfar0, valid0);
+            if (mixed)
+                p->mix(r);
+            eb_trace_filtered(sc, r, packets[k], 2, occ, NULL, qf);
+            char what[128];
+            snprintf(what, sizeof what, "%s%s packet %d%s %s", vn,
+                     !filtered ? ""
+                     : qf      ? " query-filtered"
+                               : " filtered",
+                     packets[k], mixed ? " incoherent" : "", occ ? "occluded" : "intersect");
+            const int bad = p->check(what, r, tfar0, valid0, occ, filtered);
+            printf("%s %s (%d disagreements)\n", bad ? "FAIL" : "ok  ", what, bad);
+            bad ? (*failed)++ : (*passed)++;
+        }
+}
+
 void eb_agree_rays(eb_rays *r, const eb_scene *s, int w, int h, float *tfar0, uint8_t *valid0)
 {
     eb_camera_rays(r, s, w, h);

@@ -56,6 +56,25 @@ void eb_trace_mask(RTCScene scene, const float o[3], const float d[3], unsigned 
 void eb_intersect8(RTCScene sc, const eb_rays *r, size_t b, int off, int valid[8],
                    struct RTCRayHit8 *rh);
 
+/* A test's camera for the packet passes: its scene and image size, how it turns its rays
+ * incoherent, and its check of the answers in r against its own brute force (returns
+ * the disagreements). */
+typedef struct eb_passes {
+    const eb_scene *scene;
+    int w, h;
+    void (*mix)(eb_rays *r);
+    int (*check)(const char *what, const eb_rays *r, const float *tfar0, const uint8_t *valid0,
+                 int occ, int filtered);
+} eb_passes;
+
+/* Every packet size (1, 4, 8, 16), intersect and occluded, on the camera rays and on
+ * the incoherent ones, through qf as the query's filter where not NULL: each pass's
+ * answers held to p->check, a line printed for it and it counted in *passed or
+ * *failed. */
+void eb_packet_passes(const eb_passes *p, RTCScene sc, const char *vn, int filtered,
+                      RTCFilterFunctionN qf, eb_rays *r, float *tfar0, uint8_t *valid0,
+                      int *passed, int *failed);
+
 /* Camera rays of s, every seventh left out, and a finite tmax on a third so that some
  * hits lie beyond it; tfar0 and valid0 keep the inputs. */
 void eb_agree_rays(eb_rays *r, const eb_scene *s, int w, int h, float *tfar0, uint8_t *valid0);

@@ -292,30 +292,22 @@ static void mix_rays(eb_rays *r)
     }
 }
 
-/* Every packet size, intersect and occluded, on the camera rays and on the incoherent
- * ones: each answer held to check(); the counts go to *passed and *failed. */
+/* check() with the variant's t as it is this pass (exact_t: the kernel's, to the bit). */
+static int EXACT_T;
+static int check_pass(const char *what, const eb_rays *r, const float *tfar0,
+                      const uint8_t *valid0, int occ, int filtered)
+{
+    return check(what, r, tfar0, valid0, occ, EXACT_T, filtered);
+}
+
+/* The shared packet passes (eb_packet_passes) on this test's camera, rays and check. */
 static void packet_passes(RTCScene sc, const char *vn, int exact_t, int filtered,
                           RTCFilterFunctionN query_filter, eb_rays *r, float *tfar0,
                           uint8_t *valid0, int *passed, int *failed)
 {
-    static const int packets[4] = {1, 4, 8, 16};
-    for (int p = 0; p < 4; p++)
-        for (int m = 0; m < 4; m++) {
-            const int occ = m & 1, mixed = m >> 1;
-            eb_agree_rays(r, S, W, H, tfar0, valid0);
-            if (mixed)
-                mix_rays(r);
-            eb_trace_filtered(sc, r, packets[p], 2, occ, NULL, query_filter);
-            char what[112];
-            snprintf(what, sizeof what, "%s%s packet %d%s %s", vn,
-                     !filtered      ? ""
-                     : query_filter ? " query-filtered"
-                                    : " filtered",
-                     packets[p], mixed ? " incoherent" : "", occ ? "occluded" : "intersect");
-            const int bad = check(what, r, tfar0, valid0, occ, exact_t, filtered);
-            printf("%s %s (%d disagreements)\n", bad ? "FAIL" : "ok  ", what, bad);
-            bad ? (*failed)++ : (*passed)++;
-        }
+    const eb_passes p = {S, W, H, mix_rays, check_pass};
+    EXACT_T = exact_t;
+    eb_packet_passes(&p, sc, vn, filtered, query_filter, r, tfar0, valid0, passed, failed);
 }
 
 /* The packet forms of the spawn origins against the one-ray forms, lane by lane, after

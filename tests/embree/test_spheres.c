@@ -220,26 +220,12 @@ static void report(int bad, const char *what)
     bad ? failed++ : passed++;
 }
 
-/* Every packet size, intersect and occluded, coherent and not. */
+/* The shared packet passes (eb_packet_passes) on this test's camera, rays and check. */
 static void packet_passes(RTCScene sc, const char *vn, int filtered, RTCFilterFunctionN qf,
                           eb_rays *r, float *tfar0, uint8_t *valid0)
 {
-    static const int packets[4] = {1, 4, 8, 16};
-    for (int p = 0; p < 4; p++)
-        for (int m = 0; m < 4; m++) {
-            const int occ = m & 1, mixed = m >> 1;
-            eb_agree_rays(r, S, W, H, tfar0, valid0);
-            if (mixed)
-                mix_rays(r);
-            eb_trace_filtered(sc, r, packets[p], 2, occ, NULL, qf);
-            char what[128];
-            snprintf(what, sizeof what, "%s%s packet %d%s %s", vn,
-                     !filtered ? ""
-                     : qf      ? " query-filtered"
-                               : " filtered",
-                     packets[p], mixed ? " incoherent" : "", occ ? "occluded" : "intersect");
-            report(check(what, r, tfar0, valid0, occ, filtered), what);
-        }
+    const eb_passes p = {S, W, H, mix_rays, check};
+    eb_packet_passes(&p, sc, vn, filtered, qf, r, tfar0, valid0, &passed, &failed);
 }
 
 /* The scene's shapes through the adapter as geometries 0 and EB_SPHERE_GEOM, with
