@@ -148,6 +148,26 @@ void eb_intersect8(RTCScene sc, const eb_rays *r, size_t b, int off, int valid[8
 #endif
 }
 
+int eb_skipped_lane(const char *what, const eb_rays *r, size_t i, const float *tfar0,
+                    const uint8_t *valid0, int *bad)
+{
+    if (valid0[i])
+        return 0;
+    if (r->tfar[i] != tfar0[i] && (*bad)++ < 5)
+        printf("  %s ray %zu: invalid lane written\n", what, i);
+    return 1;
+}
+
+void eb_occlusion(const char *what, const eb_rays *r, size_t i, const float *tfar0,
+                  uint32_t want, int *bad)
+{
+    int got = r->tfar[i] == -INFINITY;
+    if ((got != (want != RTC_INVALID_GEOMETRY_ID) || (!got && r->tfar[i] != tfar0[i])) &&
+        (*bad)++ < 5)
+        printf("  %s ray %zu: occluded %d, cylray says %d\n", what, i, got,
+               want != RTC_INVALID_GEOMETRY_ID);
+}
+
 void eb_packet_passes(const eb_passes *p, RTCScene sc, const char *vn, int filtered,
                       RTCFilterFunctionN qf, eb_rays *r, float *tfar0, uint8_t *valid0,
                       int *passed, int *failed)

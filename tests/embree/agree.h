@@ -56,6 +56,16 @@ void eb_trace_mask(RTCScene scene, const float o[3], const float d[3], unsigned 
 void eb_intersect8(RTCScene sc, const eb_rays *r, size_t b, int off, int valid[8],
                    struct RTCRayHit8 *rh);
 
+/* The checks of ray i that need no hit record, the start of every test's check: an
+ * invalid lane must be left as it was (1: the lane is one, no more to check), an
+ * occlusion answer must say occluded exactly where want, the test's own answer, is a
+ * hit and leave tfar alone where not. Each disagreement is counted in *bad and the
+ * first five printed. */
+int eb_skipped_lane(const char *what, const eb_rays *r, size_t i, const float *tfar0,
+                    const uint8_t *valid0, int *bad);
+void eb_occlusion(const char *what, const eb_rays *r, size_t i, const float *tfar0,
+                  uint32_t want, int *bad);
+
 /* A test's camera for the packet passes: its scene and image size, how it turns its rays
  * incoherent, and its check of the answers in r against its own brute force (returns
  * the disagreements). */

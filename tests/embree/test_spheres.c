@@ -162,19 +162,11 @@ static int check(const char *what, const eb_rays *r, const float *tfar0, const u
     for (size_t i = 0; i < r->n; i++) {
         float o[3], d[3], t = 0, n[3] = {0, 0, 0};
         eb_rays_get(r, i, o, d);
-        if (!valid0[i]) {
-            if (r->tfar[i] != tfar0[i] && bad++ < 5)
-                printf("  %s ray %zu: invalid lane written\n", what, i);
+        if (eb_skipped_lane(what, r, i, tfar0, valid0, &bad))
             continue;
-        }
         uint32_t want = brute(o, d, r->tnear[i], tfar0[i], filtered, 3u, &t, n);
         if (occ) {
-            int got = r->tfar[i] == -INFINITY;
-            if ((got != (want != RTC_INVALID_GEOMETRY_ID) ||
-                 (!got && r->tfar[i] != tfar0[i])) &&
-                bad++ < 5)
-                printf("  %s ray %zu: occluded %d, cylray says %d\n", what, i, got,
-                       want != RTC_INVALID_GEOMETRY_ID);
+            eb_occlusion(what, r, i, tfar0, want, &bad);
             continue;
         }
         uint32_t got = r->prim[i];
