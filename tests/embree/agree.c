@@ -168,6 +168,26 @@ void eb_occlusion(const char *what, const eb_rays *r, size_t i, const float *tfa
                want != RTC_INVALID_GEOMETRY_ID);
 }
 
+uint32_t eb_exact_first(eb_err *e, const eb_ref *ref, RTCScene scene, const eb_rays *cam,
+                        size_t i, eb_sample *x, float *t, float ng[3])
+{
+    eb_rays_get(cam, i, x->o, x->d);
+    x->tmin = 0, x->tmax = INFINITY, x->pixel = SIZE_MAX;
+    eb_sample_solve(x, ref);
+    uint32_t id = eb_trace1(scene, x->o, x->d, 0, INFINITY, t, ng);
+    eb_judge(e, ref, x, id, *t, ng);
+    return id;
+}
+
+void eb_continuations(const float ng[3], const float d[3], float w[2][3])
+{
+    float n[3];
+    eb_facing_normal(ng, d, n);
+    float dn = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
+    for (int k = 0; k < 3; k++)
+        w[0][k] = d[k] - 2 * dn * n[k], w[1][k] = d[k];
+}
+
 void eb_packet_passes(const eb_passes *p, RTCScene sc, const char *vn, int filtered,
                       RTCFilterFunctionN qf, eb_rays *r, float *tfar0, uint8_t *valid0,
                       int *passed, int *failed)

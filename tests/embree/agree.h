@@ -9,6 +9,7 @@
 #define EB_AGREE_H
 
 #include "geom.h"
+#include "judge.h"
 #include "trace.h"
 
 #include <stddef.h>
@@ -65,6 +66,15 @@ int eb_skipped_lane(const char *what, const eb_rays *r, size_t i, const float *t
                     const uint8_t *valid0, int *bad);
 void eb_occlusion(const char *what, const eb_rays *r, size_t i, const float *tfar0,
                   uint32_t want, int *bad);
+
+/* Camera ray i solved exactly (*x) and traced through scene, the answer judged into e
+ * against the exact one: its id, *t and ng. */
+uint32_t eb_exact_first(eb_err *e, const eb_ref *ref, RTCScene scene, const eb_rays *cam,
+                        size_t i, eb_sample *x, float *t, float ng[3]);
+
+/* The secondary rays every test spawns from a hit with normal ng on a ray of direction
+ * d: a reflection (w[0]) and a refraction-like continuation (w[1]). */
+void eb_continuations(const float ng[3], const float d[3], float w[2][3]);
 
 /* A test's camera for the packet passes: its scene and image size, how it turns its rays
  * incoherent, and its check of the answers in r against its own brute force (returns

@@ -222,23 +222,16 @@ static int exact(const char *what, const eb_geom *g, const eb_ref *ref, const eb
     int bad = 0;
     for (size_t i = 0; i < cam->n; i++) {
         eb_sample x;
-        eb_rays_get(cam, i, x.o, x.d);
-        x.tmin = 0, x.tmax = INFINITY, x.pixel = SIZE_MAX;
-        eb_sample_solve(&x, ref);
         float t = 0, ng[3] = {0, 0, 0};
-        uint32_t prim = eb_trace1(g->scene, x.o, x.d, 0, INFINITY, &t, ng);
-        eb_judge(&e, ref, &x, prim, t, ng);
+        uint32_t prim = eb_exact_first(&e, ref, g->scene, cam, i, &x, &t, ng);
         if (prim == RTC_INVALID_GEOMETRY_ID || prim != x.xid || !x.xhit)
             continue;
         if (hit_calls(g->cyl, prim, x.o, x.d, t, ng) && bad++ < 3)
             printf("  %s: the hit calls disagree with cylray's on prim %u at t %.9g\n", what,
                    prim, t);
         /* a reflection and a refraction-like continuation from the hit */
-        float n[3], w[2][3], org[3];
-        eb_facing_normal(ng, x.d, n);
-        float dn = x.d[0] * n[0] + x.d[1] * n[1] + x.d[2] * n[2];
-        for (int k = 0; k < 3; k++)
-            w[0][k] = x.d[k] - 2 * dn * n[k], w[1][k] = x.d[k];
+        float w[2][3], org[3];
+        eb_continuations(ng, x.d, w);
         for (int s = 0; s < 2; s++) {
             if (cylray_embree_spawn_origin(g->cyl, prim, x.o, x.d, t, ng, w[s], org)) {
                 bad++;

@@ -359,12 +359,8 @@ static int exact(const char *what, const eb_geom *g, const eb_ref *ref, const eb
     int bad = 0;
     for (size_t i = 0; i < cam->n; i++) {
         eb_sample x;
-        eb_rays_get(cam, i, x.o, x.d);
-        x.tmin = 0, x.tmax = INFINITY, x.pixel = SIZE_MAX;
-        eb_sample_solve(&x, ref);
         float t = 0, ng[3] = {0, 0, 0};
-        uint32_t id = eb_trace1(g->scene, x.o, x.d, 0, INFINITY, &t, ng);
-        eb_judge(&e, ref, &x, id, t, ng);
+        uint32_t id = eb_exact_first(&e, ref, g->scene, cam, i, &x, &t, ng);
         if (id == RTC_INVALID_GEOMETRY_ID || id != x.xid || !x.xhit)
             continue;
         unsigned prim;
@@ -372,11 +368,8 @@ static int exact(const char *what, const eb_geom *g, const eb_ref *ref, const eb
         if ((id & EB_SPHERE_BIT) && cylray_embree_hit_part(geo, prim, ng) != CYLRAY_SIDE &&
             bad++ < 3)
             printf("  %s: a sphere's hit part is not the side\n", what);
-        float n[3], w[2][3], org[3];
-        eb_facing_normal(ng, x.d, n);
-        float dn = x.d[0] * n[0] + x.d[1] * n[1] + x.d[2] * n[2];
-        for (int k = 0; k < 3; k++)
-            w[0][k] = x.d[k] - 2 * dn * n[k], w[1][k] = x.d[k];
+        float w[2][3], org[3];
+        eb_continuations(ng, x.d, w);
         for (int s = 0; s < 2; s++) {
             if (cylray_embree_spawn_origin(geo, prim, x.o, x.d, t, ng, w[s], org) ||
                 !isfinite(org[0]) || !isfinite(org[1]) || !isfinite(org[2])) {
