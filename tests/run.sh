@@ -35,8 +35,9 @@
 #   embree-extra  the Embree adapter against each further Embree install prefix in
 #            CYLRAY_EMBREE_PREFIXES (colon-separated, e.g. an Embree 4 beside the
 #            distribution's Embree 3; empty: skipped): gcc, release, -Dembree_prefix,
-#            only the library, the adapter's tests and the install tests (pkg-config
-#            and CMake consumers included), in build/test-embree-<N>. The other
+#            only the library and the embree suite: the adapter's tests and those of
+#            an installed adapter (its exports, pkg-config and CMake consumers, the
+#            README's example), in build/test-embree-<N>. The other
 #            configurations test whichever Embree the system has.
 # Not in `all`, for whoever wants the whole suite at -O2:
 #   gcc, clang  debugoptimized, warnings are errors, the whole suite. Their answers are
@@ -495,7 +496,7 @@ config_embree-extra() {
             # shellcheck disable=SC2086 # one target a word
             if ninja -C "$dir" $targets >>"$dir.build.log" 2>&1; then
                 grep -h 'cylray_embree:' "$dir.setup.log" | sed 's/^ */   /'
-                run_tests "embree-extra" "$dir" "$t0" --suite embree --suite install
+                run_tests "embree-extra" "$dir" "$t0" --suite embree
                 continue
             fi
         fi
