@@ -10,8 +10,6 @@
 #include "leaf.h"
 #include "variants.h"
 
-#include <math.h>
-
 enum { CYLRAY_SHAPE_CYLINDER, CYLRAY_SHAPE_SPHERE, CYLRAY_SHAPE_CONE };
 
 typedef struct {
@@ -22,8 +20,6 @@ typedef struct {
     float r;        /* the radius; a cone's at its narrower end (cylray_cone_ra_) */
     float kap;      /* a cone's radius per axial unit; 0 for the others and for a
                      * leaf's cylinder given as a cone */
-    float r_wide;   /* the widest radius: a cone's at its wider end (a leaf's lane:
-                     * formed from its narrower end, to the float nearest) */
     float h;        /* the half height, INFINITY for an infinite cylinder (a sphere's: 0) */
 } cylray_shape_;
 
@@ -38,7 +34,6 @@ static inline cylray_shape_ cylray_shape_of_(const cylray_prepared *p)
         s.c[k] = p->c[k], s.v[k] = p->v[k];
     s.r = s.shape == CYLRAY_SHAPE_CONE ? cylray_cone_ra_(p) : p->radius;
     s.kap = s.shape == CYLRAY_SHAPE_CONE ? p->kap : 0.0f;
-    s.r_wide = p->radius; /* (a cone is prepared as the cylinder of its wider end) */
     s.h = p->half_height;
     return s;
 }
@@ -61,12 +56,6 @@ static inline cylray_shape_ cylray_leaf_shape_(const float *geom, const uint32_t
     s.r = geom[CYLRAY_LF_R * m + i];
     s.kap = s.shape == CYLRAY_SHAPE_CONE ? geom[CYLRAY_LF_KAP * m + i] : 0.0f;
     s.h = geom[CYLRAY_LF_H * m + i];
-    s.r_wide = s.r;
-    if (s.kap != 0) { /* the wider end's, rounded */
-        const double hv = s.h * sqrt((double)s.v[0] * s.v[0] + (double)s.v[1] * s.v[1] +
-                                     (double)s.v[2] * s.v[2]);
-        s.r_wide = (float)cylray_cone_radius_(s.r, s.kap, hv, s.kap > 0 ? hv : -hv);
-    }
     return s;
 }
 

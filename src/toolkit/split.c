@@ -28,8 +28,9 @@ static void disc_box(const float c[3], const float v[3], double R, cylray_dd t, 
 
 /* The rule for k = 0: the smallest k at which, in each coordinate j but the one the
  * axis is closest to, a slice's extent from the tilt, 2H |n_j| / k, is at most its
- * extent from the radius, 2R sqrt(1 - n_j^2); 1 to CYLRAY_SPLIT_MAX. */
-static size_t split_count(const cylray_shape_ *cyl)
+ * extent from the radius, 2R sqrt(1 - n_j^2); 1 to CYLRAY_SPLIT_MAX. R is the widest
+ * radius (a cone's prepared cylinder's, its wider end's). */
+static size_t split_count(const cylray_shape_ *cyl, double R_wide)
 {
     const float *v = cyl->v;
     int m = 0;
@@ -41,8 +42,7 @@ static size_t split_count(const cylray_shape_ *cyl)
         if (j == m || v[j] == 0)
             continue;
         double vi = v[(j + 1) % 3], vk = v[(j + 2) % 3];
-        double ratio = (double)cyl->h * fabs((double)v[j]) /
-                       ((double)cyl->r_wide * sqrt(vi * vi + vk * vk));
+        double ratio = (double)cyl->h * fabs((double)v[j]) / (R_wide * sqrt(vi * vi + vk * vk));
         want = fmax(want, ceil(ratio));
     }
     return want >= CYLRAY_SPLIT_MAX ? CYLRAY_SPLIT_MAX : (size_t)want;
@@ -85,7 +85,7 @@ size_t cylray_split_boxes(const cylray_prepared *cyl, size_t k, float (*lo)[3], 
         return 0;
     const cylray_shape_ s = cylray_shape_of_(cyl);
     if (k == 0)
-        k = s.shape == CYLRAY_SHAPE_SPHERE ? 1 : split_count(&s);
+        k = s.shape == CYLRAY_SHAPE_SPHERE ? 1 : split_count(&s, cyl->radius);
     if (!lo || !hi)
         return k;
     if (s.shape == CYLRAY_SHAPE_SPHERE) {
