@@ -70,6 +70,33 @@ static inline uint32_t cylray_leaf_slender_(const uint32_t *meta)
 {
     return meta[CYLRAY_LM_LO] >> CYLRAY_LM_CONE_SHIFT;
 }
+/* The leaves' rows of the leaf tables, as CYLRAY_VARIANT_ROWS (internal/variants.h) is
+ * the prepared shapes': X(name, the kernel flags its kernels are stamped with beside a
+ * leaf's own, which of its flag sets are specialised). A leaf holds one shape, and its
+ * row is the one whose kernels serve every lane it holds (cylray_leaf_row_). */
+#define CYLRAY_LEAF_ROWS(X)                                                                    \
+    X(CYLINDERS, 0u, FULL)                                                                     \
+    X(SPHERES, CYLRAY_KF_SPHERE, FULL)                                                         \
+    X(CONES, CYLRAY_KF_CONE, THIRD)                                                            \
+    X(CONES_TINY, CYLRAY_KF_CONE | CYLRAY_KF_TINY, THIRD)                                      \
+    X(SLENDER, CYLRAY_KF_SLENDER, ANY)                                                         \
+    X(CONES_SLENDER, CYLRAY_KF_CONE | CYLRAY_KF_TINY | CYLRAY_KF_SLENDER, ANY)
+#define CYLRAY_LEAF_ENUM_(name, kf, set) CYLRAY_LEAF_##name,
+enum { CYLRAY_LEAF_ROWS(CYLRAY_LEAF_ENUM_) CYLRAY_LEAF_ROW_COUNT };
+#undef CYLRAY_LEAF_ENUM_
+/* A slender lane or a tiny-ended cone needs its kernels' extra work, which serves the
+ * leaf's other lanes as well. */
+static inline unsigned cylray_leaf_row_(const uint32_t *meta)
+{
+    const int cones = cylray_leaf_cones_(meta) != 0;
+    if (cylray_leaf_spheres_(meta))
+        return CYLRAY_LEAF_SPHERES;
+    if (cylray_leaf_slender_(meta))
+        return cones ? CYLRAY_LEAF_CONES_SLENDER : CYLRAY_LEAF_SLENDER;
+    if (cylray_leaf_tiny_(meta))
+        return CYLRAY_LEAF_CONES_TINY;
+    return cones ? CYLRAY_LEAF_CONES : CYLRAY_LEAF_CYLINDERS;
+}
 static inline unsigned cylray_leaf_caps_(const uint32_t *meta, unsigned lane)
 {
     return ((meta[CYLRAY_LM_LO] >> lane) & 1u ? CYLRAY_CAPPED_LO : 0u) |

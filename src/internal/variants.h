@@ -86,19 +86,50 @@ static inline int cylray_slender_(const cylray_prepared *p)
  * and the store policy, which its table sets. */
 #define CYLRAY_KF_RUNTIME (CYLRAY_FACE_FORWARD | CYLRAY_CULL_BACK | CYLRAY_KF_STORE_MASK)
 
-/* The kernel tables are indexed by the shape's variant (a cylinder's kind, plus 3 when
- * the axis is a coordinate axis; CYLRAY_VARIANT_SPHERE) and the flags a kernel is
- * specialised for (normals, CYLRAY_FAST, CYLRAY_REFINE). A shape whose radius is far
- * from 1 (j != 0) or a cylinder that has one disc only has a variant from
- * CYLRAY_VARIANT_GENERIC on (its kind's offset from there, a sphere's 3), and runs the
- * generic kernel, which reads its flags at run time. */
-#define CYLRAY_VARIANT_SPHERE (2u * CYLRAY_KIND_COUNT)
-#define CYLRAY_VARIANT_CONE (CYLRAY_VARIANT_SPHERE + 1u)
-#define CYLRAY_VARIANT_CONE_TINY (CYLRAY_VARIANT_CONE + 1u)
-/* A slender capped cone (cylray_slender_) shares the tiny-ended one's kernels, which
- * carry CYLRAY_KF_SLENDER and ask the prepared cone whether to take the frame; other
- * slender shapes take the generic variant. */
-#define CYLRAY_VARIANT_GENERIC (CYLRAY_VARIANT_CONE_TINY + 1u)
+/* The specialised variants, the rows of the kernel tables in table order: X(name, the
+ * kernel flags its kernels are stamped with, which of its flag sets are specialised:
+ * FULL, THIRD or ANY, kernel/tables.h). The kernels, the tables and their static checks
+ * are stamped from this list; a shape adds its rows here, its leaf rows to
+ * CYLRAY_LEAF_ROWS (internal/leaf.h) and its work to kernel/shape.h.
+ *   a cylinder of each kind, then the same three along a coordinate axis;
+ *   the sphere (the kind bits then 0: the stages that differ from the cylinder's take its
+ *   branch, the drivers, stores and tables are the cylinder's);
+ *   the capped cone, which runs a capped cylinder's slab logic with the cone's side;
+ *   the capped cone with a tiny end (cylray_cone_tiny_) or slender (cylray_slender_),
+ *   whose kernels carry CYLRAY_KF_SLENDER and ask the prepared cone whether to take the
+ *   frame (other slender shapes take the generic variant).
+ * The cone specialises a third of its flag sets: CYLRAY_FAST takes its plain kernels
+ * as they are (the estimates buy a cone nothing: its divisions are few, and the accurate
+ * kernel is within FAST's promise), and CYLRAY_REFINE, the rarer flag, the drivers that
+ * read their flags at run time. That keeps the library within its size. */
+#define CYLRAY_KF_KIND_(k) ((unsigned)(k) << CYLRAY_KF_KIND_SHIFT)
+#define CYLRAY_VARIANT_ROWS(X)                                                                 \
+    X(INFINITE, CYLRAY_KF_KIND_(CYLRAY_KIND_INFINITE), FULL)                                   \
+    X(OPEN, CYLRAY_KF_KIND_(CYLRAY_KIND_OPEN), FULL)                                           \
+    X(CAPPED, CYLRAY_KF_KIND_(CYLRAY_KIND_CAPPED), FULL)                                       \
+    X(INFINITE_AXIS, CYLRAY_KF_KIND_(CYLRAY_KIND_INFINITE) | CYLRAY_KF_ALIGNED, FULL)          \
+    X(OPEN_AXIS, CYLRAY_KF_KIND_(CYLRAY_KIND_OPEN) | CYLRAY_KF_ALIGNED, FULL)                  \
+    X(CAPPED_AXIS, CYLRAY_KF_KIND_(CYLRAY_KIND_CAPPED) | CYLRAY_KF_ALIGNED, FULL)              \
+    X(SPHERE, CYLRAY_KF_SPHERE, FULL)                                                          \
+    X(CONE, CYLRAY_KF_CONE | CYLRAY_KF_KIND_(CYLRAY_KIND_CAPPED), THIRD)                       \
+    X(CONE_TINY,                                                                               \
+      CYLRAY_KF_CONE | CYLRAY_KF_TINY | CYLRAY_KF_SLENDER |                                    \
+          CYLRAY_KF_KIND_(CYLRAY_KIND_CAPPED),                                                 \
+      THIRD)
+/* The tables are indexed by the variant and the flags a kernel is specialised for
+ * (normals, CYLRAY_FAST, CYLRAY_REFINE). A shape whose radius is far from 1 (j != 0), a
+ * cylinder or cone with one disc only, or a slender cylinder has a variant from
+ * CYLRAY_VARIANT_GENERIC on (its kind's offset from there, a sphere's 3, a cone's 4),
+ * and runs the generic kernel, which reads its flags at run time. */
+#define CYLRAY_VARIANT_ENUM_(name, kf, set) CYLRAY_VARIANT_##name,
+enum { CYLRAY_VARIANT_ROWS(CYLRAY_VARIANT_ENUM_) CYLRAY_VARIANT_GENERIC };
+#undef CYLRAY_VARIANT_ENUM_
+_Static_assert(CYLRAY_VARIANT_INFINITE == CYLRAY_KIND_INFINITE &&
+                   CYLRAY_VARIANT_OPEN == CYLRAY_KIND_OPEN &&
+                   CYLRAY_VARIANT_CAPPED == CYLRAY_KIND_CAPPED &&
+                   CYLRAY_VARIANT_INFINITE_AXIS == CYLRAY_KIND_COUNT + CYLRAY_KIND_INFINITE &&
+                   CYLRAY_VARIANT_CAPPED_AXIS == CYLRAY_KIND_COUNT + CYLRAY_KIND_CAPPED,
+               "a cylinder's variant is its kind, plus CYLRAY_KIND_COUNT along an axis");
 static inline unsigned cylray_variant_of_(unsigned kind, unsigned axis_id, int radius_scaled,
                                           unsigned caps, int tiny, int slender)
 {
@@ -117,17 +148,6 @@ static inline int cylray_generic_(const cylray_prepared *p)
 {
     return p->variant >= CYLRAY_VARIANT_GENERIC;
 }
-/* The kernel flags of a specialised variant v (below CYLRAY_VARIANT_GENERIC): its kind
- * and whether its axis is a coordinate axis; a constant expression, for the tables. */
-#define CYLRAY_VARIANT_KF_(v)                                                                  \
-    ((v) == CYLRAY_VARIANT_SPHERE ? CYLRAY_KF_SPHERE                                           \
-     : (v) == CYLRAY_VARIANT_CONE                                                              \
-         ? CYLRAY_KF_CONE | CYLRAY_KIND_CAPPED << CYLRAY_KF_KIND_SHIFT                         \
-     : (v) == CYLRAY_VARIANT_CONE_TINY                                                         \
-         ? CYLRAY_KF_CONE | CYLRAY_KF_TINY | CYLRAY_KF_SLENDER |                               \
-               CYLRAY_KIND_CAPPED << CYLRAY_KF_KIND_SHIFT                                      \
-         : (((v) % CYLRAY_KIND_COUNT) << CYLRAY_KF_KIND_SHIFT |                                \
-            ((v) >= CYLRAY_KIND_COUNT ? CYLRAY_KF_ALIGNED : 0u)))
 /* The kernel flags of a generic variant, which the generic drivers read at run time:
  * the kind, one disc or two, and the public flags that select the kernel's branches. */
 static inline unsigned cylray_generic_kf_(const cylray_prepared *P, unsigned flags, int occ)

@@ -126,14 +126,7 @@ KENTRY_ size_t KI_(occluded_stream)(const cylray_prepared *P, const cylray_rays 
     {                                                                                          \
         if (!leaf || !ray || !hit)                                                             \
             return 0;                                                                          \
-        const KW_(leaf_fn, KL##m) *t =                                                         \
-            cylray_leaf_spheres_(leaf->meta_)   ? KW_(leaf_sphere_table, KL##m)                \
-            : cylray_leaf_slender_(leaf->meta_) ? cylray_leaf_cones_(leaf->meta_)              \
-                                                      ? KW_(leaf_cone_slender_table, KL##m)    \
-                                                      : KW_(leaf_slender_table, KL##m)         \
-            : cylray_leaf_tiny_(leaf->meta_) ? KW_(leaf_tiny_table, KL##m)                     \
-            : cylray_leaf_cones_(leaf->meta_)   ? KW_(leaf_cone_table, KL##m)                  \
-                                                : KW_(leaf_table, KL##m);                        \
+        const KW_(leaf_fn, KL##m) *t = KW_(leaf_table, KL##m)[cylray_leaf_row_(leaf->meta_)];  \
         return t[cylray_spec_(flags)](leaf->geom_[0], m, ray, hit,                             \
                                       flags & CYLRAY_FLAGS_ALL & CYLRAY_KF_RUNTIME);           \
     }                                                                                          \
@@ -145,13 +138,7 @@ KENTRY_ size_t KI_(occluded_stream)(const cylray_prepared *P, const cylray_rays 
         /* the occluded kernels read the ray and never write through this pointer */           \
         cylray_ray1 *r = (cylray_ray1 *)(uintptr_t)ray;                                        \
         const KW_(leaf_fn, KL##m) *t =                                                         \
-            cylray_leaf_spheres_(leaf->meta_) ? KW_(leaf_sphere_occ_table, KL##m)              \
-            : cylray_leaf_slender_(leaf->meta_)                                                \
-                ? cylray_leaf_cones_(leaf->meta_) ? KW_(leaf_cone_slender_occ_table, KL##m)    \
-                                                  : KW_(leaf_slender_occ_table, KL##m)         \
-            : cylray_leaf_tiny_(leaf->meta_)  ? KW_(leaf_tiny_occ_table, KL##m)                \
-            : cylray_leaf_cones_(leaf->meta_) ? KW_(leaf_cone_occ_table, KL##m)                \
-                                              : KW_(leaf_occ_table, KL##m);                    \
+            KW_(leaf_occ_table, KL##m)[cylray_leaf_row_(leaf->meta_)];                         \
         return t[cylray_occ_spec_(flags)](leaf->geom_[0], m, r, NULL,                          \
                                           flags & CYLRAY_CULL_BACK);                           \
     }
