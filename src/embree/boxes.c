@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* embree/boxes.c - a cylinder's or cone's frame (the endpoint form and the basis for u,
- * v) and the boxes Embree builds its BVH over: one per cylinder, or pieces along a long
- * tilted one (unless CYLRAY_EMBREE_NO_SPLIT). */
+ * v) and the boxes Embree builds its BVH over: one per shape, or pieces along a long
+ * tilted one with a frame (unless CYLRAY_EMBREE_NO_SPLIT). */
 #include "ceb.h"
 
 #include <math.h>
@@ -68,13 +68,10 @@ void ceb_sphere_box(const cylray_sphere *s, struct RTCBounds *b)
     ceb_set_box(b, lo, hi, 0);
 }
 
-/* The whole box of shape i of the geometry, cylinder or sphere. */
+/* The whole box of shape i of the geometry. */
 void ceb_box_of(const ceb *g, size_t i, struct RTCBounds *b)
 {
-    if (g->sph)
-        ceb_sphere_box(&g->sph[i], b);
-    else
-        ceb_whole_box(&g->prep[i], b);
+    g->shape->box(ceb_elem(g, i), &g->prep[i], b);
 }
 
 void *ceb_alloc_aligned(size_t bytes)
@@ -98,25 +95,26 @@ static int long_for_radius(const frame *f, float radius)
     return L2 > CEB_SPLIT_LENGTH * CEB_SPLIT_LENGTH * (double)radius * radius;
 }
 
-/* A shape's largest radius: a cone is split as the cylinder of that radius is. */
-static float rmax_of(const ceb_src *src, size_t i)
+/* Shape i's widest radius: it is split as the cylinder of that radius is. */
+static float rmax_of(const ceb *g, size_t i)
 {
-    return src->cone ? fmaxf(src->cone[i].r0, src->cone[i].r1) : src->cyl[i].radius;
+    return g->shape->rmax(ceb_elem(g, i));
 }
 
-int ceb_make_boxes(ceb *g, const ceb_src *src)
+int ceb_make_boxes(ceb *g)
 {
     size_t total = 0;
-    int split = !(g->options & CYLRAY_EMBREE_NO_SPLIT);
+    /* a shape without a frame has no axis to split along */
+    int split = !(g->options & CYLRAY_EMBREE_NO_SPLIT) && g->fr;
     /* The toolkit's rule (cylray_split_boxes with k = 0): the fewest pieces, at most
      * CYLRAY_SPLIT_MAX, whose boxes are at most twice the cylinder's width across;
      * short or axis-aligned cylinders keep one box. */
     for (size_t i = 0; i < g->n; i++) {
-        if (split && long_for_radius(&g->fr[i], rmax_of(src, i))) {
+        if (split && long_for_radius(&g->fr[i], rmax_of(g, i))) {
             size_t k = cylray_split_boxes(&g->prep[i], 0, NULL, NULL);
             g->fr[i].pieces = k < 1 ? 1u : (uint32_t)k;
         }
-        total += g->fr[i].pieces;
+        total += g->fr ? g->fr[i].pieces : 1;
     }
     if (total > 0xffffffffu)
         return CEB_BAD_INPUT;
@@ -126,7 +124,7 @@ int ceb_make_boxes(ceb *g, const ceb_src *src)
         return CEB_NO_MEMORY;
     if (total == g->n) {
         for (size_t i = 0; i < g->n; i++)
-            ceb_whole_box(&g->prep[i], &g->box[i]);
+            ceb_box_of(g, i, &g->box[i]);
         return 0;
     }
     g->prim_cyl = malloc(total * sizeof *g->prim_cyl);
@@ -139,7 +137,7 @@ int ceb_make_boxes(ceb *g, const ceb_src *src)
         const frame *f = &g->fr[i];
         uint32_t K = f->pieces;
         if (K == 1) {
-            ceb_whole_box(&g->prep[i], &g->box[p]);
+            ceb_box_of(g, i, &g->box[p]);
             g->prim_cyl[p] = (uint32_t)i;
             g->prim_piece[p++] = 0;
             continue;
@@ -153,7 +151,7 @@ int ceb_make_boxes(ceb *g, const ceb_src *src)
             big = fmax(big, fabs(f->p0[k]) + fabs(f->a[k]));
             L += (double)f->a[k] * f->a[k];
         }
-        float pad = (float)(0x1p-16 * (big + sqrt(L)) + 0x1p-10 * rmax_of(src, i));
+        float pad = (float)(0x1p-16 * (big + sqrt(L)) + 0x1p-10 * rmax_of(g, i));
         if (cylray_split_boxes(&g->prep[i], K, lo, hi) != K)
             return CEB_REFUSED;
         for (uint32_t k = 0; k < K; k++, p++) {

@@ -34,20 +34,26 @@ typedef struct frame {
     float ns; /* n . (the side's outward normal): -(r1 - r0) / sqrt(|a|^2 + (r1 - r0)^2) */
 } frame;
 
+typedef struct ceb_shape ceb_shape;
+
 typedef struct ceb {
     uint32_t magic;
     const cylray_kernels *k;
     unsigned options, iflags, oflags; /* intersect and occluded kernel flags */
-    size_t n;                         /* cylinders or spheres */
+    size_t n;                         /* shapes */
     cylray_prepared *prep;            /* n */
-    frame *fr;                        /* n; NULL for spheres, whose u, v need none */
-    cylray_sphere *sph;               /* n spheres (their boxes); NULL for cylinders */
-    size_t nprim;                     /* Embree's primitives */
-    uint32_t *prim_cyl;               /* split: primitive -> cylinder */
-    uint32_t *prim_piece;             /* split: primitive -> its piece of that cylinder */
-    struct RTCBounds *box;            /* one per primitive */
-    void *leaves;                     /* leaves: cylray_leafM[nprim] */
-    int m;                            /* leaf width: 4 or 8 */
+    frame *fr;                        /* n; NULL when the shape has none (spheres) */
+    /* n spheres (the elements) when the shape asks for single.c's test of rays leaving
+     * them, else NULL: a per-geometry test on the hot path, no indirect call */
+    const cylray_sphere *sphere_test;
+    const ceb_shape *shape;
+    void *elems;           /* n of shape->size; NULL after the build unless sphere_test */
+    size_t nprim;          /* Embree's primitives */
+    uint32_t *prim_cyl;    /* split: primitive -> cylinder */
+    uint32_t *prim_piece;  /* split: primitive -> its piece of that cylinder */
+    struct RTCBounds *box; /* one per primitive */
+    void *leaves;          /* leaves: cylray_leafM[nprim] */
+    int m;                 /* leaf width: 4 or 8 */
     RTCGeometry geom;
 } ceb;
 
@@ -56,12 +62,38 @@ typedef struct hitrec {
     unsigned prim;
 } hitrec;
 
-/* The shapes a geometry is built from, read only while it is made: cylinders (cyl) or
- * cones (cone), one of them NULL; spheres: both NULL, and g->sph. */
-typedef struct ceb_src {
-    const cylray_cylinder *cyl;
-    const cylray_cone *cone;
-} ceb_src;
+/* One kind of shape, as the build of a geometry asks for it: a const row per kind
+ * (shapes.c), the one place that knows which kind it is. Its functions run while a
+ * geometry is built, never per ray: what a query needs to know is set in the ceb then
+ * (fr, sphere_test). e is one element, elems the geometry's array of them. */
+struct ceb_shape {
+    size_t size; /* one element's bytes */
+    /* e prepared for the kernels; not CYLRAY_OK: the caller's input is refused */
+    cylray_status (*prepare)(cylray_prepared *p, const void *e);
+    /* e's frame for u, v and the split boxes; NULL: the shape has none, its u, v come
+     * from the normal alone and it keeps one box (a sphere's is tight) */
+    void (*frame)(frame *f, const void *e);
+    /* e's widest radius (with frame only): e is split as the cylinder of that radius */
+    float (*rmax)(const void *e);
+    /* e's whole box; p is e prepared */
+    void (*box)(const void *e, const cylray_prepared *p, struct RTCBounds *b);
+    /* the leaf of elements elems[ids[0..n)], n <= M */
+    cylray_status (*leaf4)(cylray_leaf4 *lv, const void *elems, const uint32_t *ids, size_t n);
+    cylray_status (*leaf8)(cylray_leaf8 *lv, const void *elems, const uint32_t *ids, size_t n);
+    /* 1: the elements are cylray_spheres, a ray leaving one is rejected before the
+     * kernel (single.c) */
+    int sphere_test;
+};
+
+/* shapes.c: cylinders and cones (elements cylray_cone, r1 = r0 for a cylinder),
+ * spheres (cylray_sphere) */
+extern const ceb_shape ceb_cylinders, ceb_cones, ceb_spheres;
+
+/* Element i of geometry g. */
+static inline const void *ceb_elem(const ceb *g, size_t i)
+{
+    return (const char *)g->elems + g->shape->size * i;
+}
 
 /* boxes.c: a cylinder's or cone's frame and its boxes */
 void ceb_frame_init(frame *f, const float p0[3], const float p1[3], float r0, float r1);
@@ -69,12 +101,11 @@ void ceb_set_box(struct RTCBounds *b, const float lo[3], const float hi[3], floa
 void ceb_whole_box(const cylray_prepared *p, struct RTCBounds *b);
 void ceb_sphere_box(const cylray_sphere *s, struct RTCBounds *b);
 void ceb_box_of(const ceb *g, size_t i, struct RTCBounds *b);
-int ceb_make_boxes(ceb *g, const ceb_src *src);
+int ceb_make_boxes(ceb *g);
 void *ceb_alloc_aligned(size_t bytes);
 
-/* group.c: cylinders, cones or spheres (src) grouped into leaves with Embree's SAH
- * builder */
-int ceb_group_leaves(ceb *g, RTCDevice dev, const ceb_src *src);
+/* group.c: g's shapes grouped into leaves with Embree's SAH builder */
+int ceb_group_leaves(ceb *g, RTCDevice dev);
 
 /* Why ceb_make_boxes or ceb_group_leaves failed (they return 0 otherwise): the caller
  * of cylray_embree_new_geometry is told CYLRAY_EINVAL for the first, CYLRAY_ENOMEM for

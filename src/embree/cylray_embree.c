@@ -32,15 +32,14 @@ static void ceb_free(ceb *g)
     free(g->prim_piece);
     free(g->box);
     free(g->leaves);
-    free(g->sph);
+    free(g->elems);
     free(g);
 }
 
-/* The geometry made from g's prepared shapes (cylinders or cones: src, their frames in g;
- * spheres: g->sph, src's both NULL): its boxes or leaves, then Embree's user geometry.
- * NULL on failure, g freed and *st saying why (CYLRAY_OK: Embree refused); else *st is
- * CYLRAY_OK. */
-static RTCGeometry ceb_finish(ceb *g, RTCDevice device, const ceb_src *src, cylray_status *st)
+/* The geometry made from g's prepared shapes and their frames: its boxes or leaves, then
+ * Embree's user geometry. NULL on failure, g freed and *st saying why (CYLRAY_OK:
+ * Embree refused); else *st is CYLRAY_OK. */
+static RTCGeometry ceb_finish(ceb *g, RTCDevice device, cylray_status *st)
 {
     RTCGeometry geo = NULL;
     int leaves = (g->options & CYLRAY_EMBREE_LEAVES) != 0, why;
@@ -51,16 +50,9 @@ static RTCGeometry ceb_finish(ceb *g, RTCDevice device, const ceb_src *src, cylr
          * gain that back (docs/performance.md: leaves of 8 took 5-12 % less time on
          * the molecule, the pipes and the lattice) */
         g->m = isa == CYLRAY_ISA_AVX512 || isa == CYLRAY_ISA_AVX2 ? 8 : 4;
-        why = ceb_group_leaves(g, device, src);
-    } else if (src->cyl || src->cone) {
-        why = ceb_make_boxes(g, src);
+        why = ceb_group_leaves(g, device);
     } else {
-        /* a sphere's box is tight: one box a sphere */
-        g->nprim = g->n;
-        g->box = malloc(g->n * sizeof *g->box);
-        why = g->box ? 0 : CEB_NO_MEMORY;
-        for (size_t i = 0; !why && i < g->n; i++)
-            ceb_sphere_box(&g->sph[i], &g->box[i]);
+        why = ceb_make_boxes(g);
     }
     *st = why == CEB_BAD_INPUT   ? CYLRAY_EINVAL
           : why == CEB_NO_MEMORY ? CYLRAY_ENOMEM
@@ -85,6 +77,10 @@ static RTCGeometry ceb_finish(ceb *g, RTCDevice device, const ceb_src *src, cylr
     }
     if (rtcGetDeviceError(device) != RTC_ERROR_NONE)
         goto fail;
+    if (!g->sphere_test) { /* no query reads them */
+        free(g->elems);
+        g->elems = NULL;
+    }
     return geo;
 fail:
     if (geo)
@@ -93,9 +89,10 @@ fail:
     return NULL; /* neither the input nor memory: Embree refused */
 }
 
-/* The state shared by both shapes' geometries, before their shapes: NULL when out of
+/* A geometry of n shapes of kind sh, their elements not yet read: NULL when out of
  * memory. */
-static ceb *ceb_new(size_t n, unsigned options, unsigned flags, const cylray_kernels *k)
+static ceb *ceb_new(size_t n, const ceb_shape *sh, unsigned options, unsigned flags,
+                    const cylray_kernels *k)
 {
     ceb *g = calloc(1, sizeof *g);
     if (!g)
@@ -106,12 +103,45 @@ static ceb *ceb_new(size_t n, unsigned options, unsigned flags, const cylray_ker
     g->iflags = CYLRAY_NORMAL | (flags & CEB_KFLAGS);
     g->oflags = flags & CEB_KFLAGS;
     g->n = n;
+    g->shape = sh;
     g->prep = ceb_alloc_aligned(n * sizeof *g->prep);
-    if (!g->prep) {
+    g->elems = malloc(n * sh->size);
+    if (!g->prep || !g->elems) {
         ceb_free(g);
         return NULL;
     }
+    g->sphere_test = sh->sphere_test ? g->elems : NULL;
     return g;
+}
+
+/* The geometry of g (NULL: out of memory), its elements read: each prepared, with its
+ * frame when the shape has one, then ceb_finish. g is the geometry's now, or freed;
+ * *status (when not NULL) says why there is none, CYLRAY_OK when there is. */
+static RTCGeometry ceb_build(ceb *g, RTCDevice device, cylray_status *status)
+{
+    cylray_status st = CYLRAY_ENOMEM;
+    RTCGeometry geo = NULL;
+    if (!g || (g->shape->frame && !(g->fr = malloc(g->n * sizeof *g->fr))))
+        goto done;
+    st = CYLRAY_OK; /* no kernels: not the caller's input */
+    if (!g->k)
+        goto done;
+    for (size_t i = 0; i < g->n; i++) {
+        const void *e = ceb_elem(g, i);
+        if (g->shape->prepare(&g->prep[i], e) != CYLRAY_OK) {
+            st = CYLRAY_EINVAL;
+            goto done;
+        }
+        if (g->fr)
+            g->shape->frame(&g->fr[i], e);
+    }
+    geo = ceb_finish(g, device, &st);
+    g = NULL; /* the geometry's now, or freed */
+done:
+    if (status)
+        *status = st;
+    ceb_free(g);
+    return geo;
 }
 
 /* The checks both descriptions share: 1 when the count, options and flags are fine. */
@@ -121,7 +151,7 @@ static int desc_ok(RTCDevice device, size_t count, unsigned options, unsigned fl
            !(flags & ~(CEB_KFLAGS | CYLRAY_NORMAL));
 }
 
-/* Cone i of desc (radius1 not NULL), read as cylinder i is below. */
+/* Cylinder or cone i of desc: a cylinder's r1 is its r0. */
 static void read_cone(const cylray_embree_desc *desc, size_t i, cylray_cone *c)
 {
     const float *p0 = elem(desc->p0, desc->p0_stride, i);
@@ -129,7 +159,8 @@ static void read_cone(const cylray_embree_desc *desc, size_t i, cylray_cone *c)
     for (int k = 0; k < 3; k++)
         c->p0[k] = p0[k], c->p1[k] = p1[k];
     c->r0 = *(const float *)elem(desc->radius, desc->radius_stride, i);
-    c->r1 = *(const float *)elem(desc->radius1, desc->radius1_stride, i);
+    c->r1 =
+        desc->radius1 ? *(const float *)elem(desc->radius1, desc->radius1_stride, i) : c->r0;
     c->flags =
         desc->caps ? *(const unsigned *)elem(desc->caps, desc->caps_stride, i) : CYLRAY_CAPPED;
 }
@@ -137,98 +168,35 @@ static void read_cone(const cylray_embree_desc *desc, size_t i, cylray_cone *c)
 RTCGeometry cylray_embree_new_geometry(RTCDevice device, const cylray_embree_desc *desc,
                                        cylray_status *status)
 {
-    cylray_status st = CYLRAY_EINVAL;
-    ceb *g = NULL;
-    cylray_cylinder *cyl = NULL;
-    cylray_cone *cone = NULL;
-    RTCGeometry geo = NULL;
     if (status)
         *status = CYLRAY_EINVAL;
     if (!desc || !desc_ok(device, desc->count, desc->options, desc->flags) || !desc->p0 ||
         !desc->p1 || !desc->radius)
         return NULL;
-    size_t n = desc->count;
-    st = CYLRAY_ENOMEM;
-    g = ceb_new(n, desc->options, desc->flags, desc->kernels);
-    /* cones only where radius1 is given: without it the cylinders' path, unchanged */
-    if (desc->radius1)
-        cone = malloc(n * sizeof *cone);
-    else
-        cyl = malloc(n * sizeof *cyl);
-    if (!g || !(cyl || cone) || !(g->fr = malloc(n * sizeof *g->fr)))
-        goto fail_st;
-    st = CYLRAY_OK; /* no kernels: not the caller's input */
-    if (!g->k)
-        goto fail_st;
-    for (size_t i = 0; i < n; i++) {
-        const float *p0 = elem(desc->p0, desc->p0_stride, i);
-        const float *p1 = elem(desc->p1, desc->p1_stride, i);
-        if (cone) {
-            read_cone(desc, i, &cone[i]);
-            if (cylray_prepare_cone(&g->prep[i], &cone[i]) != CYLRAY_OK) {
-                st = CYLRAY_EINVAL;
-                goto fail_st;
-            }
-            ceb_frame_init(&g->fr[i], p0, p1, cone[i].r0, cone[i].r1);
-            continue;
-        }
-        float r = *(const float *)elem(desc->radius, desc->radius_stride, i);
-        unsigned caps = desc->caps ? *(const unsigned *)elem(desc->caps, desc->caps_stride, i)
-                                   : CYLRAY_CAPPED;
-        if (cylray_cylinder_from_endpoints(&cyl[i], p0, p1, r, caps) != CYLRAY_OK ||
-            cylray_prepare(&g->prep[i], &cyl[i]) != CYLRAY_OK) {
-            st = CYLRAY_EINVAL;
-            goto fail_st;
-        }
-        ceb_frame_init(&g->fr[i], p0, p1, r, r);
-    }
-    geo = ceb_finish(g, device, &(ceb_src){cyl, cone}, &st);
-    g = NULL; /* the geometry's now, or freed */
-fail_st:
-    if (status)
-        *status = st;
-    free(cyl);
-    free(cone);
-    ceb_free(g);
-    return geo;
+    /* cones only where radius1 is given: without it cylinders, as cylray_prepare makes them */
+    const ceb_shape *sh = desc->radius1 ? &ceb_cones : &ceb_cylinders;
+    ceb *g = ceb_new(desc->count, sh, desc->options, desc->flags, desc->kernels);
+    for (size_t i = 0; g && i < g->n; i++)
+        read_cone(desc, i, (cylray_cone *)g->elems + i);
+    return ceb_build(g, device, status);
 }
 
 RTCGeometry cylray_embree_new_spheres(RTCDevice device, const cylray_embree_sphere_desc *desc,
                                       cylray_status *status)
 {
-    cylray_status st = CYLRAY_EINVAL;
-    ceb *g = NULL;
-    RTCGeometry geo = NULL;
     if (status)
         *status = CYLRAY_EINVAL;
     if (!desc || !desc_ok(device, desc->count, desc->options, desc->flags) || !desc->center ||
         !desc->radius)
         return NULL;
-    size_t n = desc->count;
-    st = CYLRAY_ENOMEM;
-    g = ceb_new(n, desc->options, desc->flags, desc->kernels);
-    if (!g || !(g->sph = malloc(n * sizeof *g->sph)))
-        goto fail_st;
-    st = CYLRAY_OK;
-    if (!g->k)
-        goto fail_st;
-    for (size_t i = 0; i < n; i++) {
+    ceb *g = ceb_new(desc->count, &ceb_spheres, desc->options, desc->flags, desc->kernels);
+    for (size_t i = 0; g && i < g->n; i++) {
         const float *c = elem(desc->center, desc->center_stride, i);
-        cylray_sphere *s = &g->sph[i];
+        cylray_sphere *s = (cylray_sphere *)g->elems + i;
         s->center[0] = c[0], s->center[1] = c[1], s->center[2] = c[2];
         s->radius = *(const float *)elem(desc->radius, desc->radius_stride, i);
-        if (cylray_prepare_sphere(&g->prep[i], s) != CYLRAY_OK) {
-            st = CYLRAY_EINVAL;
-            goto fail_st;
-        }
     }
-    geo = ceb_finish(g, device, &(ceb_src){NULL, NULL}, &st);
-    g = NULL;
-fail_st:
-    if (status)
-        *status = st;
-    ceb_free(g);
-    return geo;
+    return ceb_build(g, device, status);
 }
 
 ceb *ceb_of(RTCGeometry geometry)
@@ -248,16 +216,17 @@ void cylray_embree_release_geometry(RTCGeometry geometry)
     ceb_free(g);
 }
 
+/* cylinders or cones: what cylray_embree_new_geometry makes */
 int cylray_embree_is_cylinders(RTCGeometry geometry)
 {
     const ceb *g = ceb_of(geometry);
-    return g && !g->sph;
+    return g && (g->shape == &ceb_cylinders || g->shape == &ceb_cones);
 }
 
 int cylray_embree_is_spheres(RTCGeometry geometry)
 {
     const ceb *g = ceb_of(geometry);
-    return g && g->sph;
+    return g && g->shape == &ceb_spheres;
 }
 
 size_t cylray_embree_primitives(RTCGeometry geometry)

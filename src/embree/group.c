@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
-/* embree/group.c - cylinders, cones or spheres grouped into cylray leaves with Embree's
- * SAH builder (CYLRAY_EMBREE_LEAVES): one primitive per leaf. */
+/* embree/group.c - a geometry's shapes grouped into cylray leaves with Embree's SAH
+ * builder (CYLRAY_EMBREE_LEAVES): one primitive per leaf, made by the shape's row. */
 #include "ceb.h"
 
 #include <math.h>
@@ -52,62 +52,23 @@ static void box_union(struct RTCBounds *u, const struct RTCBounds *b)
     u->lower_z = fminf(u->lower_z, b->lower_z), u->upper_z = fmaxf(u->upper_z, b->upper_z);
 }
 
-/* A leaf of cones whose radii all agree at both ends is built as a leaf of cylinders
- * (cylray_prepare_cone prepares such a cone as that cylinder): a leaf of cylinders
- * alone takes the faster query. 1 when cones ids[0..n) are all of that kind. */
-static int all_cylinders(const cylray_cone *cone, const uint32_t *ids, size_t n)
-{
-    for (size_t j = 0; j < n; j++)
-        if (cone[ids[j]].r0 != cone[ids[j]].r1)
-            return 0;
-    return 1;
-}
-
 #define CEB_LEAF_BUILD(M)                                                                      \
-    static cylray_status leaf_of##M(cylray_leaf##M *lv, const ceb *g, const ceb_src *src,      \
-                                    const uint32_t *ids, size_t n)                             \
-    {                                                                                          \
-        cylray_cylinder cc[M];                                                                 \
-        if (src->cone && !all_cylinders(src->cone, ids, n)) {                                  \
-            cylray_cone kk[M];                                                                 \
-            for (size_t j = 0; j < n; j++)                                                     \
-                kk[j] = src->cone[ids[j]];                                                     \
-            return cylray_leaf_prepare_cones##M(lv, kk, ids, n);                               \
-        }                                                                                      \
-        if (src->cone) {                                                                       \
-            for (size_t j = 0; j < n; j++) {                                                   \
-                const cylray_cone *k = &src->cone[ids[j]];                                     \
-                if (cylray_cylinder_from_endpoints(&cc[j], k->p0, k->p1, k->r0, k->flags) !=   \
-                    CYLRAY_OK)                                                                 \
-                    return CYLRAY_EINVAL;                                                      \
-            }                                                                                  \
-            return cylray_leaf_prepare##M(lv, cc, ids, n);                                     \
-        }                                                                                      \
-        if (src->cyl) {                                                                        \
-            for (size_t j = 0; j < n; j++)                                                     \
-                cc[j] = src->cyl[ids[j]];                                                      \
-            return cylray_leaf_prepare##M(lv, cc, ids, n);                                     \
-        }                                                                                      \
-        cylray_sphere ss[M];                                                                   \
-        for (size_t j = 0; j < n; j++)                                                         \
-            ss[j] = g->sph[ids[j]];                                                            \
-        return cylray_leaf_prepare_spheres##M(lv, ss, ids, n);                                 \
-    }                                                                                          \
-    static int build_leaves##M(ceb *g, const ceb_src *src, const sah_ctx *c)                   \
+    static int build_leaves##M(ceb *g, const sah_ctx *c)                                       \
     {                                                                                          \
         cylray_leaf##M *lv = ceb_alloc_aligned(g->nprim * sizeof *lv);                         \
         if (!lv)                                                                               \
             return CEB_NO_MEMORY;                                                              \
         g->leaves = lv;                                                                        \
         for (size_t l = 0; l < g->nprim; l++)                                                  \
-            if (leaf_of##M(&lv[l], g, src, c->order + c->first[l], c->count[l]) != CYLRAY_OK)  \
+            if (g->shape->leaf##M(&lv[l], g->elems, c->order + c->first[l], c->count[l]) !=    \
+                CYLRAY_OK)                                                                     \
                 return CEB_REFUSED;                                                            \
         return 0;                                                                              \
     }
 CEB_LEAF_BUILD(4)
 CEB_LEAF_BUILD(8)
 
-int ceb_group_leaves(ceb *g, RTCDevice dev, const ceb_src *src)
+int ceb_group_leaves(ceb *g, RTCDevice dev)
 {
     int M = g->m, bad = CEB_NO_MEMORY;
     size_t n = g->n;
@@ -146,7 +107,7 @@ int ceb_group_leaves(ceb *g, RTCDevice dev, const ceb_src *src)
         if (!root || atomic_load(&c.used) != n)
             bad = CEB_REFUSED;
         else if ((g->box = malloc(g->nprim * sizeof *g->box)))
-            bad = M == 4 ? build_leaves4(g, src, &c) : build_leaves8(g, src, &c);
+            bad = M == 4 ? build_leaves4(g, &c) : build_leaves8(g, &c);
         for (size_t l = 0; !bad && l < g->nprim; l++) {
             const uint32_t *ids = c.order + c.first[l];
             /* the builder reorders prims in place: the boxes are made again */

@@ -109,17 +109,18 @@ static inline void sphere_uv(const float n[3], float *u, float *v)
     *v = 0.5f + 2.0f * a;
 }
 
-/* u and v of a hit on shape c of the geometry, cylinder or sphere. */
+/* u and v of a hit on shape c of the geometry: from its frame, or from the normal for a
+ * shape without one (a sphere). */
 static inline void ceb_uv(const ceb *g, uint32_t c, const float o[3], const float d[3], float t,
                           int part, const float n[3], float *u, float *v)
 {
     if (g->options & CYLRAY_EMBREE_NO_ANGLES) {
-        *u = g->sph ? 0.0f : axial_u(&g->fr[c], o, d, t, part);
+        *u = g->fr ? axial_u(&g->fr[c], o, d, t, part) : 0.0f;
         *v = 0.0f;
-    } else if (g->sph)
-        sphere_uv(n, u, v);
-    else
+    } else if (g->fr)
         hit_uv(&g->fr[c], o, d, t, part, n, u, v);
+    else
+        sphere_uv(n, u, v);
 }
 
 /* Hit h written into lane i of the hit record hb (of N lanes). */

@@ -129,7 +129,7 @@ static uint32_t cyl_of(const ceb *g, unsigned prim)
 static int sphere_behind(const ceb *g, uint32_t c, const float o[3], const float d[3],
                          float tmin)
 {
-    const cylray_sphere *s = &g->sph[c];
+    const cylray_sphere *s = &g->sphere_test[c];
     double w[3], wd = 0, ww = 0, dd = 0;
     for (int k = 0; k < 3; k++) {
         w[k] = (double)o[k] - s->center[k];
@@ -147,7 +147,7 @@ static int isect1(const struct RTCIntersectFunctionNArguments *a, const ceb *g, 
     float o[3], d[3], t, n[3];
     int32_t part;
     ray_of(a->rayhit, a->N, i, o, d);
-    if (g->sph && sphere_behind(g, c, o, d, RF(a->rayhit, a->N, R_TNEAR, i)))
+    if (g->sphere_test && sphere_behind(g, c, o, d, RF(a->rayhit, a->N, R_TNEAR, i)))
         return 0;
     return one_ray(g, c, o, d, RF(a->rayhit, a->N, R_TNEAR, i), RF(a->rayhit, a->N, R_TFAR, i),
                    &t, n, &part) &&
@@ -161,7 +161,7 @@ static int occ1(const struct RTCOccludedFunctionNArguments *a, const ceb *g, uin
     int32_t part;
     ray_of(a->ray, a->N, i, o, d);
     float tmin = RF(a->ray, a->N, R_TNEAR, i), tmax = RF(a->ray, a->N, R_TFAR, i);
-    if (g->sph && sphere_behind(g, c, o, d, tmin))
+    if (g->sphere_test && sphere_behind(g, c, o, d, tmin))
         return 0;
     if (!filt) {
         cylray_ray4 r;
