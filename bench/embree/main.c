@@ -7,7 +7,13 @@
  *              molecule-taper,reducers,far-taper]
  *             [--isa=best|all|LIST]
  *             [--packet=1,4,8,16] [--threads=N] [--size=WxH]
- *             [--samples=N] [--reps=N] [--clock=wall|cpu] [--no-angles] [--out=DIR]
+ *             [--samples=N] [--runs=N] [--reps=N] [--clock=wall|cpu] [--no-angles]
+ *             [--out=DIR]
+ *
+ * Each timing is repeated --runs times (default 3, --quick too), the runs interleaved:
+ * run after run every variant is timed in turn, each run keeping the best of --reps
+ * passes. The tables print the median over the runs; the relative times, each run's
+ * ratio to Embree's curves in that run, with their range over the runs.
  */
 #include "aimed.h"
 #include "image.h"
@@ -27,7 +33,7 @@
 #include <unistd.h>
 
 typedef struct opts {
-    int quick, w, h, reps, threads, samples;
+    int quick, w, h, runs, reps, threads, samples;
     int cpu_clock; /* rates from the CPU time the process got, not the wall time */
     int scene_on[EB_NSCENES];
     int packet_on[EB_NPACKETS];
@@ -58,6 +64,7 @@ static int parse(opts *o, int argc, char **argv)
     long nproc = sysconf(_SC_NPROCESSORS_ONLN);
     *o = (opts){.w = 1024,
                 .h = 768,
+                .runs = 3,
                 .reps = 3,
                 .samples = 20000,
                 .threads = nproc > 0 ? (int)(nproc < EB_MAXT ? nproc : EB_MAXT) : 1,
@@ -79,6 +86,8 @@ static int parse(opts *o, int argc, char **argv)
             sscanf(a + 7, "%dx%d", &o->w, &o->h);
         else if (!strncmp(a, "--samples=", 10))
             o->samples = atoi(a + 10);
+        else if (!strncmp(a, "--runs=", 7))
+            o->runs = atoi(a + 7);
         else if (!strncmp(a, "--reps=", 7))
             o->reps = atoi(a + 7);
         else if (!strcmp(a, "--no-angles"))
@@ -108,9 +117,11 @@ static int parse(opts *o, int argc, char **argv)
             o->reps = 1;
     }
     if (o->w < 16 || o->h < 16 || o->w % 16 || o->h % 16 || o->threads < 1 ||
-        o->threads > EB_MAXT) {
-        fprintf(stderr, "cylembree: --size must be multiples of 16, --threads 1..%d\n",
-                EB_MAXT);
+        o->threads > EB_MAXT || o->runs < 1 || o->runs > EB_MAXRUNS || o->reps < 1) {
+        fprintf(stderr,
+                "cylembree: --size must be multiples of 16, --threads 1..%d, --runs 1..%d, "
+                "--reps at least 1\n",
+                EB_MAXT, EB_MAXRUNS);
         return -1;
     }
     for (int s = 0; s < EB_NSCENES; s++)
@@ -224,8 +235,11 @@ static int run_scene(const opts *o, RTCDevice dev, cylray_isa isa, int which, eb
         r->threads = o->threads;
         r->ns = sc.ns;
         for (int p = 0; p < EB_NPHASES; p++)
-            for (int q = 0; q < EB_NPACKETS; q++)
+            for (int q = 0; q < EB_NPACKETS; q++) {
                 r->mrays[p][q] = NAN;
+                for (int run = 0; run < EB_MAXRUNS; run++)
+                    r->mrays_run[p][q][run] = NAN;
+            }
         if (eb_frame_alloc(&fr[v], npix) ||
             eb_geom_build(&geo[v], dev, &sc, (eb_variant)v, k)) {
             r->skipped = 1;
@@ -240,7 +254,8 @@ static int run_scene(const opts *o, RTCDevice dev, cylray_isa isa, int which, eb
         eb_camera_rays(&fr[v].prim, &sc, o->w, o->h);
     }
 
-    eb_timing t = {.reps = o->reps, .threads = o->threads, .cpu_clock = o->cpu_clock};
+    eb_timing t = {
+        .runs = o->runs, .reps = o->reps, .threads = o->threads, .cpu_clock = o->cpu_clock};
     memcpy(t.packet_on, o->packet_on, sizeof t.packet_on);
     eb_time_scene(&t, isa, geo, fr, built, &rows[first_row]);
 

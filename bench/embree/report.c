@@ -42,10 +42,11 @@ static err_summary summarize(eb_err *e)
 static void speed(FILE *f, const eb_row *r, size_t n)
 {
     fprintf(f,
-            "\nM rays/s (%d threads; packet = rays per Embree call; cylray-leaf: %d "
-            "cylinders or spheres a leaf, grouped by Embree's SAH builder; embree-curve: "
-            "Embree's curves, and its sphere points for spheres)\n",
-            r[0].threads, r[EB_LEAF < n ? EB_LEAF : 0].leaf_m);
+            "\nM rays/s (%d threads; median of %d runs, each the best of %d passes; packet "
+            "= rays per Embree call; cylray-leaf: %d cylinders or spheres a leaf, grouped by "
+            "Embree's SAH builder; embree-curve: Embree's curves, and its sphere points for "
+            "spheres)\n",
+            r[0].threads, r[0].runs, r[0].reps, r[EB_LEAF < n ? EB_LEAF : 0].leaf_m);
     fprintf(f, "%-7s %-9s %-16s %8s", "isa", "scene", "variant", "build s");
     for (int p = 0; p < EB_NPHASES; p++)
         for (int k = 0; k < EB_NPACKETS; k++) {
@@ -75,37 +76,67 @@ static void speed(FILE *f, const eb_row *r, size_t n)
     }
 }
 
-/* Each cylray row's time over the time of Embree's curves on the same scene and ISA
- * in the same run (the curves' M rays/s over the row's): below 1 is faster. */
+/* The row of Embree's curves on row i's scene and ISA, NULL if none was run. */
+static const eb_row *base_of(const eb_row *r, size_t n, size_t i)
+{
+    const eb_row *base = NULL;
+    for (size_t j = 0; j < n; j++)
+        if (!strcmp(r[j].variant, "embree-curve") && !strcmp(r[j].scene, r[i].scene) &&
+            !strcmp(r[j].isa, r[i].isa) && !r[j].skipped)
+            base = &r[j];
+    return base;
+}
+
+/* Over the runs, each run's time of `row` over the time of `base` in that run (the
+ * base's M rays/s over the row's). */
+static eb_spread relative(const eb_row *base, const eb_row *row, int p, int k)
+{
+    double x[EB_MAXRUNS];
+    for (int run = 0; run < row->runs; run++) {
+        double a = base->mrays_run[p][k][run], b = row->mrays_run[p][k][run];
+        x[run] = b > 0 ? a / b : NAN;
+    }
+    return eb_spread_of(x, row->runs);
+}
+
+/* Each cylray row's time relative to Embree's curves on the same scene and ISA: below 1
+ * is faster. */
 static void ratios(FILE *f, const eb_row *r, size_t n)
 {
-    fprintf(f, "\nTime relative to embree-curve (same scene, ISA and run; < 1: faster)\n");
+    int runs = r[0].runs;
+    if (runs > 1)
+        fprintf(f,
+                "\nTime relative to embree-curve (same scene and ISA; < 1: faster): the median "
+                "over %d runs of each run's ratio\n(the variant's time over the curves' time "
+                "in that run), in brackets the lowest and highest ratio of the runs\n",
+                runs);
+    else
+        fprintf(f, "\nTime relative to embree-curve (same scene, ISA and run; < 1: faster)\n");
+    int w = runs > 1 ? 16 : 10;
     fprintf(f, "%-7s %-9s %-16s", "isa", "scene", "variant");
     for (int p = 0; p < EB_NPHASES; p++)
         for (int k = 0; k < EB_NPACKETS; k++)
             if (col_on(r, n, p, k)) {
                 char h[24];
                 snprintf(h, sizeof h, "%s/%d", phase_name[p], eb_packets[k]);
-                fprintf(f, " %10s", h);
+                fprintf(f, " %*s", w, h);
             }
     fprintf(f, "\n");
     for (size_t i = 0; i < n; i++) {
-        const eb_row *base = NULL;
-        for (size_t j = 0; j < n; j++)
-            if (!strcmp(r[j].variant, "embree-curve") && !strcmp(r[j].scene, r[i].scene) &&
-                !strcmp(r[j].isa, r[i].isa) && !r[j].skipped)
-                base = &r[j];
+        const eb_row *base = base_of(r, n, i);
         if (!base || base == &r[i] || r[i].skipped)
             continue;
         fprintf(f, "%-7s %-9s %-16s", r[i].isa, r[i].scene, r[i].variant);
         for (int p = 0; p < EB_NPHASES; p++)
             for (int k = 0; k < EB_NPACKETS; k++)
                 if (col_on(r, n, p, k)) {
-                    double a = base->mrays[p][k], b = r[i].mrays[p][k];
-                    if (isnan(a) || isnan(b) || b <= 0)
-                        fprintf(f, " %10s", "-");
-                    else
-                        fprintf(f, " %10.2f", a / b);
+                    eb_spread q = relative(base, &r[i], p, k);
+                    char c[48] = "-";
+                    if (!isnan(q.med) && runs > 1)
+                        snprintf(c, sizeof c, "%.2f (%.2f-%.2f)", q.med, q.lo, q.hi);
+                    else if (!isnan(q.med))
+                        snprintf(c, sizeof c, "%.2f", q.med);
+                    fprintf(f, " %*s", w, c);
                 }
         fprintf(f, "\n");
     }
@@ -115,9 +146,9 @@ static void scaling(FILE *f, const eb_row *r, size_t n)
 {
     int T = r[0].threads;
     fprintf(f,
-            "\nScaling: primary rays, one ray a call, M rays/s at 1..%d threads (in\n"
-            "brackets the cores the process got: CPU time over wall time)\n",
-            T);
+            "\nScaling: primary rays, one ray a call, M rays/s at 1..%d threads, median of %d "
+            "runs (in\nbrackets the cores the process got: CPU time over wall time)\n",
+            T, r[0].runs);
     fprintf(f, "%-7s %-9s %-16s", "isa", "scene", "variant");
     for (int t = 1; t <= T; t++)
         fprintf(f, "   T=%-9d", t);

@@ -53,44 +53,115 @@ static double timed(const eb_timing *t, RTCScene sc, eb_rays *r, const float *tf
     return mrays(valid, best);
 }
 
-void eb_time_scene(const eb_timing *t, cylray_isa isa, const eb_geom geo[EB_NVARIANTS],
-                   eb_frame fr[EB_NVARIANTS], const int built[EB_NVARIANTS],
-                   eb_row rows[EB_NVARIANTS])
+eb_spread eb_spread_of(const double *x, int n)
 {
-    /* each measurement visits every variant in turn, so a busy spell of the shared
-     * machine does not land on one variant only */
+    double v[EB_MAXRUNS];
+    int m = 0;
+    for (int i = 0; i < n && m < EB_MAXRUNS; i++) {
+        if (isnan(x[i]))
+            continue;
+        int j = m++; /* insertion sort */
+        for (; j > 0 && v[j - 1] > x[i]; j--)
+            v[j] = v[j - 1];
+        v[j] = x[i];
+    }
+    if (!m)
+        return (eb_spread){NAN, NAN, NAN};
+    return (eb_spread){(v[(m - 1) / 2] + v[m / 2]) / 2, v[0], v[m - 1]};
+}
+
+/* Scratch for the scaling passes: [variant][threads][run], a run's samples side by side. */
+typedef struct scaling_runs {
+    double *rate, *cores;
+} scaling_runs;
+
+static size_t at(const eb_timing *t, int v, int n, int run)
+{
+    return ((size_t)v * (size_t)(t->threads + 1) + (size_t)n) * (size_t)t->runs + (size_t)run;
+}
+
+/* Primary rays, one ray a call, at 1..threads threads. */
+static void time_scaling(const eb_timing *t, const eb_geom *geo, eb_frame *fr, const int *built,
+                         int run, scaling_runs *s)
+{
     for (int n = 1; n <= t->threads; n++)
         for (int v = 0; v < EB_NVARIANTS; v++)
             if (built[v])
-                rows[v].scaling[n] =
-                    timed(t, geo[v].scene, &fr[v].prim, NULL, 1, n, 0, &rows[v].cores[n]);
+                s->rate[at(t, v, n, run)] = timed(t, geo[v].scene, &fr[v].prim, NULL, 1, n, 0,
+                                                  &s->cores[at(t, v, n, run)]);
+}
+
+/* One ray set of each variant at each packet size: the primary rays (shadow = NULL), or
+ * the bounce and shadow rays. */
+static void time_packets(const eb_timing *t, cylray_isa isa, const eb_geom *geo, eb_frame *fr,
+                         const int *built, eb_row *rows, int run, int primary)
+{
     /* Embree offers a packet no wider than its ISA's vectors */
     int widest = isa == CYLRAY_ISA_SSE41 ? 4 : isa == CYLRAY_ISA_AVX2 ? 8 : 16;
     for (int q = 0; q < EB_NPACKETS; q++) {
         if (!t->packet_on[q] || eb_packets[q] > widest)
             continue;
-        for (int v = 0; v < EB_NVARIANTS; v++)
-            if (built[v])
-                rows[v].mrays[EB_PRIMARY][q] = timed(t, geo[v].scene, &fr[v].prim, NULL,
-                                                     eb_packets[q], t->threads, 0, NULL);
+        int k = eb_packets[q], T = t->threads;
+        for (int v = 0; v < EB_NVARIANTS; v++) {
+            if (!built[v])
+                continue;
+            double(*m)[EB_NPACKETS][EB_MAXRUNS] = rows[v].mrays_run;
+            eb_frame *f = &fr[v];
+            RTCScene sc = geo[v].scene;
+            if (primary) {
+                m[EB_PRIMARY][q][run] = timed(t, sc, &f->prim, NULL, k, T, 0, NULL);
+            } else {
+                m[EB_BOUNCE][q][run] = timed(t, sc, &f->bounce, NULL, k, T, 0, NULL);
+                m[EB_SHADOW][q][run] = timed(t, sc, &f->shadow, f->shadow_tfar, k, T, 1, NULL);
+            }
+        }
     }
+}
+
+static void spawn(const eb_geom *geo, eb_frame *fr, const int *built)
+{
     for (int v = 0; v < EB_NVARIANTS; v++) {
         if (!built[v])
             continue;
         eb_spawn(&geo[v], &fr[v].prim, &fr[v].shadow, &fr[v].bounce);
         memcpy(fr[v].shadow_tfar, fr[v].shadow.tfar, fr[v].prim.n * sizeof(float));
     }
-    for (int q = 0; q < EB_NPACKETS; q++) {
-        if (!t->packet_on[q] || eb_packets[q] > widest)
-            continue;
-        for (int v = 0; v < EB_NVARIANTS; v++)
-            if (built[v]) {
-                eb_row *r = &rows[v];
-                eb_frame *f = &fr[v];
-                r->mrays[EB_BOUNCE][q] = timed(t, geo[v].scene, &f->bounce, NULL, eb_packets[q],
-                                               t->threads, 0, NULL);
-                r->mrays[EB_SHADOW][q] = timed(t, geo[v].scene, &f->shadow, f->shadow_tfar,
-                                               eb_packets[q], t->threads, 1, NULL);
-            }
+}
+
+/* The medians of a variant's runs. */
+static void medians(const eb_timing *t, const scaling_runs *s, int v, eb_row *r)
+{
+    r->runs = t->runs, r->reps = t->reps;
+    for (int p = 0; p < EB_NPHASES; p++)
+        for (int q = 0; q < EB_NPACKETS; q++)
+            r->mrays[p][q] = eb_spread_of(r->mrays_run[p][q], t->runs).med;
+    for (int n = 1; n <= t->threads; n++) {
+        int ok = s->rate != NULL;
+        r->scaling[n] = ok ? eb_spread_of(&s->rate[at(t, v, n, 0)], t->runs).med : NAN;
+        r->cores[n] = ok ? eb_spread_of(&s->cores[at(t, v, n, 0)], t->runs).med : NAN;
     }
+}
+
+void eb_time_scene(const eb_timing *t, cylray_isa isa, const eb_geom geo[EB_NVARIANTS],
+                   eb_frame fr[EB_NVARIANTS], const int built[EB_NVARIANTS],
+                   eb_row rows[EB_NVARIANTS])
+{
+    size_t ns = at(t, EB_NVARIANTS, 0, 0);
+    double *scratch = malloc(2 * ns * sizeof(double));
+    scaling_runs s = {scratch, scratch ? scratch + ns : NULL}; /* NULL: no scaling */
+    /* Run after run, each measurement visits every variant in turn, so that a busy
+     * spell of the shared machine lands on every variant alike, and a run's ratio of
+     * two variants compares passes made close together. */
+    for (int run = 0; run < t->runs; run++) {
+        if (s.rate)
+            time_scaling(t, geo, fr, built, run, &s);
+        time_packets(t, isa, geo, fr, built, rows, run, 1);
+        if (run == 0)
+            spawn(geo, fr, built);
+        time_packets(t, isa, geo, fr, built, rows, run, 0);
+    }
+    for (int v = 0; v < EB_NVARIANTS; v++)
+        if (built[v])
+            medians(t, &s, v, &rows[v]);
+    free(scratch);
 }

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* timing.h - the timing of one scene with one ISA: every variant, ray set and packet
- * size, the variants visited in turn. */
+ * size, repeated over several runs, the variants visited in turn in each. */
 #ifndef EB_TIMING_H
 #define EB_TIMING_H
 
@@ -19,14 +19,15 @@ void eb_frame_free(eb_frame *f);
 
 /* How to time. */
 typedef struct eb_timing {
-    int reps, threads;
+    int runs, reps, threads;
     int cpu_clock; /* rates from the CPU time the process got, not the wall time */
     int packet_on[EB_NPACKETS];
 } eb_timing;
 
-/* Times each variant v with built[v] (its camera rays in fr[v].prim), writing the rates
- * of rows[v], and spawns its secondary rays. fr[v] keeps the answers of the last pass
- * of each ray set, which the judging and the pictures read. */
+/* Times each variant v with built[v] (its camera rays in fr[v].prim) t->runs times,
+ * writing each run's rates and their medians in rows[v], and spawns its secondary rays
+ * (once, in the first run). fr[v] keeps the answers of the last pass of each ray set,
+ * which the judging and the pictures read. */
 void eb_time_scene(const eb_timing *t, cylray_isa isa, const eb_geom geo[EB_NVARIANTS],
                    eb_frame fr[EB_NVARIANTS], const int built[EB_NVARIANTS],
                    eb_row rows[EB_NVARIANTS]);
