@@ -203,12 +203,19 @@ void eb_report(FILE *f, const eb_row *rows, size_t n, const char *machine)
     ratios(f, rows, n);
 }
 
+/* A cell's median, min and max over the runs, or three nan. */
+static void csv_spread(FILE *f, eb_spread q)
+{
+    fprintf(f, ",%.4g,%.4g,%.4g", q.med, q.lo, q.hi);
+}
+
 void eb_report_csv(FILE *f, const eb_row *r, size_t n)
 {
-    fprintf(f, "isa,scene,variant,leaf_m,threads,cylinders,spheres,build_s");
+    fprintf(f, "isa,scene,variant,leaf_m,threads,runs,reps,cylinders,spheres,build_s");
     for (int p = 0; p < EB_NPHASES; p++)
         for (int k = 0; k < EB_NPACKETS; k++)
-            fprintf(f, ",%s_%d_mrays", phase_name[p], eb_packets[k]);
+            fprintf(f, ",%s_%d_mrays,%s_%d_mrays_min,%s_%d_mrays_max", phase_name[p],
+                    eb_packets[k], phase_name[p], eb_packets[k], phase_name[p], eb_packets[k]);
     fprintf(f, ",primary_1thread_mrays");
     for (int s = 0; s < EB_NSETS; s++)
         fprintf(f,
@@ -216,15 +223,21 @@ void eb_report_csv(FILE *f, const eb_row *r, size_t n)
                 "%s_t_beyond_max_ulps,%s_n_p99_rad",
                 eb_set_name(s), eb_set_name(s), eb_set_name(s), eb_set_name(s), eb_set_name(s),
                 eb_set_name(s), eb_set_name(s), eb_set_name(s));
-    fprintf(f, ",secondary,self_intersections,diff_pixels\n");
+    fprintf(f, ",secondary,self_intersections,diff_pixels");
+    for (int p = 0; p < EB_NPHASES; p++)
+        for (int k = 0; k < EB_NPACKETS; k++)
+            fprintf(f, ",%s_%d_rel,%s_%d_rel_min,%s_%d_rel_max", phase_name[p], eb_packets[k],
+                    phase_name[p], eb_packets[k], phase_name[p], eb_packets[k]);
+    fprintf(f, "\n");
     for (size_t i = 0; i < n; i++) {
         if (r[i].skipped)
             continue;
-        fprintf(f, "%s,%s,%s,%d,%d,%zu,%zu,%.4f", r[i].isa, r[i].scene, r[i].variant,
-                r[i].leaf_m, r[i].threads, r[i].ns, r[i].nsph, r[i].build_s);
+        fprintf(f, "%s,%s,%s,%d,%d,%d,%d,%zu,%zu,%.4f", r[i].isa, r[i].scene, r[i].variant,
+                r[i].leaf_m, r[i].threads, r[i].runs, r[i].reps, r[i].ns, r[i].nsph,
+                r[i].build_s);
         for (int p = 0; p < EB_NPHASES; p++)
             for (int k = 0; k < EB_NPACKETS; k++)
-                fprintf(f, ",%.4g", r[i].mrays[p][k]);
+                csv_spread(f, eb_spread_of(r[i].mrays_run[p][k], r[i].runs));
         fprintf(f, ",%.4g", r[i].scaling[1]);
         for (int s = 0; s < EB_NSETS; s++) {
             eb_err e = r[i].err[s];
@@ -232,6 +245,11 @@ void eb_report_csv(FILE *f, const eb_row *r, size_t n)
             fprintf(f, ",%zu,%zu,%zu,%zu,%zu,%.4g,%.4g,%.4g", e.rays, e.wrong, e.leak,
                     e.phantom, e.excused, q.t_p99, q.beyond_max, q.n_p99);
         }
-        fprintf(f, ",%zu,%zu,%zu\n", r[i].err[0].sec, r[i].err[0].self, r[i].diff_pixels);
+        fprintf(f, ",%zu,%zu,%zu", r[i].err[0].sec, r[i].err[0].self, r[i].diff_pixels);
+        const eb_row *base = base_of(r, n, i);
+        for (int p = 0; p < EB_NPHASES; p++)
+            for (int k = 0; k < EB_NPACKETS; k++)
+                csv_spread(f, base ? relative(base, &r[i], p, k) : (eb_spread){NAN, NAN, NAN});
+        fprintf(f, "\n");
     }
 }
