@@ -47,7 +47,7 @@ static void speed(FILE *f, const eb_row *r, size_t n)
             "Embree's SAH builder; embree-curve: Embree's curves, and its sphere points for "
             "spheres)\n",
             r[0].threads, r[0].runs, r[0].reps, r[EB_LEAF < n ? EB_LEAF : 0].leaf_m);
-    fprintf(f, "%-7s %-9s %-16s %8s", "isa", "scene", "variant", "build s");
+    fprintf(f, "%-7s %-14s %-16s %8s", "isa", "scene", "variant", "build s");
     for (int p = 0; p < EB_NPHASES; p++)
         for (int k = 0; k < EB_NPACKETS; k++) {
             if (!col_on(r, n, p, k))
@@ -58,7 +58,7 @@ static void speed(FILE *f, const eb_row *r, size_t n)
         }
     fprintf(f, "\n");
     for (size_t i = 0; i < n; i++) {
-        fprintf(f, "%-7s %-9s %-16s", r[i].isa, r[i].scene, r[i].variant);
+        fprintf(f, "%-7s %-14s %-16s", r[i].isa, r[i].scene, r[i].variant);
         if (r[i].skipped) {
             fprintf(f, " skipped: %s\n", r[i].why);
             continue;
@@ -113,7 +113,7 @@ static void ratios(FILE *f, const eb_row *r, size_t n)
     else
         fprintf(f, "\nTime relative to embree-curve (same scene, ISA and run; < 1: faster)\n");
     int w = runs > 1 ? 16 : 10;
-    fprintf(f, "%-7s %-9s %-16s", "isa", "scene", "variant");
+    fprintf(f, "%-7s %-14s %-16s", "isa", "scene", "variant");
     for (int p = 0; p < EB_NPHASES; p++)
         for (int k = 0; k < EB_NPACKETS; k++)
             if (col_on(r, n, p, k)) {
@@ -126,7 +126,7 @@ static void ratios(FILE *f, const eb_row *r, size_t n)
         const eb_row *base = base_of(r, n, i);
         if (!base || base == &r[i] || r[i].skipped)
             continue;
-        fprintf(f, "%-7s %-9s %-16s", r[i].isa, r[i].scene, r[i].variant);
+        fprintf(f, "%-7s %-14s %-16s", r[i].isa, r[i].scene, r[i].variant);
         for (int p = 0; p < EB_NPHASES; p++)
             for (int k = 0; k < EB_NPACKETS; k++)
                 if (col_on(r, n, p, k)) {
@@ -149,14 +149,14 @@ static void scaling(FILE *f, const eb_row *r, size_t n)
             "\nScaling: primary rays, one ray a call, M rays/s at 1..%d threads, median of %d "
             "runs (in\nbrackets the cores the process got: CPU time over wall time)\n",
             T, r[0].runs);
-    fprintf(f, "%-7s %-9s %-16s", "isa", "scene", "variant");
+    fprintf(f, "%-7s %-14s %-16s", "isa", "scene", "variant");
     for (int t = 1; t <= T; t++)
         fprintf(f, "   T=%-9d", t);
     fprintf(f, " speedup\n");
     for (size_t i = 0; i < n; i++) {
         if (r[i].skipped)
             continue;
-        fprintf(f, "%-7s %-9s %-16s", r[i].isa, r[i].scene, r[i].variant);
+        fprintf(f, "%-7s %-14s %-16s", r[i].isa, r[i].scene, r[i].variant);
         for (int t = 1; t <= T; t++)
             fprintf(f, " %6.2f (%.1f)", r[i].scaling[t], r[i].cores[t]);
         fprintf(f, " %7.2fx\n", r[i].scaling[T] / r[i].scaling[1]);
@@ -171,7 +171,7 @@ static void errors(FILE *f, const eb_row *r, size_t n)
                "tolerance band; t in float ulps (beyond: outside the band), normal in\n"
                "radians (up to sign); self =\n"
                "secondary rays from a front face that hit their own cylinder or sphere\n");
-    fprintf(f, "%-7s %-9s %-16s %-6s %6s %5s %5s %5s %5s %8s %8s %8s %8s %8s %11s\n", "isa",
+    fprintf(f, "%-7s %-14s %-16s %-6s %6s %5s %5s %5s %5s %8s %8s %8s %8s %8s %11s\n", "isa",
             "scene", "variant", "set", "rays", "wrong", "leak", "phant", "exc", "t med",
             "t p99", "t max", "beyond", "n p99", "self/sec");
     for (size_t i = 0; i < n; i++) {
@@ -181,7 +181,7 @@ static void errors(FILE *f, const eb_row *r, size_t n)
             eb_err e = r[i].err[s];
             const err_summary q = summarize(&e);
             fprintf(f,
-                    "%-7s %-9s %-16s %-6s %6zu %5zu %5zu %5zu %5zu %8.3g %8.3g %8.3g %8.3g "
+                    "%-7s %-14s %-16s %-6s %6zu %5zu %5zu %5zu %5zu %8.3g %8.3g %8.3g %8.3g "
                     "%8.2g",
                     r[i].isa, r[i].scene, r[i].variant, eb_set_name(s), e.rays, e.wrong, e.leak,
                     e.phantom, e.excused, q.t_med, q.t_p99, q.t_max, q.beyond_max, q.n_p99);
