@@ -232,7 +232,7 @@ static int run_scene(const opts *o, RTCDevice dev, cylray_isa isa, int which, eb
         snprintf(r->isa, sizeof r->isa, "%s", cylray_isa_name(isa));
         snprintf(r->scene, sizeof r->scene, "%s", sc.name);
         snprintf(r->variant, sizeof r->variant, "%s", eb_variant_name((eb_variant)v));
-        r->threads = o->threads;
+        r->threads = o->threads, r->runs = o->runs, r->reps = o->reps;
         r->ns = sc.ns;
         for (int p = 0; p < EB_NPHASES; p++)
             for (int q = 0; q < EB_NPACKETS; q++) {

@@ -70,7 +70,7 @@ eb_spread eb_spread_of(const double *x, int n)
     return (eb_spread){(v[(m - 1) / 2] + v[m / 2]) / 2, v[0], v[m - 1]};
 }
 
-/* Scratch for the scaling passes: [variant][threads][run], a run's samples side by side. */
+/* Scratch for the scaling passes: [variant][threads][run], a figure's runs side by side. */
 typedef struct scaling_runs {
     double *rate, *cores;
 } scaling_runs;
@@ -91,8 +91,8 @@ static void time_scaling(const eb_timing *t, const eb_geom *geo, eb_frame *fr, c
                                                   &s->cores[at(t, v, n, run)]);
 }
 
-/* One ray set of each variant at each packet size: the primary rays (shadow = NULL), or
- * the bounce and shadow rays. */
+/* Each variant at each packet size, one run: the primary rays (primary = 1), or the
+ * bounce and shadow rays (0). */
 static void time_packets(const eb_timing *t, cylray_isa isa, const eb_geom *geo, eb_frame *fr,
                          const int *built, eb_row *rows, int run, int primary)
 {
@@ -131,7 +131,6 @@ static void spawn(const eb_geom *geo, eb_frame *fr, const int *built)
 /* The medians of a variant's runs. */
 static void medians(const eb_timing *t, const scaling_runs *s, int v, eb_row *r)
 {
-    r->runs = t->runs, r->reps = t->reps;
     for (int p = 0; p < EB_NPHASES; p++)
         for (int q = 0; q < EB_NPACKETS; q++)
             r->mrays[p][q] = eb_spread_of(r->mrays_run[p][q], t->runs).med;
