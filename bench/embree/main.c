@@ -7,7 +7,13 @@
  *              molecule-taper,reducers,far-taper]
  *             [--isa=best|all|LIST]
  *             [--packet=1,4,8,16] [--threads=N] [--size=WxH]
- *             [--samples=N] [--reps=N] [--clock=wall|cpu] [--no-angles] [--out=DIR]
+ *             [--samples=N] [--runs=N] [--reps=N] [--clock=wall|cpu] [--no-angles]
+ *             [--out=DIR]
+ *
+ * Each timing is repeated --runs times (default 3, --quick too), the runs interleaved:
+ * run after run every variant is timed in turn, each run keeping the best of --reps
+ * passes. The tables print the median over the runs; the relative times, each run's
+ * ratio to Embree's curves in that run, with their range over the runs.
  */
 #include "aimed.h"
 #include "image.h"
@@ -15,6 +21,7 @@
 #include "png.h"
 #include "rays.h"
 #include "run.h"
+#include "timing.h"
 #include "trace.h"
 
 #include <math.h>
@@ -26,7 +33,7 @@
 #include <unistd.h>
 
 typedef struct opts {
-    int quick, w, h, reps, threads, samples;
+    int quick, w, h, runs, reps, threads, samples;
     int cpu_clock; /* rates from the CPU time the process got, not the wall time */
     int scene_on[EB_NSCENES];
     int packet_on[EB_NPACKETS];
@@ -57,6 +64,7 @@ static int parse(opts *o, int argc, char **argv)
     long nproc = sysconf(_SC_NPROCESSORS_ONLN);
     *o = (opts){.w = 1024,
                 .h = 768,
+                .runs = 3,
                 .reps = 3,
                 .samples = 20000,
                 .threads = nproc > 0 ? (int)(nproc < EB_MAXT ? nproc : EB_MAXT) : 1,
@@ -78,6 +86,8 @@ static int parse(opts *o, int argc, char **argv)
             sscanf(a + 7, "%dx%d", &o->w, &o->h);
         else if (!strncmp(a, "--samples=", 10))
             o->samples = atoi(a + 10);
+        else if (!strncmp(a, "--runs=", 7))
+            o->runs = atoi(a + 7);
         else if (!strncmp(a, "--reps=", 7))
             o->reps = atoi(a + 7);
         else if (!strcmp(a, "--no-angles"))
@@ -107,9 +117,11 @@ static int parse(opts *o, int argc, char **argv)
             o->reps = 1;
     }
     if (o->w < 16 || o->h < 16 || o->w % 16 || o->h % 16 || o->threads < 1 ||
-        o->threads > EB_MAXT) {
-        fprintf(stderr, "cylembree: --size must be multiples of 16, --threads 1..%d\n",
-                EB_MAXT);
+        o->threads > EB_MAXT || o->runs < 1 || o->runs > EB_MAXRUNS || o->reps < 1) {
+        fprintf(stderr,
+                "cylembree: --size must be multiples of 16, --threads 1..%d, --runs 1..%d, "
+                "--reps at least 1\n",
+                EB_MAXT, EB_MAXRUNS);
         return -1;
     }
     for (int s = 0; s < EB_NSCENES; s++)
@@ -134,45 +146,9 @@ static int parse(opts *o, int argc, char **argv)
 
 /* ---- one scene --------------------------------------------------------------------- */
 
-typedef struct frame {
-    eb_rays prim, shadow, bounce;
-    float *shadow_tfar; /* the shadow rays' tfar before tracing */
-} frame;
-
-static double mrays(size_t n, double s)
-{
-    return s > 0 ? (double)n / s * 1e-6 : NAN;
-}
-
-/* With --clock=cpu the rates come from the CPU time the process got (over the threads),
- * which a machine shared with other work distorts less than the wall time. */
-static int cpu_clock;
-
-/* Best of `reps` passes (min time: the machine is shared, a busy spell only slows);
- * *cores (if not NULL) gets the CPU time over the wall time of that pass. */
-static double timed(RTCScene sc, eb_rays *r, const float *tfar0, int packet, int threads,
-                    int occ, int reps, double *cores)
-{
-    double best = INFINITY;
-    size_t valid = 0;
-    for (size_t i = 0; i < r->n; i++)
-        valid += r->valid[i];
-    for (int k = 0; k < reps; k++) {
-        for (size_t i = 0; i < r->n; i++)
-            r->tfar[i] = tfar0 ? tfar0[i] : INFINITY;
-        double cpu, s = eb_trace(sc, r, packet, threads, occ, &cpu), wall = s;
-        if (cpu_clock)
-            s = cpu / threads;
-        if (s < best && cores)
-            *cores = cpu / wall;
-        best = s < best ? s : best;
-    }
-    return mrays(valid, best);
-}
-
 static void judge_variant(eb_row *row, const eb_geom *g, const eb_ref *ref,
                           eb_sample *const sets[EB_NSETS], const size_t nset[EB_NSETS],
-                          const frame *f)
+                          const eb_frame *f)
 {
     for (int s = 0; s < EB_NSETS; s++) {
         eb_err *e = &row->err[s];
@@ -204,24 +180,6 @@ static void judge_variant(eb_row *row, const eb_geom *g, const eb_ref *ref,
             }
         }
     }
-}
-
-static int frame_alloc(frame *f, size_t n)
-{
-    memset(f, 0, sizeof *f);
-    f->shadow_tfar = malloc(n * sizeof *f->shadow_tfar);
-    return !f->shadow_tfar || eb_rays_alloc(&f->prim, n) || eb_rays_alloc(&f->shadow, n) ||
-                   eb_rays_alloc(&f->bounce, n)
-               ? -1
-               : 0;
-}
-
-static void frame_free(frame *f)
-{
-    eb_rays_free(&f->prim);
-    eb_rays_free(&f->shadow);
-    eb_rays_free(&f->bounce);
-    free(f->shadow_tfar);
 }
 
 /* Runs every variant on one scene with one ISA; appends a row per variant. */
@@ -263,7 +221,7 @@ static int run_scene(const opts *o, RTCDevice dev, cylray_isa isa, int which, eb
         }
     }
 
-    frame fr[EB_NVARIANTS];
+    eb_frame fr[EB_NVARIANTS];
     eb_geom geo[EB_NVARIANTS];
     int built[EB_NVARIANTS] = {0};
     size_t first_row = *nrows;
@@ -274,12 +232,16 @@ static int run_scene(const opts *o, RTCDevice dev, cylray_isa isa, int which, eb
         snprintf(r->isa, sizeof r->isa, "%s", cylray_isa_name(isa));
         snprintf(r->scene, sizeof r->scene, "%s", sc.name);
         snprintf(r->variant, sizeof r->variant, "%s", eb_variant_name((eb_variant)v));
-        r->threads = o->threads;
+        r->threads = o->threads, r->runs = o->runs, r->reps = o->reps;
         r->ns = sc.ns;
         for (int p = 0; p < EB_NPHASES; p++)
-            for (int q = 0; q < EB_NPACKETS; q++)
+            for (int q = 0; q < EB_NPACKETS; q++) {
                 r->mrays[p][q] = NAN;
-        if (frame_alloc(&fr[v], npix) || eb_geom_build(&geo[v], dev, &sc, (eb_variant)v, k)) {
+                for (int run = 0; run < EB_MAXRUNS; run++)
+                    r->mrays_run[p][q][run] = NAN;
+            }
+        if (eb_frame_alloc(&fr[v], npix) ||
+            eb_geom_build(&geo[v], dev, &sc, (eb_variant)v, k)) {
             r->skipped = 1;
             snprintf(r->why, sizeof r->why, "build failed");
             continue;
@@ -292,42 +254,10 @@ static int run_scene(const opts *o, RTCDevice dev, cylray_isa isa, int which, eb
         eb_camera_rays(&fr[v].prim, &sc, o->w, o->h);
     }
 
-    /* Time: each measurement visits every variant in turn, so a busy spell of the
-     * shared machine does not land on one variant only. */
-    for (int t = 1; t <= o->threads; t++)
-        for (int v = 0; v < EB_NVARIANTS; v++)
-            if (built[v])
-                rows[first_row + v].scaling[t] = timed(geo[v].scene, &fr[v].prim, NULL, 1, t, 0,
-                                                       o->reps, &rows[first_row + v].cores[t]);
-    /* Embree offers a packet no wider than its ISA's vectors */
-    int widest = isa == CYLRAY_ISA_SSE41 ? 4 : isa == CYLRAY_ISA_AVX2 ? 8 : 16;
-    for (int q = 0; q < EB_NPACKETS; q++) {
-        if (!o->packet_on[q] || eb_packets[q] > widest)
-            continue;
-        for (int v = 0; v < EB_NVARIANTS; v++)
-            if (built[v])
-                rows[first_row + v].mrays[EB_PRIMARY][q] =
-                    timed(geo[v].scene, &fr[v].prim, NULL, eb_packets[q], o->threads, 0,
-                          o->reps, NULL);
-    }
-    for (int v = 0; v < EB_NVARIANTS; v++) {
-        if (!built[v])
-            continue;
-        eb_spawn(&geo[v], &fr[v].prim, &fr[v].shadow, &fr[v].bounce);
-        memcpy(fr[v].shadow_tfar, fr[v].shadow.tfar, npix * sizeof(float));
-    }
-    for (int q = 0; q < EB_NPACKETS; q++) {
-        if (!o->packet_on[q] || eb_packets[q] > widest)
-            continue;
-        for (int v = 0; v < EB_NVARIANTS; v++)
-            if (built[v]) {
-                eb_row *r = &rows[first_row + v];
-                r->mrays[EB_BOUNCE][q] = timed(geo[v].scene, &fr[v].bounce, NULL, eb_packets[q],
-                                               o->threads, 0, o->reps, NULL);
-                r->mrays[EB_SHADOW][q] = timed(geo[v].scene, &fr[v].shadow, fr[v].shadow_tfar,
-                                               eb_packets[q], o->threads, 1, o->reps, NULL);
-            }
-    }
+    eb_timing t = {
+        .runs = o->runs, .reps = o->reps, .threads = o->threads, .cpu_clock = o->cpu_clock};
+    memcpy(t.packet_on, o->packet_on, sizeof t.packet_on);
+    eb_time_scene(&t, isa, geo, fr, built, &rows[first_row]);
 
     /* Error, pictures. */
     int base = built[EB_NATIVE] ? EB_NATIVE : -1;
@@ -369,7 +299,7 @@ static int run_scene(const opts *o, RTCDevice dev, cylray_isa isa, int which, eb
     for (int v = 0; v < EB_NVARIANTS; v++)
         if (built[v]) {
             eb_geom_free(&geo[v]);
-            frame_free(&fr[v]);
+            eb_frame_free(&fr[v]);
         }
     for (int s = 0; s < EB_NSETS; s++)
         free(sets[s]);
@@ -383,7 +313,6 @@ int main(int argc, char **argv)
     opts o;
     if (parse(&o, argc, argv))
         return 2;
-    cpu_clock = o.cpu_clock;
     mkdir(o.out, 0777);
     machine_info mi;
     machine_probe(&mi);
