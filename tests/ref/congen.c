@@ -404,43 +404,5 @@ static const char *const descriptions[CONGEN_COUNT] = {
     "cone: scenes scaled by 2^+-(21..50), |d| 2^-20..2^20",
     "cone: one end 2^-40..2^-12 of the other or a tip, rays at and about it from close by"};
 
-static void shape_hook(int cat, cylgen_rng *r, void *shape)
-{
-    congen_cone(cat, r, shape);
-}
-
-static void ray_hook(int cat, cylgen_rng *r, cylgen_rng *cam, size_t index, const void *shape,
-                     void *out)
-{
-    congen_ray(cat, r, cam, index, shape, out);
-}
-
-_Static_assert(sizeof(cylray_cone) <= GEN_SHAPE_MAX, "a cone fits gen_fill's shape");
-static const gen_shape cone_gen = {names,           descriptions,        CONGEN_COUNT,
-                                   0x636f6e6573ull, sizeof(congen_case), shape_hook,
-                                   ray_hook};
-
-const char *congen_category_name(int category)
-{
-    return gen_name(&cone_gen, category);
-}
-
-const char *congen_category_description(int category)
-{
-    return gen_description(&cone_gen, category);
-}
-
-int congen_category_find(const char *name)
-{
-    return gen_find(&cone_gen, name);
-}
-
-void congen_make(int category, uint64_t seed, size_t n, congen_case *out)
-{
-    gen_fill(&cone_gen, category, seed, n, out, 0);
-}
-
-void congen_make_shared(int category, uint64_t seed, size_t n, congen_case *out)
-{
-    gen_fill(&cone_gen, category, seed, n, out, 1);
-}
+GEN_SHAPE_DEFINE(congen, cylray_cone, names, descriptions, CONGEN_COUNT, 0x636f6e6573ull,
+                 congen_cone, congen_ray)
