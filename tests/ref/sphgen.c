@@ -44,8 +44,10 @@ static void make_sphere(int cat, cylgen_rng *r, cylray_sphere *s)
         double x = gen_uni(r, -span, span);
         /* Tiny spheres sit far out on every axis: o - c then loses everything to
          * rounding unless it is formed exactly. */
-        if (cat == SPHGEN_TINY)
-            x = (gen_chance(r, 0.5) ? -1 : 1) * gen_uni(r, 0.5 * span, span);
+        if (cat == SPHGEN_TINY) {
+            const double sign = gen_chance(r, 0.5) ? -1 : 1;
+            x = sign * gen_uni(r, 0.5 * span, span);
+        }
         s->center[k] = (float)x;
     }
     s->radius = (float)R;
@@ -80,7 +82,8 @@ static void towards(cylgen_rng *r, const ball *b, double dist, double slack, sph
 static void gen_grazing(cylgen_rng *r, const ball *b, sphgen_case *c)
 {
     v3 d = gen_dir(r), u = gen_perp(r, d);
-    double eps = gen_logu(r, -23, -7) * (gen_chance(r, 0.5) ? 1 : -1);
+    double eps = gen_logu(r, -23, -7);
+    eps *= gen_chance(r, 0.5) ? 1 : -1;
     double dist = b->R * gen_uni(r, 2, 10);
     v3 closest = axpy(b->c, b->R * (1 + eps), u);
     to_f(c->o, axpy(closest, -dist, d));

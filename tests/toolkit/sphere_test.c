@@ -34,6 +34,13 @@ static double uni(cylgen_rng *r, double a, double b)
     return a + (b - a) * cylgen_uniform(r);
 }
 
+/* A mantissa in [1, 2) times 2^e, e uniform in [lo, hi): the exponent drawn first. */
+static double binade(cylgen_rng *r, double lo, double hi)
+{
+    const int e = (int)uni(r, lo, hi);
+    return ldexp(1 + cylgen_uniform(r), e);
+}
+
 static void make_sphere(cylgen_rng *r, int kind, cylray_sphere *s)
 {
     double R;
@@ -45,10 +52,10 @@ static void make_sphere(cylgen_rng *r, int kind, cylray_sphere *s)
         R = pow(10, uni(r, -4, 4));
         break;
     case 2:
-        R = ldexp(1 + cylgen_uniform(r), (int)uni(r, -60, -40));
+        R = binade(r, -60, -40);
         break;
     default:
-        R = ldexp(1 + cylgen_uniform(r), (int)uni(r, 40, 58));
+        R = binade(r, 40, 58);
         break;
     }
     const double spread = kind % 4 == 1 ? pow(10, uni(r, 3, 6)) * (1 + R) : R * uni(r, 0, 8);
