@@ -37,7 +37,9 @@ static float value(reader *r)
         const int16_t i = (int16_t)(uint16_t)(lo | hi << 8);
         return ldexpf((float)i, (tag - 32) % 24 - 20);
     }
-    uint8_t b[4] = {byte(r), byte(r), byte(r), byte(r)};
+    uint8_t b[4];
+    for (int k = 0; k < 4; k++)
+        b[k] = byte(r);
     float f;
     memcpy(&f, b, sizeof f);
     return f;
@@ -47,7 +49,9 @@ static void aimed(reader *r, const cylray_cylinder *c, float out[G_NFIELD], uint
 {
     double u[3], e1[3], e2[3];
     axis_frame(c->axis, u, e1, e2);
-    float o[3] = {value(r), value(r), value(r)};
+    float o[3];
+    for (int k = 0; k < 3; k++)
+        o[k] = value(r);
     const double ang = byte(r) * (6.283185307179586 / 256);
     const double zf = (int8_t)byte(r) / 100.0; /* -1.28 .. 1.27 of the half height */
     const double rf = byte(r) / 128.0;         /* 0 .. 2 radii from the axis */

@@ -166,8 +166,7 @@ void cylref_band_eval(const cylray_cylinder *cyl, const float o[3], const float 
         if (x0.hit && same(x, x0)) {
             double n[3];
             q_normal(&r, x, ff, n);
-            nsum += sqrt((n[0] - n0[0]) * (n[0] - n0[0]) + (n[1] - n0[1]) * (n[1] - n0[1]) +
-                         (n[2] - n0[2]) * (n[2] - n0[2]));
+            nsum += ref_normal_move(n, n0);
         }
     }
 
@@ -238,21 +237,9 @@ void cylref_band_eval(const cylray_cylinder *cyl, const float o[3], const float 
             s->lo = fmin(s->lo, t - w);
             s->hi = fmax(s->hi, t + w);
         }
-        if (x0.hit && same(s->o, x0)) {
-            out->t_lo = s->lo;
-            out->t_hi = s->hi;
-        } else if (out->n_alt < CYLREF_MAX_ALT) {
-            cylref_alt *a = &out->alt[out->n_alt++];
-            a->part = s->o.part;
-            a->t_lo = s->lo;
-            a->t_hi = s->hi;
-        }
+        ref_band_keep(out, x0.hit && same(s->o, x0), s->o.part, s->lo, s->hi);
     }
-    out->hit_unstable = hits > 0 && misses > 0;
-    out->part_unstable = hits > 1;
-    if (nu > MAX_ENUM_BITS || set.overflow)
-        out->hit_unstable = out->part_unstable = 1;
-    out->decision_unstable = out->hit_unstable || out->part_unstable;
+    ref_band_decide(out, hits, misses, nu > MAX_ENUM_BITS || set.overflow);
     out->n_spread = fmax(nsum, nmax);
     /* A side's normal is the direction of the point across the axis. A t anywhere in
      * the band (and its 4 ulps of tolerance) puts the point up to |d_perp| dt away from

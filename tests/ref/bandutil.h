@@ -118,4 +118,45 @@ static inline void ref_add_range(ref_set *set, int part, double lo, double hi)
     ref_add(set, part, hi);
 }
 
+/* Moves the ray's inputs of a box's vertex k (steps step): the origin relative to the
+ * shape w (inputs 0-2) and d (3-5), every shape's first six; the shape's own follow. */
+static inline void ref_perturb_ray(cylq w[3], cylq d[3], const cylq *step, const signed char *k)
+{
+    for (int i = 0; i < 3; i++) {
+        w[i] += step[i] * k[i];
+        d[i] += step[3 + i] * k[3 + i];
+    }
+}
+
+/* |a - b| of two unit normals: the gradient samples' sum of normal moves. */
+static inline double ref_normal_move(const double a[3], const double b[3])
+{
+    return sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                (a[2] - b[2]) * (a[2] - b[2]));
+}
+
+/* Keeps a hit outcome's t range in the band: the exact outcome's as t_lo, t_hi, any
+ * other as an alternative (past CYLREF_MAX_ALT it is dropped). */
+static inline void ref_band_keep(cylref_band *out, int is_exact, int part, double lo, double hi)
+{
+    if (is_exact) {
+        out->t_lo = lo;
+        out->t_hi = hi;
+    } else if (out->n_alt < CYLREF_MAX_ALT) {
+        cylref_alt *a = &out->alt[out->n_alt++];
+        a->part = part;
+        a->t_lo = lo;
+        a->t_hi = hi;
+    }
+}
+
+/* The band's verdicts on the decisions, from the counts of hit and miss outcomes it
+ * kept; unknown: outcomes may have gone unseen, so every decision is unstable. */
+static inline void ref_band_decide(cylref_band *out, int hits, int misses, int unknown)
+{
+    out->hit_unstable = (hits > 0 && misses > 0) || unknown;
+    out->part_unstable = hits > 1 || unknown;
+    out->decision_unstable = out->hit_unstable || out->part_unstable;
+}
+
 #endif

@@ -33,8 +33,10 @@ static void tinyend_cone(cylgen_rng *r, cylray_cone *out)
                  rt = R * gen_logu(r, -40, -12);
     const v3 u = gen_dir(r);
     v3 at = mk(0, 0, 0);
-    if (gen_chance(r, 0.3))
-        at = mk(gen_uni(r, -10, 10), gen_uni(r, -10, 10), gen_uni(r, -10, 10));
+    if (gen_chance(r, 0.3)) {
+        const double z = gen_uni(r, -10, 10), y = gen_uni(r, -10, 10), x = gen_uni(r, -10, 10);
+        at = mk(x, y, z);
+    }
     const int lo = gen_chance(r, 0.5);
     float *tiny = lo ? out->p0 : out->p1, *wide = lo ? out->p1 : out->p0;
     to_f(tiny, at);
@@ -84,8 +86,10 @@ void congen_cone(int cat, cylgen_rng *r, cylray_cone *out)
     v3 c, u = gen_dir(r);
     for (int k = 0; k < 3; k++) {
         c.x[k] = gen_uni(r, -span, span);
-        if (cat == CONGEN_TINY)
-            c.x[k] = (gen_chance(r, 0.5) ? -1 : 1) * gen_uni(r, 0.5 * span, span);
+        if (cat == CONGEN_TINY) {
+            const double sign = gen_chance(r, 0.5) ? -1 : 1;
+            c.x[k] = sign * gen_uni(r, 0.5 * span, span);
+        }
     }
     to_f(out->p0, axpy(c, -L / 2, u));
     to_f(out->p1, axpy(c, L / 2, u));
@@ -178,7 +182,8 @@ static void aim(cylgen_rng *r, v3 target, v3 d, double dist, congen_case *c)
 
 static void towards(cylgen_rng *r, const cgeo *g, double dist, double slack, congen_case *c)
 {
-    aim(r, point_in(r, g, slack), gen_dir(r), dist, c);
+    const v3 d = gen_dir(r), p = point_in(r, g, slack);
+    aim(r, p, d, dist, c);
 }
 
 static void gen_grazing(cylgen_rng *r, const cgeo *g, congen_case *c)
@@ -186,7 +191,8 @@ static void gen_grazing(cylgen_rng *r, const cgeo *g, congen_case *c)
     v3 e = gen_perp(r, g->u), n = side_normal(g, e);
     v3 p = side_point(g, gen_uni(r, 0, g->L), e);
     v3 d = gen_perp(r, n);
-    double eps = gen_logu(r, -23, -7) * (gen_chance(r, 0.5) ? 1 : -1);
+    double eps = gen_logu(r, -23, -7);
+    eps *= gen_chance(r, 0.5) ? 1 : -1;
     aim(r, axpy(p, g->R * eps, n), d, g->R * gen_uni(r, 2, 10), c);
 }
 
@@ -225,10 +231,14 @@ static void gen_rim(cylgen_rng *r, const cgeo *g, congen_case *c)
      * rim is far smaller than the cone) */
     const int own = gen_chance(r, 0.5);
     const double size = own ? (hi ? g->r1 : g->r0) : g->R;
-    if (gen_chance(r, 0.5))
-        p = axpy(p, size * gen_logu(r, -24, own ? 7 : -10) * (gen_chance(r, 0.5) ? 1 : -1),
-                 gen_dir(r));
-    aim(r, p, gen_dir(r), g->R * gen_uni(r, 1.5, 10), c);
+    if (gen_chance(r, 0.5)) {
+        const v3 dir = gen_dir(r);
+        double off = size * gen_logu(r, -24, own ? 7 : -10);
+        off *= gen_chance(r, 0.5) ? 1 : -1;
+        p = axpy(p, off, dir);
+    }
+    const double dist = g->R * gen_uni(r, 1.5, 10);
+    aim(r, p, gen_dir(r), dist, c);
 }
 
 static void gen_apex(cylgen_rng *r, const cgeo *g, congen_case *c)
@@ -239,7 +249,9 @@ static void gen_apex(cylgen_rng *r, const cgeo *g, congen_case *c)
         return;
     }
     double off = gen_chance(r, 0.3) ? 0 : g->R * gen_logu(r, -24, -4);
-    aim(r, axpy(apex, off, gen_dir(r)), gen_dir(r), g->R * gen_uni(r, 1.5, 10), c);
+    const double dist = g->R * gen_uni(r, 1.5, 10);
+    const v3 d = gen_dir(r), o = axpy(apex, off, gen_dir(r));
+    aim(r, o, d, dist, c);
 }
 
 static void gen_axial(cylgen_rng *r, const cgeo *g, congen_case *c)
@@ -258,8 +270,11 @@ static void gen_axial(cylgen_rng *r, const cgeo *g, congen_case *c)
     v3 d = unit(axpy(b, -1, a));
     if (gen_chance(r, 0.5))
         d = neg(d);
-    double off =
-        gen_chance(r, 0.3) ? 0 : g->R * gen_logu(r, -24, -6) * (gen_chance(r, 0.5) ? 1 : -1);
+    double off = 0;
+    if (!gen_chance(r, 0.3)) {
+        off = g->R * gen_logu(r, -24, -6);
+        off *= gen_chance(r, 0.5) ? 1 : -1;
+    }
     v3 mid = axpy(side_point(g, g->L / 2, e), off, side_normal(g, e));
     aim(r, mid, d, g->R * gen_uni(r, 2, 10), c);
 }
@@ -279,17 +294,22 @@ static void gen_tinyend(cylgen_rng *r, const cgeo *g, congen_case *c)
     v3 p = axpy(end, rho, e);
     const uint64_t where = cylgen_next(r) % 3;
     if (where == 1) {
-        p = axpy(p, rho * gen_logu(r, -8, 3) * (gen_chance(r, 0.5) ? 1 : -1), in);
+        double off = rho * gen_logu(r, -8, 3);
+        off *= gen_chance(r, 0.5) ? 1 : -1;
+        p = axpy(p, off, in);
     } else if (where == 2) {
         const double z = fmin(rho * gen_logu(r, -6, 4), g->L);
         const double rz = rt + (rw - rt) * (z / g->L);
-        p = axpy(axpy(end, z, in),
-                 rz * (1 + gen_logu(r, -24, -2) * (gen_chance(r, 0.5) ? 1 : -1)), e);
+        double off = gen_logu(r, -24, -2);
+        off *= gen_chance(r, 0.5) ? 1 : -1;
+        p = axpy(axpy(end, z, in), rz * (1 + off), e);
     }
     const uint64_t how = cylgen_next(r) % 3;
     v3 d = how == 0 ? gen_dir(r) : gen_perp(r, g->u);
-    if (how == 2)
-        d = unit(axpy(gen_chance(r, 0.5) ? in : neg(in), gen_uni(r, -0.3, 0.3), d));
+    if (how == 2) {
+        const double tilt = gen_uni(r, -0.3, 0.3);
+        d = unit(axpy(gen_chance(r, 0.5) ? in : neg(in), tilt, d));
+    }
     const double dist =
         gen_chance(r, 0.8) ? fmax(rho, rq) * gen_uni(r, 2, 64) : g->R * gen_uni(r, 1.5, 10);
     aim(r, p, d, dist, c);
@@ -404,43 +424,5 @@ static const char *const descriptions[CONGEN_COUNT] = {
     "cone: scenes scaled by 2^+-(21..50), |d| 2^-20..2^20",
     "cone: one end 2^-40..2^-12 of the other or a tip, rays at and about it from close by"};
 
-static void shape_hook(int cat, cylgen_rng *r, void *shape)
-{
-    congen_cone(cat, r, shape);
-}
-
-static void ray_hook(int cat, cylgen_rng *r, cylgen_rng *cam, size_t index, const void *shape,
-                     void *out)
-{
-    congen_ray(cat, r, cam, index, shape, out);
-}
-
-_Static_assert(sizeof(cylray_cone) <= GEN_SHAPE_MAX, "a cone fits gen_fill's shape");
-static const gen_shape cone_gen = {names,           descriptions,        CONGEN_COUNT,
-                                   0x636f6e6573ull, sizeof(congen_case), shape_hook,
-                                   ray_hook};
-
-const char *congen_category_name(int category)
-{
-    return gen_name(&cone_gen, category);
-}
-
-const char *congen_category_description(int category)
-{
-    return gen_description(&cone_gen, category);
-}
-
-int congen_category_find(const char *name)
-{
-    return gen_find(&cone_gen, name);
-}
-
-void congen_make(int category, uint64_t seed, size_t n, congen_case *out)
-{
-    gen_fill(&cone_gen, category, seed, n, out, 0);
-}
-
-void congen_make_shared(int category, uint64_t seed, size_t n, congen_case *out)
-{
-    gen_fill(&cone_gen, category, seed, n, out, 1);
-}
+GEN_SHAPE_DEFINE(congen, cylray_cone, names, descriptions, CONGEN_COUNT, 0x636f6e6573ull,
+                 congen_cone, congen_ray)

@@ -40,20 +40,8 @@ enum {
     CONGEN_COUNT
 };
 
-typedef struct congen_case {
-    cylray_cone cone;
-    float o[3], d[3];
-    float tmin, tmax;
-} congen_case;
+CYLGEN_SHAPE_DECLARE(congen, cylray_cone, cone);
 
-const char *congen_category_name(int category); /* NULL when out of range */
-const char *congen_category_description(int category);
-int congen_category_find(const char *name); /* -1 when unknown */
-
-/* n cases of a category; the cone changes every CYLGEN_BATCH cases. */
-void congen_make(int category, uint64_t seed, size_t n, congen_case *out);
-/* n cases that all share one cone (that of batch 0): for streams. */
-void congen_make_shared(int category, uint64_t seed, size_t n, congen_case *out);
 /* One random cone of a category (for leaves). */
 void congen_cone(int category, cylgen_rng *r, cylray_cone *out);
 /* One ray of a category at a given cone. */

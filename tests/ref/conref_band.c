@@ -19,19 +19,12 @@ static void c_perturb(const cin_q *base, const cylq step[IN_COUNT],
                       const signed char k[IN_COUNT], cin_q *out)
 {
     *out = *base;
-    for (int i = 0; i < IN_COUNT; i++) {
-        cylq s = step[i] * k[i];
-        if (i < IN_D)
-            out->w[i] += s;
-        else if (i < IN_A)
-            out->d[i - IN_D] += s;
-        else if (i < IN_R0)
-            out->a[i - IN_A] += s;
-        else if (i == IN_R0)
-            out->r0 = base->r0 > 0 ? q_max(base->r0 + s, base->r0 / 2) : 0;
-        else
-            out->r1 = base->r1 > 0 ? q_max(base->r1 + s, base->r1 / 2) : 0;
-    }
+    ref_perturb_ray(out->w, out->d, step, k);
+    for (int i = 0; i < 3; i++)
+        out->a[i] += step[IN_A + i] * k[IN_A + i];
+    const cylq s0 = step[IN_R0] * k[IN_R0], s1 = step[IN_R1] * k[IN_R1];
+    out->r0 = base->r0 > 0 ? q_max(base->r0 + s0, base->r0 / 2) : 0;
+    out->r1 = base->r1 > 0 ? q_max(base->r1 + s1, base->r1 / 2) : 0;
 }
 
 /* Per candidate over the evaluations: its t range (where it exists), the parts it
@@ -453,19 +446,9 @@ void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], 
             continue;
         }
         hits++;
-        if (x0 >= 0 && x->part == p0) {
-            out->t_lo = x->lo;
-            out->t_hi = x->hi;
-        } else if (out->n_alt < CYLREF_MAX_ALT) {
-            cylref_alt *a = &out->alt[out->n_alt++];
-            a->part = x->part;
-            a->t_lo = x->lo;
-            a->t_hi = x->hi;
-        }
+        ref_band_keep(out, x0 >= 0 && x->part == p0, x->part, x->lo, x->hi);
     }
-    out->hit_unstable = hits > 0 && misses > 0;
-    out->part_unstable = hits > 1;
-    out->decision_unstable = out->hit_unstable || out->part_unstable;
+    ref_band_decide(out, hits, misses, 0);
     /* The gradient samples turn the normal by 2 ulps of one input each; the box's
      * corners by all at once: twice the worst sample bounds a sum of a few. */
     out->n_spread = 2 * nmax;

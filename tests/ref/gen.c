@@ -442,55 +442,23 @@ static const char *const descriptions[CYLGEN_COUNT] = {
     "one disc only: aimed at either rim, from inside, down the axis, ordinary",
 };
 
-static void shape_hook(int cat, cylgen_rng *r, void *shape)
-{
-    category_cylinder(cat, r, shape);
-}
-
 /* The cylinders' rays need no camera. */
-static void ray_hook(int cat, cylgen_rng *r, cylgen_rng *cam, size_t index, const void *shape,
-                     void *out)
+static void cylinder_ray(int cat, cylgen_rng *r, cylgen_rng *cam, size_t index,
+                         const cylray_cylinder *cyl, cylgen_case *c)
 {
     (void)cam;
     (void)index;
-    cylgen_case *c = out;
     memset(c, 0, sizeof *c);
-    c->cyl = *(const cylray_cylinder *)shape;
+    c->cyl = *cyl;
     gen_case(cat, r, c);
 }
 
-_Static_assert(sizeof(cylray_cylinder) <= GEN_SHAPE_MAX, "a cylinder fits gen_fill's shape");
-static const gen_shape cylinder_gen = {
-    names, descriptions, CYLGEN_COUNT, 0, sizeof(cylgen_case), shape_hook, ray_hook};
+GEN_SHAPE_DEFINE(cylgen, cylray_cylinder, names, descriptions, CYLGEN_COUNT, 0,
+                 category_cylinder, cylinder_ray)
 
 int cylgen_category_count(void)
 {
     return CYLGEN_COUNT;
-}
-
-const char *cylgen_category_name(int category)
-{
-    return gen_name(&cylinder_gen, category);
-}
-
-const char *cylgen_category_description(int category)
-{
-    return gen_description(&cylinder_gen, category);
-}
-
-int cylgen_category_find(const char *name)
-{
-    return gen_find(&cylinder_gen, name);
-}
-
-void cylgen_make(int category, uint64_t seed, size_t n, cylgen_case *out)
-{
-    gen_fill(&cylinder_gen, category, seed, n, out, 0);
-}
-
-void cylgen_make_shared(int category, uint64_t seed, size_t n, cylgen_case *out)
-{
-    gen_fill(&cylinder_gen, category, seed, n, out, 1);
 }
 
 /* Spoils one input of a ray by the draw u (the sphere's and the cone's NaN lanes): NaN

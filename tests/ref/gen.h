@@ -40,21 +40,28 @@ enum {
  * a packet of 4, 8 or 16 taken at a multiple of its width has one cylinder. */
 #define CYLGEN_BATCH 16
 
-typedef struct cylgen_case {
-    cylray_cylinder cyl;
-    float o[3], d[3];
-    float tmin, tmax;
-} cylgen_case;
+/* A shape's generator, declared from its row (prefix, shape type, the case's member):
+ *   prefix_case                      the shape, then the ray o, d, tmin, tmax
+ *   prefix_category_name(cat)        NULL when out of range
+ *   prefix_category_description(cat) one line, for reports; NULL when out of range
+ *   prefix_category_find(name)       -1 when unknown
+ *   prefix_make(cat, seed, n, out)   n cases; the shape changes every CYLGEN_BATCH cases
+ *   prefix_make_shared(...)          n cases that all share batch 0's shape: for streams
+ * Each shape's generator defines them with GEN_SHAPE_DEFINE (genutil.h). */
+#define CYLGEN_SHAPE_DECLARE(prefix, shape_t, member)                                          \
+    typedef struct prefix##_case {                                                             \
+        shape_t member;                                                                        \
+        float o[3], d[3];                                                                      \
+        float tmin, tmax;                                                                      \
+    } prefix##_case;                                                                           \
+    const char *prefix##_category_name(int category);                                          \
+    const char *prefix##_category_description(int category);                                   \
+    int prefix##_category_find(const char *name);                                              \
+    void prefix##_make(int category, uint64_t seed, size_t n, prefix##_case *out);             \
+    void prefix##_make_shared(int category, uint64_t seed, size_t n, prefix##_case *out)
 
+CYLGEN_SHAPE_DECLARE(cylgen, cylray_cylinder, cyl);
 int cylgen_category_count(void);
-const char *cylgen_category_name(int category);        /* NULL when out of range */
-const char *cylgen_category_description(int category); /* one line, for reports */
-int cylgen_category_find(const char *name);            /* -1 when unknown */
-
-/* n cases of a category; the cylinder changes every CYLGEN_BATCH cases. */
-void cylgen_make(int category, uint64_t seed, size_t n, cylgen_case *out);
-/* n cases that all share one cylinder (that of batch 0): for streams. */
-void cylgen_make_shared(int category, uint64_t seed, size_t n, cylgen_case *out);
 
 /* The PRNG underneath (xoshiro256**, seeded through splitmix64), for anyone who
  * needs more deterministic draws. */

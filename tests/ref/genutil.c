@@ -58,7 +58,8 @@ void gen_interval(cylgen_rng *r, double dist, float *tmin, float *tmax)
 
 void gen_scale_d(cylgen_rng *r, int span, float d[3], float *tmin, float *tmax)
 {
-    double s = ldexp(gen_uni(r, 1, 2), (int)(cylgen_next(r) % (uint64_t)(2 * span + 1)) - span);
+    const int e = (int)(cylgen_next(r) % (uint64_t)(2 * span + 1)) - span;
+    const double s = ldexp(gen_uni(r, 1, 2), e);
     for (int k = 0; k < 3; k++)
         d[k] = (float)((double)d[k] * s);
     if (*tmin != 0)

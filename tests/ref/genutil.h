@@ -103,4 +103,47 @@ int gen_find(const gen_shape *g, const char *name);       /* -1 when unknown */
 /* n cases of a category (out of range: the first); shared: all of batch 0's shape. */
 void gen_fill(const gen_shape *g, int cat, uint64_t seed, size_t n, void *out, int shared);
 
+/* A shape's generator from its row: its categories' names and descriptions (count of
+ * each), its salt, and its two draws, typed: shape_fn(cat, r, shape_t *) and
+ * ray_fn(cat, r, cam, index, const shape_t *, prefix_case *), which fills the case whole.
+ * Defines the row prefix_row and the five functions CYLGEN_SHAPE_DECLARE declares. */
+#define GEN_SHAPE_DEFINE(prefix, shape_t, names, descriptions, count, salt, shape_fn, ray_fn)  \
+    static void prefix##_shape_hook(int cat, cylgen_rng *r, void *shape)                       \
+    {                                                                                          \
+        shape_fn(cat, r, (shape_t *)shape);                                                    \
+    }                                                                                          \
+    static void prefix##_ray_hook(int cat, cylgen_rng *r, cylgen_rng *cam, size_t index,       \
+                                  const void *shape, void *c)                                  \
+    {                                                                                          \
+        ray_fn(cat, r, cam, index, (const shape_t *)shape, (prefix##_case *)c);                \
+    }                                                                                          \
+    _Static_assert(sizeof(shape_t) <= GEN_SHAPE_MAX, #shape_t " fits gen_fill's shape");       \
+    static const gen_shape prefix##_row = {names,                                              \
+                                           descriptions,                                       \
+                                           count,                                              \
+                                           salt,                                               \
+                                           sizeof(prefix##_case),                              \
+                                           prefix##_shape_hook,                                \
+                                           prefix##_ray_hook};                                 \
+    const char *prefix##_category_name(int category)                                           \
+    {                                                                                          \
+        return gen_name(&prefix##_row, category);                                              \
+    }                                                                                          \
+    const char *prefix##_category_description(int category)                                    \
+    {                                                                                          \
+        return gen_description(&prefix##_row, category);                                       \
+    }                                                                                          \
+    int prefix##_category_find(const char *name)                                               \
+    {                                                                                          \
+        return gen_find(&prefix##_row, name);                                                  \
+    }                                                                                          \
+    void prefix##_make(int category, uint64_t seed, size_t n, prefix##_case *out)              \
+    {                                                                                          \
+        gen_fill(&prefix##_row, category, seed, n, out, 0);                                    \
+    }                                                                                          \
+    void prefix##_make_shared(int category, uint64_t seed, size_t n, prefix##_case *out)       \
+    {                                                                                          \
+        gen_fill(&prefix##_row, category, seed, n, out, 1);                                    \
+    }
+
 #endif /* GENUTIL_H */

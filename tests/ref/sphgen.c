@@ -44,8 +44,10 @@ static void make_sphere(int cat, cylgen_rng *r, cylray_sphere *s)
         double x = gen_uni(r, -span, span);
         /* Tiny spheres sit far out on every axis: o - c then loses everything to
          * rounding unless it is formed exactly. */
-        if (cat == SPHGEN_TINY)
-            x = (gen_chance(r, 0.5) ? -1 : 1) * gen_uni(r, 0.5 * span, span);
+        if (cat == SPHGEN_TINY) {
+            const double sign = gen_chance(r, 0.5) ? -1 : 1;
+            x = sign * gen_uni(r, 0.5 * span, span);
+        }
         s->center[k] = (float)x;
     }
     s->radius = (float)R;
@@ -80,7 +82,8 @@ static void towards(cylgen_rng *r, const ball *b, double dist, double slack, sph
 static void gen_grazing(cylgen_rng *r, const ball *b, sphgen_case *c)
 {
     v3 d = gen_dir(r), u = gen_perp(r, d);
-    double eps = gen_logu(r, -23, -7) * (gen_chance(r, 0.5) ? 1 : -1);
+    double eps = gen_logu(r, -23, -7);
+    eps *= gen_chance(r, 0.5) ? 1 : -1;
     double dist = b->R * gen_uni(r, 2, 10);
     v3 closest = axpy(b->c, b->R * (1 + eps), u);
     to_f(c->o, axpy(closest, -dist, d));
@@ -182,47 +185,14 @@ static const char *const descriptions[SPHGEN_COUNT] = {
     "sphere: NaN, Inf, zero-direction and empty-interval lanes among good ones",
     "sphere: ordinary and grazing scenes scaled by 2^+-(21..50), |d| 2^-20..2^20"};
 
-static void shape_hook(int cat, cylgen_rng *r, void *shape)
+static void sphere_ray(int cat, cylgen_rng *r, cylgen_rng *cam, size_t index,
+                       const cylray_sphere *sph, sphgen_case *c)
 {
-    make_sphere(cat, r, shape);
-}
-
-static void ray_hook(int cat, cylgen_rng *r, cylgen_rng *cam, size_t index, const void *shape,
-                     void *out)
-{
-    sphgen_case *c = out;
     memset(c, 0, sizeof *c);
-    c->sph = *(const cylray_sphere *)shape;
+    c->sph = *sph;
     ball bl = ball_of(&c->sph);
     gen_case(cat, r, &bl, cam, index, c);
 }
 
-_Static_assert(sizeof(cylray_sphere) <= GEN_SHAPE_MAX, "a sphere fits gen_fill's shape");
-static const gen_shape sphere_gen = {
-    names,      descriptions, SPHGEN_COUNT, 0x737068657265ull, sizeof(sphgen_case),
-    shape_hook, ray_hook};
-
-const char *sphgen_category_name(int category)
-{
-    return gen_name(&sphere_gen, category);
-}
-
-const char *sphgen_category_description(int category)
-{
-    return gen_description(&sphere_gen, category);
-}
-
-int sphgen_category_find(const char *name)
-{
-    return gen_find(&sphere_gen, name);
-}
-
-void sphgen_make(int category, uint64_t seed, size_t n, sphgen_case *out)
-{
-    gen_fill(&sphere_gen, category, seed, n, out, 0);
-}
-
-void sphgen_make_shared(int category, uint64_t seed, size_t n, sphgen_case *out)
-{
-    gen_fill(&sphere_gen, category, seed, n, out, 1);
-}
+GEN_SHAPE_DEFINE(sphgen, cylray_sphere, names, descriptions, SPHGEN_COUNT, 0x737068657265ull,
+                 make_sphere, sphere_ray)

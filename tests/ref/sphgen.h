@@ -34,20 +34,7 @@ enum {
     SPHGEN_COUNT
 };
 
-typedef struct sphgen_case {
-    cylray_sphere sph;
-    float o[3], d[3];
-    float tmin, tmax;
-} sphgen_case;
-
-const char *sphgen_category_name(int category); /* NULL when out of range */
-const char *sphgen_category_description(int category);
-int sphgen_category_find(const char *name); /* -1 when unknown */
-
-/* n cases of a category; the sphere changes every CYLGEN_BATCH cases. */
-void sphgen_make(int category, uint64_t seed, size_t n, sphgen_case *out);
-/* n cases that all share one sphere (that of batch 0): for streams. */
-void sphgen_make_shared(int category, uint64_t seed, size_t n, sphgen_case *out);
+CYLGEN_SHAPE_DECLARE(sphgen, cylray_sphere, sph);
 
 #ifdef __cplusplus
 }

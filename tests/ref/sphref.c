@@ -171,15 +171,8 @@ static void s_perturb(const sin_q *base, const cylq step[IN_COUNT],
                       const signed char k[IN_COUNT], sin_q *out)
 {
     *out = *base;
-    for (int i = 0; i < IN_COUNT; i++) {
-        cylq s = step[i] * k[i];
-        if (i < IN_D)
-            out->w[i] += s;
-        else if (i < IN_R)
-            out->d[i - IN_D] += s;
-        else
-            out->R += s;
-    }
+    ref_perturb_ray(out->w, out->d, step, k);
+    out->R += step[IN_R] * k[IN_R];
     if (!(out->R > 0))
         out->R = base->R;
 }
@@ -273,8 +266,7 @@ void sphref_band_eval(const cylray_sphere *s, const float o[3], const float d[3]
         if (x0 != SO_MISS && x == x0 && p == p0) {
             double n[3];
             s_normal(&r, x, ff, n);
-            nsum += sqrt((n[0] - n0[0]) * (n[0] - n0[0]) + (n[1] - n0[1]) * (n[1] - n0[1]) +
-                         (n[2] - n0[2]) * (n[2] - n0[2]));
+            nsum += ref_normal_move(n, n0);
         }
     }
 
@@ -340,19 +332,9 @@ void sphref_band_eval(const cylray_sphere *s, const float o[3], const float d[3]
             x->lo = fmin(x->lo, t - w);
             x->hi = fmax(x->hi, t + w);
         }
-        if (x0 != SO_MISS && x->part == p0) {
-            out->t_lo = x->lo;
-            out->t_hi = x->hi;
-        } else if (out->n_alt < CYLREF_MAX_ALT) {
-            cylref_alt *a = &out->alt[out->n_alt++];
-            a->part = x->part;
-            a->t_lo = x->lo;
-            a->t_hi = x->hi;
-        }
+        ref_band_keep(out, x0 != SO_MISS && x->part == p0, x->part, x->lo, x->hi);
     }
-    out->hit_unstable = hits > 0 && misses > 0;
-    out->part_unstable = hits > 1;
-    out->decision_unstable = out->hit_unstable || out->part_unstable;
+    ref_band_decide(out, hits, misses, 0);
     out->n_spread = fmax(fmax(nsum, nmax), x0 != SO_MISS ? box_turn(&base, out->exact.t) : 0);
 }
 

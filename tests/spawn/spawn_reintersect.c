@@ -116,8 +116,10 @@ int run_reintersect(void)
         /* pbrt's tube: radius, zmin, zmax (pExp(4), random signs), then a random
          * rotation, uniform scale and translation (pExp(8)) */
         const double R = pexp(&rng, 4);
-        double z0 = pexp(&rng, 4) * (cylgen_uniform(&rng) < 0.5 ? -1 : 1);
-        double z1 = pexp(&rng, 4) * (cylgen_uniform(&rng) < 0.5 ? -1 : 1);
+        double z0 = pexp(&rng, 4);
+        z0 *= cylgen_uniform(&rng) < 0.5 ? -1 : 1;
+        double z1 = pexp(&rng, 4);
+        z1 *= cylgen_uniform(&rng) < 0.5 ? -1 : 1;
         if (z0 > z1) {
             const double t = z0;
             z0 = z1, z1 = t;
@@ -125,8 +127,10 @@ int run_reintersect(void)
         double axis[3], tr[3];
         sref_unit(&rng, axis);
         const double scale = pexp(&rng, 8);
-        for (int k = 0; k < 3; k++)
-            tr[k] = pexp(&rng, 8) * (cylgen_uniform(&rng) < 0.5 ? -1 : 1);
+        for (int k = 0; k < 3; k++) {
+            tr[k] = pexp(&rng, 8);
+            tr[k] *= cylgen_uniform(&rng) < 0.5 ? -1 : 1;
+        }
         cylray_cylinder cyl;
         memset(&cyl, 0, sizeof cyl);
         for (int k = 0; k < 3; k++) {

@@ -56,16 +56,8 @@ int run_self(void)
                 double n[3];
                 sref_normal(cyl, p[i], Pm, n);
                 const int refl = part & CYLRAY_BACKFACE ? -1 : 1; /* the incident side */
-                tmax[i] = INFINITY;
-                if (kind == K_SHADOW) {
-                    double u[3], dist = cyl->radius * exp(cylgen_uniform(&rng) * 7);
-                    sref_unit(&rng, u);
-                    for (int k = 0; k < 3; k++)
-                        w[i][k] = (float)(dist * u[k]);
-                    tmax[i] = 1.0f;
-                } else {
-                    sref_direction(&rng, n, kind == K_REFL ? refl : -refl, w[i]);
-                }
+                sref_secondary(&rng, n, cyl->radius, kind == K_SHADOW,
+                               kind == K_REFL ? refl : -refl, w[i], &tmax[i]);
                 use |= 1u << i;
             }
             if (isa_origins(ks, &P, &hit, use, (const float(*)[3])p, err, (const float(*)[3])w,

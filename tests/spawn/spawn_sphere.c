@@ -38,6 +38,13 @@ void fail(const char *what, const cylray_sphere *s, const char *fmt, double a, d
     }
 }
 
+/* A mantissa in [1, 2) times 2^e, e uniform in [lo, hi): the exponent drawn first. */
+static double binade(cylgen_rng *r, double lo, double hi)
+{
+    const int e = (int)uni(r, lo, hi);
+    return ldexp(1 + cylgen_uniform(r), e);
+}
+
 void make_sphere(cylgen_rng *r, int kind, cylray_sphere *s)
 {
     double R, c[3], u[3];
@@ -56,12 +63,12 @@ void make_sphere(cylgen_rng *r, int kind, cylray_sphere *s)
         break;
     }
     case K_TINY:
-        R = ldexp(1 + cylgen_uniform(r), (int)uni(r, -58, -40));
+        R = binade(r, -58, -40);
         for (int k = 0; k < 3; k++)
             c[k] = R * uni(r, -1e3, 1e3);
         break;
     default:
-        R = ldexp(1 + cylgen_uniform(r), (int)uni(r, 40, 60));
+        R = binade(r, 40, 60);
         for (int k = 0; k < 3; k++)
             c[k] = R * uni(r, -2, 2);
         break;

@@ -78,16 +78,8 @@ int run_spawns(int side_form)
                     for (int k = 0; k < 3; k++)
                         nn[k] /= l;
                     const int inc = part[i] & CYLRAY_BACKFACE ? -1 : 1;
-                    tmax[i] = INFINITY;
-                    if (dir == D_SHADOW) {
-                        double u[3], dist = s.radius * exp(cylgen_uniform(&rng) * 7);
-                        sref_unit(&rng, u);
-                        for (int k = 0; k < 3; k++)
-                            w[i][k] = (float)(dist * u[k]);
-                        tmax[i] = 1.0f;
-                    } else {
-                        sref_direction(&rng, nn, dir == D_REFL ? inc : -inc, w[i]);
-                    }
+                    sref_secondary(&rng, nn, s.radius, dir == D_SHADOW,
+                                   dir == D_REFL ? inc : -inc, w[i], &tmax[i]);
                     /* the side form: the side from the kernel's (outward) normal, or at
                      * random one time in four */
                     const double wn = w[i][0] * n[i][0] + w[i][1] * n[i][1] + w[i][2] * n[i][2];

@@ -33,6 +33,21 @@ void sref_unit(cylgen_rng *rng, double u[3])
         u[k] /= l;
 }
 
+void sref_secondary(cylgen_rng *rng, const double n[3], double size, int shadow, int side,
+                    float w[3], float *tmax)
+{
+    *tmax = INFINITY;
+    if (shadow) {
+        double u[3], dist = size * exp(cylgen_uniform(rng) * 7);
+        sref_unit(rng, u);
+        for (int k = 0; k < 3; k++)
+            w[k] = (float)(dist * u[k]);
+        *tmax = 1.0f;
+    } else {
+        sref_direction(rng, n, side, w);
+    }
+}
+
 const char *sref_category_name(int cat)
 {
     if (cat == SREF_LONG)

@@ -36,6 +36,11 @@ void sref_normal(const cylray_cylinder *cyl, const float x[3], int part, double 
 void sref_direction(cylgen_rng *rng, const double n[3], int side, float w[3]);
 /* A uniform unit vector. */
 void sref_unit(cylgen_rng *rng, double u[3]);
+/* A secondary ray's direction w and tmax from a hit with unit outward normal n on a
+ * shape of size `size`: a shadow ray to a light at size e^(0..7) in a random direction
+ * (tmax 1), else as sref_direction on the side `side` (tmax INFINITY). */
+void sref_secondary(cylgen_rng *rng, const double n[3], double size, int shadow, int side,
+                    float w[3], float *tmax);
 
 /* 1 when a hit at t (of part hit_part) of the ray x0 + t w, traced after leaving part
  * left_part, is that surface met again at the point left: the same part, nearer than

@@ -19,6 +19,7 @@
 #include "cylref.h"
 #include "gen.h"
 #include "quad.h"
+#include "spawnref.h"
 #include "tcheck.h"
 
 #include <math.h>
@@ -33,6 +34,13 @@ static double uni(cylgen_rng *r, double a, double b)
     return a + (b - a) * cylgen_uniform(r);
 }
 
+/* A mantissa in [1, 2) times 2^e, e uniform in [lo, hi): the exponent drawn first. */
+static double binade(cylgen_rng *r, double lo, double hi)
+{
+    const int e = (int)uni(r, lo, hi);
+    return ldexp(1 + cylgen_uniform(r), e);
+}
+
 static void make_sphere(cylgen_rng *r, int kind, cylray_sphere *s)
 {
     double R;
@@ -44,10 +52,10 @@ static void make_sphere(cylgen_rng *r, int kind, cylray_sphere *s)
         R = pow(10, uni(r, -4, 4));
         break;
     case 2:
-        R = ldexp(1 + cylgen_uniform(r), (int)uni(r, -60, -40));
+        R = binade(r, -60, -40);
         break;
     default:
-        R = ldexp(1 + cylgen_uniform(r), (int)uni(r, 40, 58));
+        R = binade(r, 40, 58);
         break;
     }
     const double spread = kind % 4 == 1 ? pow(10, uni(r, 3, 6)) * (1 + R) : R * uni(r, 0, 8);
@@ -56,19 +64,6 @@ static void make_sphere(cylgen_rng *r, int kind, cylray_sphere *s)
     if (cylgen_uniform(r) < 0.1) /* exactly at the origin, or on a coordinate plane */
         s->center[(int)(cylgen_next(r) % 3)] = 0.0f;
     s->radius = (float)R;
-}
-
-static void unit(cylgen_rng *r, double u[3])
-{
-    double l;
-    do {
-        for (int k = 0; k < 3; k++)
-            u[k] = uni(r, -1, 1);
-        l = u[0] * u[0] + u[1] * u[1] + u[2] * u[2];
-    } while (l > 1 || l < 1e-6);
-    l = sqrt(l);
-    for (int k = 0; k < 3; k++)
-        u[k] /= l;
 }
 
 /* 1 where the float face f lies on the outer side of the exact value x (dir -1: below,
@@ -125,7 +120,7 @@ static int run_box(void)
         }
         for (int j = 0; j < 8; j++) {
             double u[3];
-            unit(&rng, u);
+            sref_unit(&rng, u);
             if (j < 6) /* the extreme points */
                 u[0] = u[1] = u[2] = 0, u[j / 2] = j & 1 ? 1 : -1;
             CHECK(inside(lo, hi, &s[0], u), "a point of the sphere outside its box");
@@ -204,7 +199,7 @@ static int run_split(void)
         /* points of the sphere: each in the box of its slice */
         for (int t = 0; t < 16; t++) {
             double u[3];
-            unit(&rng, u);
+            sref_unit(&rng, u);
             size_t j = (size_t)floor((u[2] + 1) * 0.5 * (double)n);
             if (j >= n)
                 j = n - 1;
@@ -244,7 +239,7 @@ static int run_surface(void)
         cylray_prepare_sphere(&P, &s[lane]);
         /* a float point on (or next to) the sphere; some at the poles and on the seam */
         double u[3];
-        unit(&rng, u);
+        sref_unit(&rng, u);
         const int special = (int)(cylgen_next(&rng) % 16);
         if (special == 0)
             u[0] = u[1] = 0, u[2] = u[2] < 0 ? -1 : 1;

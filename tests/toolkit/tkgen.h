@@ -49,7 +49,8 @@ static inline void tk_cylinder(cylgen_rng *g, int kind, cylray_cylinder *c)
     int j = (int)(cylgen_next(g) % 3);
     switch (kind) {
     case 1: { /* along a coordinate axis, any length and sign; faces through 0 */
-        float s = (float)tk_log(g, 1e-30, 1e30) * (tk_u(g) < 0.5f ? -1.0f : 1.0f);
+        float s = (float)tk_log(g, 1e-30, 1e30);
+        s *= tk_u(g) < 0.5f ? -1.0f : 1.0f;
         c->axis[0] = c->axis[1] = c->axis[2] = 0;
         c->axis[j] = s;
         if (tk_u(g) < 0.5)

@@ -233,7 +233,8 @@ static void pipes(eb_builder *b, eb_rng *g, int reducers)
             while (a == last);
             last = a;
             memcpy(pts[i], pts[i - 1], sizeof pts[i]);
-            double step = (eb_unit(g) < 0.5 ? -1 : 1) * floor(eb_range(g, 2, 8));
+            const double sign = eb_unit(g) < 0.5 ? -1 : 1;
+            double step = sign * floor(eb_range(g, 2, 8));
             if (pts[i][a] + step < 0 || pts[i][a] + step > 60)
                 step = -step; /* stay in the plant's box, away from the camera */
             pts[i][a] += step;
