@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* bandutil.h - what the three shapes' references (band.c, sphref.c, conref.c and
- * conref_band.c) share: the ray they take, and what their bands measure and keep their
- * outcomes with. */
+ * conref_band.c) share: the ray they take, the sequence of their exact answer, and what
+ * their bands measure and keep their outcomes with. */
 #ifndef CYLREF_BANDUTIL_H
 #define CYLREF_BANDUTIL_H
 
@@ -61,6 +61,14 @@ static inline cylq ref_vec_step(const cylq a[3])
 {
     cylq m = q_max(q_abs(a[0]), q_max(q_abs(a[1]), q_abs(a[2])));
     return (cylq)ref_float_ulp((double)m);
+}
+
+/* A gradient sample's move of the exact outcome's t (t at the sample, t0 at the center);
+ * 0 where either is not finite, so that the extreme vertices follow the other inputs. */
+static inline double ref_dt(cylq t, cylq t0)
+{
+    const cylq dd = t - t0;
+    return q_isfinite(dd) ? (double)dd : 0;
 }
 
 /* The random vertices of the box a band visits after the two where t is extreme. */
@@ -158,5 +166,72 @@ static inline void ref_band_decide(cylref_band *out, int hits, int misses, int u
     out->part_unstable = hits > 1 || unknown;
     out->decision_unstable = out->hit_unstable || out->part_unstable;
 }
+
+/* Starts a band: empty, t's range NaN; returns 0 when there is none to evaluate (a shape
+ * its reference refuses, valid 0, or a ray that cannot hit). */
+static inline int ref_band_begin(cylref_band *out, int valid, const float *o, const float *d,
+                                 float tmin, float tmax)
+{
+    memset(out, 0, sizeof *out);
+    out->t_lo = out->t_hi = NAN;
+    return valid && ref_ray_ok(o, d, tmin, tmax);
+}
+
+/* The band's exact answer: a hit at t with part and normal n. */
+static inline void ref_band_exact(cylref_band *out, double t, int part, const double n[3])
+{
+    out->exact.hit = 1;
+    out->exact.t = t;
+    out->exact.part = part;
+    memcpy(out->exact.n, n, sizeof out->exact.n);
+}
+
+/* Keeps every hit outcome of a band's set (exact_part's as the exact outcome's t range;
+ * -1: the exact answer is a miss) and sets the decisions' verdicts from how many hit
+ * and miss outcomes there were: a shape whose set holds every outcome its box allows. */
+static inline void ref_band_keep_set(cylref_band *out, const ref_set *set, int exact_part)
+{
+    int hits = 0, misses = 0;
+    for (int i = 0; i < set->n; i++) {
+        const ref_outcome *x = &set->v[i];
+        if (x->part < 0) {
+            misses++;
+            continue;
+        }
+        hits++;
+        ref_band_keep(out, x->part == exact_part, x->part, x->lo, x->hi);
+    }
+    ref_band_decide(out, hits, misses, 0);
+}
+
+/* A shape's exact answer, prefix_intersect (cylref.h's CYLREF_SHAPE_DECLARE), from its
+ * row: valid(shape); in(shape, o, d, &q) the inputs in binary128 (in_t); eval(&q, tmin,
+ * tmax, &r) every candidate with its margins (rec_t); decide(&r, shape, flags) the
+ * outcome taken, -1 for a miss; and that outcome's t_of(&r, x) (binary128), part_of(&r,
+ * x) and normal_of(&r, x, face_forward, n). The band evaluates the same steps over the
+ * box, so a shape states them once for both. */
+#define REF_INTERSECT_DEFINE(prefix, shape_t, in_t, rec_t, valid, in, eval, decide, t_of,      \
+                             part_of, normal_of)                                               \
+    int prefix##_intersect(const shape_t *s, const float o[3], const float d[3], float tmin,   \
+                           float tmax, unsigned flags, cylref_hit *out)                        \
+    {                                                                                          \
+        memset(out, 0, sizeof *out);                                                           \
+        if (!valid(s))                                                                         \
+            return -1;                                                                         \
+        if (!ref_ray_ok(o, d, tmin, tmax))                                                     \
+            return 0;                                                                          \
+        in_t q;                                                                                \
+        in(s, o, d, &q);                                                                       \
+        rec_t r;                                                                               \
+        eval(&q, tmin, tmax, &r);                                                              \
+        const int x = decide(&r, s, flags);                                                    \
+        if (x < 0)                                                                             \
+            return 0;                                                                          \
+        out->hit = 1;                                                                          \
+        out->t = (double)t_of(&r, x);                                                          \
+        out->part = part_of(&r, x);                                                            \
+        normal_of(&r, x, (flags & CYLRAY_FACE_FORWARD) != 0, out->n);                          \
+        return 1;                                                                              \
+    }
 
 #endif

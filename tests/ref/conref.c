@@ -217,29 +217,21 @@ void conref_in_(const cylray_cone *c, const float o[3], const float d[3], cin_q 
     q->r1 = c->r1;
 }
 
-int conref_intersect(const cylray_cone *c, const float o[3], const float d[3], float tmin,
-                     float tmax, unsigned flags, cylref_hit *out)
+/* The candidate taken: conref_first_ over those valid with the shape's discs. */
+static int decide(const crec *r, const cylray_cone *c, unsigned flags)
 {
-    memset(out, 0, sizeof *out);
-    if (!conref_valid(c))
-        return -1;
-    if (!ref_ray_ok(o, d, tmin, tmax))
-        return 0;
-    cin_q q;
-    conref_in_(c, o, d, &q);
-    crec r;
-    conref_eval_(&q, tmin, tmax, &r);
     unsigned char v[K_COUNT];
-    conref_valid_parts_(&r, c->flags | (flags & CYLRAY_CULL_BACK), v);
-    int x = conref_first_(&r, v);
-    if (x < 0)
-        return 0;
-    out->hit = 1;
-    out->t = (double)r.t[x];
-    out->part = conref_part_(&r, x);
-    conref_normal_(&r, x, (flags & CYLRAY_FACE_FORWARD) != 0, out->n);
-    return 1;
+    conref_valid_parts_(r, c->flags | (flags & CYLRAY_CULL_BACK), v);
+    return conref_first_(r, v);
 }
+
+static cylq t_of(const crec *r, int kand)
+{
+    return r->t[kand];
+}
+
+REF_INTERSECT_DEFINE(conref, cylray_cone, cin_q, crec, conref_valid, conref_in_, conref_eval_,
+                     decide, t_of, conref_part_, conref_normal_)
 
 void conref_as_cylinder(const cylray_cone *c, cylray_cylinder *out)
 {

@@ -18,19 +18,19 @@
 extern "C" {
 #endif
 
-/* 1 when cylray_prepare_cone must accept c (cylray.h's refusals, without NULL). */
-int conref_valid(const cylray_cone *c);
-
-/* The exact answer: returns out->hit, or -1 (and a miss) for a cone conref_valid
- * refuses. Part CYLRAY_SIDE / CAP_LO / CAP_HI, | CYLRAY_BACKFACE when dot(d, n_out) > 0
- * (a tangency counts as a front face); n outward, or facing the ray with
- * CYLRAY_FACE_FORWARD; CYLRAY_CULL_BACK drops back-face hits. */
-int conref_intersect(const cylray_cone *c, const float o[3], const float d[3], float tmin,
-                     float tmax, unsigned flags, cylref_hit *out);
-
-/* The tolerance band. The perturbed inputs: the origin relative to the center by 2
- * ulps of |o - c|, plus 2 ulps of the center's largest coordinate when the center
- * (p0 + p1) / 2 is not a float (the prepared cone rounds it once); d by 2 ulps of its
+/* The cone's row (cylref.h):
+ *   conref_valid       1 when cylray_prepare_cone must accept c (cylray.h's refusals,
+ *                      without NULL)
+ *   conref_intersect   part CYLRAY_SIDE / CAP_LO / CAP_HI, | CYLRAY_BACKFACE when
+ *                      dot(d, n_out) > 0 (a tangency counts as a front face); n outward,
+ *                      or facing the ray with CYLRAY_FACE_FORWARD; CYLRAY_CULL_BACK
+ *                      drops back-face hits
+ *   conref_band_eval   the band (below)
+ *   conref_judge       as cylref_judge
+ *
+ * The band's perturbed inputs: the origin relative to the center by 2 ulps of
+ * |o - c|, plus 2 ulps of the center's largest coordinate when the center (p0 + p1) / 2
+ * is not a float (the prepared cone rounds it once); d by 2 ulps of its
  * largest component; the axis p1 - p0 by 2 ulps of its largest component; each radius
  * by 2 ulps. Re-evaluated once per input, at the two vertices where t is extreme, at
  * 8 random ones, and for each input alone at a quarter and a half of its reach either
@@ -45,11 +45,7 @@ int conref_intersect(const cylray_cone *c, const float o[3], const float d[3], f
  * within 4 float ulps of the values compared, may be taken or dropped; candidates whose
  * t ranges overlap may come in either order; every outcome this allows is kept. A
  * cone in a leaf has the same band. */
-void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], float tmin,
-                      float tmax, unsigned flags, cylref_band *out);
-
-/* As cylref_judge. */
-int conref_judge(const cylref_band *b, int hit, int part, float t, double *ulps_beyond);
+CYLREF_SHAPE_DECLARE(conref, cylray_cone);
 
 /* The cylinder a cone with r0 == r1 prepares as (cylray_cylinder_from_endpoints's). */
 void conref_as_cylinder(const cylray_cone *c, cylray_cylinder *out);

@@ -151,9 +151,7 @@ static void c_sample(c_box *b, const cin_q *q)
 void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], float tmin,
                       float tmax, unsigned flags, cylref_band *out)
 {
-    memset(out, 0, sizeof *out);
-    out->t_lo = out->t_hi = NAN;
-    if (!conref_valid(c) || !ref_ray_ok(o, d, tmin, tmax))
+    if (!ref_band_begin(out, conref_valid(c), o, d, tmin, tmax))
         return;
     const unsigned vflags = c->flags | (flags & CYLRAY_CULL_BACK);
     const int ff = (flags & CYLRAY_FACE_FORWARD) != 0;
@@ -186,11 +184,8 @@ void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], 
     out->evals = 1;
     double n0[3] = {0, 0, 0};
     if (x0 >= 0) {
-        out->exact.hit = 1;
-        out->exact.t = (double)r0.t[x0];
-        out->exact.part = p0;
         conref_normal_(&r0, x0, ff, n0);
-        memcpy(out->exact.n, n0, sizeof n0);
+        ref_band_exact(out, (double)r0.t[x0], p0, n0);
     }
     ref_set set = {0};
     ref_add(&set, p0, out->exact.t);
@@ -221,10 +216,8 @@ void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], 
         }
         dcoef[i][0] = r.A - r0.A, dcoef[i][1] = r.B - r0.B, dcoef[i][2] = r.C - r0.C;
         sum_zd += q_abs(r.zd - r0.zd);
-        if (x0 >= 0) {
-            cylq dd = r.t[x0] - r0.t[x0];
-            dt[i] = q_isfinite(dd) ? (double)dd : 0;
-        }
+        if (x0 >= 0)
+            dt[i] = ref_dt(r.t[x0], r0.t[x0]);
         conref_valid_parts_(&r, vflags, v);
         track(tr, &r, v);
         int x = conref_first_(&r, v);
@@ -438,17 +431,7 @@ void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], 
         }
     }
 
-    int hits = 0, misses = 0;
-    for (int i = 0; i < set.n; i++) {
-        ref_outcome *x = &set.v[i];
-        if (x->part < 0) {
-            misses++;
-            continue;
-        }
-        hits++;
-        ref_band_keep(out, x0 >= 0 && x->part == p0, x->part, x->lo, x->hi);
-    }
-    ref_band_decide(out, hits, misses, 0);
+    ref_band_keep_set(out, &set, x0 >= 0 ? p0 : -1);
     /* The gradient samples turn the normal by 2 ulps of one input each; the box's
      * corners by all at once: twice the worst sample bounds a sum of a few. */
     out->n_spread = 2 * nmax;

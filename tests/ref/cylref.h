@@ -104,6 +104,22 @@ double cylref_angle(const float n[3], const double exact[3]);
 /* Float ulp at |x| (the spacing of floats there), in double. */
 double cylref_float_ulp(double x);
 
+/* Another shape's reference, declared from its row (prefix, shape type), with the
+ * cylinder's answer, band and judge types so that one checker judges every shape:
+ *   prefix_valid(s)         1 when cylray_prepare_<shape> must accept s
+ *   prefix_intersect(...)   the exact answer: returns out->hit, or -1 (and a miss) for
+ *                           a shape prefix_valid refuses
+ *   prefix_band_eval(...)   the tolerance band, as cylref_band_eval's
+ *   prefix_judge(...)       as cylref_judge
+ * Each shape's header says what its validity, answer and band are. */
+#define CYLREF_SHAPE_DECLARE(prefix, shape_t)                                                  \
+    int prefix##_valid(const shape_t *s);                                                      \
+    int prefix##_intersect(const shape_t *s, const float o[3], const float d[3], float tmin,   \
+                           float tmax, unsigned flags, cylref_hit *out);                       \
+    void prefix##_band_eval(const shape_t *s, const float o[3], const float d[3], float tmin,  \
+                            float tmax, unsigned flags, cylref_band *out);                     \
+    int prefix##_judge(const cylref_band *b, int hit, int part, float t, double *ulps_beyond)
+
 #ifdef __cplusplus
 }
 #endif

@@ -139,29 +139,18 @@ static void s_in(const cylray_sphere *s, const float o[3], const float d[3], sin
     q->R = s->radius;
 }
 
-int sphref_intersect(const cylray_sphere *s, const float o[3], const float d[3], float tmin,
-                     float tmax, unsigned flags, cylref_hit *out)
+/* The outcome taken, -1 for a miss (REF_INTERSECT_DEFINE's convention). */
+static int s_answer(const srec *r, const cylray_sphere *s, unsigned flags)
 {
-    memset(out, 0, sizeof *out);
-    if (!sphref_valid(s))
-        return -1;
-    if (!ref_ray_ok(o, d, tmin, tmax))
-        return 0;
-    sin_q q;
-    s_in(s, o, d, &q);
-    srec r;
-    s_eval(&q, tmin, tmax, &r);
+    (void)s;
     unsigned char b[S_COUNT];
-    s_bools(&r, b);
-    int x = s_decide(b, (flags & CYLRAY_CULL_BACK) != 0);
-    if (x == SO_MISS)
-        return 0;
-    out->hit = 1;
-    out->t = (double)s_t(&r, x);
-    out->part = s_part(&r, x);
-    s_normal(&r, x, (flags & CYLRAY_FACE_FORWARD) != 0, out->n);
-    return 1;
+    s_bools(r, b);
+    const int x = s_decide(b, (flags & CYLRAY_CULL_BACK) != 0);
+    return x == SO_MISS ? -1 : x;
 }
+
+REF_INTERSECT_DEFINE(sphref, cylray_sphere, sin_q, srec, sphref_valid, s_in, s_eval, s_answer,
+                     s_t, s_part, s_normal)
 
 /* ---- the band ----------------------------------------------------------------------- */
 
@@ -210,9 +199,7 @@ static double box_turn(const sin_q *q, double t)
 void sphref_band_eval(const cylray_sphere *s, const float o[3], const float d[3], float tmin,
                       float tmax, unsigned flags, cylref_band *out)
 {
-    memset(out, 0, sizeof *out);
-    out->t_lo = out->t_hi = NAN;
-    if (!sphref_valid(s) || !ref_ray_ok(o, d, tmin, tmax))
+    if (!ref_band_begin(out, sphref_valid(s), o, d, tmin, tmax))
         return;
     const int cull = (flags & CYLRAY_CULL_BACK) != 0, ff = (flags & CYLRAY_FACE_FORWARD) != 0;
     sin_q base;
@@ -233,11 +220,8 @@ void sphref_band_eval(const cylray_sphere *s, const float o[3], const float d[3]
     out->evals = 1;
     double n0[3] = {0, 0, 0};
     if (x0 != SO_MISS) {
-        out->exact.hit = 1;
-        out->exact.t = (double)s_t(&r0, x0);
-        out->exact.part = p0;
         s_normal(&r0, x0, ff, n0);
-        memcpy(out->exact.n, n0, sizeof n0);
+        ref_band_exact(out, (double)s_t(&r0, x0), p0, n0);
     }
     ref_set set = {0};
     ref_add(&set, x0 == SO_MISS ? -1 : p0, out->exact.t);
@@ -255,10 +239,8 @@ void sphref_band_eval(const cylray_sphere *s, const float o[3], const float d[3]
             sum_m[m] += ref_qdiff(r.m[m], r0.m[m]);
         sum_tn += ref_qdiff(r.tn, r0.tn);
         sum_tf += ref_qdiff(r.tf, r0.tf);
-        if (x0 != SO_MISS) {
-            cylq dd = s_t(&r, x0) - s_t(&r0, x0);
-            dt[i] = q_isfinite(dd) ? (double)dd : 0;
-        }
+        if (x0 != SO_MISS)
+            dt[i] = ref_dt(s_t(&r, x0), s_t(&r0, x0));
         s_bools(&r, b);
         int x = s_decide(b, cull);
         int p = x == SO_MISS ? 0 : s_part(&r, x);
@@ -317,24 +299,17 @@ void sphref_band_eval(const cylray_sphere *s, const float o[3], const float d[3]
         ref_add(&set, x == SO_MISS ? -1 : p, x == SO_MISS ? NAN : (double)s_t(&r0, x));
     }
 
-    int hits = 0, misses = 0;
+    /* Each hit outcome widened by the linear bound of the root its part belongs to. */
     for (int i = 0; i < set.n; i++) {
         ref_outcome *x = &set.v[i];
-        if (x->part < 0) {
-            misses++;
-            continue;
-        }
-        hits++;
-        /* Widen by the linear bound of the root the outcome's part belongs to. */
-        int back = (x->part & CYLRAY_BACKFACE) != 0;
-        double t = (double)(back ? r0.tf : r0.tn), w = back ? sum_tf : sum_tn;
-        if (q_isfinite(back ? r0.tf : r0.tn)) {
+        const int back = (x->part & CYLRAY_BACKFACE) != 0;
+        const double t = (double)(back ? r0.tf : r0.tn), w = back ? sum_tf : sum_tn;
+        if (x->part >= 0 && q_isfinite(back ? r0.tf : r0.tn)) {
             x->lo = fmin(x->lo, t - w);
             x->hi = fmax(x->hi, t + w);
         }
-        ref_band_keep(out, x0 != SO_MISS && x->part == p0, x->part, x->lo, x->hi);
     }
-    ref_band_decide(out, hits, misses, 0);
+    ref_band_keep_set(out, &set, x0 != SO_MISS ? p0 : -1);
     out->n_spread = fmax(fmax(nsum, nmax), x0 != SO_MISS ? box_turn(&base, out->exact.t) : 0);
 }
 

@@ -17,32 +17,27 @@
 extern "C" {
 #endif
 
-/* 1 when cylray_prepare_sphere must accept s: center coordinates finite with
- * |x| <= 2^62, radius in [2^-60, 2^62]. */
-int sphref_valid(const cylray_sphere *s);
-
-/* The exact answer: returns out->hit (1 or 0), or -1 (and a miss) for a sphere that
- * sphref_valid refuses. A ray with NaN/Inf origin or direction, a zero direction or a
- * NaN tmin/tmax misses. The hit is the smallest t in the closed [tmin, tmax] with
- * |o + t d - c| = R; part CYLRAY_SIDE, | CYLRAY_BACKFACE when dot(d, n_out) > 0; n the
- * outward unit normal, or facing the ray with CYLRAY_FACE_FORWARD; CYLRAY_CULL_BACK
- * drops back-face hits (NORMAL, REFINE and FAST change nothing in exact arithmetic). */
-int sphref_intersect(const cylray_sphere *s, const float o[3], const float d[3], float tmin,
-                     float tmax, unsigned flags, cylref_hit *out);
-
-/* The tolerance band, as cylref_band_eval's: w = o - c moved norm-wise by 2 ulps of
- * its largest component, d likewise, R by 2 ulps, re-evaluated exactly (once per
- * input for the gradient, at the two vertices where t is extreme and at 8 random
- * ones); the hit/miss decision (the discriminant) and the choice of root (each root
- * against tmin and tmax) are unstable when their margins can change sign in that box
- * or lie within 4 float ulps of the values compared. */
-void sphref_band_eval(const cylray_sphere *s, const float o[3], const float d[3], float tmin,
-                      float tmax, unsigned flags, cylref_band *out);
-
-/* 0: the kernel's outcome is allowed; 1: an unexcused hit/miss disagreement; 2: an
- * unexcused part (front/back) disagreement; *ulps_beyond: t's distance outside the
- * band of its outcome, in float ulps. The same rules as cylref_judge. */
-int sphref_judge(const cylref_band *b, int hit, int part, float t, double *ulps_beyond);
+/* The sphere's row (cylref.h):
+ *   sphref_valid       center coordinates finite with |x| <= 2^62, radius in
+ *                      [2^-60, 2^62]
+ *   sphref_intersect   a ray with NaN/Inf origin or direction, a zero direction or a
+ *                      NaN tmin/tmax misses. The hit is the smallest t in the closed
+ *                      [tmin, tmax] with |o + t d - c| = R; part CYLRAY_SIDE,
+ *                      | CYLRAY_BACKFACE when dot(d, n_out) > 0; n the outward unit
+ *                      normal, or facing the ray with CYLRAY_FACE_FORWARD;
+ *                      CYLRAY_CULL_BACK drops back-face hits (NORMAL, REFINE and FAST
+ *                      change nothing in exact arithmetic)
+ *   sphref_band_eval   w = o - c moved norm-wise by 2 ulps of its largest component, d
+ *                      likewise, R by 2 ulps, re-evaluated exactly (once per input for
+ *                      the gradient, at the two vertices where t is extreme and at 8
+ *                      random ones); the hit/miss decision (the discriminant) and the
+ *                      choice of root (each root against tmin and tmax) are unstable
+ *                      when their margins can change sign in that box or lie within 4
+ *                      float ulps of the values compared
+ *   sphref_judge       the same rules as cylref_judge: 0 the kernel's outcome is
+ *                      allowed; 1 an unexcused hit/miss disagreement; 2 an unexcused
+ *                      part (front/back) disagreement */
+CYLREF_SHAPE_DECLARE(sphref, cylray_sphere);
 
 #ifdef __cplusplus
 }
