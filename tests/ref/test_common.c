@@ -165,3 +165,18 @@ void ref_run_generators(const ref_gen *g)
     free(a);
     free(b);
 }
+
+void ref_each_case(const ref_gen *g, const int *cats, size_t ncats, uint64_t seed, size_t n,
+                   ref_case_fn *each, void *ctx)
+{
+    unsigned char *a = malloc(n * g->size);
+    if (!a)
+        exit(2);
+    for (size_t ci = 0; ci < ncats; ci++) {
+        g->make(cats[ci], seed, n, a, 0);
+        for (size_t i = 0; i < n; i++)
+            for (unsigned fl = 0; fl <= CYLRAY_CULL_BACK; fl += CYLRAY_CULL_BACK)
+                each(ctx, a + i * g->size, g->name(cats[ci]), (int)i, fl);
+    }
+    free(a);
+}

@@ -84,40 +84,34 @@ static int ld_solve(const congen_case *c, unsigned flags, long double *t, int *p
     return 1;
 }
 
+static void compare(void *ctx, const void *cv, const char *cat, int i, unsigned fl)
+{
+    const congen_case *c = cv;
+    cylref_band b;
+    conref_band_eval(&c->cone, c->o, c->d, c->tmin, c->tmax, fl, &b);
+    if (b.decision_unstable)
+        return;
+    long double t = 0;
+    int part = 0;
+    int hit = ld_solve(c, fl, &t, &part);
+    ++*(long *)ctx;
+    CHECK(hit == b.exact.hit, "%s #%d flags %u: ld hit %d, ref %d", cat, i, fl, hit,
+          b.exact.hit);
+    if (!hit || !b.exact.hit)
+        return;
+    CHECK(part == b.exact.part, "%s #%d: ld part %#x, ref %#x", cat, i, (unsigned)part,
+          (unsigned)b.exact.part);
+    CHECK(fabsl(t - (long double)b.exact.t) <= 1e-12L * (fabsl(t) + 1e-30L) ||
+              fabsl(t - (long double)b.exact.t) <= 1e-9L * (b.t_hi - b.t_lo),
+          "%s #%d: ld t %.17Lg, ref %.17g", cat, i, t, b.exact.t);
+}
+
 static void test_independent(void)
 {
-    enum { N = 160 };
-    static congen_case cs[N];
     const int cats[] = {CONGEN_ORDINARY, CONGEN_INSIDE, CONGEN_CAMERA, CONGEN_FLAT,
                         CONGEN_APEX};
     long compared = 0;
-    for (size_t ci = 0; ci < sizeof cats / sizeof *cats; ci++) {
-        congen_make(cats[ci], 77, N, cs);
-        for (int i = 0; i < N; i++) {
-            const congen_case *c = &cs[i];
-            for (unsigned fl = 0; fl <= CYLRAY_CULL_BACK; fl += CYLRAY_CULL_BACK) {
-                cylref_band b;
-                conref_band_eval(&c->cone, c->o, c->d, c->tmin, c->tmax, fl, &b);
-                if (b.decision_unstable)
-                    continue;
-                long double t = 0;
-                int part = 0;
-                int hit = ld_solve(c, fl, &t, &part);
-                compared++;
-                CHECK(hit == b.exact.hit, "%s #%d flags %u: ld hit %d, ref %d",
-                      congen_category_name(cats[ci]), i, fl, hit, b.exact.hit);
-                if (!hit || !b.exact.hit)
-                    continue;
-                CHECK(part == b.exact.part, "%s #%d: ld part %#x, ref %#x",
-                      congen_category_name(cats[ci]), i, (unsigned)part,
-                      (unsigned)b.exact.part);
-                CHECK(fabsl(t - (long double)b.exact.t) <= 1e-12L * (fabsl(t) + 1e-30L) ||
-                          fabsl(t - (long double)b.exact.t) <= 1e-9L * (b.t_hi - b.t_lo),
-                      "%s #%d: ld t %.17Lg, ref %.17g", congen_category_name(cats[ci]), i, t,
-                      b.exact.t);
-            }
-        }
-    }
+    ref_each_case(&ref_cone_gen, cats, sizeof cats / sizeof *cats, 77, 160, compare, &compared);
     CHECK(compared > 1000, "only %ld stable cases compared", compared);
 }
 

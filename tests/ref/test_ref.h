@@ -91,6 +91,13 @@ extern const ref_gen ref_sphere_gen, ref_cone_gen;
  * answer inside its own band, and enough hits; shared shapes all the same. */
 void ref_run_generators(const ref_gen *g);
 
+/* Each of n cases (from seed) of each category cats[0..ncats) under the flags 0 and
+ * CYLRAY_CULL_BACK, to each(ctx, the case, its category's name, its index, flags): the
+ * loop of a shape's check against an independent solver, whose verdicts are its own. */
+typedef void ref_case_fn(void *ctx, const void *c, const char *cat, int i, unsigned flags);
+void ref_each_case(const ref_gen *g, const int *cats, size_t ncats, uint64_t seed, size_t n,
+                   ref_case_fn *each, void *ctx);
+
 void test_hand_cylinder(void); /* test_hand.c */
 void test_hand_sphere(void);
 void test_hand_cone(void);

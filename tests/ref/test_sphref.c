@@ -42,59 +42,60 @@ static int ld_solve(const sphgen_case *c, unsigned flags, long double *t, long d
     return 0;
 }
 
+typedef struct {
+    int compared, hits;
+} ld_counts;
+
+static void compare(void *ctx, const void *cv, const char *cat, int i, unsigned flags)
+{
+    const sphgen_case *c = cv;
+    ld_counts *n = ctx;
+    long double t = 0, h2;
+    int x = ld_solve(c, flags, &t, &h2);
+    cylref_hit r;
+    sphref_intersect(&c->sph, c->o, c->d, c->tmin, c->tmax, flags, &r);
+    /* Skip what long double cannot decide: near tangency or near an end of the
+     * interval. */
+    long double R2 = (long double)c->sph.radius * c->sph.radius;
+    if (fabsl(h2) < 1e-9L * R2)
+        return;
+    long double dn = sqrtl(fabsl(h2)) / c->sph.radius;
+    (void)dn;
+    if (r.hit &&
+        (fabs(r.t - c->tmin) <= 1e-9 * fabs(r.t) || fabs(r.t - c->tmax) <= 1e-9 * fabs(r.t)))
+        return;
+    n->compared++;
+    n->hits += r.hit;
+    CHECK(r.hit == (x != 0), "%s #%d flags %u: ref %d, long double %d", cat, i, flags, r.hit,
+          x);
+    if (!r.hit || !x)
+        return;
+    CHECK(((r.part & CYLRAY_BACKFACE) != 0) == (x == 2), "%s #%d: part %#x vs %d", cat, i,
+          r.part, x);
+    /* The long double form's error grows with |w|/|d| (the shift) and with the condition
+     * of the root; 1e-3 float ulps of that is far above it. */
+    double scale = 0, dd = 0;
+    for (int k = 0; k < 3; k++) {
+        double wk = (double)c->o[k] - c->sph.center[k];
+        scale += wk * wk;
+        dd += (double)c->d[k] * c->d[k];
+    }
+    scale = fmax(sqrt(scale / dd), fabs(r.t));
+    CHECK(fabs(r.t - (double)t) <= 1e-3 * cylref_float_ulp(scale) + 1e-30,
+          "%s #%d: t %.17g vs %.17Lg", cat, i, r.t, t);
+    double len = sqrt(r.n[0] * r.n[0] + r.n[1] * r.n[1] + r.n[2] * r.n[2]);
+    CHECK(fabs(len - 1) < 1e-14, "%s #%d: |n| %.17g", cat, i, len);
+}
+
 static void test_independent(void)
 {
-    enum { N = 600 };
-    static sphgen_case cs[N];
     const int cats[] = {SPHGEN_ORDINARY, SPHGEN_FAR,          SPHGEN_INSIDE, SPHGEN_TINY,
                         SPHGEN_HUGE,     SPHGEN_UNNORMALIZED, SPHGEN_CAMERA};
-    int compared = 0, hits = 0;
-    for (size_t ci = 0; ci < sizeof cats / sizeof cats[0]; ci++) {
-        sphgen_make(cats[ci], 11, N, cs);
-        for (int i = 0; i < N; i++) {
-            const sphgen_case *c = &cs[i];
-            for (unsigned flags = 0; flags <= CYLRAY_CULL_BACK; flags += CYLRAY_CULL_BACK) {
-                long double t = 0, h2;
-                int x = ld_solve(c, flags, &t, &h2);
-                cylref_hit r;
-                sphref_intersect(&c->sph, c->o, c->d, c->tmin, c->tmax, flags, &r);
-                /* Skip what long double cannot decide: near tangency or near an end of
-                 * the interval. */
-                long double R2 = (long double)c->sph.radius * c->sph.radius;
-                if (fabsl(h2) < 1e-9L * R2)
-                    continue;
-                long double dn = sqrtl(fabsl(h2)) / c->sph.radius;
-                (void)dn;
-                if (r.hit && (fabs(r.t - c->tmin) <= 1e-9 * fabs(r.t) ||
-                              fabs(r.t - c->tmax) <= 1e-9 * fabs(r.t)))
-                    continue;
-                compared++;
-                hits += r.hit;
-                CHECK(r.hit == (x != 0), "%s #%d flags %u: ref %d, long double %d",
-                      sphgen_category_name(cats[ci]), i, flags, r.hit, x);
-                if (!r.hit || !x)
-                    continue;
-                CHECK(((r.part & CYLRAY_BACKFACE) != 0) == (x == 2), "%s #%d: part %#x vs %d",
-                      sphgen_category_name(cats[ci]), i, r.part, x);
-                /* The long double form's error grows with |w|/|d| (the shift) and with
-                 * the condition of the root; 1e-3 float ulps of that is far above it. */
-                double scale = 0, dd = 0;
-                for (int k = 0; k < 3; k++) {
-                    double wk = (double)c->o[k] - c->sph.center[k];
-                    scale += wk * wk;
-                    dd += (double)c->d[k] * c->d[k];
-                }
-                scale = fmax(sqrt(scale / dd), fabs(r.t));
-                CHECK(fabs(r.t - (double)t) <= 1e-3 * cylref_float_ulp(scale) + 1e-30,
-                      "%s #%d: t %.17g vs %.17Lg", sphgen_category_name(cats[ci]), i, r.t, t);
-                double len = sqrt(r.n[0] * r.n[0] + r.n[1] * r.n[1] + r.n[2] * r.n[2]);
-                CHECK(fabs(len - 1) < 1e-14, "%s #%d: |n| %.17g",
-                      sphgen_category_name(cats[ci]), i, len);
-            }
-        }
-    }
-    printf("sphref vs long double: %d compared, %d hits\n", compared, hits);
-    CHECK(compared > 3000 && hits > 1000, "too few compared: %d, %d hits", compared, hits);
+    ld_counts n = {0, 0};
+    ref_each_case(&ref_sphere_gen, cats, sizeof cats / sizeof cats[0], 11, 600, compare, &n);
+    printf("sphref vs long double: %d compared, %d hits\n", n.compared, n.hits);
+    CHECK(n.compared > 3000 && n.hits > 1000, "too few compared: %d, %d hits", n.compared,
+          n.hits);
 }
 
 /* A float kernel that solves in double with the stable formulas and rounds once: it
