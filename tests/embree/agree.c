@@ -168,8 +168,10 @@ void eb_occlusion(const char *what, const eb_rays *r, size_t i, const float *tfa
                want != RTC_INVALID_GEOMETRY_ID);
 }
 
-uint32_t eb_exact_first(eb_err *e, const eb_ref *ref, RTCScene scene, const eb_rays *cam,
-                        size_t i, eb_sample *x, float *t, float ng[3])
+/* Camera ray i solved exactly (*x) and traced through scene, the answer judged into e
+ * against the exact one: its id, *t and ng. */
+static uint32_t exact_first(eb_err *e, const eb_ref *ref, RTCScene scene, const eb_rays *cam,
+                            size_t i, eb_sample *x, float *t, float ng[3])
 {
     eb_rays_get(cam, i, x->o, x->d);
     x->tmin = 0, x->tmax = INFINITY, x->pixel = SIZE_MAX;
@@ -179,13 +181,48 @@ uint32_t eb_exact_first(eb_err *e, const eb_ref *ref, RTCScene scene, const eb_r
     return id;
 }
 
-void eb_continuations(const float ng[3], const float d[3], float w[2][3])
+/* The secondary rays from a hit with normal ng on a ray of direction d: a reflection
+ * (w[0]) and a refraction-like continuation (w[1]). */
+static void continuations(const float ng[3], const float d[3], float w[2][3])
 {
     float n[3];
     eb_facing_normal(ng, d, n);
     float dn = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
     for (int k = 0; k < 3; k++)
         w[0][k] = d[k] - 2 * dn * n[k], w[1][k] = d[k];
+}
+
+int eb_exact_secondary(eb_err *e, const char *what, const eb_geom *g, const eb_ref *ref,
+                       const eb_rays *cam, const eb_exact_checks *c)
+{
+    int bad = 0;
+    for (size_t i = 0; i < cam->n; i++) {
+        eb_sample x;
+        float t = 0, ng[3] = {0, 0, 0};
+        uint32_t id = exact_first(e, ref, g->scene, cam, i, &x, &t, ng);
+        if (id == RTC_INVALID_GEOMETRY_ID || id != x.xid || !x.xhit)
+            continue;
+        unsigned prim;
+        RTCGeometry geo = eb_geom_of(g, id, &prim);
+        if (c->hit)
+            c->hit(&bad, what, geo, prim, id, &x, t, ng);
+        float w[2][3], org[3];
+        continuations(ng, x.d, w);
+        for (int s = 0; s < 2; s++) {
+            if (cylray_embree_spawn_origin(geo, prim, x.o, x.d, t, ng, w[s], org) ||
+                !isfinite(org[0]) || !isfinite(org[1]) || !isfinite(org[2])) {
+                if (bad++ < 3)
+                    printf("  %s: no usable spawn origin on %#x\n", what, id);
+                continue;
+            }
+            float st, sn[3];
+            uint32_t hit = eb_trace1(g->scene, org, w[s], 0, INFINITY, &st, sn);
+            eb_judge_secondary(e, &x, w[s], hit);
+            if (c->secondary)
+                c->secondary(&bad, what, geo, prim, &x, t, ng, w[s], org);
+        }
+    }
+    return bad;
 }
 
 void eb_packet_passes(const eb_passes *p, RTCScene sc, const char *vn, int filtered,

@@ -67,14 +67,25 @@ int eb_skipped_lane(const char *what, const eb_rays *r, size_t i, const float *t
 void eb_occlusion(const char *what, const eb_rays *r, size_t i, const float *tfar0,
                   uint32_t want, int *bad);
 
-/* Camera ray i solved exactly (*x) and traced through scene, the answer judged into e
- * against the exact one: its id, *t and ng. */
-uint32_t eb_exact_first(eb_err *e, const eb_ref *ref, RTCScene scene, const eb_rays *cam,
-                        size_t i, eb_sample *x, float *t, float ng[3]);
+/* A shape's own checks on the exact reference's answers (eb_exact_secondary): on an
+ * exact hit of prim (geometry geo, answer id) at t with normal ng, and on each secondary
+ * ray w spawned from it at org, after it is judged. Each counts its disagreements in
+ * *bad and prints the first three; NULL: none. */
+typedef struct eb_exact_checks {
+    void (*hit)(int *bad, const char *what, RTCGeometry geo, unsigned prim, uint32_t id,
+                const eb_sample *x, float t, const float ng[3]);
+    void (*secondary)(int *bad, const char *what, RTCGeometry geo, unsigned prim,
+                      const eb_sample *x, float t, const float ng[3], const float w[3],
+                      const float org[3]);
+} eb_exact_checks;
 
-/* The secondary rays every test spawns from a hit with normal ng on a ray of direction
- * d: a reflection (w[0]) and a refraction-like continuation (w[1]). */
-void eb_continuations(const float ng[3], const float d[3], float w[2][3]);
+/* Each camera ray solved exactly and traced through g's scene, the answer judged into
+ * e; from each exact hit a reflection and a refraction-like continuation spawned at the
+ * adapter's origin, traced and judged as secondary rays, and the shape's checks c made.
+ * Returns the disagreements beside e's: c's, and spawn origins refused or not finite
+ * (such a ray is not traced: Embree's debug builds assert on it). */
+int eb_exact_secondary(eb_err *e, const char *what, const eb_geom *g, const eb_ref *ref,
+                       const eb_rays *cam, const eb_exact_checks *c);
 
 /* A test's camera for the packet passes: its scene and image size, how it turns its rays
  * incoherent, and its check of the answers in r against its own brute force (returns

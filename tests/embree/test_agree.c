@@ -211,6 +211,30 @@ static int hit_calls(RTCGeometry geo, uint32_t prim, const float o[3], const flo
            memcmp(du, du2, sizeof du) || memcmp(dv, dv2, sizeof dv);
 }
 
+/* The adapter's hit calls on an exact hit agree with cylray's (hit_calls). */
+static void exact_hit(int *bad, const char *what, RTCGeometry geo, unsigned prim, uint32_t id,
+                      const eb_sample *x, float t, const float ng[3])
+{
+    (void)id;
+    if (hit_calls(geo, prim, x->o, x->d, t, ng) && (*bad)++ < 3)
+        printf("  %s: the hit calls disagree with cylray's on prim %u at t %.9g\n", what, prim,
+               t);
+}
+
+/* The side form, the side being w's: the same origin, bit for bit, where w is clearly on
+ * one side. */
+static void side_form(int *bad, const char *what, RTCGeometry geo, unsigned prim,
+                      const eb_sample *x, float t, const float ng[3], const float w[3],
+                      const float org[3])
+{
+    float c = (w[0] * ng[0] + w[1] * ng[1] + w[2] * ng[2]), org2[3];
+    if (cylray_embree_spawn_origin_side(geo, prim, x->o, x->d, t, ng, c > 0, w, org2) ||
+        (fabsf(c) > 1e-3f && memcmp(org, org2, sizeof org2) != 0)) {
+        if ((*bad)++ < 3)
+            printf("  %s: the side form's origin differs\n", what);
+    }
+}
+
 /* The exact reference: the scene's first hit in binary128 (tests/ref), each answer
  * judged as the comparison's tables judge it; no unexcused wrong answer. Secondary
  * rays from the spawn helper must not hit their own cylinder. */
@@ -219,38 +243,8 @@ static int exact(const char *what, const eb_geom *g, const eb_ref *ref, const eb
     eb_err e;
     if (eb_err_init(&e, cam->n))
         return 1;
-    int bad = 0;
-    for (size_t i = 0; i < cam->n; i++) {
-        eb_sample x;
-        float t = 0, ng[3] = {0, 0, 0};
-        uint32_t prim = eb_exact_first(&e, ref, g->scene, cam, i, &x, &t, ng);
-        if (prim == RTC_INVALID_GEOMETRY_ID || prim != x.xid || !x.xhit)
-            continue;
-        if (hit_calls(g->cyl, prim, x.o, x.d, t, ng) && bad++ < 3)
-            printf("  %s: the hit calls disagree with cylray's on prim %u at t %.9g\n", what,
-                   prim, t);
-        /* a reflection and a refraction-like continuation from the hit */
-        float w[2][3], org[3];
-        eb_continuations(ng, x.d, w);
-        for (int s = 0; s < 2; s++) {
-            if (cylray_embree_spawn_origin(g->cyl, prim, x.o, x.d, t, ng, w[s], org)) {
-                bad++;
-                continue;
-            }
-            float st, sn[3];
-            uint32_t hit = eb_trace1(g->scene, org, w[s], 0, INFINITY, &st, sn);
-            eb_judge_secondary(&e, &x, w[s], hit);
-            /* the side form, the side being w's: the same origin, bit for bit, where w
-             * is clearly on one side */
-            float c = (w[s][0] * ng[0] + w[s][1] * ng[1] + w[s][2] * ng[2]), org2[3];
-            if (cylray_embree_spawn_origin_side(g->cyl, prim, x.o, x.d, t, ng, c > 0, w[s],
-                                                org2) ||
-                (fabsf(c) > 1e-3f && memcmp(org, org2, sizeof org) != 0)) {
-                if (bad++ < 3)
-                    printf("  %s: the side form's origin differs\n", what);
-            }
-        }
-    }
+    static const eb_exact_checks checks = {exact_hit, side_form};
+    int bad = eb_exact_secondary(&e, what, g, ref, cam, &checks);
     if (e.wrong || e.self || bad)
         printf("  %s: %zu wrong of %zu against the exact reference, %zu of %zu secondary "
                "rays hit their own cylinder\n",

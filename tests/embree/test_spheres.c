@@ -350,38 +350,23 @@ static int packet_spawns(RTCScene sc, RTCGeometry sph, const eb_rays *r, int *la
 
 /* The exact reference on camera rays: no unexcused wrong answer; the hit calls on a
  * sphere's hit; secondary rays from the spawn helper never hit their own sphere. */
+static void sphere_part(int *bad, const char *what, RTCGeometry geo, unsigned prim, uint32_t id,
+                        const eb_sample *x, float t, const float ng[3])
+{
+    (void)x, (void)t;
+    if ((id & EB_SPHERE_BIT) && cylray_embree_hit_part(geo, prim, ng) != CYLRAY_SIDE &&
+        (*bad)++ < 3)
+        printf("  %s: a sphere's hit part is not the side\n", what);
+}
+
 static int exact(const char *what, const eb_geom *g, const eb_ref *ref, const eb_rays *cam,
                  size_t *sec, size_t *self)
 {
     eb_err e;
     if (eb_err_init(&e, cam->n))
         return 1;
-    int bad = 0;
-    for (size_t i = 0; i < cam->n; i++) {
-        eb_sample x;
-        float t = 0, ng[3] = {0, 0, 0};
-        uint32_t id = eb_exact_first(&e, ref, g->scene, cam, i, &x, &t, ng);
-        if (id == RTC_INVALID_GEOMETRY_ID || id != x.xid || !x.xhit)
-            continue;
-        unsigned prim;
-        RTCGeometry geo = eb_geom_of(g, id, &prim);
-        if ((id & EB_SPHERE_BIT) && cylray_embree_hit_part(geo, prim, ng) != CYLRAY_SIDE &&
-            bad++ < 3)
-            printf("  %s: a sphere's hit part is not the side\n", what);
-        float w[2][3], org[3];
-        eb_continuations(ng, x.d, w);
-        for (int s = 0; s < 2; s++) {
-            if (cylray_embree_spawn_origin(geo, prim, x.o, x.d, t, ng, w[s], org) ||
-                !isfinite(org[0]) || !isfinite(org[1]) || !isfinite(org[2])) {
-                if (bad++ < 3) /* not traced: Embree's debug builds assert on such a ray */
-                    printf("  %s: no usable spawn origin on %#x\n", what, id);
-                continue;
-            }
-            float st, sn[3];
-            uint32_t hit = eb_trace1(g->scene, org, w[s], 0, INFINITY, &st, sn);
-            eb_judge_secondary(&e, &x, w[s], hit);
-        }
-    }
+    static const eb_exact_checks checks = {sphere_part, NULL};
+    int bad = eb_exact_secondary(&e, what, g, ref, cam, &checks);
     if (e.wrong || bad)
         printf("  %s: %zu wrong (%zu leaks, %zu phantoms) of %zu against the exact "
                "reference, %zu excused\n",
