@@ -225,6 +225,47 @@ int eb_exact_secondary(eb_err *e, const char *what, const eb_geom *g, const eb_r
     return bad;
 }
 
+/* An answer's id as a failure shows it. */
+static void id_text(char buf[24], uint32_t id)
+{
+    if (id == RTC_INVALID_GEOMETRY_ID)
+        snprintf(buf, 24, "none");
+    else
+        snprintf(buf, 24, "%s %u", id & EB_SPHERE_BIT ? "sphere" : "prim",
+                 (unsigned)(id & ~EB_SPHERE_BIT));
+}
+
+int eb_check_answers(const char *what, const eb_rays *r, const float *tfar0,
+                     const uint8_t *valid0, int occ, int filtered, const eb_answers *a)
+{
+    int bad = 0;
+    for (size_t i = 0; i < r->n; i++) {
+        float o[3], d[3], t = 0, n[3] = {0, 0, 0};
+        eb_rays_get(r, i, o, d);
+        if (eb_skipped_lane(what, r, i, tfar0, valid0, &bad))
+            continue;
+        const uint32_t want = a->want(o, d, r->tnear[i], tfar0[i], filtered, &t, n);
+        if (occ) {
+            eb_occlusion(what, r, i, tfar0, want, &bad);
+            continue;
+        }
+        const uint32_t got = r->prim[i];
+        int ok;
+        if (want == RTC_INVALID_GEOMETRY_ID)
+            ok = got == want && r->tfar[i] == tfar0[i];
+        else
+            ok = got != RTC_INVALID_GEOMETRY_ID && a->hit_ok(r, i, o, d, got, want, t, n);
+        if (!ok && bad++ < 5) {
+            char g[24], w[24];
+            id_text(g, got);
+            id_text(w, want);
+            printf("  %s ray %zu: Embree+cylray %s t %.9g u %g v %g, cylray %s t %.9g\n", what,
+                   i, g, r->tfar[i], r->u[i], r->v[i], w, t);
+        }
+    }
+    return bad;
+}
+
 void eb_packet_passes(const eb_passes *p, RTCScene sc, const char *vn, int filtered,
                       RTCFilterFunctionN qf, eb_rays *r, float *tfar0, uint8_t *valid0,
                       int *passed, int *failed)

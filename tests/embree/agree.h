@@ -87,6 +87,24 @@ typedef struct eb_exact_checks {
 int eb_exact_secondary(eb_err *e, const char *what, const eb_geom *g, const eb_ref *ref,
                        const eb_rays *cam, const eb_exact_checks *c);
 
+/* A test's answers for eb_check_answers: want, its brute force's first hit on the ray
+ * from tmin to tmax (its id, RTC_INVALID_GEOMETRY_ID for none; *t and n), with the
+ * filter rule where filtered; hit_ok, 1 when the hit got (an id) that ray i of r records
+ * agrees with want's at t with normal n. */
+typedef struct eb_answers {
+    uint32_t (*want)(const float o[3], const float d[3], float tmin, float tmax, int filtered,
+                     float *t, float n[3]);
+    int (*hit_ok)(const eb_rays *r, size_t i, const float o[3], const float d[3], uint32_t got,
+                  uint32_t want, float t, const float n[3]);
+} eb_answers;
+
+/* Each answer in r against a's: invalid lanes untouched (eb_skipped_lane), occlusion
+ * where a hit is wanted (eb_occlusion), a miss where none is, with tfar left alone, and
+ * otherwise a hit that a->hit_ok accepts. Returns the disagreements; prints the first
+ * five. */
+int eb_check_answers(const char *what, const eb_rays *r, const float *tfar0,
+                     const uint8_t *valid0, int occ, int filtered, const eb_answers *a);
+
 /* A test's camera for the packet passes: its scene and image size, how it turns its rays
  * incoherent, and its check of the answers in r against its own brute force (returns
  * the disagreements). */

@@ -127,43 +127,25 @@ static int uv_ok(uint32_t prim, const float o[3], const float d[3], float t, con
     return fmin(dv, 1 - dv) <= 1e-4;
 }
 
-static int check(const char *what, const eb_rays *r, const float *tfar0, const uint8_t *valid0,
-                 int occ, int exact_t, int filtered)
+/* Whether this pass's variant gives the kernel's t to the bit (hit_ok's tolerance). */
+static int EXACT_T;
+
+/* A hit Embree+cylray records for ray i of r against brute()'s: the same t (with one
+ * cylinder a query's, the same bits, and the same normal), and u, v as uv_ok wants. */
+static int hit_ok(const eb_rays *r, size_t i, const float o[3], const float d[3], uint32_t got,
+                  uint32_t want, float t, const float n[3])
 {
-    int bad = 0;
-    for (size_t i = 0; i < r->n; i++) {
-        float o[3], d[3], t = 0, n[3] = {0, 0, 0};
-        eb_rays_get(r, i, o, d);
-        if (eb_skipped_lane(what, r, i, tfar0, valid0, &bad))
-            continue;
-        uint32_t want = brute(o, d, r->tnear[i], tfar0[i], filtered, &t, n);
-        if (occ) {
-            eb_occlusion(what, r, i, tfar0, want, &bad);
-            continue;
-        }
-        uint32_t got = r->prim[i];
-        float ng[3] = {r->ngx[i], r->ngy[i], r->ngz[i]};
-        int ok;
-        if (want == RTC_INVALID_GEOMETRY_ID)
-            ok = got == want && r->tfar[i] == tfar0[i];
-        else if (got == RTC_INVALID_GEOMETRY_ID || got >= S->ns)
-            ok = 0;
-        else {
-            /* the same t; with one cylinder a query the same bits, and the same normal */
-            double tol = exact_t ? 0 : 2 * (nextafterf(fabsf(t), INFINITY) - fabsf(t));
-            ok = fabs((double)r->tfar[i] - t) <= tol;
-            if (ok && got == want)
-                ok = fabsf(ng[0] - n[0]) <= 1e-6f && fabsf(ng[1] - n[1]) <= 1e-6f &&
-                     fabsf(ng[2] - n[2]) <= 1e-6f;
-            if (ok)
-                ok = uv_ok(got, o, d, r->tfar[i], ng, r->u[i], r->v[i]);
-        }
-        if (!ok && bad++ < 5)
-            printf("  %s ray %zu: Embree+cylray prim %u t %.9g u %g v %g, cylray prim %u t "
-                   "%.9g\n",
-                   what, i, got, r->tfar[i], r->u[i], r->v[i], want, t);
-    }
-    return bad;
+    if (got >= S->ns)
+        return 0;
+    float ng[3] = {r->ngx[i], r->ngy[i], r->ngz[i]};
+    double tol = EXACT_T ? 0 : 2 * (nextafterf(fabsf(t), INFINITY) - fabsf(t));
+    int ok = fabs((double)r->tfar[i] - t) <= tol;
+    if (ok && got == want)
+        ok = fabsf(ng[0] - n[0]) <= 1e-6f && fabsf(ng[1] - n[1]) <= 1e-6f &&
+             fabsf(ng[2] - n[2]) <= 1e-6f;
+    if (ok)
+        ok = uv_ok(got, o, d, r->tfar[i], ng, r->u[i], r->v[i]);
+    return ok;
 }
 
 /* The shapes as the shared checks walk them: the cylinders (or cones), geometry 0, each
@@ -271,12 +253,12 @@ static void mix_rays(eb_rays *r)
     }
 }
 
-/* check() with the variant's t as it is this pass (exact_t: the kernel's, to the bit). */
-static int EXACT_T;
+/* Each answer in r against brute() and hit_ok. */
 static int check_pass(const char *what, const eb_rays *r, const float *tfar0,
                       const uint8_t *valid0, int occ, int filtered)
 {
-    return check(what, r, tfar0, valid0, occ, EXACT_T, filtered);
+    static const eb_answers answers = {brute, hit_ok};
+    return eb_check_answers(what, r, tfar0, valid0, occ, filtered, &answers);
 }
 
 /* The shared packet passes (eb_packet_passes) on this test's camera, rays and check. */

@@ -154,42 +154,36 @@ static int sphere_record_ok(uint32_t id, const float o[3], const float d[3], flo
     return u >= 0 && u < 1 && fmin(du, 1 - du) <= 2e-6 && fabs(v - vv) <= 2e-6;
 }
 
-/* Each answer in r against brute(); invalid lanes untouched. Returns the disagreements. */
+/* brute() over both geometries. */
+static uint32_t brute_all(const float o[3], const float d[3], float tmin, float tmax,
+                          int filtered, float *t, float n[3])
+{
+    return brute(o, d, tmin, tmax, filtered, 3u, t, n);
+}
+
+/* A hit Embree+cylray records for ray i of r against brute()'s: the same t bit for bit
+ * (another shape only at that very t), with the same shape the same normal, and a
+ * sphere's record as sphere_record_ok wants. */
+static int hit_ok(const eb_rays *r, size_t i, const float o[3], const float d[3], uint32_t got,
+                  uint32_t want, float t, const float n[3])
+{
+    if (index_of(got) >= nshapes())
+        return 0;
+    float ng[3] = {r->ngx[i], r->ngy[i], r->ngz[i]};
+    int ok = r->tfar[i] == t;
+    if (ok && got == want)
+        ok = memcmp(ng, n, sizeof ng) == 0;
+    if (ok && (got & EB_SPHERE_BIT))
+        ok = sphere_record_ok(got, o, d, r->tfar[i], ng, r->u[i], r->v[i]);
+    return ok;
+}
+
+/* Each answer in r against brute() and hit_ok. */
 static int check(const char *what, const eb_rays *r, const float *tfar0, const uint8_t *valid0,
                  int occ, int filtered)
 {
-    int bad = 0;
-    for (size_t i = 0; i < r->n; i++) {
-        float o[3], d[3], t = 0, n[3] = {0, 0, 0};
-        eb_rays_get(r, i, o, d);
-        if (eb_skipped_lane(what, r, i, tfar0, valid0, &bad))
-            continue;
-        uint32_t want = brute(o, d, r->tnear[i], tfar0[i], filtered, 3u, &t, n);
-        if (occ) {
-            eb_occlusion(what, r, i, tfar0, want, &bad);
-            continue;
-        }
-        uint32_t got = r->prim[i];
-        float ng[3] = {r->ngx[i], r->ngy[i], r->ngz[i]};
-        int ok;
-        if (want == RTC_INVALID_GEOMETRY_ID)
-            ok = got == want && r->tfar[i] == tfar0[i];
-        else if (got == RTC_INVALID_GEOMETRY_ID || index_of(got) >= nshapes())
-            ok = 0;
-        else {
-            /* the same t bit for bit (another shape only at that very t), and with the
-             * same shape the same normal */
-            ok = r->tfar[i] == t;
-            if (ok && got == want)
-                ok = memcmp(ng, n, sizeof ng) == 0;
-            if (ok && (got & EB_SPHERE_BIT))
-                ok = sphere_record_ok(got, o, d, r->tfar[i], ng, r->u[i], r->v[i]);
-        }
-        if (!ok && bad++ < 5)
-            printf("  %s ray %zu: Embree+cylray %#x t %.9g u %g v %g, cylray %#x t %.9g\n",
-                   what, i, got, r->tfar[i], r->u[i], r->v[i], want, t);
-    }
-    return bad;
+    static const eb_answers answers = {brute_all, hit_ok};
+    return eb_check_answers(what, r, tfar0, valid0, occ, filtered, &answers);
 }
 
 /* Every other ray turned around from beyond the scene, the packets told incoherent. */
