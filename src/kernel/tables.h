@@ -50,30 +50,32 @@
  *   ANY    the run-time drivers for all. */
 #define KSI_(b, fl) ((fl) | CYLRAY_SPEC_KF_(b))
 #define KSO_(b, fl) ((fl) | CYLRAY_OCC_SPEC_KF_(b))
-#define KSET_FULL_I_(X, k, fl)                                                                 \
-    X(k, 0, KSI_(0, fl), S, 0)                                                                 \
-    X(k, 1, KSI_(1, fl), S, 1) X(k, 2, KSI_(2, fl), S, 2) X(k, 3, KSI_(3, fl), S, 3)           \
-        X(k, 4, KSI_(4, fl), S, 4) X(k, 5, KSI_(5, fl), S, 5) X(k, 6, KSI_(6, fl), A, 6)       \
-            X(k, 7, KSI_(7, fl), A, 7)
-#define KSET_FULL_O_(X, k, fl)                                                                 \
-    X(k, o0, KSO_(0, fl), S, o0)                                                               \
-    X(k, o1, KSO_(1, fl), S, o1) X(k, o2, KSO_(2, fl), S, o2) X(k, o3, KSO_(3, fl), A, o3)
-#define KSET_THIRD_I_(X, k, fl)                                                                \
-    X(k, 0, KSI_(0, fl), S, 0)                                                                 \
-    X(k, 1, KSI_(1, fl), S, 1) X(k, 2, KSI_(2, fl), L, 0) X(k, 3, KSI_(3, fl), L, 1)           \
-        X(k, 4, KSI_(4, fl), A, 4) X(k, 5, KSI_(5, fl), A, 5) X(k, 6, KSI_(6, fl), A, 6)       \
-            X(k, 7, KSI_(7, fl), A, 7)
-#define KSET_THIRD_O_(X, k, fl)                                                                \
-    X(k, o0, KSO_(0, fl), S, o0)                                                               \
-    X(k, o1, KSO_(1, fl), L, o0) X(k, o2, KSO_(2, fl), A, o2) X(k, o3, KSO_(3, fl), A, o3)
-#define KSET_ANY_I_(X, k, fl)                                                                  \
-    X(k, 0, KSI_(0, fl), A, 0)                                                                 \
-    X(k, 1, KSI_(1, fl), A, 1) X(k, 2, KSI_(2, fl), A, 2) X(k, 3, KSI_(3, fl), A, 3)           \
-        X(k, 4, KSI_(4, fl), A, 4) X(k, 5, KSI_(5, fl), A, 5) X(k, 6, KSI_(6, fl), A, 6)       \
-            X(k, 7, KSI_(7, fl), A, 7)
-#define KSET_ANY_O_(X, k, fl)                                                                  \
-    X(k, o0, KSO_(0, fl), A, o0)                                                               \
-    X(k, o1, KSO_(1, fl), A, o1) X(k, o2, KSO_(2, fl), A, o2) X(k, o3, KSO_(3, fl), A, o3)
+/* clang-format off */
+#define KSET_FULL_I_(X, k, fl) \
+    X(k, 0, KSI_(0, fl), S, 0) X(k, 1, KSI_(1, fl), S, 1) \
+    X(k, 2, KSI_(2, fl), S, 2) X(k, 3, KSI_(3, fl), S, 3) \
+    X(k, 4, KSI_(4, fl), S, 4) X(k, 5, KSI_(5, fl), S, 5) \
+    X(k, 6, KSI_(6, fl), A, 6) X(k, 7, KSI_(7, fl), A, 7)
+#define KSET_FULL_O_(X, k, fl) \
+    X(k, o0, KSO_(0, fl), S, o0) X(k, o1, KSO_(1, fl), S, o1) \
+    X(k, o2, KSO_(2, fl), S, o2) X(k, o3, KSO_(3, fl), A, o3)
+#define KSET_THIRD_I_(X, k, fl) \
+    X(k, 0, KSI_(0, fl), S, 0) X(k, 1, KSI_(1, fl), S, 1) \
+    X(k, 2, KSI_(2, fl), L, 0) X(k, 3, KSI_(3, fl), L, 1) \
+    X(k, 4, KSI_(4, fl), A, 4) X(k, 5, KSI_(5, fl), A, 5) \
+    X(k, 6, KSI_(6, fl), A, 6) X(k, 7, KSI_(7, fl), A, 7)
+#define KSET_THIRD_O_(X, k, fl) \
+    X(k, o0, KSO_(0, fl), S, o0) X(k, o1, KSO_(1, fl), L, o0) \
+    X(k, o2, KSO_(2, fl), A, o2) X(k, o3, KSO_(3, fl), A, o3)
+#define KSET_ANY_I_(X, k, fl) \
+    X(k, 0, KSI_(0, fl), A, 0) X(k, 1, KSI_(1, fl), A, 1) \
+    X(k, 2, KSI_(2, fl), A, 2) X(k, 3, KSI_(3, fl), A, 3) \
+    X(k, 4, KSI_(4, fl), A, 4) X(k, 5, KSI_(5, fl), A, 5) \
+    X(k, 6, KSI_(6, fl), A, 6) X(k, 7, KSI_(7, fl), A, 7)
+#define KSET_ANY_O_(X, k, fl) \
+    X(k, o0, KSO_(0, fl), A, o0) X(k, o1, KSO_(1, fl), A, o1) \
+    X(k, o2, KSO_(2, fl), A, o2) X(k, o3, KSO_(3, fl), A, o3)
+/* clang-format on */
 #define KSET_(X, k, fl, set) KSET_##set##_I_(X, k, fl) KSET_##set##_O_(X, k, fl)
 
 /* A variant's slot: its three drivers. */
@@ -125,14 +127,22 @@ enum { KFN(vw) = VW };
 #define KROW_LF_I_(k, kf, set) {KSET_##set##_I_(KREF_LF_, k, kf)},
 #define KROW_LF_O_(k, kf, set) {KSET_##set##_O_(KREF_LF_, k, kf)},
 /* clang-format off */
-CYLRAY_MAYBE_UNUSED static const KFN(packet_fn) KFN(isect1_table)[] = {CYLRAY_VARIANT_ROWS(KROW_PK1_I_)};
-CYLRAY_MAYBE_UNUSED static const KFN(packet_fn) KFN(isect_table)[] = {CYLRAY_VARIANT_ROWS(KROW_PK_I_)};
-CYLRAY_MAYBE_UNUSED static const KFN(stream_fn) KFN(isect_stream_table)[] = {CYLRAY_VARIANT_ROWS(KROW_ST_I_)};
-CYLRAY_MAYBE_UNUSED static const KFN(packet_fn) KFN(occ1_table)[] = {CYLRAY_VARIANT_ROWS(KROW_PK1_O_)};
-CYLRAY_MAYBE_UNUSED static const KFN(packet_fn) KFN(occ_table)[] = {CYLRAY_VARIANT_ROWS(KROW_PK_O_)};
-CYLRAY_MAYBE_UNUSED static const KFN(stream_fn) KFN(occ_stream_table)[] = {CYLRAY_VARIANT_ROWS(KROW_ST_O_)};
-CYLRAY_MAYBE_UNUSED static const KFN(leaf_fn) KFN(leaf_table)[][CYLRAY_SPECS] = {CYLRAY_LEAF_ROWS(KROW_LF_I_)};
-CYLRAY_MAYBE_UNUSED static const KFN(leaf_fn) KFN(leaf_occ_table)[][CYLRAY_OCC_SPECS] = {CYLRAY_LEAF_ROWS(KROW_LF_O_)};
+CYLRAY_MAYBE_UNUSED static const KFN(packet_fn) KFN(isect1_table)[] = {
+    CYLRAY_VARIANT_ROWS(KROW_PK1_I_)};
+CYLRAY_MAYBE_UNUSED static const KFN(packet_fn) KFN(isect_table)[] = {
+    CYLRAY_VARIANT_ROWS(KROW_PK_I_)};
+CYLRAY_MAYBE_UNUSED static const KFN(stream_fn) KFN(isect_stream_table)[] = {
+    CYLRAY_VARIANT_ROWS(KROW_ST_I_)};
+CYLRAY_MAYBE_UNUSED static const KFN(packet_fn) KFN(occ1_table)[] = {
+    CYLRAY_VARIANT_ROWS(KROW_PK1_O_)};
+CYLRAY_MAYBE_UNUSED static const KFN(packet_fn) KFN(occ_table)[] = {
+    CYLRAY_VARIANT_ROWS(KROW_PK_O_)};
+CYLRAY_MAYBE_UNUSED static const KFN(stream_fn) KFN(occ_stream_table)[] = {
+    CYLRAY_VARIANT_ROWS(KROW_ST_O_)};
+CYLRAY_MAYBE_UNUSED static const KFN(leaf_fn) KFN(leaf_table)[][CYLRAY_SPECS] = {
+    CYLRAY_LEAF_ROWS(KROW_LF_I_)};
+CYLRAY_MAYBE_UNUSED static const KFN(leaf_fn) KFN(leaf_occ_table)[][CYLRAY_OCC_SPECS] = {
+    CYLRAY_LEAF_ROWS(KROW_LF_O_)};
 /* clang-format on */
 /* Every table holds exactly what its index reaches (cylray_isect_index_,
  * cylray_occ_index_, cylray_leaf_row_, cylray_spec_, cylray_occ_spec_): one entry per
