@@ -5,6 +5,15 @@
 #include "ceb.h"
 
 #include <math.h>
+#include <string.h>
+
+/* Elements ids[0..n) of elems (each size bytes) side by side in out, as the leaf
+ * preparations take them. */
+static void gather(void *out, const void *elems, size_t size, const uint32_t *ids, size_t n)
+{
+    for (size_t j = 0; j < n; j++)
+        memcpy((char *)out + j * size, (const char *)elems + ids[j] * size, size);
+}
 
 /* ---- cylinders and cones: a cylray_cone each, r1 = r0 for a cylinder ------------ */
 
@@ -74,8 +83,7 @@ static int all_cylinders(const cylray_cone *cone, const uint32_t *ids, size_t n)
         if (all_cylinders(e, ids, n))                                                          \
             return cylinder_leaf##M(lv, elems, ids, n);                                        \
         cylray_cone kk[M];                                                                     \
-        for (size_t j = 0; j < n; j++)                                                         \
-            kk[j] = e[ids[j]];                                                                 \
+        gather(kk, e, sizeof *e, ids, n);                                                      \
         return cylray_leaf_prepare_cones##M(lv, kk, ids, n);                                   \
     }
 CEB_CONE_LEAVES(4)
@@ -118,10 +126,8 @@ static void sphere_box(const void *e, const cylray_prepared *p, struct RTCBounds
     static cylray_status sphere_leaf##M(cylray_leaf##M *lv, const void *elems,                 \
                                         const uint32_t *ids, size_t n)                         \
     {                                                                                          \
-        const cylray_sphere *e = elems;                                                        \
         cylray_sphere ss[M];                                                                   \
-        for (size_t j = 0; j < n; j++)                                                         \
-            ss[j] = e[ids[j]];                                                                 \
+        gather(ss, elems, sizeof ss[0], ids, n);                                               \
         return cylray_leaf_prepare_spheres##M(lv, ss, ids, n);                                 \
     }
 CEB_SPHERE_LEAVES(4)

@@ -157,13 +157,13 @@ static inline unsigned cylray_generic_kf_(const cylray_prepared *P, unsigned fla
                (flags & ((occ ? 0u : CYLRAY_NORMAL) | CYLRAY_REFINE | CYLRAY_FAST)) |
                CYLRAY_KF_SCALED;
     if (P->kind == CYLRAY_KIND_CONE)
-        return CYLRAY_KF_CONE | CYLRAY_KIND_CAPPED << CYLRAY_KF_KIND_SHIFT |
+        return CYLRAY_KF_CONE | CYLRAY_KF_KIND_(CYLRAY_KIND_CAPPED) |
                (occ ? CYLRAY_KF_OCCLUDED : 0u) |
                (flags & ((occ ? 0u : CYLRAY_NORMAL) | CYLRAY_REFINE | CYLRAY_FAST)) |
                (P->caps != CYLRAY_CAPPED ? CYLRAY_KF_ONE_END : 0u) |
                (cylray_cone_tiny_(P) ? CYLRAY_KF_TINY : 0u) |
                (cylray_slender_(P) ? CYLRAY_KF_SLENDER : 0u) | CYLRAY_KF_SCALED;
-    return P->kind << CYLRAY_KF_KIND_SHIFT | (occ ? CYLRAY_KF_OCCLUDED : 0u) |
+    return CYLRAY_KF_KIND_(P->kind) | (occ ? CYLRAY_KF_OCCLUDED : 0u) |
            (flags & ((occ ? 0u : CYLRAY_NORMAL) | CYLRAY_REFINE | CYLRAY_FAST)) |
            (P->kind == CYLRAY_KIND_CAPPED && P->caps != CYLRAY_CAPPED ? CYLRAY_KF_ONE_END
                                                                       : 0u) |
