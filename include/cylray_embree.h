@@ -90,7 +90,14 @@ extern "C" {
  * the SSE4.1 and scalar kernels), one user primitive a leaf, each answered
  * by one leaf query per ray. Without it, one cylinder (or one piece of a split one) is
  * one primitive, answered for
- * every valid ray of Embree's packet at once by cylray's packet kernels. */
+ * every valid ray of Embree's packet at once by cylray's packet kernels.
+ * A leaf's box cannot be split, so a geometry with a shape that split boxes would cut
+ * (longer than 16 radii and tilted) takes split boxes instead, as without this option
+ * (cylray_embree_leaf_size then says 0); with CYLRAY_EMBREE_NO_SPLIT it is grouped into
+ * leaves whatever its shapes. Leaves were slower than the default wherever measured on
+ * AMD Zen 5 (Embree 3, AVX-512): 1.0-2.7x its time on spheres and short tapered bonds
+ * (packets of 8 the most), 5-18x on long tilted rods, which therefore take split boxes
+ * (docs/performance.md). */
 #define CYLRAY_EMBREE_LEAVES 0x1u
 /* Split boxes, the default: a cylinder longer than 16 radii and tilted off the
  * coordinate axes gets several boxes along its axis instead of one (its single box
@@ -100,7 +107,7 @@ extern "C" {
  * cylinder keeps one box: its pieces would cost more primitives and callbacks than its
  * box wastes (bonds 10 radii long: 4-6 % more time split; rods of 1e4 radii: 2.9x less).
  * CYLRAY_EMBREE_SPLIT asks for it by name; CYLRAY_EMBREE_NO_SPLIT gives every cylinder
- * one box. Not with CYLRAY_EMBREE_LEAVES. */
+ * one box (with CYLRAY_EMBREE_LEAVES: leaves whatever the shapes' length). */
 #define CYLRAY_EMBREE_SPLIT 0x2u
 #define CYLRAY_EMBREE_NO_SPLIT 0x10u
 /* Filters: offer every hit to the geometry's filter functions (see the top of this

@@ -311,6 +311,7 @@ static int run_scene(const opts *o, RTCDevice dev, cylray_isa isa, int which, eb
 int main(int argc, char **argv)
 {
     opts o;
+    eb_leaf_options = CYLRAY_EMBREE_LEAVES; /* as a user asks for leaves */
     if (parse(&o, argc, argv))
         return 2;
     mkdir(o.out, 0777);

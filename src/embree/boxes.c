@@ -101,19 +101,33 @@ static float rmax_of(const ceb *g, size_t i)
     return g->shape->rmax(ceb_elem(g, i));
 }
 
+/* How many boxes shape i takes: the toolkit's rule (cylray_split_boxes with k = 0), the
+ * fewest pieces, at most CYLRAY_SPLIT_MAX, whose boxes are at most twice the cylinder's
+ * width across; short or axis-aligned cylinders keep one box, and so does a shape
+ * without a frame (no axis to split along). */
+static uint32_t pieces_of(const ceb *g, size_t i)
+{
+    if (!g->fr || !long_for_radius(&g->fr[i], rmax_of(g, i)))
+        return 1;
+    size_t k = cylray_split_boxes(&g->prep[i], 0, NULL, NULL);
+    return k < 1 ? 1u : (uint32_t)k;
+}
+
+int ceb_would_split(const ceb *g)
+{
+    for (size_t i = 0; i < g->n; i++)
+        if (pieces_of(g, i) > 1)
+            return 1;
+    return 0;
+}
+
 int ceb_make_boxes(ceb *g)
 {
     size_t total = 0;
-    /* a shape without a frame has no axis to split along */
-    int split = !(g->options & CYLRAY_EMBREE_NO_SPLIT) && g->fr;
-    /* The toolkit's rule (cylray_split_boxes with k = 0): the fewest pieces, at most
-     * CYLRAY_SPLIT_MAX, whose boxes are at most twice the cylinder's width across;
-     * short or axis-aligned cylinders keep one box. */
+    const int split = !(g->options & CYLRAY_EMBREE_NO_SPLIT);
     for (size_t i = 0; i < g->n; i++) {
-        if (split && long_for_radius(&g->fr[i], rmax_of(g, i))) {
-            size_t k = cylray_split_boxes(&g->prep[i], 0, NULL, NULL);
-            g->fr[i].pieces = k < 1 ? 1u : (uint32_t)k;
-        }
+        if (split && g->fr)
+            g->fr[i].pieces = pieces_of(g, i);
         total += g->fr ? g->fr[i].pieces : 1;
     }
     if (total > 0xffffffffu)

@@ -101,6 +101,8 @@ void ceb_set_box(struct RTCBounds *b, const float lo[3], const float hi[3], floa
 void ceb_whole_box(const cylray_prepared *p, struct RTCBounds *b);
 void ceb_sphere_box(const cylray_sphere *s, struct RTCBounds *b);
 void ceb_box_of(const ceb *g, size_t i, struct RTCBounds *b);
+/* Whether split boxes would cut any of g's shapes (its frames made). */
+int ceb_would_split(const ceb *g);
 int ceb_make_boxes(ceb *g);
 void *ceb_alloc_aligned(size_t bytes);
 

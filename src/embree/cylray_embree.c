@@ -43,6 +43,14 @@ static RTCGeometry ceb_finish(ceb *g, RTCDevice device, cylray_status *st)
 {
     RTCGeometry geo = NULL;
     int leaves = (g->options & CYLRAY_EMBREE_LEAVES) != 0, why;
+    /* A leaf's box cannot be split: a long tilted shape in one leaves it mostly empty,
+     * met by rays that pass far from every shape in it (leaves took 4-7.5x the split
+     * boxes' time on the far tapered rods), so such a geometry takes split boxes
+     * unless the caller asked for no splitting. */
+    if (leaves && !(g->options & CYLRAY_EMBREE_NO_SPLIT) && ceb_would_split(g)) {
+        g->options &= ~CYLRAY_EMBREE_LEAVES;
+        leaves = 0;
+    }
     if (leaves) {
         cylray_isa isa = g->k->isa;
         /* 8 with AVX-512 too: behind Embree's BVH a leaf of 16 covers about twice

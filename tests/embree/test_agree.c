@@ -490,6 +490,18 @@ int main(int argc, char **argv)
         geo = cylray_embree_new_geometry(dev, &d, &st);
         bad += nsplit <= s.ns || cylray_embree_primitives(geo) != nsplit;
         cylray_embree_release_geometry(geo);
+        /* leaves asked for where split boxes would cut a shape: split boxes, unless
+         * no splitting is asked for as well */
+        d = eb_scene_desc(&s, CYLRAY_EMBREE_LEAVES, K);
+        geo = cylray_embree_new_geometry(dev, &d, &st);
+        bad += !geo || cylray_embree_leaf_size(geo) != 0 ||
+               cylray_embree_primitives(geo) != nsplit;
+        cylray_embree_release_geometry(geo);
+        d = eb_scene_desc(&s, CYLRAY_EMBREE_LEAVES | CYLRAY_EMBREE_NO_SPLIT, K);
+        geo = cylray_embree_new_geometry(dev, &d, &st);
+        bad +=
+            !geo || cylray_embree_leaf_size(geo) == 0 || cylray_embree_primitives(geo) >= s.ns;
+        cylray_embree_release_geometry(geo);
         d = eb_scene_desc(&s, CYLRAY_EMBREE_NO_SPLIT, K);
         geo = cylray_embree_new_geometry(dev, &d, &st);
         float z[3] = {0, 0, 0}, one[3] = {1, 0, 0}, out[3];

@@ -126,7 +126,8 @@ int main(void)
     } ways[] = {
         {CYLRAY_EMBREE_NO_SPLIT, "one box a cylinder", 5},
         {CYLRAY_EMBREE_SPLIT, "split boxes", 7},
-        {CYLRAY_EMBREE_LEAVES, "leaves", 10},
+        {CYLRAY_EMBREE_LEAVES | CYLRAY_EMBREE_NO_SPLIT, "leaves", 10},
+        {CYLRAY_EMBREE_LEAVES, "leaves declined for long rods", 7},
     };
     for (size_t w = 0; w < sizeof ways / sizeof ways[0]; w++) {
         d.options = ways[w].options;
@@ -147,7 +148,7 @@ int main(void)
     } cways[] = {
         {CYLRAY_EMBREE_NO_SPLIT, "one box a cone", 5},
         {CYLRAY_EMBREE_SPLIT, "split boxes of cones", 7},
-        {CYLRAY_EMBREE_LEAVES, "leaves of cones", 10},
+        {CYLRAY_EMBREE_LEAVES | CYLRAY_EMBREE_NO_SPLIT, "leaves of cones", 10},
     };
     for (size_t w = 0; w < sizeof cways / sizeof cways[0]; w++) {
         d.options = cways[w].options;

@@ -502,7 +502,7 @@ static void run(RTCDevice dev, const eb_scene *s, eb_rays *r, float *tfar0, uint
             report(exact(vn, &g, &ref, r, sec, self), what);
             eb_geom_free(&g);
 
-            const unsigned opt = v == EB_LEAF ? CYLRAY_EMBREE_LEAVES : 0u;
+            const unsigned opt = v == EB_LEAF ? eb_leaf_options : 0u;
             RTCGeometry geo[2];
             RTCScene sc = adapter_scene(dev, opt | CYLRAY_EMBREE_FILTER, eb_rule_filter, geo);
             if (sc) {

@@ -16,11 +16,12 @@ const char *eb_variant_name(eb_variant v)
 }
 
 unsigned eb_cylray_options;
+unsigned eb_leaf_options = CYLRAY_EMBREE_LEAVES | CYLRAY_EMBREE_NO_SPLIT;
 
 unsigned eb_variant_options(eb_variant v)
 {
     return eb_cylray_options | (v == EB_SPLIT  ? CYLRAY_EMBREE_SPLIT
-                                : v == EB_LEAF ? CYLRAY_EMBREE_LEAVES
+                                : v == EB_LEAF ? eb_leaf_options
                                                : CYLRAY_EMBREE_NO_SPLIT);
 }
 
@@ -159,8 +160,8 @@ int eb_geom_build(eb_geom *g, RTCDevice dev, const eb_scene *s, eb_variant v,
     } else {
         cylray_embree_desc d = eb_scene_desc(s, eb_variant_options(v), k);
         /* a sphere's box is tight: the spheres of the split variant are the single's */
-        cylray_embree_sphere_desc e = eb_sphere_desc(
-            s, eb_cylray_options | (v == EB_LEAF ? CYLRAY_EMBREE_LEAVES : 0u), k);
+        cylray_embree_sphere_desc e =
+            eb_sphere_desc(s, eb_cylray_options | (v == EB_LEAF ? eb_leaf_options : 0u), k);
         geo = g->cyl = s->ns ? cylray_embree_new_geometry(dev, &d, NULL) : NULL;
         sph = g->sph = s->nsph ? cylray_embree_new_spheres(dev, &e, NULL) : NULL;
         g->nprim = cylray_embree_primitives(geo) + cylray_embree_primitives(sph);

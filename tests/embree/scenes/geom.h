@@ -29,6 +29,11 @@ typedef struct eb_geom {
 unsigned eb_variant_options(eb_variant v);
 /* OR'ed into every cylray variant's options (cylembree --no-angles); 0 by default. */
 extern unsigned eb_cylray_options;
+/* The leaf variant's options: leaves of every scene by default (CYLRAY_EMBREE_NO_SPLIT
+ * with CYLRAY_EMBREE_LEAVES), so that the tests reach the leaf callbacks on long shapes
+ * too; the bench asks for leaves alone, as a user does, and gets split boxes where the
+ * adapter declines them. */
+extern unsigned eb_leaf_options;
 
 /* The adapter's description of scene s (endpoints, one radius, caps). */
 cylray_embree_desc eb_scene_desc(const eb_scene *s, unsigned options, const cylray_kernels *k);
