@@ -136,6 +136,20 @@ static inline void ref_perturb_ray(cylq w[3], cylq d[3], const cylq *step, const
     }
 }
 
+/* A shape's band evaluates its exact answer at points of the box: name(base, step, k,
+ * tmin, tmax, &r, out) moves base's inputs by k steps (perturb(base, step, k, &q)),
+ * evaluates them (eval(&q, tmin, tmax, &r)) and counts the evaluation in the band out;
+ * each shape's in_t and rec_t are its own. */
+#define REF_SAMPLE_DEFINE(name, in_t, rec_t, perturb, eval)                                    \
+    static void name(const in_t *base, const cylq *step, const signed char *k, cylq tmin,      \
+                     cylq tmax, rec_t *r, cylref_band *out)                                    \
+    {                                                                                          \
+        in_t q;                                                                                \
+        perturb(base, step, k, &q);                                                            \
+        eval(&q, tmin, tmax, r);                                                               \
+        out->evals++;                                                                          \
+    }
+
 /* |a - b| of two unit normals: the gradient samples' sum of normal moves. */
 static inline double ref_normal_move(const double a[3], const double b[3])
 {

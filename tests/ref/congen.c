@@ -196,10 +196,10 @@ static void gen_grazing(cylgen_rng *r, const cgeo *g, congen_case *c)
     aim(r, axpy(p, g->R * eps, n), d, g->R * gen_uni(r, 2, 10), c);
 }
 
-static void gen_surface(cylgen_rng *r, const cgeo *g, const cylray_cone *cone, congen_case *c)
+static void gen_surface(cylgen_rng *r, const cgeo *g, congen_case *c)
 {
     v3 e = gen_perp(r, g->u), p, n;
-    unsigned caps = cone->flags;
+    unsigned caps = c->cone.flags;
     int where = (int)(cylgen_next(r) % 3);
     if (where == 1 && (caps & CYLRAY_CAPPED_LO) && g->r0 > 0) {
         p = axpy(g->p0, g->r0 * sqrt(cylgen_uniform(r)), e);
@@ -315,11 +315,21 @@ static void gen_tinyend(cylgen_rng *r, const cgeo *g, congen_case *c)
     aim(r, p, d, dist, c);
 }
 
-static void gen_bad(cylgen_rng *r, const cgeo *g, congen_case *c)
+static void rim_hook(cylgen_rng *r, const void *g, void *c)
 {
-    towards(r, g, g->R * gen_uni(r, 1.5, 10), 1.2, c);
-    cylgen_spoil(cylgen_next(r), c->o, c->d, &c->tmin, &c->tmax);
+    gen_rim(r, g, c);
 }
+
+GEN_RAY_ROW_DEFINE(cone_rays, towards, gen_grazing, gen_surface, point_in, rim_hook);
+
+/* The categories the sphere shares (gen_ray_kind); the others, ORDINARY's 0 here, are
+ * the cone's own. */
+static const unsigned char shared_kind[CONGEN_COUNT] = {
+    [CONGEN_FAR] = GEN_RAY_FAR,         [CONGEN_GRAZING] = GEN_RAY_GRAZING,
+    [CONGEN_SURFACE] = GEN_RAY_SURFACE, [CONGEN_INSIDE] = GEN_RAY_INSIDE,
+    [CONGEN_TINY] = GEN_RAY_TINY,       [CONGEN_HUGE] = GEN_RAY_HUGE,
+    [CONGEN_UNNORM] = GEN_RAY_UNNORM,   [CONGEN_CAMERA] = GEN_RAY_CAMERA,
+    [CONGEN_BAD] = GEN_RAY_BAD,         [CONGEN_SCALED] = GEN_RAY_SCALED};
 
 void congen_ray(int cat, cylgen_rng *r, cylgen_rng *cam, size_t index, const cylray_cone *cone,
                 congen_case *c)
@@ -328,20 +338,6 @@ void congen_ray(int cat, cylgen_rng *r, cylgen_rng *cam, size_t index, const cyl
     memset(c, 0, sizeof *c);
     c->cone = *cone;
     switch (cat) {
-    case CONGEN_FAR:
-        towards(r, g, g->R * gen_logu(r, 10, 20), 1.1, c);
-        break;
-    case CONGEN_GRAZING:
-        gen_grazing(r, g, c);
-        break;
-    case CONGEN_SURFACE:
-        gen_surface(r, g, cone, c);
-        break;
-    case CONGEN_INSIDE:
-        to_f(c->o, point_in(r, g, 0.99));
-        to_f(c->d, gen_dir(r));
-        gen_interval(r, g->R, &c->tmin, &c->tmax);
-        break;
     case CONGEN_RIM:
         gen_rim(r, g, c);
         break;
@@ -350,31 +346,6 @@ void congen_ray(int cat, cylgen_rng *r, cylgen_rng *cam, size_t index, const cyl
         break;
     case CONGEN_AXIAL:
         gen_axial(r, g, c);
-        break;
-    case CONGEN_TINY:
-    case CONGEN_HUGE:
-        towards(r, g, g->R * gen_uni(r, 1.05, cat == CONGEN_TINY ? 100 : 3), 1.2, c);
-        break;
-    case CONGEN_UNNORM:
-        towards(r, g, g->R * gen_uni(r, 1.5, 10), 1.2, c);
-        gen_scale_d(r, 30, c->d, &c->tmin, &c->tmax);
-        break;
-    case CONGEN_CAMERA:
-        gen_camera(cam, index, axpy(g->p0, g->L / 2, g->u), g->R, 0.8, c->o, c->d);
-        c->tmin = 0.0f;
-        c->tmax = INFINITY;
-        break;
-    case CONGEN_BAD:
-        gen_bad(r, g, c);
-        break;
-    case CONGEN_SCALED:
-        if (gen_chance(r, 0.3))
-            gen_grazing(r, g, c);
-        else if (gen_chance(r, 0.2))
-            gen_rim(r, g, c);
-        else
-            towards(r, g, g->R * gen_uni(r, 1.5, 10), 1.2, c);
-        gen_scale_d(r, 20, c->d, &c->tmin, &c->tmax);
         break;
     case CONGEN_NEARCYL:
     case CONGEN_FLAT:
@@ -391,10 +362,13 @@ void congen_ray(int cat, cylgen_rng *r, cylgen_rng *cam, size_t index, const cyl
     case CONGEN_TINYEND:
         gen_tinyend(r, g, c);
         break;
-    case CONGEN_ORDINARY:
-    default:
-        towards(r, g, g->R * gen_uni(r, 1.5, 10), 1.2, c);
+    default: {
+        const v3 mid = axpy(g->p0, g->L / 2, g->u); /* where the camera looks */
+        const gen_ray_at at = {&cone_rays, g, g->R, mid, 0.8, GEN_RAY_CASE(c)};
+        gen_shared_ray(cat >= 0 && cat < CONGEN_COUNT ? shared_kind[cat] : GEN_RAY_ORDINARY, r,
+                       cam, index, &at);
         break;
+    }
     }
 }
 

@@ -27,6 +27,8 @@ static void c_perturb(const cin_q *base, const cylq step[IN_COUNT],
     out->r1 = base->r1 > 0 ? q_max(base->r1 + s1, base->r1 / 2) : 0;
 }
 
+REF_SAMPLE_DEFINE(c_at, cin_q, crec, c_perturb, conref_eval_)
+
 /* Per candidate over the evaluations: its t range (where it exists), the parts it
  * showed, and whether its validity was seen both ways. */
 typedef struct {
@@ -205,10 +207,7 @@ void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], 
     for (int i = 0; i < IN_COUNT; i++) {
         signed char k[IN_COUNT] = {0};
         k[i] = 2;
-        cin_q q;
-        c_perturb(&base, step, k, &q);
-        conref_eval_(&q, tmin, tmax, &r);
-        out->evals++;
+        c_at(&base, step, k, tmin, tmax, &r, out);
         for (int kand = 0; kand < K_COUNT; kand++) {
             for (int g = 0; g < G_COUNT; g++)
                 sum_m[kand][g] += ref_qdiff(r.m[kand][g], r0.m[kand][g]);

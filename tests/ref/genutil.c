@@ -82,6 +82,65 @@ void gen_camera(cylgen_rng *cam, size_t index, v3 ctr, double R, double spread, 
     to_f(d, axpy(axpy(fwd, sx, right), sy, up));
 }
 
+static void ordinary(cylgen_rng *r, const gen_ray_at *a)
+{
+    a->row->towards(r, a->geo, a->R * gen_uni(r, 1.5, 10), 1.2, a->c);
+}
+
+void gen_shared_ray(int kind, cylgen_rng *r, cylgen_rng *cam, size_t index, const gen_ray_at *a)
+{
+    const gen_ray_row *h = a->row;
+    switch (kind) {
+    case GEN_RAY_FAR:
+        h->towards(r, a->geo, a->R * gen_logu(r, 10, 20), 1.1, a->c);
+        break;
+    case GEN_RAY_GRAZING:
+        h->grazing(r, a->geo, a->c);
+        break;
+    case GEN_RAY_SURFACE:
+        h->surface(r, a->geo, a->c);
+        break;
+    case GEN_RAY_INSIDE:
+        to_f(a->o, h->point_in(r, a->geo, 0.99));
+        to_f(a->d, gen_dir(r));
+        gen_interval(r, a->R, a->tmin, a->tmax);
+        break;
+    case GEN_RAY_TINY:
+    case GEN_RAY_HUGE:
+        h->towards(r, a->geo, a->R * gen_uni(r, 1.05, kind == GEN_RAY_TINY ? 100 : 3), 1.2,
+                   a->c);
+        break;
+    case GEN_RAY_UNNORM:
+        ordinary(r, a);
+        gen_scale_d(r, 30, a->d, a->tmin, a->tmax);
+        break;
+    case GEN_RAY_CAMERA:
+        gen_camera(cam, index, a->aim, a->R, a->spread, a->o, a->d);
+        *a->tmin = 0.0f;
+        *a->tmax = INFINITY;
+        break;
+    case GEN_RAY_BAD:
+        /* one input made unusable in most lanes (cylgen_spoil): none of them may hit */
+        ordinary(r, a);
+        cylgen_spoil(cylgen_next(r), a->o, a->d, a->tmin, a->tmax);
+        break;
+    case GEN_RAY_SCALED:
+        /* the rim's draw only where there is one, so that a shape without keeps its cases */
+        if (gen_chance(r, 0.3))
+            h->grazing(r, a->geo, a->c);
+        else if (h->rim && gen_chance(r, 0.2))
+            h->rim(r, a->geo, a->c);
+        else
+            ordinary(r, a);
+        gen_scale_d(r, 20, a->d, a->tmin, a->tmax);
+        break;
+    case GEN_RAY_ORDINARY:
+    default:
+        ordinary(r, a);
+        break;
+    }
+}
+
 const char *gen_name(const gen_shape *g, int cat)
 {
     return cat >= 0 && cat < g->count ? g->names[cat] : NULL;

@@ -82,6 +82,78 @@ void gen_scale_d(cylgen_rng *r, int span, float d[3], float *tmin, float *tmax);
 void gen_camera(cylgen_rng *cam, size_t index, v3 ctr, double R, double spread, float o[3],
                 float d[3]);
 
+/* The ray categories the sphere's and the cone's generators share, each drawn from the
+ * shape's own few draws (gen_ray_row), so that a category means the same on both. A
+ * shape numbers its categories its own way and maps them to these. */
+typedef enum {
+    GEN_RAY_ORDINARY, /* from 1.5-10 R at a point within 1.2 of the solid */
+    GEN_RAY_FAR,      /* from 2^10-2^20 R */
+    GEN_RAY_GRAZING,
+    GEN_RAY_SURFACE,
+    GEN_RAY_INSIDE,
+    GEN_RAY_TINY, /* ordinary, from 1.05-100 R */
+    GEN_RAY_HUGE, /* ordinary, from 1.05-3 R */
+    GEN_RAY_UNNORM,
+    GEN_RAY_CAMERA,
+    GEN_RAY_BAD,
+    GEN_RAY_SCALED, /* grazing, at a rim or ordinary, |d| 2^-20..2^20 */
+    GEN_RAY_COUNT
+} gen_ray_kind;
+
+/* A shape's draws under those categories, on its geometry in double (geo) and its case
+ * (c): towards from dist away at a point of the solid grown by slack; point_in a point
+ * of it grown by slack; rim NULL where the shape has none. */
+typedef struct gen_ray_row {
+    void (*towards)(cylgen_rng *r, const void *geo, double dist, double slack, void *c);
+    void (*grazing)(cylgen_rng *r, const void *geo, void *c);
+    void (*surface)(cylgen_rng *r, const void *geo, void *c);
+    v3 (*point_in)(cylgen_rng *r, const void *geo, double slack);
+    void (*rim)(cylgen_rng *r, const void *geo, void *c);
+} gen_ray_row;
+
+/* The row of towards, grazing, surface and point_in, typed on the shape's geometry and
+ * case, and rim (a gen_ray_row hook, or NULL). */
+#define GEN_RAY_ROW_DEFINE(name, towards, grazing, surface, point_in, rim)                     \
+    static void name##_towards(cylgen_rng *r, const void *g, double dist, double slack,        \
+                               void *c)                                                        \
+    {                                                                                          \
+        towards(r, g, dist, slack, c);                                                         \
+    }                                                                                          \
+    static void name##_grazing(cylgen_rng *r, const void *g, void *c)                          \
+    {                                                                                          \
+        grazing(r, g, c);                                                                      \
+    }                                                                                          \
+    static void name##_surface(cylgen_rng *r, const void *g, void *c)                          \
+    {                                                                                          \
+        surface(r, g, c);                                                                      \
+    }                                                                                          \
+    static v3 name##_point_in(cylgen_rng *r, const void *g, double slack)                      \
+    {                                                                                          \
+        return point_in(r, g, slack);                                                          \
+    }                                                                                          \
+    static const gen_ray_row name = {name##_towards, name##_grazing, name##_surface,           \
+                                     name##_point_in, rim}
+
+/* One case under a shared category: the shape's row and geometry, its size R (the unit
+ * of every distance), the camera's aim and its block's spread (in R), and the case with
+ * its ray. */
+typedef struct gen_ray_at {
+    const gen_ray_row *row;
+    const void *geo;
+    double R;
+    v3 aim;
+    double spread;
+    void *c;
+    float *o, *d, *tmin, *tmax;
+} gen_ray_at;
+/* gen_ray_at's last fields, from a case (a shape, then o, d, tmin, tmax: gen.h). */
+#define GEN_RAY_CASE(c) (c), (c)->o, (c)->d, &(c)->tmin, &(c)->tmax
+
+/* Draws the ray of a case of category kind (out of range: ordinary); cam and index as
+ * gen_camera's. */
+void gen_shared_ray(int kind, cylgen_rng *r, cylgen_rng *cam, size_t index,
+                    const gen_ray_at *at);
+
 /* A shape's generator as a row: its categories, its draws kept apart from the other
  * shapes' by salt, and its two hooks. The shape changes every CYLGEN_BATCH cases. */
 #define GEN_SHAPE_MAX 64

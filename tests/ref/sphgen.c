@@ -105,68 +105,7 @@ static void gen_surface(cylgen_rng *r, const ball *b, sphgen_case *c)
     c->tmax = INFINITY;
 }
 
-/* Ordinary rays with one input made unusable in most lanes: NaN or Inf in o, d, tmin
- * or tmax, a zero direction, an empty interval. None of them may hit. */
-static void gen_bad(cylgen_rng *r, const ball *b, sphgen_case *c)
-{
-    towards(r, b, b->R * gen_uni(r, 1.5, 10), 1.2, c);
-    cylgen_spoil(cylgen_next(r), c->o, c->d, &c->tmin, &c->tmax);
-}
-
-static void gen_case(int cat, cylgen_rng *r, const ball *b, cylgen_rng *cam, size_t index,
-                     sphgen_case *c)
-{
-    switch (cat) {
-    case SPHGEN_FAR:
-        towards(r, b, b->R * gen_logu(r, 10, 20), 1.1, c);
-        break;
-    case SPHGEN_GRAZING:
-        gen_grazing(r, b, c);
-        break;
-    case SPHGEN_SURFACE:
-        gen_surface(r, b, c);
-        break;
-    case SPHGEN_INSIDE: {
-        v3 o = point_in(r, b, 0.99);
-        to_f(c->o, o);
-        to_f(c->d, gen_dir(r));
-        gen_interval(r, b->R, &c->tmin, &c->tmax);
-        break;
-    }
-    case SPHGEN_TINY:
-    case SPHGEN_HUGE:
-        towards(r, b, b->R * gen_uni(r, 1.05, cat == SPHGEN_TINY ? 100 : 3), 1.2, c);
-        break;
-    case SPHGEN_UNNORMALIZED: {
-        double dist = b->R * gen_uni(r, 1.5, 10);
-        towards(r, b, dist, 1.2, c);
-        gen_scale_d(r, 30, c->d, &c->tmin, &c->tmax);
-        break;
-    }
-    case SPHGEN_CAMERA:
-        /* The block spans a bit more than the sphere's silhouette, so its edge pixels
-         * miss or graze. */
-        gen_camera(cam, index, b->c, b->R, 1.3, c->o, c->d);
-        c->tmin = 0.0f;
-        c->tmax = INFINITY;
-        break;
-    case SPHGEN_BAD:
-        gen_bad(r, b, c);
-        break;
-    case SPHGEN_SCALED: {
-        if (gen_chance(r, 0.3))
-            gen_grazing(r, b, c);
-        else
-            towards(r, b, b->R * gen_uni(r, 1.5, 10), 1.2, c);
-        gen_scale_d(r, 20, c->d, &c->tmin, &c->tmax);
-        break;
-    }
-    case SPHGEN_ORDINARY:
-    default:
-        towards(r, b, b->R * gen_uni(r, 1.5, 10), 1.2, c);
-        break;
-    }
-}
+GEN_RAY_ROW_DEFINE(ball_rays, towards, gen_grazing, gen_surface, point_in, NULL);
 
 static const char *const names[SPHGEN_COUNT] = {
     "sph-ordinary", "sph-far",    "sph-grazing", "sph-surface", "sph-inside", "sph-tiny",
@@ -185,13 +124,27 @@ static const char *const descriptions[SPHGEN_COUNT] = {
     "sphere: NaN, Inf, zero-direction and empty-interval lanes among good ones",
     "sphere: ordinary and grazing scenes scaled by 2^+-(21..50), |d| 2^-20..2^20"};
 
+/* The sphere's categories are the shared ones, in their order. */
+_Static_assert((int)SPHGEN_ORDINARY == GEN_RAY_ORDINARY && (int)SPHGEN_FAR == GEN_RAY_FAR &&
+                   (int)SPHGEN_GRAZING == GEN_RAY_GRAZING &&
+                   (int)SPHGEN_SURFACE == GEN_RAY_SURFACE &&
+                   (int)SPHGEN_INSIDE == GEN_RAY_INSIDE && (int)SPHGEN_TINY == GEN_RAY_TINY &&
+                   (int)SPHGEN_HUGE == GEN_RAY_HUGE &&
+                   (int)SPHGEN_UNNORMALIZED == GEN_RAY_UNNORM &&
+                   (int)SPHGEN_CAMERA == GEN_RAY_CAMERA && (int)SPHGEN_BAD == GEN_RAY_BAD &&
+                   (int)SPHGEN_SCALED == GEN_RAY_SCALED && (int)SPHGEN_COUNT == GEN_RAY_COUNT,
+               "sphgen's categories are gen_ray_kind's");
+
 static void sphere_ray(int cat, cylgen_rng *r, cylgen_rng *cam, size_t index,
                        const cylray_sphere *sph, sphgen_case *c)
 {
     memset(c, 0, sizeof *c);
     c->sph = *sph;
     ball bl = ball_of(&c->sph);
-    gen_case(cat, r, &bl, cam, index, c);
+    /* The camera's block spans a bit more than the sphere's silhouette, so that its edge
+     * pixels miss or graze. */
+    const gen_ray_at at = {&ball_rays, &bl, bl.R, bl.c, 1.3, GEN_RAY_CASE(c)};
+    gen_shared_ray(cat, r, cam, index, &at);
 }
 
 GEN_SHAPE_DEFINE(sphgen, cylray_sphere, names, descriptions, SPHGEN_COUNT, 0x737068657265ull,

@@ -166,6 +166,8 @@ static void s_perturb(const sin_q *base, const cylq step[IN_COUNT],
         out->R = base->R;
 }
 
+REF_SAMPLE_DEFINE(s_at, sin_q, srec, s_perturb, s_eval)
+
 /* How far the normal at a hit may turn over the box, from the geometry: the ray's line
  * moves sideways by up to db (w by 2 ulps of its largest component in each, d likewise
  * over the distance t |d|, R by 2 ulps), so the impact parameter b = |w x d| / |d| lies
@@ -231,10 +233,7 @@ void sphref_band_eval(const cylray_sphere *s, const float o[3], const float d[3]
     for (int i = 0; i < IN_COUNT; i++) {
         signed char k[IN_COUNT] = {0};
         k[i] = 2;
-        sin_q q;
-        s_perturb(&base, step, k, &q);
-        s_eval(&q, tmin, tmax, &r);
-        out->evals++;
+        s_at(&base, step, k, tmin, tmax, &r, out);
         for (int m = 0; m < S_COUNT; m++)
             sum_m[m] += ref_qdiff(r.m[m], r0.m[m]);
         sum_tn += ref_qdiff(r.tn, r0.tn);
@@ -263,10 +262,7 @@ void sphref_band_eval(const cylray_sphere *s, const float o[3], const float d[3]
         signed char k[IN_COUNT];
         uint64_t bits = rng_splitmix64(&seed);
         ref_vertex(k, IN_COUNT, vtx, bits, dt, x0 != SO_MISS);
-        sin_q q;
-        s_perturb(&base, step, k, &q);
-        s_eval(&q, tmin, tmax, &r);
-        out->evals++;
+        s_at(&base, step, k, tmin, tmax, &r, out);
         s_bools(&r, b);
         int x = s_decide(b, cull);
         int p = x == SO_MISS ? 0 : s_part(&r, x);

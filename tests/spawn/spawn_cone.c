@@ -411,87 +411,87 @@ static int run_self(void)
 
 /* ---- batched forms --------------------------------------------------------------- */
 
-static int run_batched(void)
+static void batched_group(cylgen_rng *rng, long g, spawn_tally *tally)
 {
-    const long N = scaled(3000);
-    long compared = 0, differ = 0;
-    cylgen_rng rng;
-    cylgen_seed(&rng, 5303);
-    for (long g = 0; g < N; g++) {
-        cylray_cone cs[16];
-        cylray_prepared P[16];
-        int ok = 1;
-        for (int j = 0; j < 16 && ok; j++)
-            ok = prepare(&rng, g * 16 + j, &cs[j], &P[j]) && cs[j].r0 != cs[j].r1;
-        if (!ok)
+    cylray_cone cs[16];
+    cylray_prepared P[16];
+    int ok = 1;
+    for (int j = 0; j < 16 && ok; j++)
+        ok = prepare(rng, g * 16 + j, &cs[j], &P[j]) && cs[j].r0 != cs[j].r1;
+    if (!ok)
+        return;
+    cylray_leaf16 leaf;
+    if (cylray_leaf_prepare_cones16(&leaf, cs, NULL, 16) != CYLRAY_OK)
+        return;
+    const int j = (int)(g % 16);
+    const cylray_kernels *K = isas[g % nisa];
+    float o[16][3], d[16][3], t[16], n[16][3];
+    int32_t part[16];
+    make_rays(rng, &P[j], o, d);
+    const uint32_t m =
+        trace(K, &P[j], (const float(*)[3])o, (const float(*)[3])d, 0xffffu, t, part, n);
+    if (!m)
+        return;
+    float ox[16], oy[16], oz[16], dx[16], dy[16], dz[16], tt[16], nx[16], ny[16], nz[16];
+    float px[16], py[16], pz[16], pe[16], lx[16], ly[16], lz[16], le[16];
+    float wx[16], wy[16], wz[16], sx[16], sy[16], sz[16], fx[16], fy[16], fz[16];
+    int32_t pp[16];
+    cylray_ray1 r1[16];
+    cylray_hit1 h1[16];
+    const cylray_leaf16 *lv[16];
+    int cnt = 0;
+    for (int i = 0; i < 16; i++) {
+        if (!(m >> i & 1u))
             continue;
-        cylray_leaf16 leaf;
-        if (cylray_leaf_prepare_cones16(&leaf, cs, NULL, 16) != CYLRAY_OK)
-            continue;
-        const int j = (int)(g % 16);
-        const cylray_kernels *K = isas[g % nisa];
-        float o[16][3], d[16][3], t[16], n[16][3];
-        int32_t part[16];
-        make_rays(&rng, &P[j], o, d);
-        const uint32_t m =
-            trace(K, &P[j], (const float(*)[3])o, (const float(*)[3])d, 0xffffu, t, part, n);
-        if (!m)
-            continue;
-        float ox[16], oy[16], oz[16], dx[16], dy[16], dz[16], tt[16], nx[16], ny[16], nz[16];
-        float px[16], py[16], pz[16], pe[16], lx[16], ly[16], lz[16], le[16];
-        float wx[16], wy[16], wz[16], sx[16], sy[16], sz[16], fx[16], fy[16], fz[16];
-        int32_t pp[16];
-        cylray_ray1 r1[16];
-        cylray_hit1 h1[16];
-        const cylray_leaf16 *lv[16];
-        int cnt = 0;
-        for (int i = 0; i < 16; i++) {
-            if (!(m >> i & 1u))
-                continue;
-            ox[cnt] = o[i][0], oy[cnt] = o[i][1], oz[cnt] = o[i][2];
-            dx[cnt] = d[i][0], dy[cnt] = d[i][1], dz[cnt] = d[i][2];
-            tt[cnt] = t[i], nx[cnt] = n[i][0], ny[cnt] = n[i][1], nz[cnt] = n[i][2];
-            pp[cnt] = part[i];
-            double u[3];
-            sref_unit(&rng, u);
-            wx[cnt] = (float)u[0], wy[cnt] = (float)u[1], wz[cnt] = (float)u[2];
-            memset(&r1[cnt], 0, sizeof r1[cnt]);
-            memcpy(r1[cnt].o, o[i], sizeof o[i]);
-            memcpy(r1[cnt].d, d[i], sizeof d[i]);
-            memset(&h1[cnt], 0, sizeof h1[cnt]);
-            h1[cnt].t = t[i], h1[cnt].part = part[i], h1[cnt].lane = (uint32_t)j;
-            memcpy(h1[cnt].n, n[i], sizeof n[i]);
-            lv[cnt] = &leaf;
-            cnt++;
-        }
-        const cylray_rays rays = {ox, oy, oz, dx, dy, dz, NULL, NULL};
-        const cylray_hits hits = {tt, nx, ny, nz, pp};
-        const cylray_points pts = {px, py, pz, pe}, lpts = {lx, ly, lz, le};
-        const cylray_points dirs = {wx, wy, wz, NULL}, org = {sx, sy, sz, NULL};
-        const cylray_points lorg = {fx, fy, fz, NULL};
-        K->hit_points_normal_stream(&P[j], &rays, &hits, &pts, (size_t)cnt);
-        K->leaf_hit_points_normal16(lv, r1, h1, &lpts, (size_t)cnt);
-        K->spawn_stream(&P[j], &pts, pp, &dirs, &org, (size_t)cnt);
-        K->leaf_spawn_origins16(lv, h1, &pts, &dirs, &lorg, (size_t)cnt);
-        for (int i = 0; i < cnt; i++) {
-            const float oo[3] = {ox[i], oy[i], oz[i]}, dd[3] = {dx[i], dy[i], dz[i]};
-            const float nn[3] = {nx[i], ny[i], nz[i]}, ww[3] = {wx[i], wy[i], wz[i]};
-            float ps[3], es, xs[3];
-            cylray_hit_point_normal(&P[j], oo, dd, tt[i], pp[i], nn, ps, &es);
-            cylray_spawn_origin(&P[j], ps, es, pp[i], ww, xs);
-            const float a[3] = {px[i], py[i], pz[i]}, b[3] = {lx[i], ly[i], lz[i]};
-            const float sa[3] = {sx[i], sy[i], sz[i]}, sb[3] = {fx[i], fy[i], fz[i]};
-            compared++;
-            if (!sref_same3(a, ps) || !tc_same(pe[i], es) || !sref_same3(b, ps) ||
-                !tc_same(le[i], es) || !sref_same3(sa, xs) || !sref_same3(sb, xs)) {
-                differ++;
-                fail("batched differs from scalar", &cs[j], (double)ps[0], (double)px[i]);
-            }
+        ox[cnt] = o[i][0], oy[cnt] = o[i][1], oz[cnt] = o[i][2];
+        dx[cnt] = d[i][0], dy[cnt] = d[i][1], dz[cnt] = d[i][2];
+        tt[cnt] = t[i], nx[cnt] = n[i][0], ny[cnt] = n[i][1], nz[cnt] = n[i][2];
+        pp[cnt] = part[i];
+        double u[3];
+        sref_unit(rng, u);
+        wx[cnt] = (float)u[0], wy[cnt] = (float)u[1], wz[cnt] = (float)u[2];
+        memset(&r1[cnt], 0, sizeof r1[cnt]);
+        memcpy(r1[cnt].o, o[i], sizeof o[i]);
+        memcpy(r1[cnt].d, d[i], sizeof d[i]);
+        memset(&h1[cnt], 0, sizeof h1[cnt]);
+        h1[cnt].t = t[i], h1[cnt].part = part[i], h1[cnt].lane = (uint32_t)j;
+        memcpy(h1[cnt].n, n[i], sizeof n[i]);
+        lv[cnt] = &leaf;
+        cnt++;
+    }
+    const cylray_rays rays = {ox, oy, oz, dx, dy, dz, NULL, NULL};
+    const cylray_hits hits = {tt, nx, ny, nz, pp};
+    const cylray_points pts = {px, py, pz, pe}, lpts = {lx, ly, lz, le};
+    const cylray_points dirs = {wx, wy, wz, NULL}, org = {sx, sy, sz, NULL};
+    const cylray_points lorg = {fx, fy, fz, NULL};
+    K->hit_points_normal_stream(&P[j], &rays, &hits, &pts, (size_t)cnt);
+    K->leaf_hit_points_normal16(lv, r1, h1, &lpts, (size_t)cnt);
+    K->spawn_stream(&P[j], &pts, pp, &dirs, &org, (size_t)cnt);
+    K->leaf_spawn_origins16(lv, h1, &pts, &dirs, &lorg, (size_t)cnt);
+    for (int i = 0; i < cnt; i++) {
+        const float oo[3] = {ox[i], oy[i], oz[i]}, dd[3] = {dx[i], dy[i], dz[i]};
+        const float nn[3] = {nx[i], ny[i], nz[i]}, ww[3] = {wx[i], wy[i], wz[i]};
+        float ps[3], es, xs[3];
+        cylray_hit_point_normal(&P[j], oo, dd, tt[i], pp[i], nn, ps, &es);
+        cylray_spawn_origin(&P[j], ps, es, pp[i], ww, xs);
+        const float a[3] = {px[i], py[i], pz[i]}, b[3] = {lx[i], ly[i], lz[i]};
+        const float sa[3] = {sx[i], sy[i], sz[i]}, sb[3] = {fx[i], fy[i], fz[i]};
+        tally->compared++;
+        if (!sref_same3(a, ps) || !tc_same(pe[i], es) || !sref_same3(b, ps) ||
+            !tc_same(le[i], es) || !sref_same3(sa, xs) || !sref_same3(sb, xs)) {
+            tally->differ++;
+            fail("batched differs from scalar", &cs[j], (double)ps[0], (double)px[i]);
         }
     }
+}
+
+static int run_batched(void)
+{
+    spawn_tally t = {0, 0};
+    const int ok = spawn_groups(scaled(3000), 5303, batched_group, &t);
     printf("batched: %ld hits compared (stream, leaf; points and origins), %ld differ\n",
-           compared, differ);
-    return compared > 0 && differ == 0;
+           t.compared, t.differ);
+    return ok;
 }
 
 static const spawn_mode modes[] = {

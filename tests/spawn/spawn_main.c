@@ -47,6 +47,16 @@ void narrow_packet(const cylray_ray16 *ray, const cylray_hit16 *hit, cylray_ray8
     }
 }
 
+int spawn_groups(long n, uint64_t seed, void (*group)(cylgen_rng *rng, long g, spawn_tally *t),
+                 spawn_tally *t)
+{
+    cylgen_rng rng;
+    cylgen_seed(&rng, seed);
+    for (long g = 0; g < n; g++)
+        group(&rng, g, t);
+    return t->compared > 0 && t->differ == 0;
+}
+
 int spawn_main(int argc, char **argv, const char *prog, const spawn_mode *modes, size_t n)
 {
     quick = tc_quick();

@@ -31,6 +31,18 @@ void hit_point_form(const cylray_prepared *P, const float o[3], const float d[3]
 void narrow_packet(const cylray_ray16 *ray, const cylray_hit16 *hit, cylray_ray8 *r8,
                    cylray_hit8 *h8, cylray_ray4 *r4, cylray_hit4 *h4);
 
+/* What a mode that compares forms found: the lanes (or hits) compared and the
+ * differences seen. */
+typedef struct spawn_tally {
+    long compared, differ;
+} spawn_tally;
+
+/* The frame of such a mode: group(rng, g, t) for each of n groups, every group drawing
+ * on from one generator seeded with seed, so that a group's draws are those it has
+ * always had. Returns nonzero when something was compared and nothing differed. */
+int spawn_groups(long n, uint64_t seed, void (*group)(cylgen_rng *rng, long g, spawn_tally *t),
+                 spawn_tally *t);
+
 typedef struct spawn_mode {
     const char *name;
     int (*run)(void); /* nonzero when every check held */
