@@ -94,10 +94,10 @@ extern "C" {
  * A leaf's box cannot be split, so a geometry with a shape that split boxes would cut
  * (longer than 16 radii and tilted) takes split boxes instead, as without this option
  * (cylray_embree_leaf_size then says 0); with CYLRAY_EMBREE_NO_SPLIT it is grouped into
- * leaves whatever its shapes. Leaves were slower than the default wherever measured on
- * AMD Zen 5 (Embree 3, AVX-512): 1.0-2.7x its time on spheres and short tapered bonds
- * (packets of 8 the most), 5-18x on long tilted rods, which therefore take split boxes
- * (docs/performance.md). */
+ * leaves whatever its shapes. On AMD Zen 5 (Embree 3, AVX-512) leaves were as fast as
+ * the default one ray a call on a dense molecule and lattice and slower elsewhere:
+ * 1.1-1.6x its time one ray a call, 1.3-2.6x in packets of 8, and 5-18x on long tilted
+ * rods, which therefore take split boxes (docs/performance.md). */
 #define CYLRAY_EMBREE_LEAVES 0x1u
 /* Split boxes, the default: a cylinder longer than 16 radii and tilted off the
  * coordinate axes gets several boxes along its axis instead of one (its single box
