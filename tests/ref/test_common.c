@@ -36,6 +36,8 @@ REF_CALLS(sphref, sph)
 REF_VALID(sphref, sph)
 REF_CALLS(conref, cone)
 REF_VALID(conref, cone)
+REF_CALLS(rcref, rc)
+REF_VALID(rcref, rc)
 
 const ref_kind ref_cylinder = {
     "cylinder", sizeof(cylray_cylinder), cylref_x, cylref_b, cylref_judge, NULL};
@@ -43,6 +45,8 @@ const ref_kind ref_sphere = {"sphere", sizeof(cylray_sphere), sphref_x,
                              sphref_b, sphref_judge,          sphref_v};
 const ref_kind ref_cone = {"cone",   sizeof(cylray_cone), conref_x,
                            conref_b, conref_judge,        conref_v};
+const ref_kind ref_round_cone = {
+    "round cone", sizeof(rcref_round_cone), rcref_x, rcref_b, rcref_judge, rcref_v};
 
 /* A generator's cases (`gen`_case: the shape, then o, d, tmin, tmax) behind ref_gen. */
 #define REF_GEN(gen, P, kind)                                                                  \
