@@ -98,6 +98,7 @@ void rcref_in_(const rcref_round_cone *s, const float o[3], const float d[3], ri
     }
     q->r0 = s->r0;
     q->r1 = s->r1;
+    q->flags = s->flags;
 }
 
 /* Sphere piece p (centre at Wc from the moved origin, radius rad). */
@@ -205,7 +206,8 @@ void rcref_eval_(const rin_q *q, int force, cylq tmin, cylq tmax, rrec *r)
     r->d2 = r->aa - r->dr * r->dr;
     r->d2w = widen(r->aa);
     r->nested = force < 0 ? !(r->d2 > 0) : force;
-    r->big = q->r1 > q->r0;
+    /* the larger sphere; of two equal ones (p0 == p1), sphere 0 when its end is capped */
+    r->big = q->r1 > q->r0 || (q->r1 == q->r0 && !(q->flags & CYLRAY_CAPPED_LO));
     /* the origin moved to its closest approach to the centre */
     r->s0 = -ref_dot3(q->w, q->d) / ref_dot3(q->d, q->d);
     cylq w1[3];

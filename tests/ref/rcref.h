@@ -44,8 +44,9 @@ typedef struct rcref_round_cone {
  *                     (all 0 at a point end's apex, which has none); CYLRAY_CULL_BACK
  *                     drops back-face hits. A point on a tangent circle (a seam) is on
  *                     the side, so a ray through the rim of an open end hits the side.
- *                     Two identical spheres (p0 == p1, r0 == r1): sphere 0 is the
- *                     larger (CAP_LO, present with CYLRAY_CAPPED_LO).
+ *                     Two identical spheres (p0 == p1, r0 == r1): there when either
+ *                     end's flag is set, as CAP_LO when CYLRAY_CAPPED_LO is, else as
+ *                     CAP_HI.
  *   rcref_band_eval   the band (below)
  *   rcref_judge       as cylref_judge
  *

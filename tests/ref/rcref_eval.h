@@ -20,6 +20,7 @@ enum { RX_SEG = 2 * RP_COUNT };
 
 typedef struct rin_q {
     cylq w[3], d[3], a[3], r0, r1; /* w = o - (p0 + p1) / 2, a = p1 - p0 */
+    unsigned flags;                /* the shape's: which of two equal spheres is taken */
 } rin_q;
 
 typedef struct rrec {

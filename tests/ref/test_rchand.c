@@ -29,6 +29,8 @@ void test_hand_round_cone(void)
     const rcref_round_cone nest_hi = {{0, 0, 0}, {0, 0, 0.25f}, 0.5f, 2, HIC};
     const rcref_round_cone one = {{1, 2, 3}, {1, 2, 3}, 1, 1, LOC};
     const rcref_round_cone one_hi = {{1, 2, 3}, {1, 2, 3}, 1, 1, HIC};
+    const rcref_round_cone one_open = {{1, 2, 3}, {1, 2, 3}, 1, 1, 0};
+    const rcref_round_cone one_small_capped = {{1, 2, 3}, {1, 2, 3}, 1, 0.5f, HIC};
     const double s3 = sqrt(3.0);
     const ref_hand cases[] = {
         {"capsule side", {.rc = cap}, {5, 0, 1}, {-1, 0, 0}, 0, I, 0, 1, 4, S, {1, 0, 0}},
@@ -261,7 +263,39 @@ void test_hand_round_cone(void)
          HB,
          {0, 0, -1}},
         {"zero length", {.rc = one}, {1, 2, -3}, {0, 0, 1}, 0, I, 0, 1, 5, LO, {0, 0, -1}},
-        {"zero length, hi only", {.rc = one_hi}, {1, 2, -3}, {0, 0, 1}, 0, I, 0, 0, 0, 0, {0}},
+        {"zero length, hi only",
+         {.rc = one_hi},
+         {1, 2, -3},
+         {0, 0, 1},
+         0,
+         I,
+         0,
+         1,
+         5,
+         HI,
+         {0, 0, -1}},
+        {"zero length, no flags",
+         {.rc = one_open},
+         {1, 2, -3},
+         {0, 0, 1},
+         0,
+         I,
+         0,
+         0,
+         0,
+         0,
+         {0}},
+        {"zero length, the larger's end open",
+         {.rc = one_small_capped},
+         {1, 2, -3},
+         {0, 0, 1},
+         0,
+         I,
+         0,
+         0,
+         0,
+         0,
+         {0}},
         {"NaN origin", {.rc = cap}, {NAN, 0, 1}, {-1, 0, 0}, 0, I, 0, 0, 0, 0, {0}},
         {"zero direction", {.rc = cap}, {5, 0, 1}, {0, 0, 0}, 0, I, 0, 0, 0, 0, {0}},
     };
@@ -290,4 +324,66 @@ void test_hand_round_cone(void)
         {.rc = {{0, 0, 0}, {0, 0, 0x1p-140f}, 1, 1, HIC}},
     };
     ref_run_valid(&ref_round_cone, edge, sizeof edge / sizeof edge[0]);
+}
+
+/* The band at rays made by hand: what it must allow and what it must not. */
+void test_band_round_cone(void)
+{
+    const rcref_round_cone cap = {{0, 0, 0}, {0, 0, 2}, 1, 1, CYLRAY_CAPPED};
+    const rcref_round_cone cap_hi = {{0, 0, 0}, {0, 0, 2}, 1, 1, CYLRAY_CAPPED_HI};
+    cylref_band b;
+    double ub;
+    /* an ordinary side hit at t = 4: stable and narrow */
+    const float o[3] = {5, 0, 1.25f}, d[3] = {-1, 0, 0.125f};
+    rcref_band_eval(&cap, o, d, 0, INFINITY, 0, &b);
+    CHECK(b.exact.hit && b.exact.t == 4 && !b.decision_unstable, "ordinary: unstable");
+    CHECK(cylref_ulps((float)b.t_lo, 4) < 40 && cylref_ulps((float)b.t_hi, 4) < 40,
+          "ordinary: band [%a, %a] too wide", b.t_lo, b.t_hi);
+    CHECK(b.evals >= 60 && b.evals <= 160, "evals %d", b.evals);
+    CHECK(rcref_judge(&b, 1, CYLRAY_SIDE, 4.0f, &ub) == 0 && ub == 0, "ordinary: exact");
+    CHECK(rcref_judge(&b, 1, CYLRAY_CAP_HI, 4.0f, &ub) == 2, "ordinary: the cap allowed");
+    CHECK(rcref_judge(&b, 0, 0, 0, &ub) == 1, "ordinary: a miss allowed");
+    /* t = tmax: hit or miss */
+    rcref_band_eval(&cap, o, d, 0, 4, 0, &b);
+    CHECK(b.exact.hit && b.hit_unstable, "t = tmax: stable?");
+
+    /* exactly through a seam: a hit for sure, the side or the cap */
+    const float os[3] = {2, 0, -1}, ds[3] = {-1, 0, 1};
+    rcref_band_eval(&cap, os, ds, 0, INFINITY, 0, &b);
+    CHECK(b.exact.hit && !b.hit_unstable && b.part_unstable,
+          "seam: hit %d hit_unstable %d part_unstable %d", b.exact.hit, b.hit_unstable,
+          b.part_unstable);
+    CHECK(rcref_judge(&b, 1, CYLRAY_SIDE, 1.0f, &ub) == 0 && ub == 0, "seam: the side refused");
+    CHECK(rcref_judge(&b, 1, CYLRAY_CAP_LO, 1.0f, &ub) == 0 && ub == 0,
+          "seam: the cap refused");
+    CHECK(rcref_judge(&b, 0, 0, 0, &ub) == 1, "seam: a miss allowed");
+    /* ... with that end open: the side at the rim, or through the hole to the exit */
+    rcref_band_eval(&cap_hi, os, ds, 0, INFINITY, 0, &b);
+    CHECK(b.exact.hit && b.exact.part == CYLRAY_SIDE, "open seam: exact part %#x",
+          b.exact.part);
+    CHECK(rcref_judge(&b, 1, CYLRAY_SIDE, 1.0f, &ub) == 0 && ub == 0,
+          "open seam: the side refused");
+    CHECK(rcref_judge(&b, 1, CYLRAY_CAP_LO, 1.0f, &ub) != 0, "open seam: the hole hit");
+
+    /* tangent to a cap: hit or miss */
+    const float ot[3] = {-5, 0, 3}, dt[3] = {1, 0, 0};
+    rcref_band_eval(&cap, ot, dt, 0, INFINITY, 0, &b);
+    CHECK(b.exact.hit && b.hit_unstable, "tangent: stable?");
+    CHECK(rcref_judge(&b, 0, 0, 0, &ub) == 0, "tangent: the miss refused");
+
+    /* a secondary ray leaving a point of the side: its own surface at t = 0, or nothing */
+    const float on[3] = {1, 0, 1}, dn[3] = {0.6f, 0.8f, 0};
+    rcref_band_eval(&cap, on, dn, 0, INFINITY, 0, &b);
+    CHECK(b.hit_unstable, "surface: stable?");
+
+    /* spheres touching inside (|p1 - p0| = r1 - r0): nested or not, either cap where they
+     * touch */
+    const rcref_round_cone touch = {{0, 0, 0}, {0, 0, 1}, 1, 2, CYLRAY_CAPPED};
+    const float oa[3] = {0, 0, -5}, da[3] = {0, 0, 1};
+    rcref_band_eval(&touch, oa, da, 0, INFINITY, 0, &b);
+    CHECK(b.exact.hit && b.exact.part == CYLRAY_CAP_HI && b.exact.t == 4,
+          "touching: exact %d part %#x t %g", b.exact.hit, b.exact.part, b.exact.t);
+    CHECK(rcref_judge(&b, 1, CYLRAY_CAP_LO, 4.0f, &ub) == 0 && ub == 0,
+          "touching: the smaller cap refused");
+    CHECK(!b.hit_unstable, "touching: a miss allowed");
 }

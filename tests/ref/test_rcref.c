@@ -246,11 +246,125 @@ static void test_independent(void)
           "too few compared: %ld, %ld hits", n.compared, n.hits);
 }
 
+/* ---- symmetries ----------------------------------------------------------------------- */
+
+/* The exact answer in binary128: 1 and *t, *part for a hit. */
+static int answer(const rc_case *c, unsigned fl, cylq *t, int *part)
+{
+    rin_q q;
+    rrec r;
+    rcref_in_(&c->rc, c->o, c->d, &q);
+    rcref_eval_(&q, -1, c->tmin, c->tmax, &r);
+    const int x = rcref_decide_(&r, c->rc.flags | (fl & CYLRAY_CULL_BACK));
+    if (x < 0)
+        return 0;
+    *t = rcref_t_(&r, x);
+    *part = rcref_part_(&r, x);
+    return 1;
+}
+
+static unsigned swap_caps(unsigned f)
+{
+    return (f & CYLRAY_CAPPED_LO ? CYLRAY_CAPPED_HI : 0) |
+           (f & CYLRAY_CAPPED_HI ? CYLRAY_CAPPED_LO : 0);
+}
+
+static int swap_part(int p)
+{
+    const int q = p & CYLRAY_PART_MASK;
+    return (p & ~CYLRAY_PART_MASK) | (q == CYLRAY_CAP_LO   ? CYLRAY_CAP_HI
+                                      : q == CYLRAY_CAP_HI ? CYLRAY_CAP_LO
+                                                           : q);
+}
+
+/* The ends swapped (p0, r0 with p1, r1 and their flags) is the same hull with the caps'
+ * names swapped; a rotation of the coordinates with mirrors moves nothing but the frame;
+ * every length doubled doubles t exactly. A part may change only where the band allows
+ * both. */
+static void test_symmetry(void)
+{
+    enum { N = 64 };
+    static rc_case cs[N];
+    int checked = 0, excused = 0;
+    for (int cat = 0; cat < RC_COUNT; cat++) {
+        rc_make(cat, 31, N, cs);
+        for (int i = 0; i < N; i++) {
+            const rc_case *c = &cs[i];
+            const unsigned fl = i % 3 == 2 ? CYLRAY_CULL_BACK : 0;
+            cylq t0 = 0, t1 = 0;
+            int p0 = 0, p1 = 0;
+            const int h0 = answer(c, fl, &t0, &p0);
+            double dd = 0, size = 0;
+            for (int k = 0; k < 3; k++) {
+                const double a = (double)c->rc.p1[k] - c->rc.p0[k];
+                dd += (double)c->d[k] * c->d[k];
+                size += a * a;
+            }
+            size = sqrt(size) / 2 + fmax(c->rc.r0, c->rc.r1);
+            const cylq tol = (cylq)1e-28 * (q_abs(t0) + (cylq)(size / sqrt(dd)));
+            rc_case v = *c;
+            for (int k = 0; k < 3; k++) {
+                v.rc.p0[k] = c->rc.p1[k];
+                v.rc.p1[k] = c->rc.p0[k];
+            }
+            v.rc.r0 = c->rc.r1;
+            v.rc.r1 = c->rc.r0;
+            v.rc.flags = swap_caps(c->rc.flags);
+            int h1 = answer(&v, fl, &t1, &p1);
+            int same = h0 == h1 && (!h0 || q_abs(t1 - t0) <= tol);
+            if (same && h0 && swap_part(p1) != p0) {
+                cylref_band b;
+                rcref_band_eval(&c->rc, c->o, c->d, c->tmin, c->tmax, fl, &b);
+                same = b.part_unstable;
+                excused += same;
+            }
+            CHECK(same, "%s #%d ends swapped: hit %d/%d t %.21g/%.21g part %#x/%#x",
+                  rc_names[cat], i, h0, h1, (double)t0, (double)t1, (unsigned)p0, (unsigned)p1);
+
+            static const int perm[3] = {2, 0, 1};
+            static const float sgn[3] = {-1, 1, -1};
+            for (int k = 0; k < 3; k++) {
+                v.rc.p0[k] = c->rc.p0[perm[k]] * sgn[k];
+                v.rc.p1[k] = c->rc.p1[perm[k]] * sgn[k];
+                v.o[k] = c->o[perm[k]] * sgn[k];
+                v.d[k] = c->d[perm[k]] * sgn[k];
+            }
+            v.rc.r0 = c->rc.r0;
+            v.rc.r1 = c->rc.r1;
+            v.rc.flags = c->rc.flags;
+            h1 = answer(&v, fl, &t1, &p1);
+            CHECK(h0 == h1 && (!h0 || (q_abs(t1 - t0) <= tol && p0 == p1)),
+                  "%s #%d rotated: hit %d/%d t %.21g/%.21g part %#x/%#x", rc_names[cat], i, h0,
+                  h1, (double)t0, (double)t1, (unsigned)p0, (unsigned)p1);
+
+            v = *c;
+            for (int k = 0; k < 3; k++) {
+                v.rc.p0[k] *= 2;
+                v.rc.p1[k] *= 2;
+                v.o[k] *= 2;
+            }
+            v.rc.r0 *= 2;
+            v.rc.r1 *= 2;
+            v.tmin *= 2;
+            v.tmax *= 2;
+            h1 = answer(&v, fl, &t1, &p1);
+            CHECK(h0 == h1 && (!h0 || (t1 == 2 * t0 && p0 == p1)),
+                  "%s #%d scaled: hit %d/%d t %.21g/%.21g part %#x/%#x", rc_names[cat], i, h0,
+                  h1, (double)t0, (double)t1, (unsigned)p0, (unsigned)p1);
+            checked++;
+        }
+    }
+    printf(
+        "rc symmetry: %d cases x 3 transforms, %d parts swapped where the band allows both\n",
+        checked, excused);
+}
+
 /* ---- the band ------------------------------------------------------------------------- */
 
 /* The answer for inputs moved to a random point inside the band's box (up to 1.9 of its 2
  * ulps in each input): the band must allow it. */
-static int inside_box(const rc_case *c, unsigned flags, uint64_t *s, int *part, float *t)
+static int inside_box(const rc_case *c, unsigned flags, uint64_t *s, int *part, float *t,
+                      double n[3])
 {
     rin_q q;
     rcref_in_(&c->rc, c->o, c->d, &q);
@@ -276,6 +390,7 @@ static int inside_box(const rc_case *c, unsigned flags, uint64_t *s, int *part, 
         return 0;
     *part = rcref_part_(&r, x);
     *t = (float)rcref_t_(&r, x);
+    rcref_normal_(&r, x, 0, n);
     return 1;
 }
 
@@ -286,7 +401,7 @@ static void test_band(void)
     uint64_t s = 0x626e64;
     for (int cat = 0; cat < RC_COUNT; cat++) {
         rc_make(cat, 7, N, cs);
-        int dbad = 0;
+        int dbad = 0, nbad = 0;
         double dworst = 0;
         int hits = 0, unstable = 0, hit_unstable = 0, bad = 0, caught = 0, caught_of = 0,
             wn = 0;
@@ -310,7 +425,14 @@ static void test_band(void)
                 for (int j = 0; j < INNER; j++) {
                     int part = 0;
                     float t = 0;
-                    const int hit = inside_box(c, fl, &s, &part, &t);
+                    double n[3];
+                    const int hit = inside_box(c, fl, &s, &part, &t, n);
+                    /* the normal where the part is the exact one: within n_spread (an
+                     * apex has none) */
+                    if (hit && b.exact.hit && part == b.exact.part &&
+                        (n[0] != 0 || n[1] != 0 || n[2] != 0) &&
+                        !(ref_angle3(n, b.exact.n) <= b.n_spread + 1e-12))
+                        nbad++;
                     const int v = rcref_judge(&b, hit, part, t, &ub);
                     if (v || ub > 0.5) {
                         if (bad++ < 4)
@@ -361,6 +483,8 @@ static void test_band(void)
         CHECK(bad == 0, "%s: answers from inside the box fail the band %d times", rc_names[cat],
               bad);
         CHECK(dbad == 0, "%s: the double solver fails its bands %d times", rc_names[cat], dbad);
+        CHECK(nbad == 0, "%s: normals from inside the box beyond n_spread %d times",
+              rc_names[cat], nbad);
         CHECK(caught == 3 * caught_of, "%s: defects missed", rc_names[cat]);
         CHECK(hits > N / 4, "%s: too few hits %d", rc_names[cat], hits);
         /* far: the box moves the ray by 2 ulps of 1e3..1e6 hull sizes, so a side or a cap
@@ -470,6 +594,7 @@ static void test_seams(void)
 void test_rcref(void)
 {
     test_independent();
+    test_symmetry();
     test_band();
     test_seams();
 }

@@ -319,6 +319,7 @@ int main(void)
     part("cone hand", test_hand_cone);
     part("cone", test_conref);
     part("round cone hand", test_hand_round_cone);
+    part("round cone hand band", test_band_round_cone);
     part("round cone", test_rcref);
     printf("ref-selftest: %ld checks, %ld failures\n", ref_checks, ref_failures);
     return ref_failures != 0;

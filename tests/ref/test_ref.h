@@ -105,7 +105,8 @@ void test_hand_sphere(void);
 void test_hand_cone(void);
 void test_sphref(void);          /* test_sphref.c */
 void test_conref(void);          /* test_conref.c */
-void test_hand_round_cone(void); /* test_rcref.c */
-void test_rcref(void);
+void test_hand_round_cone(void); /* test_rchand.c */
+void test_band_round_cone(void);
+void test_rcref(void); /* test_rcref.c */
 
 #endif
