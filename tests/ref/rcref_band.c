@@ -240,8 +240,12 @@ static double turn_bound(const rrec *r, int x, const cylq step[IN_COUNT], double
                               ref_float_ulp(am) * fmax(1, fabs(t) * dm / fmax(am, 1e-300)) +
                               ref_float_ulp(rmax));
     if (p != RP_F) {
+        /* a sphere: its centre moves with the axis' half, the ray with w and d (sphref.c) */
         const double rad = (double)(p == RP_S0 ? r->r0 : r->r1);
-        const double chord = (delta + sqrt(dd) * dt) / rad;
+        const double db =
+            2 * sqrt(3.0) * (wm + fabs(t) * ref_float_ulp(dm) + ref_float_ulp(am)) +
+            2 * ref_float_ulp(rad);
+        const double chord = (db + sqrt(dd) * dt) / rad;
         return 2 * asin(fmin(1, chord / 2));
     }
     /* the side: the direction of x_perp, |x_perp| from the axis */
