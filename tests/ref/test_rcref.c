@@ -279,8 +279,8 @@ static int swap_part(int p)
 
 /* The ends swapped (p0, r0 with p1, r1 and their flags) is the same hull with the caps'
  * names swapped; a rotation of the coordinates with mirrors moves nothing but the frame;
- * every length doubled doubles t exactly. A part may change only where the band allows
- * both. */
+ * every length times a power of two multiplies t by it exactly, and d times one divides
+ * it. A part may change only where the band allows both. */
 static void test_symmetry(void)
 {
     enum { N = 64 };
@@ -337,25 +337,42 @@ static void test_symmetry(void)
                   "%s #%d rotated: hit %d/%d t %.21g/%.21g part %#x/%#x", rc_names[cat], i, h0,
                   h1, (double)t0, (double)t1, (unsigned)p0, (unsigned)p1);
 
-            v = *c;
-            for (int k = 0; k < 3; k++) {
-                v.rc.p0[k] *= 2;
-                v.rc.p1[k] *= 2;
-                v.o[k] *= 2;
+            /* every length by 2, 2^40 or 2^-40: t by the same, exactly; d by 2^30: t
+             * by 2^-30, exactly; and the exact answer inside its band at those scales */
+            static const float lens[3] = {2, 0x1p40f, 0x1p-40f};
+            for (int j = 0; j < 4; j++) {
+                const float f = j < 3 ? lens[j] : 1, g = j < 3 ? 1 : 0x1p30f;
+                v = *c;
+                for (int k = 0; k < 3; k++) {
+                    v.rc.p0[k] *= f;
+                    v.rc.p1[k] *= f;
+                    v.o[k] *= f;
+                    v.d[k] *= g;
+                }
+                v.rc.r0 *= f;
+                v.rc.r1 *= f;
+                v.tmin *= f / g;
+                v.tmax *= f / g;
+                h1 = answer(&v, fl, &t1, &p1);
+                CHECK(h0 == h1 && (!h0 || (t1 == t0 * f / g && p0 == p1)),
+                      "%s #%d scaled by %g, d by %g: hit %d/%d t %.21g/%.21g part %#x/%#x",
+                      rc_names[cat], i, (double)f, (double)g, h0, h1, (double)t0, (double)t1,
+                      (unsigned)p0, (unsigned)p1);
+                if (j == 0)
+                    continue;
+                cylref_band b;
+                double ub;
+                rcref_band_eval(&v.rc, v.o, v.d, v.tmin, v.tmax, fl, &b);
+                CHECK(rcref_judge(&b, b.exact.hit, b.exact.part, (float)b.exact.t, &ub) == 0 &&
+                          (!b.exact.hit || ub == 0),
+                      "%s #%d scaled by %g, d by %g: the exact answer fails its band",
+                      rc_names[cat], i, (double)f, (double)g);
             }
-            v.rc.r0 *= 2;
-            v.rc.r1 *= 2;
-            v.tmin *= 2;
-            v.tmax *= 2;
-            h1 = answer(&v, fl, &t1, &p1);
-            CHECK(h0 == h1 && (!h0 || (t1 == 2 * t0 && p0 == p1)),
-                  "%s #%d scaled: hit %d/%d t %.21g/%.21g part %#x/%#x", rc_names[cat], i, h0,
-                  h1, (double)t0, (double)t1, (unsigned)p0, (unsigned)p1);
             checked++;
         }
     }
     printf(
-        "rc symmetry: %d cases x 3 transforms, %d parts swapped where the band allows both\n",
+        "rc symmetry: %d cases x 6 transforms, %d parts swapped where the band allows both\n",
         checked, excused);
 }
 
