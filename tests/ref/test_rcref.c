@@ -53,7 +53,22 @@ static cylq ind_g(const ind_geo *g, cylq t, cylq *sigma)
     return q_sqrt(dz * dz + rho * rho) - (g->r0 + k * s);
 }
 
+/* g's gradient at t: the unit vector from the centre c(sigma*) of the nearest sphere, the
+ * outward normal wherever the surface is smooth (all 0 at a point end's apex). */
+static void ind_normal(const ind_geo *g, cylq t, double n[3])
+{
+    cylq s, Y[3];
+    ind_g(g, t, &s);
+    s = s < 0 ? 0 : s > g->L ? g->L : s;
+    for (int k = 0; k < 3; k++)
+        Y[k] = g->W[k] + t * g->d[k] - (g->L > 0 ? s / g->L * g->a[k] : 0);
+    const cylq len = q_sqrt(Y[0] * Y[0] + Y[1] * Y[1] + Y[2] * Y[2]);
+    for (int k = 0; k < 3; k++)
+        n[k] = len > 0 ? (double)(Y[k] / len) : 0;
+}
+
 typedef struct {
+    ind_geo g;
     int hit;
     cylq te, tx;    /* entry and exit */
     cylq se, sx;    /* sigma* there, unclamped */
@@ -65,6 +80,7 @@ typedef struct {
 static void ind_solve(const rc_case *c, ind_out *out)
 {
     ind_geo g;
+    memset(&g, 0, sizeof g);
     cylq aa = 0, dd = 0, wd = 0;
     for (int k = 0; k < 3; k++) {
         g.W[k] = (cylq)c->o[k] - c->rc.p0[k];
@@ -126,6 +142,7 @@ static void ind_solve(const rc_case *c, ind_out *out)
     const cylq se = (ind_g(&g, out->te - h, &sg) - ind_g(&g, out->te, &sg)) / h;
     const cylq sx = (ind_g(&g, out->tx + h, &sg) - ind_g(&g, out->tx, &sg)) / h;
     out->slope = (double)(q_min(se, sx) / dl);
+    out->g = g;
 }
 
 /* The part at sigma*: -1 where it is within 1e-9 of a seam (or the hull is one sphere of
@@ -160,7 +177,7 @@ static int present(unsigned flags, int part)
 
 typedef struct {
     long cases, compared, hits, backs, open, skipped_grazing, skipped_seam, parts;
-    double worst;
+    double worst, worst_n;
     int worst_cat, worst_i;
 } ind_counts;
 
@@ -223,7 +240,22 @@ static void compare_one(ind_counts *n, const rc_case *c, int cat, int i, unsigne
     CHECK(h.part == part, "%s #%d: part %#x, independent %#x", rc_names[cat], i,
           (unsigned)h.part, (unsigned)part);
     const double len = sqrt(h.n[0] * h.n[0] + h.n[1] * h.n[1] + h.n[2] * h.n[2]);
+    double ni[3];
+    ind_normal(&x.g, t, ni);
+    if (len == 0 && ni[0] == 0 && ni[1] == 0 && ni[2] == 0)
+        return; /* a point end's apex */
     CHECK(fabs(len - 1) < 1e-14, "%s #%d: |n| %.17g", rc_names[cat], i, len);
+    const double ang = ref_angle3(h.n, ni);
+    n->worst_n = fmax(n->worst_n, ang);
+    CHECK(ang < 1e-14, "%s #%d: normal %.3g rad from the independent one", rc_names[cat], i,
+          ang);
+    /* facing the ray: the same normal, turned where the ray leaves */
+    cylref_hit hf;
+    rcref_intersect(&c->rc, c->o, c->d, c->tmin, c->tmax, fl | CYLRAY_FACE_FORWARD, &hf);
+    const double sg = part & CYLRAY_BACKFACE ? -1 : 1;
+    CHECK(hf.hit && hf.part == h.part && hf.n[0] == sg * h.n[0] && hf.n[1] == sg * h.n[1] &&
+              hf.n[2] == sg * h.n[2],
+          "%s #%d: face forward", rc_names[cat], i);
 }
 
 static void test_independent(void)
@@ -239,9 +271,9 @@ static void test_independent(void)
     }
     printf("rcref vs minimised convex distance: %ld cases, %ld compared (%ld hits, %ld back, "
            "%ld open ends, %ld parts), %ld grazing and %ld at seams or range ends skipped; "
-           "worst t %.3g relative (%s #%d)\n",
+           "worst t %.3g relative (%s #%d), worst normal %.3g rad\n",
            n.cases, n.compared, n.hits, n.backs, n.open, n.parts, n.skipped_grazing,
-           n.skipped_seam, n.worst, rc_names[n.worst_cat], n.worst_i);
+           n.skipped_seam, n.worst, rc_names[n.worst_cat], n.worst_i, n.worst_n);
     CHECK(n.compared > RC_COUNT * N * 3 / 4 && n.hits > RC_COUNT * N / 4,
           "too few compared: %ld, %ld hits", n.compared, n.hits);
 }
