@@ -108,14 +108,17 @@ static void sphere_piece(rrec *r, int p, const cylq Wc[3], cylq rad)
     cross3(Wc, r->d, x);
     const cylq A = ref_dot3(r->d, r->d), B = ref_dot3(Wc, r->d), RR = rad * rad;
     const cylq C = ref_dot3(Wc, Wc) - RR, AR2 = A * RR, D = AR2 - ref_dot3(x, x);
-    /* sqrt(max(D, 0)): the roots move on continuously past a tangency, so that a box
-     * whose corners miss still has a t to compare */
     const cylq sq = q_sqrt(q_max(D, 0)), qq = -(B + q_copysign(sq, B));
     const cylq t1 = qq / A, t2 = qq != 0 ? C / qq : t1;
     r->lo[p] = q_min(t1, t2);
     r->hi[p] = q_max(t1, t2);
+    if (D < 0) /* missed: both at the closest approach, where a box that meets it does */
+        r->lo[p] = r->hi[p] = -B / A;
     r->face[p] = sq;
     r->facew[p] = widen(q_sqrt(A) * rad);
+    r->qa[p] = A;
+    r->qb[p] = B;
+    r->qc[p] = C;
     r->m[p][RM_MEET] = D;
     r->mw[p][RM_MEET] = widen(AR2);
     r->m[p][RM_LEN] = 1;
@@ -137,6 +140,9 @@ static void frustum_piece(rrec *r)
     const cylq B = D2 * ref_dot3(e, f) - dr * Zd * Rw;
     const cylq C = D2 * ref_dot3(f, f) - Rw * Rw;
     const cylq Dq = B * B - A * C;
+    r->qa[p] = A;
+    r->qb[p] = B;
+    r->qc[p] = C;
     const cylq sq = q_sqrt(q_max(Dq, 0)), qq = -(B + q_copysign(sq, B));
     const cylq ra = A != 0 ? qq / A : (cylq)INFINITY, rc = qq != 0 ? C / qq : ra;
     const cylq tm = B >= 0 ? ra : rc, tp = B >= 0 ? rc : ra; /* A t + B = -sq, +sq */
@@ -173,23 +179,46 @@ static void frustum_piece(rrec *r)
     } else {
         slab = q_min(Zw - Z0, Z1 - Zw);
     }
+    r->sl = sl;
+    r->sh = sh;
     const int lo_root = cl >= sl, hi_root = ch <= sh;
     r->lo[p] = lo_root ? cl : sl;
     r->hi[p] = hi_root ? ch : sh;
     r->face[p] = hi_root ? sq : A * r->hi[p] + B;
     r->facew[p] = hi_root ? widen(q_sqrt(q_max(B * B, q_abs(A * C))))
                           : widen(q_max(q_abs(A * r->hi[p]), q_abs(B)));
-    r->m[p][RM_MEET] = A > 0 ? Dq : (A == 0 && B == 0) ? -C : 1;
-    r->mw[p][RM_MEET] = A > 0 ? widen(q_max(B * B, q_abs(A * C))) : widen(C);
+    /* Meeting F: the least of G along the slab's stretch is <= 0, a margin continuous in
+     * the inputs whatever A's sign (a ray beside a generator line included); where F is
+     * not met its entry and exit are put at that least value's t. */
+    cylq gmin = inf, tg = 0;
     if (Zd != 0) {
-        r->m[p][RM_LEN] = r->hi[p] - r->lo[p];
-        r->mw[p][RM_LEN] = widen(q_max(q_abs(r->lo[p]), q_abs(r->hi[p])));
-    } else {
+        const cylq ts[3] = {sl, sh, A > 0 ? -B / A : sl};
+        for (int j = 0; j < 3; j++) {
+            const cylq t = ts[j];
+            if (j == 2 && !(t > sl && t < sh))
+                continue;
+            const cylq g = (A * t + 2 * B) * t + C;
+            if (g < gmin)
+                gmin = g, tg = t;
+        }
+        r->m[p][RM_LEN] = 1;
+        r->mw[p][RM_LEN] = 0;
+    } else { /* A > 0: d across the axis */
+        tg = -B / A;
+        gmin = -Dq / A;
         r->m[p][RM_LEN] = slab;
         r->mw[p][RM_LEN] = widen(q_max(q_abs(Zw), q_max(q_abs(Z0), q_abs(Z1))));
     }
+    r->m[p][RM_MEET] = -gmin;
+    /* 4 float ulps of G's size at the side, a.a^2 (r0 + k z)^2 with r0 + k z at most the
+     * larger radius in the slab (the terms' size at some t of the ray may be far larger:
+     * a float kernel compares in a frame of its own) */
+    const cylq rm = q_max(r0, r->r1);
+    r->mw[p][RM_MEET] = widen(aa * aa * rm * rm);
     r->ex[p] = cone && slab >= 0 && r->lo[p] <= r->hi[p] && q_isfinite(r->lo[p]) &&
                q_isfinite(r->hi[p]);
+    if (!r->ex[p])
+        r->lo[p] = r->hi[p] = tg;
 }
 
 void rcref_eval_(const rin_q *q, int force, cylq tmin, cylq tmax, rrec *r)

@@ -63,10 +63,18 @@ typedef struct rcref_round_cone {
  * length) can change sign in the box or lie within 4 float ulps; each piece whose entry
  * (exit) can be the least (greatest) within the t ranges the box and 4 float ulps give
  * may be the hull's, and each comparison with tmin and tmax within them may go either
- * way; at a tangency (or within reach of one) the exit may face either way. Where
- * |p1 - p0| - |r1 - r0| can change sign in the box, both readings (nested or not) are
- * kept. Every outcome this allows is kept. So a ray through a seam may report the side
- * or the cap, but not a miss, unless the box can take it off the hull. */
+ * way; at a tangency (or within reach of one) the exit may face either way. The frustum
+ * is met where the least of its quadratic along the tangent slab's stretch of the ray is
+ * <= 0 (a margin continuous in the inputs). Near a tangency a piece's entry and exit
+ * reach -B/A -+ sqrt(its margin + the margin's spread)/A (t moves with a square root
+ * there, which no first order sees); a ray beside a generator line of the side may meet
+ * it wherever the box can put a root of the quadratic along the stretch (conref_band.c's
+ * reach). Where |p1 - p0| - |r1 - r0| can change sign in the box, both readings (nested
+ * or not) are kept; where the box moves |p1 - p0|^2 - (r1 - r0)^2 by more than 1e-3 of
+ * itself (almost nested: the cone's angle turns fast) every first-order spread is
+ * widened by 1 + 8 times that part. Every outcome this allows is kept. So a ray through
+ * a seam may report the side or the cap, but not a miss, unless the box can take it off
+ * the hull. */
 CYLREF_SHAPE_DECLARE(rcref, rcref_round_cone);
 
 #ifdef __cplusplus

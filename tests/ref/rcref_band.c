@@ -95,6 +95,64 @@ static double wide(double t)
     return 4 * ref_float_ulp(t);
 }
 
+/* A ray that runs beside the side along a generator line (within the box's reach of it)
+ * has no isolated roots: the box tilts it onto the cone anywhere along that stretch. Input
+ * i moves the frustum's quadratic at t by G_i(t) - G(t) (each sample in its own shifted
+ * frame), S(t) the sum of their sizes; wherever |G(t)| <= S(t) some input in the box puts
+ * a root at t, to first order. Sampled along the slab's stretch, each run of two or more
+ * samples within reach is an outcome of the side, facing either way where G' is within
+ * reach of 0 (conref_band.c's c_reach). */
+static void f_reach(r_box *b, const rrec *r, const cylq (*gq)[4], double widen_by)
+{
+    enum { N = 512 };
+    cylq sa = 0;
+    for (int i = 0; i < N_GRAD; i++)
+        sa += q_abs(gq[i][0] - r->qa[RP_F]);
+    if (r->nested || !(q_abs(r->qa[RP_F]) <= 256 * sa))
+        return;
+    const cylq ta = q_max(r->s0 + r->sl, b->tmin), tb = q_min(r->s0 + r->sh, b->tmax);
+    if (!(ta < tb) || !q_isfinite(ta) || !q_isfinite(tb))
+        return;
+    const cylq h = (tb - ta) / (N - 1);
+    int run = 0, both = 0, fsign = 0;
+    cylq first = 0;
+    for (int i = 0; i <= N; i++) {
+        const cylq t = ta + h * i;
+        int in = 0;
+        if (i < N) {
+            const cylq u = t - r->s0;
+            const cylq F = (r->qa[RP_F] * u + 2 * r->qb[RP_F]) * u + r->qc[RP_F];
+            const cylq F1 = r->qa[RP_F] * u + r->qb[RP_F];
+            cylq S = 0, S1 = 0;
+            for (int k = 0; k < N_GRAD; k++) {
+                const cylq v = t - gq[k][3];
+                S += q_abs((gq[k][0] * v + 2 * gq[k][1]) * v + gq[k][2] - F);
+                S1 += q_abs(gq[k][0] * v + gq[k][1] - F1);
+            }
+            S *= (cylq)widen_by;
+            S1 *= (cylq)widen_by;
+            in = q_abs(F) <= S;
+            if (in) {
+                if (!run)
+                    first = t, both = 0, fsign = 0;
+                both |= q_abs(F1) <= S1;
+                fsign |= F1 < 0 ? 1 : 2;
+                run++;
+            }
+        }
+        if (!in && run) {
+            const double lo = (double)(first - h), hi = (double)t;
+            if (run >= 2) {
+                if (both || (fsign & 1))
+                    ref_add_range(b->set, CYLRAY_SIDE, lo, hi);
+                if ((both || (fsign & 2)) && !(b->vflags & CYLRAY_CULL_BACK))
+                    ref_add_range(b->set, CYLRAY_SIDE | CYLRAY_BACKFACE, lo, hi);
+            }
+            run = 0;
+        }
+    }
+}
+
 static void band_model(r_box *b, int model)
 {
     const int cull = (b->vflags & CYLRAY_CULL_BACK) != 0;
@@ -107,9 +165,16 @@ static void band_model(r_box *b, int model)
     track(tr, &rb);
     double sum_m[RP_COUNT][RM_COUNT] = {{0}}, sum_lo[RP_COUNT] = {0}, sum_hi[RP_COUNT] = {0};
     double sum_face[RP_COUNT] = {0};
+    cylq gq[N_GRAD][4]; /* each gradient sample's frustum quadratic and shift */
     for (int i = 1; i < N_SAMPLES; i++) {
         rcref_eval_(&b->qs[i], model, b->tmin, b->tmax, &r);
         b->evals++;
+        if (i <= N_GRAD) {
+            gq[i - 1][0] = r.qa[RP_F];
+            gq[i - 1][1] = r.qb[RP_F];
+            gq[i - 1][2] = r.qc[RP_F];
+            gq[i - 1][3] = r.s0;
+        }
         if (i <= N_GRAD)
             for (int p = 0; p < RP_COUNT; p++) {
                 for (int g = 0; g < RM_COUNT; g++)
@@ -128,6 +193,32 @@ static void band_model(r_box *b, int model)
         }
     }
 
+    cylq sa = 0; /* the box's first-order reach of the frustum's A */
+    for (int i = 0; i < N_GRAD; i++)
+        sa += q_abs(gq[i][0] - rb.qa[RP_F]);
+    /* Close to nesting the box moves |a|^2 - dr^2 by a good part of itself, and with it
+     * the cone's angle: first order then falls short, by about that part; every spread is
+     * widened by it (a few such shapes showed outcomes up to twice the first order). */
+    double grow = 1;
+    if (!rb.nested) {
+        double sd = 0;
+        for (int i = 1; i <= N_GRAD; i++) {
+            const rin_q *q = &b->qs[i];
+            const cylq dr = q->r1 - q->r0;
+            sd += ref_qdiff(ref_dot3(q->a, q->a) - dr * dr, rb.d2);
+        }
+        const double rel = sd / (double)rb.d2;
+        if (rel > 1e-3) {
+            grow = 1 + 8 * fmin(rel, 8);
+            for (int p = 0; p < RP_COUNT; p++) {
+                for (int g = 0; g < RM_COUNT; g++)
+                    sum_m[p][g] *= grow;
+                sum_lo[p] *= grow;
+                sum_hi[p] *= grow;
+                sum_face[p] *= grow;
+            }
+        }
+    }
     /* Which pieces may be met, which missed, and where their entries and exits lie. */
     int may_ex[RP_COUNT], may_nex[RP_COUNT];
     double lo[RP_COUNT][2], hi[RP_COUNT][2];
@@ -158,6 +249,30 @@ static void band_model(r_box *b, int model)
             lo[p][0] = hi[p][0] = fmin(lo[p][0], hi[p][0]);
             lo[p][1] = hi[p][1] = fmax(lo[p][1], hi[p][1]);
         }
+        /* near a tangency t moves with the square root of the margin, which the box moves
+         * linearly: the roots reach -B / A -+ sqrt(D + its spread) / A, a sphere's margin
+         * being D and the frustum's D / A (where -B / A is inside its slab, and clipped to
+         * it; however small A is: f_reach's samples may pass over so short a stretch) */
+        const cylq qa = rb.qa[p], tv = -rb.qb[p] / qa;
+        const int vertex = p != RP_F || (tv > rb.sl && tv < rb.sh);
+        if (avail && qa > 0 && vertex && q_isfinite(rb.m[p][RM_MEET]) &&
+            !((double)q_abs(rb.m[p][RM_MEET]) >
+              sum_m[p][RM_MEET] + (double)rb.mw[p][RM_MEET])) {
+            const cylq dmax = rb.m[p][RM_MEET] + (cylq)sum_m[p][RM_MEET] + rb.mw[p][RM_MEET];
+            const cylq dd = q_max(dmax, 0) * (p == RP_F ? qa : 1);
+            const cylq tc = rb.s0 + tv, half = q_sqrt(dd) / qa;
+            cylq ta = tc - half, tb = tc + half; /* the frustum's: inside its slab */
+            if (p == RP_F) {
+                ta = q_max(ta, rb.s0 + rb.sl);
+                tb = q_min(tb, rb.s0 + rb.sh);
+            }
+            if (q_isfinite(ta) && q_isfinite(tb)) {
+                lo[p][0] = fmin(lo[p][0], (double)ta);
+                lo[p][1] = fmax(lo[p][1], (double)tc);
+                hi[p][0] = fmin(hi[p][0], (double)tc);
+                hi[p][1] = fmax(hi[p][1], (double)tb);
+            }
+        }
         for (int j = 0; j < 2; j++) {
             const double wl = wide(fmax(fabs(lo[p][0]), fabs(lo[p][1])));
             const double wh = wide(fmax(fabs(hi[p][0]), fabs(hi[p][1])));
@@ -171,6 +286,7 @@ static void band_model(r_box *b, int model)
     }
     if (!sure)
         ref_add(b->set, -1, NAN); /* the hull itself may be missed */
+    f_reach(b, &rb, (const cylq(*)[4])gq, grow);
     if (!any)
         return;
 

@@ -31,8 +31,10 @@ typedef struct rrec {
     cylq lo[RP_COUNT], hi[RP_COUNT];
     cylq face[RP_COUNT], facew[RP_COUNT]; /* at hi: > 0 the ray leaves (a back face) */
     cylq m[RP_COUNT][RM_COUNT], mw[RP_COUNT][RM_COUNT];
-    cylq d2, d2w; /* |a|^2 - (r1 - r0)^2: > 0 not nested */
-    int fseg;     /* the line lies on the tangent cone (its quadratic is 0) */
+    cylq qa[RP_COUNT], qb[RP_COUNT], qc[RP_COUNT]; /* each piece's A t^2 + 2 B t + C */
+    cylq sl, sh;                                   /* the frustum's slab */
+    cylq d2, d2w;                                  /* |a|^2 - (r1 - r0)^2: > 0 not nested */
+    int fseg; /* the line lies on the tangent cone (its quadratic is 0) */
     cylq tmin, tmax;
     cylq W[3], d[3], a[3], aa, dr, r0, r1; /* W = o + s0 d - p0 */
 } rrec;

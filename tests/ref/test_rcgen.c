@@ -31,7 +31,10 @@ static void unit3(uint64_t *s, double v[3])
 
 void rc_make(int cat, uint64_t seed, int n, rc_case *out)
 {
-    uint64_t s = seed * 0x9e3779b97f4a7c15u + (uint64_t)cat;
+    /* the stream's start hashed from the seed and the kind: splitmix64's state only adds a
+     * constant per draw, so seeds taken as states would give shifted copies of one stream */
+    uint64_t h = seed ^ (uint64_t)cat << 40;
+    uint64_t s = rng_splitmix64(&h);
     for (int i = 0; i < n; i++) {
         rc_case *c = &out[i];
         double p0[3], u[3], L, r0, r1;

@@ -536,14 +536,63 @@ static void test_band(void)
               rc_names[cat], nbad);
         CHECK(caught == 3 * caught_of, "%s: defects missed", rc_names[cat]);
         CHECK(hits > N / 4, "%s: too few hits %d", rc_names[cat], hits);
-        /* far: the box moves the ray by 2 ulps of 1e3..1e6 hull sizes, so a side or a cap
-         * near a seam is often either */
+        /* far: the box moves the ray by 2 ulps of 1e3..1e6 hull sizes (a quarter of the
+         * hull's size at 1e6), so a ray aimed within 1.3 radii of the axis often may hit or
+         * miss, and a side or a cap near a seam is often either */
         if (cat == RC_ORDINARY || cat == RC_CAPSULE)
             CHECK(unstable < 2 * N / 10, "%s: too many unstable %d", rc_names[cat], unstable);
         if (cat == RC_FAR)
-            CHECK(hit_unstable < 2 * N / 5, "%s: too many unstable %d", rc_names[cat],
-                  hit_unstable);
+            CHECK(hit_unstable < N, "%s: too many unstable %d", rc_names[cat], hit_unstable);
     }
+}
+
+/* ---- seams and grazing rays ------------------------------------------------------------ */
+
+/* A point of the seam of end `end` at azimuth phi, in double: the point, the outward normal
+ * there (the cone's and the sphere's), the seam's tangent and the generator line's
+ * direction (from p0's end to p1's); size = |p1 - p0| / 2 + the larger radius. 0 where the
+ * hull has no such seam (nested, or a point end). */
+typedef struct {
+    double x[3], n[3], tang[3], gen[3], size;
+} rc_seam;
+
+static int seam_at(const rcref_round_cone *rc, int end, double phi, rc_seam *f)
+{
+    double a[3], u[3], e1[3], e2[3], aa = 0;
+    for (int k = 0; k < 3; k++) {
+        a[k] = (double)rc->p1[k] - rc->p0[k];
+        aa += a[k] * a[k];
+    }
+    const double L = sqrt(aa), dr = (double)rc->r1 - rc->r0;
+    const double rad = end ? rc->r1 : rc->r0;
+    if (!(L > fabs(dr) * (1 + 1e-6)) || !(rad > 0))
+        return 0;
+    for (int k = 0; k < 3; k++)
+        u[k] = a[k] / L;
+    /* e1, e2: a frame across the axis */
+    const double pick[3] = {fabs(u[0]) < 0.6 ? 1 : 0, fabs(u[0]) < 0.6 ? 0 : 1, 0};
+    const double pu = pick[0] * u[0] + pick[1] * u[1] + pick[2] * u[2];
+    double l1 = 0;
+    for (int k = 0; k < 3; k++) {
+        e1[k] = pick[k] - pu * u[k];
+        l1 += e1[k] * e1[k];
+    }
+    for (int k = 0; k < 3; k++)
+        e1[k] /= sqrt(l1);
+    e2[0] = u[1] * e1[2] - u[2] * e1[1];
+    e2[1] = u[2] * e1[0] - u[0] * e1[2];
+    e2[2] = u[0] * e1[1] - u[1] * e1[0];
+    const double k = dr / L, nr = sqrt((L - fabs(dr)) * (L + fabs(dr))) / L;
+    for (int j = 0; j < 3; j++) {
+        const double radial = cos(phi) * e1[j] + sin(phi) * e2[j];
+        const double at = (end ? rc->p1[j] : rc->p0[j]) - rad * k * u[j];
+        f->x[j] = at + rad * nr * radial;
+        f->n[j] = nr * radial - k * u[j];
+        f->tang[j] = -sin(phi) * e1[j] + cos(phi) * e2[j];
+        f->gen[j] = k * radial + nr * u[j];
+    }
+    f->size = L / 2 + fmax(rc->r0, rc->r1);
+    return 1;
 }
 
 /* Rays through a point of a seam (a tangent circle), rounded to floats, entering the hull:
@@ -560,46 +609,19 @@ static void test_seams(void)
         rc_make(cats[ci], 99, N, cs);
         for (int i = 0; i < N; i++) {
             rc_case *c = &cs[i];
-            double a[3], u[3], e1[3], e2[3], aa = 0;
-            for (int k = 0; k < 3; k++) {
-                a[k] = (double)c->rc.p1[k] - c->rc.p0[k];
-                aa += a[k] * a[k];
-            }
-            const double L = sqrt(aa), dr = (double)c->rc.r1 - c->rc.r0;
             const int end = i & 1;
-            const double rad = end ? c->rc.r1 : c->rc.r0;
-            if (!(L > fabs(dr) * (1 + 1e-6)) || !(rad > 0))
-                continue;
-            for (int k = 0; k < 3; k++)
-                u[k] = a[k] / L;
-            /* e1, e2: a frame across the axis */
-            const double pick[3] = {fabs(u[0]) < 0.6 ? 1 : 0, fabs(u[0]) < 0.6 ? 0 : 1, 0};
-            const double pu = pick[0] * u[0] + pick[1] * u[1] + pick[2] * u[2];
-            double l1 = 0;
-            for (int k = 0; k < 3; k++) {
-                e1[k] = pick[k] - pu * u[k];
-                l1 += e1[k] * e1[k];
-            }
-            for (int k = 0; k < 3; k++)
-                e1[k] /= sqrt(l1);
-            e2[0] = u[1] * e1[2] - u[2] * e1[1];
-            e2[1] = u[2] * e1[0] - u[0] * e1[2];
-            e2[2] = u[0] * e1[1] - u[1] * e1[0];
-            const double k = dr / L, nr = sqrt((L - fabs(dr)) * (L + fabs(dr))) / L;
             const double phi = rc_unif(&s, 0, 6.283185307179586);
             const double tw = rc_unif(&s, -0.6, 0.6), tz = rc_unif(&s, -0.6, 0.6);
-            double x[3], n[3], d[3];
+            rc_seam f;
+            if (!seam_at(&c->rc, end, phi, &f))
+                continue;
+            double x[3], d[3];
             for (int j = 0; j < 3; j++) {
-                const double radial = cos(phi) * e1[j] + sin(phi) * e2[j];
-                const double tang = -sin(phi) * e1[j] + cos(phi) * e2[j];
-                const double at = (end ? c->rc.p1[j] : c->rc.p0[j]) - rad * k * u[j];
-                x[j] = at + rad * nr * radial;
-                n[j] = nr * radial - k * u[j];
-                /* along the surface: tangent to the seam, and along the generator line */
-                const double gen = k * radial + nr * u[j];
-                d[j] = -n[j] + tw * tang + tz * gen;
+                x[j] = f.x[j];
+                /* in across the seam, along it and along the generator line */
+                d[j] = -f.n[j] + tw * f.tang[j] + tz * f.gen[j];
             }
-            const double size = L / 2 + fmax(c->rc.r0, c->rc.r1);
+            const double size = f.size;
             for (int j = 0; j < 3; j++) {
                 c->o[j] = (float)(x[j] - 3 * size * d[j]);
                 c->d[j] = (float)d[j];
@@ -640,10 +662,108 @@ static void test_seams(void)
           open);
 }
 
+/* Rays that graze the hull: along a generator line of the side (from a point of seam 0
+ * towards seam 1, and moved off it by 1e-7 or 1e-5 of the size either way), and tangent to
+ * the side or a cap. The band's box takes such a ray on and off the hull, and along the
+ * line its t moves far: answers from inside the box and the double solver's must all be
+ * allowed. */
+static void test_grazing(void)
+{
+    enum { N = 160, INNER = 12 };
+    static rc_case cs[N];
+    const int cats[] = {RC_ORDINARY, RC_STRONG, RC_CAPSULE, RC_THIN, RC_EDGE};
+    uint64_t s = 0x67727a;
+    int rays = 0, bad = 0, dbad = 0, unstable = 0;
+    for (size_t ci = 0; ci < sizeof cats / sizeof *cats; ci++) {
+        rc_make(cats[ci], 5, N, cs);
+        for (int i = 0; i < N; i++) {
+            rc_case *c = &cs[i];
+            const int kind = i % 4;
+            const double phi = rc_unif(&s, 0, 6.283185307179586);
+            const double off = kind == 0 ? 0 : (i & 4 ? 1e-7 : 1e-5) * (i & 8 ? 1 : -1);
+            const double along = rc_unif(&s, 0.2, 0.8);
+            rc_seam f, g;
+            if (!seam_at(&c->rc, 0, phi, &f) || !seam_at(&c->rc, 1, phi, &g))
+                continue;
+            double x[3], d[3];
+            for (int j = 0; j < 3; j++) {
+                if (kind < 2) { /* along the generator line */
+                    x[j] = f.x[j] + off * f.size * f.n[j];
+                    d[j] = f.gen[j];
+                } else if (kind == 2) { /* tangent to the side, across the generator */
+                    x[j] = f.x[j] + along * (g.x[j] - f.x[j]);
+                    d[j] = f.tang[j];
+                } else { /* tangent to cap 1, past its seam */
+                    const double p1 = c->rc.p1[j], r1 = c->rc.r1;
+                    const double cn = (g.n[j] + (p1 - c->rc.p0[j]) / (2 * f.size)) / 2;
+                    x[j] = p1 + r1 * cn;
+                    d[j] = f.tang[j];
+                }
+            }
+            if (kind == 3) {
+                double len = 0, dn = 0, nn[3];
+                for (int j = 0; j < 3; j++) {
+                    nn[j] = x[j] - c->rc.p1[j];
+                    len += nn[j] * nn[j];
+                }
+                for (int j = 0; j < 3; j++) {
+                    nn[j] /= sqrt(len);
+                    x[j] = c->rc.p1[j] + c->rc.r1 * nn[j];
+                    dn += d[j] * nn[j];
+                }
+                for (int j = 0; j < 3; j++)
+                    d[j] -= dn * nn[j];
+            }
+            for (int j = 0; j < 3; j++) {
+                c->o[j] = (float)(x[j] - 3 * f.size * d[j]);
+                c->d[j] = (float)d[j];
+            }
+            c->tmin = 0;
+            c->tmax = INFINITY;
+            for (unsigned fl = 0; fl <= CYLRAY_CULL_BACK; fl += CYLRAY_CULL_BACK) {
+                cylref_band b;
+                double ub;
+                rcref_band_eval(&c->rc, c->o, c->d, 0, INFINITY, fl, &b);
+                rays++;
+                unstable += b.hit_unstable;
+                for (int j = 0; j < INNER; j++) {
+                    int part = 0;
+                    float t = 0;
+                    double n[3];
+                    const int hit = inside_box(c, fl, &s, &part, &t, n);
+                    const int v = rcref_judge(&b, hit, part, t, &ub);
+                    if ((v || ub > 0.5) && bad++ < 4)
+                        printf("  grazing %s #%d kind %d flags %u: inside the box %d t %.9g "
+                               "part %#x judged %d, %.3g ulps beyond (exact %d t %.9g part "
+                               "%#x)\n",
+                               rc_names[cats[ci]], i, kind, fl, hit, (double)t, part, v, ub,
+                               b.exact.hit, b.exact.t, b.exact.part);
+                }
+                int part = 0;
+                float t = 0;
+                const int hit = rc_dbl_solve(c, fl, &t, &part);
+                const int v = rcref_judge(&b, hit, part, t, &ub);
+                if ((v || ub > 1) && dbad++ < 4)
+                    printf(
+                        "  grazing %s #%d kind %d flags %u: double solver %d t %.9g part %#x "
+                        "judged %d, %.3g ulps beyond (exact %d t %.9g part %#x)\n",
+                        rc_names[cats[ci]], i, kind, fl, hit, (double)t, part, v, ub,
+                        b.exact.hit, b.exact.t, b.exact.part);
+            }
+        }
+    }
+    printf("rc grazing: %d rays (%d may hit or miss), %d answers from inside the box judged "
+           "bad, %d of the double solver\n",
+           rays, unstable, bad, dbad);
+    CHECK(rays > 1000 && bad == 0 && dbad == 0, "grazing: %d and %d judged bad of %d", bad,
+          dbad, rays);
+}
+
 void test_rcref(void)
 {
     test_independent();
     test_symmetry();
     test_band();
     test_seams();
+    test_grazing();
 }
