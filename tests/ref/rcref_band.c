@@ -193,9 +193,6 @@ static void band_model(r_box *b, int model)
         }
     }
 
-    cylq sa = 0; /* the box's first-order reach of the frustum's A */
-    for (int i = 0; i < N_GRAD; i++)
-        sa += q_abs(gq[i][0] - rb.qa[RP_F]);
     /* Close to nesting the box moves |a|^2 - dr^2 by a good part of itself, and with it
      * the cone's angle: first order then falls short, by about that part; every spread is
      * widened by it (a few such shapes showed outcomes up to twice the first order). */
