@@ -174,8 +174,6 @@ static void band_model(r_box *b, int model)
             gq[i - 1][1] = r.qb[RP_F];
             gq[i - 1][2] = r.qc[RP_F];
             gq[i - 1][3] = r.s0;
-        }
-        if (i <= N_GRAD)
             for (int p = 0; p < RP_COUNT; p++) {
                 for (int g = 0; g < RM_COUNT; g++)
                     sum_m[p][g] += ref_qdiff(r.m[p][g], rb.m[p][g]);
@@ -183,6 +181,7 @@ static void band_model(r_box *b, int model)
                 sum_hi[p] += ref_qdiff(r.s0 + r.hi[p], rb.s0 + rb.hi[p]);
                 sum_face[p] += ref_qdiff(r.face[p], rb.face[p]);
             }
+        }
         track(tr, &r);
         const int x = rcref_decide_(&r, b->vflags);
         add_outcome(b->set, &r, x);
