@@ -3,6 +3,7 @@
  * hand-case runner and the generator checks (test_ref.h). */
 #include "congen.h"
 #include "gen.h"
+#include "rcgen.h"
 #include "sphgen.h"
 #include "test_ref.h"
 
@@ -68,6 +69,7 @@ const ref_kind ref_round_cone = {
 
 REF_GEN(sphgen, SPHGEN, ref_sphere)
 REF_GEN(congen, CONGEN, ref_cone)
+REF_GEN(rcgen, RCGEN, ref_round_cone)
 
 /* The shape is each case's first member. */
 static void unpack(const ref_gen *g, const unsigned char *c, ref_shape *s, float o[3],

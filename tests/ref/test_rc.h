@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* test_rc.h - what the round cone's tests share (test_rcgen.c): random round cones and rays
- * of ten kinds, and a solver in double whose answers every band must allow. */
+ * of ten kinds, a solver in double whose answers every band must allow, and answers from
+ * inside a band's box. */
 #ifndef TEST_RC_H
 #define TEST_RC_H
 
@@ -36,5 +37,12 @@ void rc_make(int cat, uint64_t seed, int n, rc_case *out);
 double rc_unif(uint64_t *s, double lo, double hi);
 /* The double solver's answer: 1 and *t, *part for a hit. */
 int rc_dbl_solve(const rc_case *c, unsigned flags, float *t, int *part);
+/* The exact answer for c's inputs moved to a random point of its band's box (up to 1.9
+ * of the 2 ulps of each input; *s the draws): 1 and *t, *part and the normal n for a
+ * hit. The band must allow it. */
+int rc_inside_box(const rc_case *c, unsigned flags, uint64_t *s, int *part, float *t,
+                  double n[3]);
+/* The band over rcgen.h's categories (test_rcgen.c). */
+void test_rcgen_bands(void);
 
 #endif

@@ -1,10 +1,19 @@
 /* SPDX-License-Identifier: MIT */
-/* test_rcgen.c - the round cone tests' random cases and their solver in double (test_rc.h). */
+/* test_rcgen.c - the round cone tests' random cases, their solver in double and answers from
+ * inside a band's box (test_rc.h), and the band over rcgen.h's categories. */
 #include "test_rc.h"
+
+#include "bandutil.h"
+#include "quad.h"
+#include "rcgen.h"
+#include "rcref_eval.h"
+#include "test_ref.h"
 
 #include "../support/rng.h"
 
 #include <math.h>
+#include <stdio.h>
+#include <string.h>
 
 const char *const rc_names[RC_COUNT] = {
     "ordinary", "far",    "strong taper", "slight taper", "capsule",
@@ -252,4 +261,98 @@ int rc_dbl_solve(const rc_case *c, unsigned fl, float *t, int *part)
         return 1;
     }
     return 0;
+}
+
+/* The answer for inputs moved to a random point inside the band's box (up to 1.9 of its 2
+ * ulps in each input): the band must allow it. */
+int rc_inside_box(const rc_case *c, unsigned flags, uint64_t *s, int *part, float *t,
+                  double n[3])
+{
+    rin_q q;
+    rcref_in_(&c->rc, c->o, c->d, &q);
+    const cylq sw = ref_vec_step(q.w), sd = ref_vec_step(q.d), sa = ref_vec_step(q.a);
+    for (int k = 0; k < 3; k++) {
+        const double u1 = rc_unif(s, -1.9, 1.9);
+        const double u2 = rc_unif(s, -1.9, 1.9);
+        const double u3 = rc_unif(s, -1.9, 1.9);
+        q.w[k] += sw * (cylq)u1;
+        q.d[k] += sd * (cylq)u2;
+        q.a[k] += sa * (cylq)u3;
+    }
+    const double u4 = rc_unif(s, -1.9, 1.9);
+    const double u5 = rc_unif(s, -1.9, 1.9);
+    if (q.r0 > 0)
+        q.r0 += (cylq)(u4 * ref_float_ulp(c->rc.r0));
+    if (q.r1 > 0)
+        q.r1 += (cylq)(u5 * ref_float_ulp(c->rc.r1));
+    rrec r;
+    rcref_eval_(&q, -1, c->tmin, c->tmax, &r);
+    const int x = rcref_decide_(&r, c->rc.flags | (flags & CYLRAY_CULL_BACK));
+    if (x < 0)
+        return 0;
+    *part = rcref_part_(&r, x);
+    *t = (float)rcref_t_(&r, x);
+    rcref_normal_(&r, x, 0, n);
+    return 1;
+}
+
+/* rcgen.h's categories (the cases a checker of round-cone kernels draws): the exact
+ * answer inside its band, answers from inside the box and the double solver's allowed. */
+void test_rcgen_bands(void)
+{
+    enum { N = 96, INNER = 4 };
+    static rcgen_case g[N];
+    uint64_t s = 0x7263676e;
+    for (int cat = 0; cat < RCGEN_COUNT; cat++) {
+        rcgen_make(cat, 3, N, g);
+        int hits = 0, unstable = 0, bad = 0, dbad = 0;
+        for (int i = 0; i < N; i++) {
+            rc_case c;
+            c.rc = g[i].rc;
+            memcpy(c.o, g[i].o, sizeof c.o);
+            memcpy(c.d, g[i].d, sizeof c.d);
+            c.tmin = g[i].tmin;
+            c.tmax = g[i].tmax;
+            for (unsigned fl = 0; fl <= CYLRAY_CULL_BACK; fl += CYLRAY_CULL_BACK) {
+                cylref_band b;
+                double ub;
+                rcref_band_eval(&c.rc, c.o, c.d, c.tmin, c.tmax, fl, &b);
+                hits += b.exact.hit;
+                unstable += b.hit_unstable;
+                CHECK(rcref_judge(&b, b.exact.hit, b.exact.part, (float)b.exact.t, &ub) == 0 &&
+                          (!b.exact.hit || ub == 0),
+                      "%s #%d: the exact answer fails its band", rcgen_category_name(cat), i);
+                if (c.tmin != c.tmin || c.tmax != c.tmax)
+                    continue; /* rc-bad's spoilt lanes */
+                for (int j = 0; j < INNER; j++) {
+                    int part = 0;
+                    float t = 0;
+                    double n[3];
+                    const int hit = rc_inside_box(&c, fl, &s, &part, &t, n);
+                    const int v = rcref_judge(&b, hit, part, t, &ub);
+                    if ((v || ub > 0.5) && bad++ < 4)
+                        printf(
+                            "  %s #%d flags %u: inside the box %d t %.9g part %#x judged %d, "
+                            "%.3g ulps beyond (exact %d t %.9g part %#x)\n",
+                            rcgen_category_name(cat), i, fl, hit, (double)t, part, v, ub,
+                            b.exact.hit, b.exact.t, b.exact.part);
+                }
+                int part = 0;
+                float t = 0;
+                const int hit = rc_dbl_solve(&c, fl, &t, &part);
+                const int v = rcref_judge(&b, hit, part, t, &ub);
+                if ((v || ub > 1) && dbad++ < 4)
+                    printf(
+                        "  %s #%d flags %u: double solver %d t %.9g part %#x judged %d, %.3g "
+                        "ulps beyond (exact %d t %.9g part %#x)\n",
+                        rcgen_category_name(cat), i, fl, hit, (double)t, part, v, ub,
+                        b.exact.hit, b.exact.t, b.exact.part);
+            }
+        }
+        printf("rcgen %-12s %3d/%d hits, %3d may hit or miss; %d answers from inside the box "
+               "and %d of the double solver judged bad\n",
+               rcgen_category_name(cat), hits, 2 * N, unstable, bad, dbad);
+        CHECK(bad == 0 && dbad == 0, "%s: %d and %d judged bad", rcgen_category_name(cat), bad,
+              dbad);
+    }
 }

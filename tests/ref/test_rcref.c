@@ -410,39 +410,6 @@ static void test_symmetry(void)
 
 /* ---- the band ------------------------------------------------------------------------- */
 
-/* The answer for inputs moved to a random point inside the band's box (up to 1.9 of its 2
- * ulps in each input): the band must allow it. */
-static int inside_box(const rc_case *c, unsigned flags, uint64_t *s, int *part, float *t,
-                      double n[3])
-{
-    rin_q q;
-    rcref_in_(&c->rc, c->o, c->d, &q);
-    const cylq sw = ref_vec_step(q.w), sd = ref_vec_step(q.d), sa = ref_vec_step(q.a);
-    for (int k = 0; k < 3; k++) {
-        const double u1 = rc_unif(s, -1.9, 1.9);
-        const double u2 = rc_unif(s, -1.9, 1.9);
-        const double u3 = rc_unif(s, -1.9, 1.9);
-        q.w[k] += sw * (cylq)u1;
-        q.d[k] += sd * (cylq)u2;
-        q.a[k] += sa * (cylq)u3;
-    }
-    const double u4 = rc_unif(s, -1.9, 1.9);
-    const double u5 = rc_unif(s, -1.9, 1.9);
-    if (q.r0 > 0)
-        q.r0 += (cylq)(u4 * ref_float_ulp(c->rc.r0));
-    if (q.r1 > 0)
-        q.r1 += (cylq)(u5 * ref_float_ulp(c->rc.r1));
-    rrec r;
-    rcref_eval_(&q, -1, c->tmin, c->tmax, &r);
-    const int x = rcref_decide_(&r, c->rc.flags | (flags & CYLRAY_CULL_BACK));
-    if (x < 0)
-        return 0;
-    *part = rcref_part_(&r, x);
-    *t = (float)rcref_t_(&r, x);
-    rcref_normal_(&r, x, 0, n);
-    return 1;
-}
-
 static void test_band(void)
 {
     enum { N = 96, INNER = 4 };
@@ -475,7 +442,7 @@ static void test_band(void)
                     int part = 0;
                     float t = 0;
                     double n[3];
-                    const int hit = inside_box(c, fl, &s, &part, &t, n);
+                    const int hit = rc_inside_box(c, fl, &s, &part, &t, n);
                     /* the normal where the part is the exact one: within n_spread (an
                      * apex has none) */
                     if (hit && b.exact.hit && part == b.exact.part &&
@@ -730,7 +697,7 @@ static void test_grazing(void)
                     int part = 0;
                     float t = 0;
                     double n[3];
-                    const int hit = inside_box(c, fl, &s, &part, &t, n);
+                    const int hit = rc_inside_box(c, fl, &s, &part, &t, n);
                     const int v = rcref_judge(&b, hit, part, t, &ub);
                     if ((v || ub > 0.5) && bad++ < 4)
                         printf("  grazing %s #%d kind %d flags %u: inside the box %d t %.9g "
@@ -761,6 +728,8 @@ static void test_grazing(void)
 
 void test_rcref(void)
 {
+    ref_run_generators(&ref_round_cone_gen);
+    test_rcgen_bands();
     test_independent();
     test_symmetry();
     test_band();

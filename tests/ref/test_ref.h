@@ -87,7 +87,7 @@ typedef struct ref_gen {
     void (*make)(int cat, uint64_t seed, size_t n, void *out, int shared);
 } ref_gen;
 
-extern const ref_gen ref_sphere_gen, ref_cone_gen;
+extern const ref_gen ref_sphere_gen, ref_cone_gen, ref_round_cone_gen;
 
 /* Every category: named both ways, prefix-stable, valid shapes in batches, the exact
  * answer inside its own band, and enough hits; shared shapes all the same. */
