@@ -33,6 +33,9 @@ typedef struct {
 /* n cases of kind cat from seed: a quarter with one or both ends open (the rest closed), a
  * fifth with tmin near the aimed point, a sixth with tmax there, a seventh from it. */
 void rc_make(int cat, uint64_t seed, int n, rc_case *out);
+/* Nonzero when CYLRAY_TEST_QUICK is set (sanitizer and qemu runs): the round cone's tests
+ * then take a quarter of their cases (the same cases' first quarter). */
+int rc_quick(void);
 /* Uniform in [lo, hi) from the sequence *s seeds. */
 double rc_unif(uint64_t *s, double lo, double hi);
 /* The double solver's answer: 1 and *t, *part for a hit. */

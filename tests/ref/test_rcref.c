@@ -261,12 +261,13 @@ static void compare_one(ind_counts *n, const rc_case *c, int cat, int i, unsigne
 static void test_independent(void)
 {
     enum { N = 240 };
+    const int n_cases = rc_quick() ? N / 4 : N;
     static rc_case cs[N];
     ind_counts n;
     memset(&n, 0, sizeof n);
     for (int cat = 0; cat < RC_COUNT; cat++) {
-        rc_make(cat, 2026, N, cs);
-        for (int i = 0; i < N; i++)
+        rc_make(cat, 2026, n_cases, cs);
+        for (int i = 0; i < n_cases; i++)
             compare_one(&n, &cs[i], cat, i, i % 3 == 2 ? CYLRAY_CULL_BACK : 0);
     }
     printf("rcref vs minimised convex distance: %ld cases, %ld compared (%ld hits, %ld back, "
@@ -274,7 +275,7 @@ static void test_independent(void)
            "worst t %.3g relative (%s #%d), worst normal %.3g rad\n",
            n.cases, n.compared, n.hits, n.backs, n.open, n.parts, n.skipped_grazing,
            n.skipped_seam, n.worst, rc_names[n.worst_cat], n.worst_i, n.worst_n);
-    CHECK(n.compared > RC_COUNT * N * 3 / 4 && n.hits > RC_COUNT * N / 4,
+    CHECK(n.compared > RC_COUNT * n_cases * 3 / 4 && n.hits > RC_COUNT * n_cases / 4,
           "too few compared: %ld, %ld hits", n.compared, n.hits);
 }
 
@@ -316,11 +317,12 @@ static int swap_part(int p)
 static void test_symmetry(void)
 {
     enum { N = 64 };
+    const int n = rc_quick() ? N / 4 : N;
     static rc_case cs[N];
     int checked = 0, excused = 0;
     for (int cat = 0; cat < RC_COUNT; cat++) {
-        rc_make(cat, 31, N, cs);
-        for (int i = 0; i < N; i++) {
+        rc_make(cat, 31, n, cs);
+        for (int i = 0; i < n; i++) {
             const rc_case *c = &cs[i];
             const unsigned fl = i % 3 == 2 ? CYLRAY_CULL_BACK : 0;
             cylq t0 = 0, t1 = 0;
@@ -414,15 +416,16 @@ static void test_band(void)
 {
     enum { N = 96, INNER = 4 };
     static rc_case cs[N];
+    const int n = rc_quick() ? N / 4 : N;
     uint64_t s = 0x626e64;
     for (int cat = 0; cat < RC_COUNT; cat++) {
-        rc_make(cat, 7, N, cs);
+        rc_make(cat, 7, n, cs);
         int dbad = 0, nbad = 0;
         double dworst = 0;
         int hits = 0, unstable = 0, hit_unstable = 0, bad = 0, caught = 0, caught_of = 0,
             wn = 0;
         double wsum = 0, worst = 0;
-        for (int i = 0; i < N; i++) {
+        for (int i = 0; i < n; i++) {
             const rc_case *c = &cs[i];
             for (unsigned fl = 0; fl <= CYLRAY_CULL_BACK; fl += CYLRAY_CULL_BACK) {
                 cylref_band b;
@@ -492,7 +495,7 @@ static void test_band(void)
                "from inside the box "
                "judged bad (worst %.3g ulps beyond), %d/%d defects caught, band +-%.3g ulps on "
                "average\n",
-               rc_names[cat], hits, 2 * N, unstable, hit_unstable, bad, 2 * N * INNER, worst,
+               rc_names[cat], hits, 2 * n, unstable, hit_unstable, bad, 2 * n * INNER, worst,
                caught, 3 * caught_of, wn ? wsum / wn : 0.0);
         printf("rc band %-13s double solver: %d judged bad, worst %.3g ulps beyond\n",
                rc_names[cat], dbad, dworst);
@@ -502,14 +505,15 @@ static void test_band(void)
         CHECK(nbad == 0, "%s: normals from inside the box beyond n_spread %d times",
               rc_names[cat], nbad);
         CHECK(caught == 3 * caught_of, "%s: defects missed", rc_names[cat]);
-        CHECK(hits > N / 4, "%s: too few hits %d", rc_names[cat], hits);
+        CHECK(hits > n / 4, "%s: too few hits %d", rc_names[cat], hits);
         /* far: the box moves the ray by 2 ulps of 1e3..1e6 hull sizes (a quarter of the
          * hull's size at 1e6), so a ray aimed within 1.3 radii of the axis often may hit or
          * miss, and a side or a cap near a seam is often either */
         if (cat == RC_ORDINARY || cat == RC_CAPSULE)
-            CHECK(unstable < 2 * N / 10, "%s: too many unstable %d", rc_names[cat], unstable);
+            CHECK(unstable < 2 * n / 10 + 1, "%s: too many unstable %d", rc_names[cat],
+                  unstable);
         if (cat == RC_FAR)
-            CHECK(hit_unstable < N, "%s: too many unstable %d", rc_names[cat], hit_unstable);
+            CHECK(hit_unstable < n, "%s: too many unstable %d", rc_names[cat], hit_unstable);
     }
 }
 
@@ -568,13 +572,14 @@ static int seam_at(const rcref_round_cone *rc, int end, double phi, rc_seam *f)
 static void test_seams(void)
 {
     enum { N = 400 };
+    const int n = rc_quick() ? N / 4 : N;
     static rc_case cs[N];
     const int cats[] = {RC_ORDINARY, RC_STRONG, RC_CAPSULE, RC_POINT, RC_THIN, RC_SLIGHT};
     uint64_t s = 0x7365616d;
     int rays = 0, leaks = 0, both = 0, side_open = 0, open = 0;
     for (size_t ci = 0; ci < sizeof cats / sizeof *cats; ci++) {
-        rc_make(cats[ci], 99, N, cs);
-        for (int i = 0; i < N; i++) {
+        rc_make(cats[ci], 99, n, cs);
+        for (int i = 0; i < n; i++) {
             rc_case *c = &cs[i];
             const int end = i & 1;
             const double phi = rc_unif(&s, 0, 6.283185307179586);
@@ -623,7 +628,7 @@ static void test_seams(void)
         "rc seams: %d rays at closed seams, %d missed or judged missable, %d with both parts "
         "allowed; %d at open seams, %d with the side allowed\n",
         rays, leaks, both, open, side_open);
-    CHECK(rays > 300 && leaks == 0, "seams: %d leaks of %d", leaks, rays);
+    CHECK(rays > n * 3 / 4 && leaks == 0, "seams: %d leaks of %d", leaks, rays);
     CHECK(both >= rays * 9 / 10, "seams: both parts allowed at %d of %d", both, rays);
     CHECK(side_open >= open * 9 / 10, "open seams: the side allowed at %d of %d", side_open,
           open);
@@ -637,13 +642,14 @@ static void test_seams(void)
 static void test_grazing(void)
 {
     enum { N = 160, INNER = 12 };
+    const int n = rc_quick() ? N / 4 : N;
     static rc_case cs[N];
     const int cats[] = {RC_ORDINARY, RC_STRONG, RC_CAPSULE, RC_THIN, RC_EDGE};
     uint64_t s = 0x67727a;
     int rays = 0, bad = 0, dbad = 0, unstable = 0;
     for (size_t ci = 0; ci < sizeof cats / sizeof *cats; ci++) {
-        rc_make(cats[ci], 5, N, cs);
-        for (int i = 0; i < N; i++) {
+        rc_make(cats[ci], 5, n, cs);
+        for (int i = 0; i < n; i++) {
             rc_case *c = &cs[i];
             const int kind = i % 4;
             const double phi = rc_unif(&s, 0, 6.283185307179586);
@@ -722,7 +728,7 @@ static void test_grazing(void)
     printf("rc grazing: %d rays (%d may hit or miss), %d answers from inside the box judged "
            "bad, %d of the double solver\n",
            rays, unstable, bad, dbad);
-    CHECK(rays > 1000 && bad == 0 && dbad == 0, "grazing: %d and %d judged bad of %d", bad,
+    CHECK(rays > 6 * n && bad == 0 && dbad == 0, "grazing: %d and %d judged bad of %d", bad,
           dbad, rays);
 }
 
