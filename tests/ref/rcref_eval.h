@@ -10,9 +10,10 @@
 
 /* The pieces, in the order that breaks ties (a seam is the side's). */
 enum { RP_F, RP_S0, RP_S1, RP_COUNT };
-/* A piece's margins, each true when >= 0: [0] the line meets its surface (a sphere's
- * discriminant; the frustum's cone), [1] the frustum's interval inside the tangent slab
- * is not empty (1 for a sphere). */
+/* A piece's margins, each true when >= 0: [0] the line meets it (a sphere's discriminant
+ * A r^2 - |W x d|^2; the frustum's: minus the least of its quadratic along the tangent
+ * slab's stretch of the line), [1] a line level across the axis lies inside the slab (the
+ * frustum's, where d.a = 0; 1 otherwise and for a sphere). */
 enum { RM_MEET, RM_LEN, RM_COUNT };
 /* An outcome: 2 * piece + 0 (its entry) or 1 (its exit); RX_SEG: the ray runs along a
  * generator line of the side and starts on it (t = tmin); -1 a miss. */
