@@ -54,9 +54,10 @@ typedef struct rcref_round_cone {
  * of |o - c| (plus 2 ulps of the center's largest coordinate when the center is not a
  * float), d by 2 ulps of its largest component, the axis p1 - p0 by 2 ulps of its
  * largest component (the center kept), each nonzero radius by 2 ulps (a point end stays
- * a point). Re-evaluated once per input, at the two vertices of that box where t is
- * extreme, at 8 random vertices and for each input alone at a quarter and a half of
- * its reach either way. The hull is the union of three convex pieces along the ray:
+ * a point). Re-evaluated once per input either way (a quantity's first-order reach is
+ * the sum over the inputs of the larger of its two moves: t has kinks, at a point end's
+ * apex), at the two vertices of that box where t is extreme, at 8 random vertices and
+ * for each input alone at a quarter and a half of its reach either way. The hull is the union of three convex pieces along the ray:
  * sphere 0, sphere 1 and the frustum of the tangent cone between the tangent planes;
  * its entry is the least of their entries, its exit the greatest of their exits. Each
  * piece may be met or missed when its margins (a discriminant, the frustum's clipped

@@ -20,7 +20,9 @@
 enum { IN_W = 0, IN_D = 3, IN_A = 6, IN_R0 = 9, IN_R1 = 10, IN_COUNT = 11 };
 /* the samples: one per input, the vertices, each input alone at +-1/4 and +-1/2 */
 enum { N_GRAD = IN_COUNT, N_VTX = 2 + REF_RANDOM_VERTICES };
-enum { N_SAMPLES = 1 + N_GRAD + N_VTX + 4 * IN_COUNT };
+/* where each input's step the other way (-2) starts: the first-order reach of a quantity is
+ * the larger move of the two, per input (t has kinks, at a point end's apex) */
+enum { NEG0 = 1 + N_GRAD + N_VTX + 4 * IN_COUNT, N_SAMPLES = NEG0 + N_GRAD };
 
 static void r_perturb(const rin_q *base, const cylq step[IN_COUNT],
                       const signed char k[IN_COUNT], cylq scale, rin_q *out)
@@ -107,7 +109,7 @@ static void f_reach(r_box *b, const rrec *r, const cylq (*gq)[4], double widen_b
     enum { N = 512 };
     cylq sa = 0;
     for (int i = 0; i < N_GRAD; i++)
-        sa += q_abs(gq[i][0] - r->qa[RP_F]);
+        sa += q_max(q_abs(gq[i][0] - r->qa[RP_F]), q_abs(gq[N_GRAD + i][0] - r->qa[RP_F]));
     if (r->nested || !(q_abs(r->qa[RP_F]) <= 256 * sa))
         return;
     const cylq ta = q_max(r->s0 + r->sl, b->tmin), tb = q_min(r->s0 + r->sh, b->tmax);
@@ -125,9 +127,14 @@ static void f_reach(r_box *b, const rrec *r, const cylq (*gq)[4], double widen_b
             const cylq F1 = r->qa[RP_F] * u + r->qb[RP_F];
             cylq S = 0, S1 = 0;
             for (int k = 0; k < N_GRAD; k++) {
-                const cylq v = t - gq[k][3];
-                S += q_abs((gq[k][0] * v + 2 * gq[k][1]) * v + gq[k][2] - F);
-                S1 += q_abs(gq[k][0] * v + gq[k][1] - F1);
+                cylq sk = 0, s1k = 0;
+                for (int side = 0; side < 2; side++) {
+                    const cylq *g = gq[side * N_GRAD + k], v = t - g[3];
+                    sk = q_max(sk, q_abs((g[0] * v + 2 * g[1]) * v + g[2] - F));
+                    s1k = q_max(s1k, q_abs(g[0] * v + g[1] - F1));
+                }
+                S += sk;
+                S1 += s1k;
             }
             S *= (cylq)widen_by;
             S1 *= (cylq)widen_by;
@@ -165,21 +172,40 @@ static void band_model(r_box *b, int model)
     track(tr, &rb);
     double sum_m[RP_COUNT][RM_COUNT] = {{0}}, sum_lo[RP_COUNT] = {0}, sum_hi[RP_COUNT] = {0};
     double sum_face[RP_COUNT] = {0};
-    cylq gq[N_GRAD][4]; /* each gradient sample's frustum quadratic and shift */
+    /* each gradient sample's frustum quadratic and shift, +2 then -2 */
+    cylq gq[2 * N_GRAD][4];
+    /* each input's moves at +2, kept for the larger of the two */
+    double up_m[N_GRAD][RP_COUNT][RM_COUNT], up_lo[N_GRAD][RP_COUNT], up_hi[N_GRAD][RP_COUNT];
+    double up_face[N_GRAD][RP_COUNT];
     for (int i = 1; i < N_SAMPLES; i++) {
         rcref_eval_(&b->qs[i], model, b->tmin, b->tmax, &r);
         b->evals++;
-        if (i <= N_GRAD) {
-            gq[i - 1][0] = r.qa[RP_F];
-            gq[i - 1][1] = r.qb[RP_F];
-            gq[i - 1][2] = r.qc[RP_F];
-            gq[i - 1][3] = r.s0;
+        const int up = i <= N_GRAD, down = i >= NEG0;
+        if (up || down) {
+            const int j = up ? i - 1 : i - NEG0;
+            cylq *g = gq[up ? j : N_GRAD + j];
+            g[0] = r.qa[RP_F];
+            g[1] = r.qb[RP_F];
+            g[2] = r.qc[RP_F];
+            g[3] = r.s0;
             for (int p = 0; p < RP_COUNT; p++) {
-                for (int g = 0; g < RM_COUNT; g++)
-                    sum_m[p][g] += ref_qdiff(r.m[p][g], rb.m[p][g]);
-                sum_lo[p] += ref_qdiff(r.s0 + r.lo[p], rb.s0 + rb.lo[p]);
-                sum_hi[p] += ref_qdiff(r.s0 + r.hi[p], rb.s0 + rb.hi[p]);
-                sum_face[p] += ref_qdiff(r.face[p], rb.face[p]);
+                double dm[RM_COUNT];
+                for (int k = 0; k < RM_COUNT; k++)
+                    dm[k] = ref_qdiff(r.m[p][k], rb.m[p][k]);
+                const double dl = ref_qdiff(r.s0 + r.lo[p], rb.s0 + rb.lo[p]);
+                const double dh = ref_qdiff(r.s0 + r.hi[p], rb.s0 + rb.hi[p]);
+                const double df = ref_qdiff(r.face[p], rb.face[p]);
+                if (up) {
+                    for (int k = 0; k < RM_COUNT; k++)
+                        up_m[j][p][k] = dm[k];
+                    up_lo[j][p] = dl, up_hi[j][p] = dh, up_face[j][p] = df;
+                    continue;
+                }
+                for (int k = 0; k < RM_COUNT; k++)
+                    sum_m[p][k] += fmax(dm[k], up_m[j][p][k]);
+                sum_lo[p] += fmax(dl, up_lo[j][p]);
+                sum_hi[p] += fmax(dh, up_hi[j][p]);
+                sum_face[p] += fmax(df, up_face[j][p]);
             }
         }
         track(tr, &r);
@@ -247,25 +273,30 @@ static void band_model(r_box *b, int model)
         }
         /* near a tangency t moves with the square root of the margin, which the box moves
          * linearly: the roots reach -B / A -+ sqrt(D + its spread) / A, a sphere's margin
-         * being D and the frustum's D / A (where -B / A is inside its slab, and clipped to
-         * it; however small A is: f_reach's samples may pass over so short a stretch) */
+         * being D. The frustum's is -G at tg, the least of G on its slab's stretch, which
+         * is the vertex -B / A or the stretch's end nearer to it: G <= its spread where
+         * |t + B / A| <= sqrt((margin + spread) / A + (tg + B / A)^2), clipped to the
+         * stretch; however small A is (f_reach's samples may pass over so short a one). */
         const cylq qa = rb.qa[p], tv = -rb.qb[p] / qa;
-        const int vertex = p != RP_F || (tv > rb.sl && tv < rb.sh);
-        if (avail && qa > 0 && vertex && q_isfinite(rb.m[p][RM_MEET]) &&
+        const cylq tg = p != RP_F ? tv : tv < rb.sl ? rb.sl : tv > rb.sh ? rb.sh : tv;
+        if (avail && qa > 0 && q_isfinite(tg) && q_isfinite(rb.m[p][RM_MEET]) &&
             !((double)q_abs(rb.m[p][RM_MEET]) >
               sum_m[p][RM_MEET] + (double)rb.mw[p][RM_MEET])) {
             const cylq dmax = rb.m[p][RM_MEET] + (cylq)sum_m[p][RM_MEET] + rb.mw[p][RM_MEET];
-            const cylq dd = q_max(dmax, 0) * (p == RP_F ? qa : 1);
+            const cylq dd = p == RP_F ? q_max(dmax, 0) * qa + qa * qa * (tg - tv) * (tg - tv)
+                                      : q_max(dmax, 0);
             const cylq tc = rb.s0 + tv, half = q_sqrt(dd) / qa;
-            cylq ta = tc - half, tb = tc + half; /* the frustum's: inside its slab */
+            cylq ta = tc - half, tb = tc + half, tm = tc; /* the frustum's: in its slab */
             if (p == RP_F) {
-                ta = q_max(ta, rb.s0 + rb.sl);
-                tb = q_min(tb, rb.s0 + rb.sh);
+                const cylq sl = rb.s0 + rb.sl, sh = rb.s0 + rb.sh;
+                ta = q_max(ta, sl);
+                tb = q_min(tb, sh);
+                tm = q_min(q_max(tm, sl), sh);
             }
-            if (q_isfinite(ta) && q_isfinite(tb)) {
+            if (q_isfinite(ta) && q_isfinite(tb) && q_isfinite(tm)) {
                 lo[p][0] = fmin(lo[p][0], (double)ta);
-                lo[p][1] = fmax(lo[p][1], (double)tc);
-                hi[p][0] = fmin(hi[p][0], (double)tc);
+                lo[p][1] = fmax(lo[p][1], (double)tm);
+                hi[p][0] = fmin(hi[p][0], (double)tm);
                 hi[p][1] = fmax(hi[p][1], (double)tb);
             }
         }
@@ -445,6 +476,11 @@ void rcref_band_eval(const rcref_round_cone *s, const float o[3], const float d[
         signed char k[IN_COUNT] = {0};
         k[i / 4] = (signed char)((i & 1 ? -1 : 1) * (i & 2 ? 2 : 1));
         r_perturb(base, step, k, (cylq)0.5, &qs[1 + N_GRAD + N_VTX + i]);
+    }
+    for (int i = 0; i < IN_COUNT; i++) {
+        signed char k[IN_COUNT] = {0};
+        k[i] = -2;
+        r_perturb(base, step, k, 1, &qs[NEG0 + i]);
     }
 
     /* Nested or not: both readings where the box (or 4 ulps of |a|^2) reaches the
