@@ -3,6 +3,7 @@
  * hand-case runner and the generator checks (test_ref.h). */
 #include "congen.h"
 #include "gen.h"
+#include "rcgen.h"
 #include "sphgen.h"
 #include "test_ref.h"
 
@@ -36,6 +37,8 @@ REF_CALLS(sphref, sph)
 REF_VALID(sphref, sph)
 REF_CALLS(conref, cone)
 REF_VALID(conref, cone)
+REF_CALLS(rcref, rc)
+REF_VALID(rcref, rc)
 
 const ref_kind ref_cylinder = {
     "cylinder", sizeof(cylray_cylinder), cylref_x, cylref_b, cylref_judge, NULL};
@@ -43,6 +46,8 @@ const ref_kind ref_sphere = {"sphere", sizeof(cylray_sphere), sphref_x,
                              sphref_b, sphref_judge,          sphref_v};
 const ref_kind ref_cone = {"cone",   sizeof(cylray_cone), conref_x,
                            conref_b, conref_judge,        conref_v};
+const ref_kind ref_round_cone = {
+    "round cone", sizeof(rcref_round_cone), rcref_x, rcref_b, rcref_judge, rcref_v};
 
 /* A generator's cases (`gen`_case: the shape, then o, d, tmin, tmax) behind ref_gen. */
 #define REF_GEN(gen, P, kind)                                                                  \
@@ -64,6 +69,7 @@ const ref_kind ref_cone = {"cone",   sizeof(cylray_cone), conref_x,
 
 REF_GEN(sphgen, SPHGEN, ref_sphere)
 REF_GEN(congen, CONGEN, ref_cone)
+REF_GEN(rcgen, RCGEN, ref_round_cone)
 
 /* The shape is each case's first member. */
 static void unpack(const ref_gen *g, const unsigned char *c, ref_shape *s, float o[3],

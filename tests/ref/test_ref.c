@@ -1,8 +1,8 @@
 /* SPDX-License-Identifier: MIT */
 /* test_ref.c - tests of the exact references themselves: the cylinder's generators,
  * symmetries, an independent membership check along the ray and the band's verdicts; every
- * shape's hand-computed answers (test_hand.c), the sphere's and the cone's own tests
- * (test_sphref.c, test_conref.c). */
+ * shape's hand-computed answers (test_hand.c), the sphere's, the cone's and the round
+ * cone's own tests (test_sphref.c, test_conref.c, test_rcref.c). */
 #include "gen.h"
 #include "test_ref.h"
 
@@ -318,6 +318,9 @@ int main(void)
     part("sphere", test_sphref);
     part("cone hand", test_hand_cone);
     part("cone", test_conref);
+    part("round cone hand", test_hand_round_cone);
+    part("round cone hand band", test_band_round_cone);
+    part("round cone", test_rcref);
     printf("ref-selftest: %ld checks, %ld failures\n", ref_checks, ref_failures);
     return ref_failures != 0;
 }

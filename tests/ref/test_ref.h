@@ -8,6 +8,7 @@
 
 #include "conref.h"
 #include "cylref.h"
+#include "rcref.h"
 #include "sphref.h"
 
 #include <stddef.h>
@@ -37,6 +38,7 @@ typedef union ref_shape {
     cylray_cylinder cyl;
     cylray_sphere sph;
     cylray_cone cone;
+    rcref_round_cone rc;
 } ref_shape;
 
 typedef struct ref_kind {
@@ -50,7 +52,7 @@ typedef struct ref_kind {
     int (*valid)(const ref_shape *s); /* NULL: the reference has no verdict of its own */
 } ref_kind;
 
-extern const ref_kind ref_cylinder, ref_sphere, ref_cone;
+extern const ref_kind ref_cylinder, ref_sphere, ref_cone, ref_round_cone;
 
 /* A ray at a shape with the answer worked out by hand. */
 typedef struct ref_hand {
@@ -85,7 +87,7 @@ typedef struct ref_gen {
     void (*make)(int cat, uint64_t seed, size_t n, void *out, int shared);
 } ref_gen;
 
-extern const ref_gen ref_sphere_gen, ref_cone_gen;
+extern const ref_gen ref_sphere_gen, ref_cone_gen, ref_round_cone_gen;
 
 /* Every category: named both ways, prefix-stable, valid shapes in batches, the exact
  * answer inside its own band, and enough hits; shared shapes all the same. */
@@ -101,7 +103,10 @@ void ref_each_case(const ref_gen *g, const int *cats, size_t ncats, uint64_t see
 void test_hand_cylinder(void); /* test_hand.c */
 void test_hand_sphere(void);
 void test_hand_cone(void);
-void test_sphref(void); /* test_sphref.c */
-void test_conref(void); /* test_conref.c */
+void test_sphref(void);          /* test_sphref.c */
+void test_conref(void);          /* test_conref.c */
+void test_hand_round_cone(void); /* test_rchand.c */
+void test_band_round_cone(void);
+void test_rcref(void); /* test_rcref.c */
 
 #endif
