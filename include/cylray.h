@@ -148,6 +148,11 @@ typedef struct CYLRAY_ALIGN(64) cylray_prepared {
     float rm;               /* a cone: (r0 + r1) / 2, the radius at the center */
     float kap;              /* a cone: (r1 - r0) / (2 H |v|), the radius's slope per v.p */
     float cnrm;             /* a cone: 1 / sqrt(1 + ((r1 - r0) / 2H)^2) */
+    float rc_s;             /* a round cone: its spheres' centers c -+ rc_s v (p0, p1) */
+    float rc_rr[2];         /* their squared radii (0 for a point end) */
+    float rc_z[2];          /* the tangent circles' planes: axial coordinates, as h_v's */
+    float rc_rim[2];        /* the tangent circles' radii */
+    uint32_t rc_caps;       /* the spheres on the surface (CYLRAY_CAPPED_LO, _HI) */
 } cylray_prepared;
 
 /* Checks *in and derives what the kernels need into *out. Returns CYLRAY_OK, or
@@ -208,6 +213,36 @@ typedef struct cylray_sphere {
  * NaN, infinite or beyond 2^62 in magnitude, or the radius lies outside [2^-60, 2^62]
  * (NaN is refused). */
 CYLRAY_API cylray_status cylray_prepare_sphere(cylray_prepared *out, const cylray_sphere *in);
+
+/* ---- round cones --------------------------------------------------------- */
+
+/* The convex hull of the spheres (p0, r0) and (p1, r1): a capsule when r0 == r1; the
+ * segment of Embree's ROUND_LINEAR_CURVE and ANARI's curve. Parts: CYLRAY_SIDE (the
+ * cone tangent to both spheres, between the circles where it touches them),
+ * CYLRAY_CAP_LO / _HI (the part of sphere 0 / sphere 1 on the hull). flags:
+ * CYLRAY_CAPPED_LO / _HI include that end's sphere (CYLRAY_CAPPED: the closed hull);
+ * without it the side still ends at that tangent circle and the end is open, a hole
+ * a ray passes through. r0, r1 >= 0, not both 0. */
+typedef struct cylray_round_cone {
+    float p0[3], p1[3];
+    float r0, r1;   /* in world units; one may be 0 (a point end), not both */
+    unsigned flags; /* CYLRAY_CAPPED, CYLRAY_CAPPED_LO, CYLRAY_CAPPED_HI or 0 */
+} cylray_round_cone;
+
+/* Checks *in and prepares it for the packet, stream and occluded kernels, with the
+ * same flags and the same guarantee for the hull of the float inputs (docs/design.md,
+ * "Round cones"): the kernels place the spheres and the tangent cone from p0, p1 and
+ * the axis and center a cone on p0 and p1 has, and derive the cone's radii and the
+ * planes of its tangent circles in double, rounded once to float. Not yet taken by
+ * leaves, bounds, split boxes and surface coordinates (which return CYLRAY_EINVAL, 0 or
+ * nothing) nor by the secondary-ray calls (whose points and origins are then NaN).
+ * Returns CYLRAY_EINVAL (leaving
+ * *out untouched) when a pointer is NULL, a coordinate is NaN, infinite or beyond 2^62
+ * in magnitude, a radius is neither 0 nor in [2^-60, 2^62] or both are 0, a flag bit
+ * is not CYLRAY_CAPPED_LO or CYLRAY_CAPPED_HI, one sphere lies within the other
+ * (|p1 - p0| <= |r1 - r0|), or the tangent cone breaks cylray_prepare_cone's limits. */
+CYLRAY_API cylray_status cylray_prepare_round_cone(cylray_prepared *out,
+                                                   const cylray_round_cone *in);
 
 /* ---- hit output ----------------------------------------------------------- */
 

@@ -55,6 +55,7 @@ int cylray_surface_fma_(void);
 int cylray_cylinder_ok_(const cylray_cylinder *in);
 int cylray_sphere_ok_(const cylray_sphere *in);
 int cylray_cone_ok_(const cylray_cone *in);
+int cylray_round_cone_ok_(const cylray_round_cone *in);
 
 /* An axis's largest magnitude: its scale, and whether it has a direction at all. */
 static inline double cylray_axis_max_(const float a[3])

@@ -75,3 +75,12 @@ int cylray_cone_ok_(const cylray_cone *in)
     return cone_radius_ok(in->r0) && cone_radius_ok(in->r1) && (in->r0 > 0 || in->r1 > 0) &&
            !(in->flags & ~CYLRAY_CAPPED) && cone_steep_ok(in->r0, in->r1, in->p0, in->p1);
 }
+
+int cylray_round_cone_ok_(const cylray_round_cone *in)
+{
+    for (int k = 0; k < 3; k++)
+        if (!coord_ok(in->p0[k]) || !coord_ok(in->p1[k]))
+            return 0;
+    return cone_radius_ok(in->r0) && cone_radius_ok(in->r1) && (in->r0 > 0 || in->r1 > 0) &&
+           !(in->flags & ~CYLRAY_CAPPED);
+}

@@ -10,6 +10,8 @@
 #include "leaf.h"
 #include "variants.h"
 
+#include <math.h>
+
 enum { CYLRAY_SHAPE_CYLINDER, CYLRAY_SHAPE_SPHERE, CYLRAY_SHAPE_CONE };
 
 typedef struct {
@@ -35,6 +37,8 @@ static inline cylray_shape_ cylray_shape_of_(const cylray_prepared *p)
     s.r = s.shape == CYLRAY_SHAPE_CONE ? cylray_cone_ra_(p) : p->radius;
     s.kap = s.shape == CYLRAY_SHAPE_CONE ? p->kap : 0.0f;
     s.h = p->half_height;
+    if (p->kind == CYLRAY_KIND_ROUND) /* not yet read here: NaN points, never a wrong one */
+        s.c[0] = s.c[1] = s.c[2] = NAN;
     return s;
 }
 

@@ -15,6 +15,7 @@
 #define CYLRAY_KIND_LEAF 3u   /* in the kernel flags only: a leaf's lanes, of any kind */
 #define CYLRAY_KIND_SPHERE 4u /* cylray_prepared.kind of a sphere (CYLRAY_KF_SPHERE) */
 #define CYLRAY_KIND_CONE 5u   /* cylray_prepared.kind of a cone (CYLRAY_KF_CONE) */
+#define CYLRAY_KIND_ROUND 6u  /* cylray_prepared.kind of a round cone (CYLRAY_KF_ROUND) */
 
 #define CYLRAY_MAGIC 0x63796c72u /* "cylr" */
 
@@ -68,6 +69,10 @@ static inline int cylray_slender_(const cylray_prepared *p)
  * at run time carry it: a prepared slender shape has a generic variant, a leaf that
  * holds one the run-time leaf driver, and every other kernel none of its work. */
 #define CYLRAY_KF_SLENDER 0x80000u
+/* A round cone: the solid of a capped cylinder or cone (its tangent frustum, whose
+ * discs are never on the surface) joined to the spheres at its ends, cut where an end
+ * is open (kernel/shape/round_cone.h). */
+#define CYLRAY_KF_ROUND 0x100000u
 /* How the x86 kernels store a hit vector (docs/performance.md, "Stores by vendor"):
  * the policy is a property of the kernel table the dispatch chose for the CPU, whose
  * entry points pass it down with the run-time flags.
@@ -136,6 +141,8 @@ static inline unsigned cylray_variant_of_(unsigned kind, unsigned axis_id, int r
     if (kind == CYLRAY_KIND_SPHERE)
         return radius_scaled ? CYLRAY_VARIANT_GENERIC + CYLRAY_KIND_COUNT
                              : CYLRAY_VARIANT_SPHERE;
+    if (kind == CYLRAY_KIND_ROUND) /* the generic kernel, for now */
+        return CYLRAY_VARIANT_GENERIC + 5u;
     if (kind == CYLRAY_KIND_CONE) /* a cone with one disc or none: the generic one */
         return radius_scaled || caps != CYLRAY_CAPPED ? CYLRAY_VARIANT_GENERIC + 4u
                : tiny || slender                      ? CYLRAY_VARIANT_CONE_TINY
@@ -156,6 +163,15 @@ static inline unsigned cylray_generic_kf_(const cylray_prepared *P, unsigned fla
         return CYLRAY_KF_SPHERE | (occ ? CYLRAY_KF_OCCLUDED : 0u) |
                (flags & ((occ ? 0u : CYLRAY_NORMAL) | CYLRAY_REFINE | CYLRAY_FAST)) |
                CYLRAY_KF_SCALED;
+    if (P->kind == CYLRAY_KIND_ROUND && P->h_v == 0) /* one sphere within the other */
+        return CYLRAY_KF_ROUND | CYLRAY_KF_SPHERE | (occ ? CYLRAY_KF_OCCLUDED : 0u) |
+               (flags & ((occ ? 0u : CYLRAY_NORMAL) | CYLRAY_REFINE | CYLRAY_FAST)) |
+               CYLRAY_KF_SCALED;
+    if (P->kind == CYLRAY_KIND_ROUND) /* its frustum a cone, or a cylinder (kap = 0) */
+        return CYLRAY_KF_ROUND | CYLRAY_KF_KIND_(CYLRAY_KIND_CAPPED) | CYLRAY_KF_ONE_END |
+               (P->kap != 0 ? CYLRAY_KF_CONE : 0u) | (occ ? CYLRAY_KF_OCCLUDED : 0u) |
+               (flags & ((occ ? 0u : CYLRAY_NORMAL) | CYLRAY_REFINE | CYLRAY_FAST)) |
+               (cylray_slender_(P) ? CYLRAY_KF_SLENDER : 0u) | CYLRAY_KF_SCALED;
     if (P->kind == CYLRAY_KIND_CONE)
         return CYLRAY_KF_CONE | CYLRAY_KF_KIND_(CYLRAY_KIND_CAPPED) |
                (occ ? CYLRAY_KF_OCCLUDED : 0u) |
@@ -203,7 +219,7 @@ static inline unsigned cylray_occ_index_(unsigned variant, unsigned flags)
  * so whole vectors may be stored there; stores: the store policy (CYLRAY_STORE_*). */
 typedef struct {
     unsigned kind;
-    int sphere, cone, tiny, slender, leaf, capped, finite, one_end, aligned, scaled, occ,
+    int sphere, cone, round, tiny, slender, leaf, capped, finite, one_end, aligned, scaled, occ,
         normal, cull, ff, refine, fast;
     int scratch;
     unsigned stores;
@@ -216,6 +232,7 @@ CYLRAY_INLINE cylray_kflags_ cylray_kflags_of_(unsigned FL, unsigned rt)
     F.kind = (FL >> CYLRAY_KF_KIND_SHIFT) & 3u;
     F.sphere = (FL & CYLRAY_KF_SPHERE) != 0;
     F.cone = (FL & CYLRAY_KF_CONE) != 0;
+    F.round = (FL & CYLRAY_KF_ROUND) != 0;
     F.tiny = F.cone && (FL & CYLRAY_KF_TINY) != 0;
     F.leaf = F.kind == CYLRAY_KIND_LEAF;
     /* A leaf's lanes are cylinders of any kind: each runs the capped solid's logic with
@@ -243,7 +260,7 @@ static inline int cylray_prepared_ok_(const cylray_prepared *p)
 {
     return p != 0 && p->magic == CYLRAY_MAGIC &&
            (p->kind < CYLRAY_KIND_COUNT || p->kind == CYLRAY_KIND_SPHERE ||
-            p->kind == CYLRAY_KIND_CONE) &&
+            p->kind == CYLRAY_KIND_CONE || p->kind == CYLRAY_KIND_ROUND) &&
            p->axis_id <= 3u && (p->caps & ~CYLRAY_CAPPED) == 0 &&
            p->variant == cylray_variant_of_(p->kind, p->axis_id, p->g_s != 1.0f, p->caps,
                                             p->kind == CYLRAY_KIND_CONE && cylray_cone_tiny_(p),

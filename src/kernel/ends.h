@@ -32,6 +32,7 @@ CYLRAY_INLINE void KFN(planes)(const KFN(lanes) *st, const cylray_kat_ *k,
 {
     const vf hv = KFN(both_in)(k, F, offsetof(cylray_prepared, h_v), CYLRAY_LF_HV);
     *zlo = vneg(hv), *zhi = hv;
+    KFN(shape_end_planes)(k, F, zlo, zhi);
     if (F.slender) /* (-+H|v| on the lanes that kept the center) */
         *zlo = KFN(axial)(st, F, *zlo), *zhi = KFN(axial)(st, F, *zhi);
 }
@@ -80,6 +81,7 @@ CYLRAY_INLINE void KFN(ends)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_
         st->ok_out = st->ok_in;
         if (F.one_end)
             KFN(open_ends)(st, k, F, slab_in, slab_out);
+        KFN(shape_ends)(st, k, F, na, nb, ta, tb, slab_in, slab_out);
     } else {
         st->t_in = tn, st->t_out = tf;
         st->ok_in = st->ok_out = st->side;

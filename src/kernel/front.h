@@ -89,5 +89,5 @@ CYLRAY_INLINE int KFN(reject)(KFN(lanes) *st, const cylray_kat_ *k, const cylray
                    : vkeep(vgt(vadd(wd2, wd2), ww), s);
     }
     st->rdd = rdd, st->s = s;
-    return KFN(shape_reject)(st, F, act, ww);
+    return KFN(shape_reject)(st, k, F, act, ww);
 }

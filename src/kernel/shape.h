@@ -13,11 +13,13 @@
  *   shape_polish_bounds        stage 5: the roots
  *   shape_axial, shape_interval, shape_planes, shape_slab, shape_rims
  *                              stage 6: the slab of the ends and the side's interval
- *   shape_normal, shape_facing, shape_cap_scale
- *                              stage 8: the normal */
+ *   shape_ends                 stage 6: a shape's own solid joined to the slab's
+ *   shape_part, shape_normal, shape_facing, shape_cap_scale
+ *                              stage 8: the part and the normal */
 
 #include "shape/cylinder.h"
 #include "shape/sphere.h"
+#include "shape/round_cone.h"
 #include "shape/cone_frame.h"
 #include "shape/cone.h"
 #include "shape/cone_rims.h"
@@ -31,8 +33,11 @@ CYLRAY_INLINE void KFN(shape_axis)(KFN(lanes) *st, const cylray_kat_ *k, const c
 }
 
 /* After the bounding sphere (act, with w.w = ww): whether any lane is left. */
-CYLRAY_INLINE int KFN(shape_reject)(KFN(lanes) *st, const cylray_kflags_ F, vm act, vf ww)
+CYLRAY_INLINE int KFN(shape_reject)(KFN(lanes) *st, const cylray_kat_ *k,
+                                    const cylray_kflags_ F, vm act, vf ww)
 {
+    if (F.sphere && F.round) /* a round cone's larger sphere: on the surface or not */
+        act = mand(act, mfrom_bits(k->P->rc_caps ? VFULL : 0u));
     if (F.sphere)
         return KFN(sphere_reject)(st, act);
     const vf g0 = KFN(axis_cross)(st, F);
@@ -47,7 +52,9 @@ CYLRAY_INLINE vf KFN(shape_anchor_rr)(const KFN(lanes) *st, const cylray_kat_ *k
 {
     if (!F.cone)
         return st->rr;
-    const vf ra = F.leaf ? KFN(leaf_in)(k, F, CYLRAY_LF_RA) : vset1(cylray_cone_ra_(k->P));
+    const vf ra = F.leaf    ? KFN(leaf_in)(k, F, CYLRAY_LF_RA)
+                  : F.round ? vset1(k->P->kap > 0 ? k->P->rc_rim[0] : k->P->rc_rim[1])
+                            : vset1(cylray_cone_ra_(k->P));
     return vmul(ra, ra);
 }
 
@@ -59,15 +66,16 @@ CYLRAY_INLINE void KFN(shape_start)(KFN(lanes) *st)
     st->cone.cr = st->cone.ca = st->cone.zn = zero;
     st->cone.near = mfrom_bits(0u);
     st->cone.pol = vlt(vset1(1.0f), zero);
+    st->round.pin = st->round.pout = zero;
 }
 
 CYLRAY_INLINE int KFN(shape_side)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F)
 {
     if (F.sphere)
         return KFN(sphere_side)(st, k, F);
-    if (F.cone)
-        return KFN(cone_side)(st, k, F);
-    return KFN(cyl_side)(st, k, F);
+    const int live = F.cone ? KFN(cone_side)(st, k, F) : KFN(cyl_side)(st, k, F);
+    /* a round cone's balls may be met by a line that misses its side */
+    return F.round ? many(st->act) : live;
 }
 
 /* |v| = 1: along a coordinate axis, and on a sphere whose j = 0. */
@@ -163,6 +171,15 @@ CYLRAY_INLINE void KFN(shape_interval)(KFN(lanes) *st, const cylray_kflags_ F, v
         KFN(cone_interval)(st, lo, hi);
 }
 
+/* Where a shape's ends lie, if not at -+H|v| (a round cone's tangent circles): before
+ * a slender lane's frame moves them. */
+CYLRAY_INLINE void KFN(shape_end_planes)(const cylray_kat_ *k, const cylray_kflags_ F, vf *zlo,
+                                         vf *zhi)
+{
+    if (F.round)
+        KFN(round_planes)(k, zlo, zhi);
+}
+
 /* The ends' planes, on a tiny-ended cone's lanes measured from that end. */
 CYLRAY_INLINE void KFN(shape_planes)(const KFN(lanes) *st, const cylray_kat_ *k,
                                      const cylray_kflags_ F, vf *zlo, vf *zhi)
@@ -187,6 +204,28 @@ CYLRAY_INLINE void KFN(shape_rims)(KFN(lanes) *st, const cylray_kat_ *k, const c
         KFN(cone_rims)(st, k, F, slab_in, slab_out);
 }
 
+/* The joins of the ends' solid with a shape's own (a round cone's balls), after the
+ * slab: na, nb the planes' offsets from the origin's level, ta, tb their crossings. */
+CYLRAY_INLINE void KFN(shape_ends)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F,
+                                   vf na, vf nb, vf ta, vf tb, vf slab_in, vf slab_out)
+{
+    if (F.round)
+        KFN(round_hull)(st, k, F, na, nb, ta, tb, slab_in, slab_out);
+}
+
+/* The part of the hit lanes, where a shape records its own (a round cone); 0 elsewhere. */
+CYLRAY_INLINE int KFN(shape_part)(const KFN(lanes) *st, const cylray_kat_ *k,
+                                  const cylray_kflags_ F, vf *part)
+{
+    if (!F.round)
+        return 0;
+    if (F.sphere) /* one sphere within the other: the larger, its end's cap */
+        *part = vset1(k->P->rc_caps & CYLRAY_CAPPED_LO ? CYLRAY_CAP_LO : CYLRAY_CAP_HI);
+    else
+        *part = KFN(round_part)(st);
+    return 1;
+}
+
 /* The side's normal at the hit lanes, before its length is corrected. */
 CYLRAY_INLINE void KFN(shape_normal)(const KFN(lanes) *st, const cylray_kat_ *k,
                                      const cylray_kflags_ F, vf *nx, vf *ny, vf *nz)
@@ -197,6 +236,8 @@ CYLRAY_INLINE void KFN(shape_normal)(const KFN(lanes) *st, const cylray_kat_ *k,
         KFN(cone_normal)(st, k, F, nx, ny, nz);
     else
         KFN(cyl_normal)(st, k, F, nx, ny, nz);
+    if (F.round && !F.sphere)
+        KFN(round_normal)(st, k, F, nx, ny, nz);
 }
 
 /* The direction facing the ray, for a hit point with none of its own. */

@@ -32,6 +32,9 @@ typedef struct {
         vm near;   /* a tiny-ended cone: the lanes measured from that end, */
         vf zn;     /* and its plane's axial coordinate there (shape/cone_frame.h) */
     } cone;
+    struct {
+        vf pin, pout; /* a round cone: the part of its entry and of its exit */
+    } round;
     /* roots, ends: the side's roots, and entry and exit relative to p */
     vf tn, tf, z0, dv, side_lo, side_hi, t_in, t_out;
     vm ok_in, ok_out;

@@ -93,7 +93,9 @@ CYLRAY_INLINE void KFN(store)(const KFN(lanes) *st, const cylray_kat_ *k,
     const vm hit = st->hit;
     vm on_side = hit, cap_hi = hit;
     vf part = one;
-    if (F.capped) {
+    if (KFN(shape_part)(st, k, F, &part)) {
+        /* (its discs are never on the surface) */
+    } else if (F.capped) {
         on_side = mand(hit, veq(st->tr, vsel(st->front, st->side_lo, st->side_hi)));
         cap_hi = mxor(vgt(st->dv, vzero()), st->front);
         part = vsel(on_side, one,

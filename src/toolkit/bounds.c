@@ -92,7 +92,8 @@ static void shape_box(const cylray_shape_ *s, float lo[3], float hi[3])
 
 cylray_status cylray_bounds(const cylray_prepared *cyl, float lo[3], float hi[3])
 {
-    if (!cylray_prepared_ok_(cyl) || !lo || !hi || cyl->kind == CYLRAY_KIND_INFINITE)
+    if (!cylray_prepared_ok_(cyl) || !lo || !hi || cyl->kind == CYLRAY_KIND_INFINITE ||
+        cyl->kind == CYLRAY_KIND_ROUND)
         return CYLRAY_EINVAL;
     float l[3], h[3];
     const cylray_shape_ s = cylray_shape_of_(cyl);

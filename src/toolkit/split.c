@@ -81,7 +81,8 @@ static void sphere_slices(const cylray_shape_ *cyl, size_t k, float (*lo)[3], fl
 
 size_t cylray_split_boxes(const cylray_prepared *cyl, size_t k, float (*lo)[3], float (*hi)[3])
 {
-    if (!cylray_prepared_ok_(cyl) || cyl->kind == CYLRAY_KIND_INFINITE)
+    if (!cylray_prepared_ok_(cyl) || cyl->kind == CYLRAY_KIND_INFINITE ||
+        cyl->kind == CYLRAY_KIND_ROUND)
         return 0;
     const cylray_shape_ s = cylray_shape_of_(cyl);
     if (k == 0)

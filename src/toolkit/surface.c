@@ -130,7 +130,7 @@ static void shape_surface(const cylray_shape_ *sh, const float p[3], int32_t par
 void cylray_surface(const cylray_prepared *cyl, const float p[3], int32_t part, float uv[2],
                     float dpdu[3], float dpdv[3])
 {
-    if (!cylray_prepared_ok_(cyl) || !p)
+    if (!cylray_prepared_ok_(cyl) || !p || cyl->kind == CYLRAY_KIND_ROUND)
         return;
     const cylray_shape_ s = cylray_shape_of_(cyl);
     shape_surface(&s, p, part, uv, dpdu, dpdv);

@@ -38,6 +38,10 @@ CYLRAY_INLINE void KFN(cone_anchor)(const cylray_kat_ *k, const cylray_kflags_ F
         const vf hv = KFN(leaf_in)(k, F, CYLRAY_LF_HV);
         *ra = KFN(leaf_in)(k, F, CYLRAY_LF_RA);
         *za = vsel(veq(kap, vzero()), vzero(), vneg(vxorsign(hv, kap)));
+    } else if (F.round) { /* at its narrower tangent circle, where its frustum lies */
+        const cylray_prepared *P = k->P;
+        *ra = vset1(P->kap > 0 ? P->rc_rim[0] : P->rc_rim[1]);
+        *za = vset1(P->kap > 0 ? P->rc_z[0] : P->rc_z[1]);
     } else {
         const cylray_prepared *P = k->P;
         *ra = vset1(cylray_cone_ra_(P));

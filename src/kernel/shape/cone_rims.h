@@ -67,10 +67,11 @@ CYLRAY_INLINE void KFN(cone_rims)(KFN(lanes) *st, const cylray_kat_ *k, const cy
     vf ra, za;
     KFN(cone_anchor)(k, F, kap, &ra, &za);
     const vf hv = KFN(leaf_in)(k, F, CYLRAY_LF_HV);
-    const vf r_lo =
+    vf r_lo =
         KFN(cyl_in)(k, F, offsetof(cylray_prepared, r0), vfma(kap, vsub(vneg(hv), za), ra));
-    const vf r_hi =
-        KFN(cyl_in)(k, F, offsetof(cylray_prepared, r1), vfma(kap, vsub(hv, za), ra));
+    vf r_hi = KFN(cyl_in)(k, F, offsetof(cylray_prepared, r1), vfma(kap, vsub(hv, za), ra));
+    if (F.round) /* (its ends at the tangent circles) */
+        KFN(round_rims)(k, &r_lo, &r_hi);
     const vm up = vgt(st->dv, zero); /* in by the low end, out by the high one */
     const vf rc_in = vsel(up, r_lo, r_hi), rc_out = vsel(up, r_hi, r_lo);
     const vm has_in = mand(flat, vgt(rc_in, zero)), has_out = mand(flat, vgt(rc_out, zero));
@@ -140,7 +141,8 @@ CYLRAY_INLINE void KFN(cone_rims)(KFN(lanes) *st, const cylray_kat_ *k, const cy
 CYLRAY_INLINE void KFN(cone_tips)(KFN(lanes) *st, const cylray_kat_ *k, const cylray_kflags_ F,
                                   vf slab_in, vf slab_out)
 {
-    if (!F.tiny) /* (a tip is a tiny end: cylray_cone_tiny_) */
+    if (!F.tiny && !F.round) /* (a tip is a tiny end: cylray_cone_tiny_; or a round
+                                * cone's point end) */
         return;
     const vf zero = vzero();
     const vf kap = KFN(both_in)(k, F, offsetof(cylray_prepared, kap), CYLRAY_LF_KAP);
