@@ -8,9 +8,10 @@
 
 cylray_status prepare_case(cylray_prepared *p, const ref_case *rc)
 {
-    return rc->sphere ? cylray_prepare_sphere(p, &rc->sph)
-           : rc->cone ? cylray_prepare_cone(p, &rc->con)
-                      : cylray_prepare(p, &rc->c.cyl);
+    return rc->sphere  ? cylray_prepare_sphere(p, &rc->sph)
+           : rc->cone  ? cylray_prepare_cone(p, &rc->con)
+           : rc->round ? cylray_prepare_round_cone(p, &rc->rnd)
+                       : cylray_prepare(p, &rc->c.cyl);
 }
 
 /* What the cases of a sphere or cone category need of their shape's generator and
@@ -66,6 +67,23 @@ static void cone_band(const ref_case *rc, unsigned flags, cylref_band *out)
 }
 static const shape_gen cones = {sizeof(congen_case), cone_make, cone_case, cone_band};
 
+static void round_make(int cat, uint64_t seed, size_t n, void *out, int shared)
+{
+    (shared ? rcgen_make_shared : rcgen_make)(cat - CAT_ROUND, seed, n, out);
+}
+static void round_case(ref_case *rc, const void *gv)
+{
+    const rcgen_case *g = gv;
+    rc->round = 1;
+    rc->rnd = g->rc;
+    ray_of(rc, g->o, g->d, g->tmin, g->tmax);
+}
+static void round_band(const ref_case *rc, unsigned flags, cylref_band *out)
+{
+    rcref_band_eval(&rc->rnd, rc->c.o, rc->c.d, rc->c.tmin, rc->c.tmax, flags, out);
+}
+static const shape_gen rounds = {sizeof(rcgen_case), round_make, round_case, round_band};
+
 /* A sphere or cone category's cases: n_packet of their own, then one shared shape per
  * stream length, each with its two bands (plain and culling). */
 static ref_case *make_shape_cases(const shape_gen *sg, int cat, uint64_t seed, size_t n_packet,
@@ -114,6 +132,8 @@ ref_case *make_cases(int cat, uint64_t seed, size_t n_packet, const size_t *leng
         return make_shape_cases(&spheres, cat, seed, n_packet, lengths, n_lengths, total);
     if (cat_is_cone(cat))
         return make_shape_cases(&cones, cat, seed, n_packet, lengths, n_lengths, total);
+    if (cat_is_round(cat))
+        return make_shape_cases(&rounds, cat, seed, n_packet, lengths, n_lengths, total);
     size_t ns = 0, longest = n_packet;
     for (size_t i = 0; i < n_lengths; i++) {
         ns += lengths[i];

@@ -12,6 +12,7 @@
 #include "conref.h"
 #include "cylref.h"
 #include "gen.h"
+#include "rcgen.h"
 #include "sphgen.h"
 #include "sphref.h"
 
@@ -36,18 +37,24 @@
 
 /* Categories: the cylinder generators' (gen.h), the fixed regression cases (regress.c),
  * then the sphere generators' (sphgen.h), CAT_SPHERE + SPHGEN_*, then the cone
- * generators' (congen.h), CAT_CONE + CONGEN_*. */
+ * generators' (congen.h), CAT_CONE + CONGEN_*, then the round cone generators'
+ * (rcgen.h), CAT_ROUND + RCGEN_*. */
 #define CAT_REGRESS CYLGEN_COUNT
 #define CAT_SPHERE (CYLGEN_COUNT + 1)
 #define CAT_CONE (CAT_SPHERE + SPHGEN_COUNT)
-#define CAT_COUNT (CAT_CONE + CONGEN_COUNT)
+#define CAT_ROUND (CAT_CONE + CONGEN_COUNT)
+#define CAT_COUNT (CAT_ROUND + RCGEN_COUNT)
 static inline int cat_is_sphere(int category)
 {
     return category >= CAT_SPHERE && category < CAT_CONE;
 }
 static inline int cat_is_cone(int category)
 {
-    return category >= CAT_CONE && category < CAT_COUNT;
+    return category >= CAT_CONE && category < CAT_ROUND;
+}
+static inline int cat_is_round(int category)
+{
+    return category >= CAT_ROUND && category < CAT_COUNT;
 }
 const char *cat_name(int category);
 int cat_find(const char *name); /* -1 when unknown */
@@ -69,6 +76,8 @@ typedef struct ref_case {
     cylray_sphere sph;
     int cone; /* the shape is con, c.cyl is unused */
     cylray_cone con;
+    int round; /* the shape is rnd, c.cyl is unused */
+    cylray_round_cone rnd;
     cylref_band band[2]; /* [0]: flags without CULL_BACK, [1]: with */
     int index;           /* within its category's case list */
 } ref_case;

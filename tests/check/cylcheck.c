@@ -160,7 +160,7 @@ int main(int argc, char **argv)
             continue;
         size_t total, npk = opt.n, nl = n_lengths;
         const size_t *ls = lengths;
-        if (cat_is_sphere(cat) || cat_is_cone(cat)) {
+        if (cat_is_sphere(cat) || cat_is_cone(cat) || cat_is_round(cat)) {
             npk = opt.n / 4 / CYLGEN_BATCH * CYLGEN_BATCH;
             npk = npk ? npk : CYLGEN_BATCH;
             ls = opt.quick ? sphere_quick : sphere_full;

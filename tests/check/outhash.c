@@ -6,9 +6,10 @@
  * Per path: 300 random cylinder sets (every kind, general and coordinate axes, caps on
  * one end, radii far from 1), rays with tiny, huge and scaled directions, NaN and
  * infinite lanes, partial masks; packets of 4, 8 and 16, streams of lengths 1-64 and
- * 200, leaves of 4, 8 and 16; intersect and occluded; all 32 flag sets. Every output
- * array is hashed whole (what a kernel must leave untouched as well as what it writes),
- * with the returned masks and counts.
+ * 200, leaves of 4, 8 and 16; intersect and occluded; all 32 flag sets; then 100
+ * spheres, cones and round cones made from such cylinders, their packets and streams.
+ * Every output array is hashed whole (what a kernel must leave untouched as well as
+ * what it writes), with the returned masks and counts.
  *
  *     outhash [--no-fast] [--fast-plain] [CASES]
  *         prints "isa hash" per path the CPU runs, then "all hash"; --no-fast leaves
@@ -207,6 +208,53 @@ LEAF(4)
 LEAF(8)
 LEAF(16)
 
+/* The other shapes, each prepared from a random cylinder's numbers (its center and
+ * axis as the endpoints, its radius, a second radius and its flags) and met by rays
+ * aimed at it: a sphere, a cone and a round cone, their packets and streams. */
+static void other_shapes(const cylray_kernels *k, int cases, int no_fast, int fast_plain)
+{
+    static soa s;
+    for (int c = 0; c < cases; c++) {
+        cylray_cylinder cyl;
+        random_cylinder(&cyl);
+        if (!(cyl.half_height < INFINITY))
+            cyl.half_height = 2.0f;
+        const float r1 = rnd() % 5 == 0 ? 0.0f : cyl.radius * unif(0.05f, 1.5f);
+        cylray_prepared p[3];
+        const cylray_sphere sph = {{cyl.center[0], cyl.center[1], cyl.center[2]}, cyl.radius};
+        cylray_cone cone = {.r0 = cyl.radius, .r1 = r1, .flags = cyl.flags};
+        for (int j = 0; j < 3; j++) {
+            cone.p0[j] = cyl.center[j] - cyl.axis[j] * cyl.half_height;
+            cone.p1[j] = cyl.center[j] + cyl.axis[j] * cyl.half_height;
+        }
+        const cylray_round_cone rc = {{cone.p0[0], cone.p0[1], cone.p0[2]},
+                                      {cone.p1[0], cone.p1[1], cone.p1[2]},
+                                      cone.r0,
+                                      rnd() % 4 == 0 ? cone.r0 : cone.r1,
+                                      cone.flags};
+        const int ok[3] = {cylray_prepare_sphere(&p[0], &sph) == CYLRAY_OK,
+                           cylray_prepare_cone(&p[1], &cone) == CYLRAY_OK,
+                           cylray_prepare_round_cone(&p[2], &rc) == CYLRAY_OK};
+        const size_t n = c % 4 == 0 ? MAXN : 1 + (size_t)(rnd() % 64);
+        fill(&s, &cyl, MAXN);
+        const uint32_t active = rnd() % 3 == 0 ? rnd() : 0xffffffffu;
+        for (int sh = 0; sh < 3; sh++) {
+            hash_u((uint64_t)ok[sh]);
+            if (!ok[sh])
+                continue;
+            for (unsigned fl = 0; fl <= CYLRAY_FLAGS_ALL; fl++) {
+                if (no_fast && (fl & CYLRAY_FAST))
+                    continue;
+                const unsigned flags = fast_plain ? fl & ~CYLRAY_FAST : fl;
+                packet4(k, &p[sh], &s, active, flags);
+                packet8(k, &p[sh], &s, active, flags);
+                packet16(k, &p[sh], &s, active, flags);
+                stream(k, &p[sh], &s, n, flags);
+            }
+        }
+    }
+}
+
 int main(int argc, char **argv)
 {
     int cases = 300, no_fast = 0, fast_plain = 0;
@@ -252,6 +300,7 @@ int main(int argc, char **argv)
                 leaf16(k, cyl, count, &s, flags);
             }
         }
+        other_shapes(k, cases / 3, no_fast, fast_plain);
         printf("%-7s %016llx\n", k->name, (unsigned long long)hash_state);
         all = (all ^ hash_state) * 0x100000001b3ull;
     }

@@ -17,6 +17,7 @@ const char *cat_name(int category)
     return category == CAT_REGRESS   ? "regress"
            : cat_is_sphere(category) ? sphgen_category_name(category - CAT_SPHERE)
            : cat_is_cone(category)   ? congen_category_name(category - CAT_CONE)
+           : cat_is_round(category)  ? rcgen_category_name(category - CAT_ROUND)
                                      : cylgen_category_name(category);
 }
 
@@ -27,6 +28,9 @@ int cat_find(const char *name)
     int k = congen_category_find(name);
     if (k >= 0)
         return CAT_CONE + k;
+    k = rcgen_category_find(name);
+    if (k >= 0)
+        return CAT_ROUND + k;
     int s = sphgen_category_find(name);
     return s >= 0 ? CAT_SPHERE + s : cylgen_category_find(name);
 }
@@ -129,7 +133,7 @@ static void cones_report(void)
         for (int m = 0; m < MODE_COUNT; m++) {
             stat_cell all = {0};
             long unexc = 0, beyond = 0;
-            for (int cat = CAT_CONE; cat < CAT_COUNT; cat++) {
+            for (int cat = CAT_CONE; cat < CAT_ROUND; cat++) {
                 const stat_cell *s = &cells[isa][cat][m];
                 unexc += s->hm_unexcused + s->part_unexcused;
                 beyond += s->t_beyond;

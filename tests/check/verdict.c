@@ -45,7 +45,12 @@ void print_case(const ref_case *rc, unsigned flags)
 {
     const cylgen_case *c = &rc->c;
     const cylray_cylinder *y = &c->cyl;
-    if (rc->cone)
+    if (rc->round)
+        printf("    round cone: p0 {%a, %a, %a} p1 {%a, %a, %a} r0 %a r1 %a flags %#x\n",
+               (double)rc->rnd.p0[0], (double)rc->rnd.p0[1], (double)rc->rnd.p0[2],
+               (double)rc->rnd.p1[0], (double)rc->rnd.p1[1], (double)rc->rnd.p1[2],
+               (double)rc->rnd.r0, (double)rc->rnd.r1, rc->rnd.flags);
+    else if (rc->cone)
         printf("    cone: p0 {%a, %a, %a} p1 {%a, %a, %a} r0 %a r1 %a flags %#x\n",
                (double)rc->con.p0[0], (double)rc->con.p0[1], (double)rc->con.p0[2],
                (double)rc->con.p1[0], (double)rc->con.p1[1], (double)rc->con.p1[2],
@@ -119,6 +124,61 @@ void fail_memory(const lane_ctx *lc, const ref_case *rc, const char *fmt, ...)
     print_repro(lc, rc);
 }
 
+/* A round cone's: a cap's from its sphere's center to the kernel's point, the side's
+ * the tangent cone's gradient there (the cone through p0 and p1 with radii r_i /
+ * cos alpha, section "Round cones" of docs/design.md), as a cone's. */
+static double round_normal_of(const ref_case *rc, const lane_out *o, int ff, double n[3])
+{
+    const cylgen_case *c = &rc->c;
+    const cylray_round_cone *q = &rc->rnd;
+    double u[3], x[3], L = 0, z = 0, ww = 0, td = 0, l2 = 0;
+    for (int k = 0; k < 3; k++) {
+        u[k] = (double)q->p1[k] - q->p0[k];
+        L += u[k] * u[k];
+    }
+    L = sqrt(L);
+    const double dr = (double)q->r1 - q->r0, ca = sqrt((L - fabs(dr)) * (L + fabs(dr))) / L;
+    const double R0 = q->r0 / ca, kk = dr / ca / L;
+    const int part = o->part & CYLRAY_PART_MASK;
+    const float *pc = part == CYLRAY_CAP_HI ? q->p1 : q->p0;
+    for (int k = 0; k < 3; k++) {
+        u[k] /= L;
+        const double w = (double)c->o[k] - pc[k];
+        x[k] = w + (double)o->t * c->d[k];
+        z += x[k] * u[k];
+        ww += w * w;
+        td += (double)o->t * c->d[k] * ((double)o->t * c->d[k]);
+    }
+    const double rz = fabs(R0 + kk * z);
+    for (int k = 0; k < 3; k++) {
+        n[k] = part == CYLRAY_SIDE ? x[k] - z * u[k] - rz * kk * u[k] : x[k];
+        l2 += n[k] * n[k];
+    }
+    const double len = sqrt(l2);
+    const double sg = ((o->part & CYLRAY_BACKFACE) && ff) ? -1 / len : 1 / len;
+    for (int k = 0; k < 3; k++)
+        n[k] *= sg;
+    /* The kernels place the spheres and the cone from the center (p0 + p1) / 2 rounded
+     * to float, as the band allows t (tests/ref/rcref.h); and the cone's angle turns
+     * fast close to nesting (cos alpha small): 2 ulps of a.a - dr^2 turn the side's
+     * normal by about 2^-23 (L^2 + dr^2) / (L^2 cos alpha). */
+    double cmax = 0, cerr = 0;
+    for (int k = 0; k < 3; k++) {
+        const double ck = 0.5 * ((double)q->p0[k] + q->p1[k]);
+        cmax = fmax(cmax, fabs(ck));
+        cerr += (double)(float)ck != ck;
+    }
+    const double un = 4 * cylref_float_ulp(fmax(sqrt(ww), sqrt(td))) +
+                      (cerr ? 2 * cylref_float_ulp(cmax) : 0);
+    if (part != CYLRAY_SIDE)
+        return asin(fmin(1, un / len));
+    /* The side's gradient reads the radius at the point's axial level, r(z): a point
+     * off by un along the axis moves it by |k| un (k the slope, 1 / cos alpha large
+     * close to nesting). */
+    const double turn = 0x1p-23 * (L * L + dr * dr) / (L * L * ca);
+    return 2 * asin(fmin(1, un * (1 + fabs(kk)) / len)) + turn;
+}
+
 /* The normal of the kernel's own part at the kernel's t, in double: what an excused
  * part disagreement (or an excused hit on an exact miss) is held to. Returns how far
  * that normal may legitimately turn: a side point within a few ulps of |w| and |t d|
@@ -143,6 +203,8 @@ static double normal_of(const ref_case *rc, const lane_out *o, int ff, double n[
         const double u = 4 * cylref_float_ulp(fmax(sqrt(ww), sqrt(td)));
         return asin(fmin(1, u / len));
     }
+    if (rc->round)
+        return round_normal_of(rc, o, ff, n);
     if (rc->cone) {
         /* A cone's side: the gradient of |x_perp|^2 - r(z)^2 at the kernel's point,
          * x_perp - r(z) k u; its discs: -+u. */

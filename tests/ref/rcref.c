@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* rcref.c - the exact ray/round-cone intersection (its tolerance band: rcref_band.c).
  *
- * The derivation (docs/round_cone_ref.md has it as prose).
+ * The derivation (docs/design.md section 11 has it as prose).
  *
  * Let a = p1 - p0, L = |a|, u = a / L, dr = r1 - r0, k = dr / L, and for a point x let
  * z = (x - p0).u be its axial coordinate and rho = |x_perp| its distance from the axis.

@@ -1,9 +1,9 @@
 /* SPDX-License-Identifier: MIT */
 /* rcref.h - the exact ray/round-cone reference (binary128), written apart from the kernels
- * (which do not have this shape yet; they are to be written against it).
+ * (kernel/shape/round_cone.h and the tangent frustum are judged against it).
  *
  * A round cone is the convex hull of the spheres (p0, r0) and (p1, r1) (docs/design.md
- * section 9; the derivation of its parts: rcref.c and docs/round_cone_ref.md). Its
+ * section 9; the derivation of its parts: rcref.c and docs/design.md section 11). Its
  * surface is the cone tangent to both spheres between the two tangent circles (part
  * CYLRAY_SIDE) and the part of each sphere beyond its tangent circle (CYLRAY_CAP_LO for
  * sphere 0, CYLRAY_CAP_HI for sphere 1); a cap whose flag (CYLRAY_CAPPED_LO / _HI) is not
@@ -21,13 +21,8 @@
 extern "C" {
 #endif
 
-/* The layout of docs/design.md section 9's cylray_round_cone (the public type arrives
- * with the kernels; until then the reference declares its own, member for member). */
-typedef struct rcref_round_cone {
-    float p0[3], p1[3];
-    float r0, r1;
-    unsigned flags; /* CYLRAY_CAPPED, CYLRAY_CAPPED_LO, CYLRAY_CAPPED_HI or 0 */
-} rcref_round_cone;
+/* The reference's name for cylray.h's round cone. */
+typedef cylray_round_cone rcref_round_cone;
 
 /* The round cone's row (cylref.h):
  *   rcref_valid       coordinates of p0 and p1 finite with |x| <= 2^62; each radius 0
