@@ -29,7 +29,7 @@
 #            step reuses this build
 #   aarch64  cross-compiled for AArch64 (NEON), -O2, gcc's ASan + UBSan, under qemu-user
 #   tsan     clang with ThreadSanitizer, the thread test only
-#   fuzz     libFuzzer on the asan build's target: FUZZ_RUNS inputs (20000) from seed
+#   fuzz     libFuzzer on the asan build's target: FUZZ_RUNS inputs (6000) from seed
 #            FUZZ_SEED (1), so that a commit's result does not depend on the clock;
 #            FUZZ_SECONDS (120) caps the time. FUZZ_SEED=0 seeds from the clock, and
 #            tests/fuzz/run-long.sh explores for as long as one likes.
@@ -61,7 +61,7 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 ALL_CONFIGS=(gcc-release clang-release estimates asan aarch64 tsan fuzz embree-extra)
 CYLRAY_EMBREE_PREFIXES=${CYLRAY_EMBREE_PREFIXES:-}
 FUZZ_SECONDS=${FUZZ_SECONDS:-120}
-FUZZ_RUNS=${FUZZ_RUNS:-20000}
+FUZZ_RUNS=${FUZZ_RUNS:-6000}
 FUZZ_SEED=${FUZZ_SEED:-1}
 CI=${CI:-}
 
