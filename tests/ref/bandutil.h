@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: MIT */
 /* bandutil.h - what the three shapes' references (band.c, sphref.c, conref.c and
- * conref_band.c) share: the ray they take, the sequence of their exact answer, and what
- * their bands measure and keep their outcomes with. */
+ * conref_band.c, and the round cone's rcref_band.c) share: the ray they take,
+ * the sequence of their exact answer, and what their bands measure and keep their
+ * outcomes with. */
 #ifndef CYLREF_BANDUTIL_H
 #define CYLREF_BANDUTIL_H
 
@@ -133,6 +134,58 @@ static inline void ref_perturb_ray(cylq w[3], cylq d[3], const cylq *step, const
     for (int i = 0; i < 3; i++) {
         w[i] += step[i] * k[i];
         d[i] += step[3 + i] * k[3 + i];
+    }
+}
+
+/* A side's quadratic F(t) and its half derivative F1, with the reach S and S1 of the
+ * box's inputs at t: what ref_reach_scan samples. */
+typedef struct {
+    cylq F, F1, S, S1;
+} ref_reach;
+
+/* A ray that runs beside a side over a stretch (along a generator line, within the box's
+ * reach of the surface) has no isolated roots: wherever |F(t)| <= S(t) some input of the
+ * box puts a root at t, to first order. Samples [ta, tb] at 512 points (at(ctx, t, &x));
+ * each run of two or more samples within reach is an outcome of the side, facing either
+ * way where F1 is within reach of 0 too, unless keep(ctx, lo) (NULL: always) says a
+ * candidate sure to be taken comes first; the back face only where back. Isolated roots
+ * are runs of one sample at most and keep their own bands. */
+static inline void ref_reach_scan(ref_set *set, cylq ta, cylq tb,
+                                  void (*at)(const void *ctx, cylq t, ref_reach *x),
+                                  int (*keep)(const void *ctx, double lo), const void *ctx,
+                                  int back)
+{
+    enum { N = 512 };
+    if (!(ta < tb) || !q_isfinite(ta) || !q_isfinite(tb))
+        return;
+    const cylq h = (tb - ta) / (N - 1);
+    int run = 0, both = 0, fsign = 0;
+    cylq first = 0;
+    for (int i = 0; i <= N; i++) {
+        const cylq t = ta + h * i;
+        int in = 0;
+        if (i < N) {
+            ref_reach x;
+            at(ctx, t, &x);
+            in = q_abs(x.F) <= x.S;
+            if (in) {
+                if (!run)
+                    first = t, both = 0, fsign = 0;
+                both |= q_abs(x.F1) <= x.S1;
+                fsign |= x.F1 < 0 ? 1 : 2;
+                run++;
+            }
+        }
+        if (!in && run) {
+            const double lo = (double)(first - h), hi = (double)t;
+            if (run >= 2 && (!keep || keep(ctx, lo))) {
+                if (both || (fsign & 1))
+                    ref_add_range(set, CYLRAY_SIDE, lo, hi);
+                if ((both || (fsign & 2)) && back)
+                    ref_add_range(set, CYLRAY_SIDE | CYLRAY_BACKFACE, lo, hi);
+            }
+            run = 0;
+        }
     }
 }
 
