@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* bandutil.h - what the three shapes' references (band.c, sphref.c, conref.c and
- * conref_band.c, and the round cone's rcref_band.c) share: the ray they take,
+ * conref_band.c, and the round cone's rcref.c and rcref_band.c) share: the ray they take,
  * the sequence of their exact answer, and what their bands measure and keep their
  * outcomes with. */
 #ifndef CYLREF_BANDUTIL_H
@@ -134,6 +134,19 @@ static inline void ref_perturb_ray(cylq w[3], cylq d[3], const cylq *step, const
     for (int i = 0; i < 3; i++) {
         w[i] += step[i] * k[i];
         d[i] += step[3 + i] * k[3 + i];
+    }
+}
+
+/* The inputs of a shape between two ends p0 and p1 (the cone's, the round cone's), in
+ * binary128: the origin from the ends' midpoint w, the direction d and the axis a = p1 - p0. */
+static inline void ref_axis_in(const float p0[3], const float p1[3], const float o[3],
+                               const float d[3], cylq w[3], cylq dq[3], cylq a[3])
+{
+    for (int k = 0; k < 3; k++) {
+        const cylq ctr = ((cylq)p0[k] + (cylq)p1[k]) / 2;
+        w[k] = (cylq)o[k] - ctr;
+        dq[k] = d[k];
+        a[k] = (cylq)p1[k] - (cylq)p0[k];
     }
 }
 

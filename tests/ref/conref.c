@@ -207,12 +207,7 @@ void conref_normal_(const crec *r, int kand, int ff, double n[3])
 
 void conref_in_(const cylray_cone *c, const float o[3], const float d[3], cin_q *q)
 {
-    for (int k = 0; k < 3; k++) {
-        const cylq ctr = ((cylq)c->p0[k] + (cylq)c->p1[k]) / 2;
-        q->w[k] = (cylq)o[k] - ctr;
-        q->d[k] = d[k];
-        q->a[k] = (cylq)c->p1[k] - (cylq)c->p0[k];
-    }
+    ref_axis_in(c->p0, c->p1, o, d, q->w, q->d, q->a);
     q->r0 = c->r0;
     q->r1 = c->r1;
 }

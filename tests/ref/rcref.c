@@ -90,12 +90,7 @@ static void cross3(const cylq a[3], const cylq b[3], cylq c[3])
 
 void rcref_in_(const rcref_round_cone *s, const float o[3], const float d[3], rin_q *q)
 {
-    for (int k = 0; k < 3; k++) {
-        const cylq ctr = ((cylq)s->p0[k] + (cylq)s->p1[k]) / 2;
-        q->w[k] = (cylq)o[k] - ctr;
-        q->d[k] = d[k];
-        q->a[k] = (cylq)s->p1[k] - (cylq)s->p0[k];
-    }
+    ref_axis_in(s->p0, s->p1, o, d, q->w, q->d, q->a);
     q->r0 = s->r0;
     q->r1 = s->r1;
     q->flags = s->flags;
