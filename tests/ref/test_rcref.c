@@ -479,16 +479,7 @@ static void test_band(void)
                     if (!v && hit)
                         dworst = fmax(dworst, ub);
                 }
-                /* On a stable hit: 16 ulps past the band, a miss and the other face are
-                 * all caught. */
-                if (b.exact.hit && !b.decision_unstable) {
-                    const float late = (float)(b.t_hi + 16 * cylref_float_ulp(b.t_hi));
-                    caught_of++;
-                    caught += rcref_judge(&b, 1, b.exact.part, late, &ub) == 0 && ub > 8;
-                    caught += rcref_judge(&b, 0, 0, 0, &ub) == 1;
-                    caught += rcref_judge(&b, 1, b.exact.part ^ CYLRAY_BACKFACE,
-                                          (float)b.exact.t, &ub) == 2;
-                }
+                caught += ref_catch_defects(rcref_judge, &b, &caught_of);
             }
         }
         printf("rc band %-13s %3d/%d hits, %3d unstable (%d hit or miss), %d of %d answers "
