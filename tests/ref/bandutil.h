@@ -46,11 +46,19 @@ static inline uint32_t ref_fbits(float f)
     return u;
 }
 
+/* c = a x b, in double. */
+static inline void ref_cross3(const double a[3], const double b[3], double c[3])
+{
+    c[0] = a[1] * b[2] - a[2] * b[1];
+    c[1] = a[2] * b[0] - a[0] * b[2];
+    c[2] = a[0] * b[1] - a[1] * b[0];
+}
+
 /* The angle between two directions, accurate near 0 and near pi. */
 static inline double ref_angle3(const double a[3], const double b[3])
 {
-    double c[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
-                   a[0] * b[1] - a[1] * b[0]};
+    double c[3];
+    ref_cross3(a, b, c);
     return atan2(sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]),
                  a[0] * b[0] + a[1] * b[1] + a[2] * b[2]);
 }

@@ -541,9 +541,7 @@ static int seam_at(const rcref_round_cone *rc, int end, double phi, rc_seam *f)
     }
     for (int k = 0; k < 3; k++)
         e1[k] /= sqrt(l1);
-    e2[0] = u[1] * e1[2] - u[2] * e1[1];
-    e2[1] = u[2] * e1[0] - u[0] * e1[2];
-    e2[2] = u[0] * e1[1] - u[1] * e1[0];
+    ref_cross3(u, e1, e2);
     const double k = dr / L, nr = sqrt((L - fabs(dr)) * (L + fabs(dr))) / L;
     for (int j = 0; j < 3; j++) {
         const double radial = cos(phi) * e1[j] + sin(phi) * e2[j];
