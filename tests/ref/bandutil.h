@@ -158,6 +158,40 @@ static inline void ref_axis_in(const float p0[3], const float p1[3], const float
     }
 }
 
+/* The steps of a shape between two ends (ref_axis_in's inputs w, d, a, then r0 and r1:
+ * step[REF_AXIS_W..]): w's, d's and a's 2 ulps norm-wise (ref_vec_step), w's grown by an
+ * ulp of the midpoint's largest coordinate where the midpoint (p0 + p1) / 2 is not a float
+ * (w is o less it); the radii's an ulp each. */
+enum {
+    REF_AXIS_W = 0,
+    REF_AXIS_D = 3,
+    REF_AXIS_A = 6,
+    REF_AXIS_R0 = 9,
+    REF_AXIS_R1 = 10,
+    REF_AXIS_COUNT = 11
+};
+static inline void ref_axis_steps(const float p0[3], const float p1[3], float r0, float r1,
+                                  const cylq w[3], const cylq d[3], const cylq a[3],
+                                  cylq step[REF_AXIS_COUNT])
+{
+    int center_float = 1;
+    cylq cmax = 0;
+    for (int k = 0; k < 3; k++) {
+        const cylq ctr = ((cylq)p0[k] + (cylq)p1[k]) / 2;
+        center_float &= (cylq)(float)ctr == ctr;
+        cmax = q_max(cmax, q_abs(ctr));
+    }
+    for (int k = 0; k < 3; k++) {
+        step[REF_AXIS_W + k] = ref_vec_step(w);
+        if (!center_float)
+            step[REF_AXIS_W + k] += (cylq)ref_float_ulp((double)cmax);
+        step[REF_AXIS_D + k] = ref_vec_step(d);
+        step[REF_AXIS_A + k] = ref_vec_step(a);
+    }
+    step[REF_AXIS_R0] = (cylq)ref_float_ulp(r0);
+    step[REF_AXIS_R1] = (cylq)ref_float_ulp(r1);
+}
+
 /* A side's quadratic F(t) and its half derivative F1, with the reach S and S1 of the
  * box's inputs at t: what ref_reach_scan samples. */
 typedef struct {

@@ -14,6 +14,9 @@
 /* ---- the band ----------------------------------------------------------------------- */
 
 enum { IN_W = 0, IN_D = 3, IN_A = 6, IN_R0 = 9, IN_R1 = 10, IN_COUNT = 11 };
+_Static_assert((int)IN_A == REF_AXIS_A && (int)IN_R1 == REF_AXIS_R1 &&
+                   (int)IN_COUNT == REF_AXIS_COUNT,
+               "the inputs as ref_axis_steps's");
 
 static void c_perturb(const cin_q *base, const cylq step[IN_COUNT],
                       const signed char k[IN_COUNT], cin_q *out)
@@ -148,23 +151,8 @@ void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], 
     const int ff = (flags & CYLRAY_FACE_FORWARD) != 0;
     cin_q base;
     conref_in_(c, o, d, &base);
-    int center_float = 1;
-    cylq cmax = 0;
-    for (int k = 0; k < 3; k++) {
-        const cylq ctr = ((cylq)c->p0[k] + (cylq)c->p1[k]) / 2;
-        center_float &= (cylq)(float)ctr == ctr;
-        cmax = q_max(cmax, q_abs(ctr));
-    }
     cylq step[IN_COUNT];
-    for (int k = 0; k < 3; k++) {
-        step[IN_W + k] = ref_vec_step(base.w);
-        if (!center_float)
-            step[IN_W + k] += (cylq)ref_float_ulp((double)cmax);
-        step[IN_D + k] = ref_vec_step(base.d);
-        step[IN_A + k] = ref_vec_step(base.a);
-    }
-    step[IN_R0] = (cylq)ref_float_ulp(c->r0);
-    step[IN_R1] = (cylq)ref_float_ulp(c->r1);
+    ref_axis_steps(c->p0, c->p1, c->r0, c->r1, base.w, base.d, base.a, step);
 
     crec r0, r;
     conref_eval_(&base, tmin, tmax, &r0);

@@ -18,6 +18,9 @@
 #include <string.h>
 
 enum { IN_W = 0, IN_D = 3, IN_A = 6, IN_R0 = 9, IN_R1 = 10, IN_COUNT = 11 };
+_Static_assert((int)IN_A == REF_AXIS_A && (int)IN_R1 == REF_AXIS_R1 &&
+                   (int)IN_COUNT == REF_AXIS_COUNT,
+               "the inputs as ref_axis_steps's");
 /* the samples: one per input, the vertices, each input alone at +-1/4 and +-1/2 */
 enum { N_GRAD = IN_COUNT, N_VTX = 2 + REF_RANDOM_VERTICES };
 /* where each input's step the other way (-2) starts: the first-order reach of a quantity is
@@ -400,23 +403,8 @@ void rcref_band_eval(const rcref_round_cone *s, const float o[3], const float d[
     rin_q qs[N_SAMPLES];
     rcref_in_(s, o, d, &qs[0]);
     const rin_q *base = &qs[0];
-    int center_float = 1;
-    cylq cmax = 0;
-    for (int k = 0; k < 3; k++) {
-        const cylq ctr = ((cylq)s->p0[k] + (cylq)s->p1[k]) / 2;
-        center_float &= (cylq)(float)ctr == ctr;
-        cmax = q_max(cmax, q_abs(ctr));
-    }
     cylq step[IN_COUNT];
-    for (int k = 0; k < 3; k++) {
-        step[IN_W + k] = ref_vec_step(base->w);
-        if (!center_float)
-            step[IN_W + k] += (cylq)ref_float_ulp((double)cmax);
-        step[IN_D + k] = ref_vec_step(base->d);
-        step[IN_A + k] = ref_vec_step(base->a);
-    }
-    step[IN_R0] = (cylq)ref_float_ulp(s->r0);
-    step[IN_R1] = (cylq)ref_float_ulp(s->r1);
+    ref_axis_steps(s->p0, s->p1, s->r0, s->r1, base->w, base->d, base->a, step);
 
     rrec r0;
     rcref_eval_(base, -1, tmin, tmax, &r0);
