@@ -145,6 +145,21 @@ static inline void ref_perturb_ray(cylq w[3], cylq d[3], const cylq *step, const
     }
 }
 
+/* 1 when a shape between two ends (the cone, the round cone) has ends and radii its
+ * reference takes (cylray.h): every coordinate of the ends within 2^62, each radius 0 or
+ * in 2^-60..2^62, not both 0. */
+static inline int ref_ends_ok(const float p0[3], const float p1[3], float r0, float r1)
+{
+    for (int k = 0; k < 3; k++)
+        if (!(fabsf(p0[k]) <= 0x1p62f) || !(fabsf(p1[k]) <= 0x1p62f))
+            return 0;
+    const float r[2] = {r0, r1};
+    for (int i = 0; i < 2; i++)
+        if (!(r[i] == 0 || (r[i] >= 0x1p-60f && r[i] <= 0x1p62f)))
+            return 0;
+    return !(r0 == 0 && r1 == 0);
+}
+
 /* The inputs of a shape between two ends p0 and p1 (the cone's, the round cone's), in
  * binary128: the origin from the ends' midpoint w, the direction d and the axis a = p1 - p0. */
 static inline void ref_axis_in(const float p0[3], const float p1[3], const float o[3],
