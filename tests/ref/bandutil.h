@@ -371,4 +371,18 @@ static inline void ref_band_keep_set(cylref_band *out, const ref_set *set, int e
         return 1;                                                                              \
     }
 
+/* A shape's band, prefix_band_eval (cylref.h's CYLREF_SHAPE_DECLARE), from its row: a
+ * band begun (ref_band_begin, valid(s)) is band(s, o, d, tmin, tmax, vflags, ff, out)'s
+ * to fill, vflags the flags its answer reads (the shape's closed ends, s->flags, and the
+ * call's culling), ff 1 for CYLRAY_FACE_FORWARD. */
+#define REF_BAND_DEFINE(prefix, shape_t, valid, band)                                          \
+    void prefix##_band_eval(const shape_t *s, const float o[3], const float d[3], float tmin,  \
+                            float tmax, unsigned flags, cylref_band *out)                      \
+    {                                                                                          \
+        if (!ref_band_begin(out, valid(s), o, d, tmin, tmax))                                  \
+            return;                                                                            \
+        band(s, o, d, tmin, tmax, s->flags | (flags & CYLRAY_CULL_BACK),                       \
+             (flags & CYLRAY_FACE_FORWARD) != 0, out);                                         \
+    }
+
 #endif

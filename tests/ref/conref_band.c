@@ -142,13 +142,9 @@ static void c_sample(c_box *b, const cin_q *q)
     }
 }
 
-void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], float tmin,
-                      float tmax, unsigned flags, cylref_band *out)
+static void cone_band(const cylray_cone *c, const float o[3], const float d[3], float tmin,
+                      float tmax, unsigned vflags, int ff, cylref_band *out)
 {
-    if (!ref_band_begin(out, conref_valid(c), o, d, tmin, tmax))
-        return;
-    const unsigned vflags = c->flags | (flags & CYLRAY_CULL_BACK);
-    const int ff = (flags & CYLRAY_FACE_FORWARD) != 0;
     cin_q base;
     conref_in_(c, o, d, &base);
     cylq step[IN_COUNT];
@@ -452,6 +448,8 @@ void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], 
     }
     out->n_spread = fmin(out->n_spread, 3.14159265358979323846); /* opposite at most */
 }
+
+REF_BAND_DEFINE(conref, cylray_cone, conref_valid, cone_band)
 
 int conref_judge(const cylref_band *b, int hit, int part, float t, double *ulps_beyond)
 {

@@ -393,13 +393,9 @@ static double turn_bound(const rrec *r, int x, const cylq step[IN_COUNT], double
     return move < xp ? 2 * asin(move / xp) : 3.14159265358979323846;
 }
 
-void rcref_band_eval(const rcref_round_cone *s, const float o[3], const float d[3], float tmin,
-                     float tmax, unsigned flags, cylref_band *out)
+static void rc_band(const rcref_round_cone *s, const float o[3], const float d[3], float tmin,
+                    float tmax, unsigned vflags, int ff, cylref_band *out)
 {
-    if (!ref_band_begin(out, rcref_valid(s), o, d, tmin, tmax))
-        return;
-    const unsigned vflags = s->flags | (flags & CYLRAY_CULL_BACK);
-    const int ff = (flags & CYLRAY_FACE_FORWARD) != 0;
     rin_q qs[N_SAMPLES];
     rcref_in_(s, o, d, &qs[0]);
     const rin_q *base = &qs[0];
@@ -478,6 +474,8 @@ void rcref_band_eval(const rcref_round_cone *s, const float o[3], const float d[
         out->n_spread = fmax(out->n_spread, turn_bound(&r0, x0, step, out->t_lo, out->t_hi));
     out->n_spread = fmin(out->n_spread, 3.14159265358979323846);
 }
+
+REF_BAND_DEFINE(rcref, rcref_round_cone, rcref_valid, rc_band)
 
 int rcref_judge(const cylref_band *b, int hit, int part, float t, double *ulps_beyond)
 {
