@@ -452,15 +452,8 @@ static void test_band(void)
                         (n[0] != 0 || n[1] != 0 || n[2] != 0) &&
                         !(ref_angle3(n, b.exact.n) <= b.n_spread + 1e-12))
                         nbad++;
-                    const int v = rcref_judge(&b, hit, part, t, &ub);
-                    if (v || ub > 0.5) {
-                        if (bad++ < 4)
-                            printf(
-                                "  %s #%d flags %u: inside the box %d t %.9g part %#x judged "
-                                "%d, %.3g ulps beyond (exact %d t %.9g part %#x)\n",
-                                rc_names[cat], i, fl, hit, (double)t, part, v, ub, b.exact.hit,
-                                b.exact.t, b.exact.part);
-                    }
+                    const int v = rc_judge_answer(&b, "inside the box", rc_names[cat], i, fl,
+                                                  hit, t, part, 0.5, &bad, &ub);
                     if (!v && hit)
                         worst = fmax(worst, ub);
                 }
@@ -468,14 +461,8 @@ static void test_band(void)
                     int part = 0;
                     float t = 0;
                     const int hit = rc_dbl_solve(c, fl, &t, &part);
-                    const int v = rcref_judge(&b, hit, part, t, &ub);
-                    if (v || ub > 1) {
-                        if (dbad++ < 4)
-                            printf("  %s #%d flags %u: double solver %d t %.9g part %#x judged "
-                                   "%d, %.3g ulps beyond (exact %d t %.9g part %#x)\n",
-                                   rc_names[cat], i, fl, hit, (double)t, part, v, ub,
-                                   b.exact.hit, b.exact.t, b.exact.part);
-                    }
+                    const int v = rc_judge_answer(&b, "double solver", rc_names[cat], i, fl,
+                                                  hit, t, part, 1, &dbad, &ub);
                     if (!v && hit)
                         dworst = fmax(dworst, ub);
                 }
