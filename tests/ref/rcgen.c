@@ -61,11 +61,7 @@ static void make_rc(int cat, cylgen_rng *r, rcref_round_cone *out)
         break;
     }
     case RCGEN_POINT:
-        if (gen_chance(r, 0.5))
-            r0 = 0;
-        else
-            r1 = 0;
-        L = fmax(L, 1.2 * fmax(r0, r1));
+        rcgen_point_end(gen_chance(r, 0.5), &r0, &r1, &L);
         break;
     case RCGEN_LONG:
         r1 = r0 * gen_uni(r, 0.8, 1.25);

@@ -76,11 +76,7 @@ void rc_make(int cat, uint64_t seed, int n, rc_case *out)
             r1 = r0;
             break;
         case RC_POINT:
-            if (f < 0.5)
-                r0 = 0;
-            else
-                r1 = 0;
-            L = fmax(L, 1.2 * fmax(r0, r1));
+            rcgen_point_end(f < 0.5, &r0, &r1, &L);
             break;
         case RC_NESTED:
             L = fabs(r1 - r0) * g * 0.99;
