@@ -14,7 +14,7 @@ cylray_status prepare_case(cylray_prepared *p, const ref_case *rc)
                        : cylray_prepare(p, &rc->c.cyl);
 }
 
-/* What the cases of a sphere or cone category need of their shape's generator and
+/* What the cases of a sphere, cone or round cone category need of their shape's generator and
  * reference: the generator cases are of `size` bytes each. */
 typedef struct {
     size_t size;
@@ -33,56 +33,30 @@ static void ray_of(ref_case *rc, const float o[3], const float d[3], float tmin,
     rc->c.tmax = tmax;
 }
 
-static void sphere_make(int cat, uint64_t seed, size_t n, void *out, int shared)
-{
-    (shared ? sphgen_make_shared : sphgen_make)(cat - CAT_SPHERE, seed, n, out);
-}
-static void sphere_case(ref_case *rc, const void *gv)
-{
-    const sphgen_case *g = gv;
-    rc->sphere = 1;
-    rc->sph = g->sph;
-    ray_of(rc, g->o, g->d, g->tmin, g->tmax);
-}
-static void sphere_band(const ref_case *rc, unsigned flags, cylref_band *out)
-{
-    sphref_band_eval(&rc->sph, rc->c.o, rc->c.d, rc->c.tmin, rc->c.tmax, flags, out);
-}
-static const shape_gen spheres = {sizeof(sphgen_case), sphere_make, sphere_case, sphere_band};
+/* A shape's row, name##s: its generator gen (gen##_make, gen##_make_shared, its cases
+ * gen##_case with the shape as member) from the category base on, its reference ref
+ * (ref##_band_eval), and the ref_case's flag that marks the shape and field that holds it. */
+#define SHAPE_GEN_DEFINE(name, gen, ref, member, flag, field, base)                            \
+    static void name##_make(int cat, uint64_t seed, size_t n, void *out, int shared)           \
+    {                                                                                          \
+        (shared ? gen##_make_shared : gen##_make)(cat - (base), seed, n, out);                 \
+    }                                                                                          \
+    static void name##_case(ref_case *rc, const void *gv)                                      \
+    {                                                                                          \
+        const gen##_case *g = gv;                                                              \
+        rc->flag = 1;                                                                          \
+        rc->field = g->member;                                                                 \
+        ray_of(rc, g->o, g->d, g->tmin, g->tmax);                                              \
+    }                                                                                          \
+    static void name##_band(const ref_case *rc, unsigned flags, cylref_band *out)              \
+    {                                                                                          \
+        ref##_band_eval(&rc->field, rc->c.o, rc->c.d, rc->c.tmin, rc->c.tmax, flags, out);     \
+    }                                                                                          \
+    static const shape_gen name##s = {sizeof(gen##_case), name##_make, name##_case, name##_band}
 
-static void cone_make(int cat, uint64_t seed, size_t n, void *out, int shared)
-{
-    (shared ? congen_make_shared : congen_make)(cat - CAT_CONE, seed, n, out);
-}
-static void cone_case(ref_case *rc, const void *gv)
-{
-    const congen_case *g = gv;
-    rc->cone = 1;
-    rc->con = g->cone;
-    ray_of(rc, g->o, g->d, g->tmin, g->tmax);
-}
-static void cone_band(const ref_case *rc, unsigned flags, cylref_band *out)
-{
-    conref_band_eval(&rc->con, rc->c.o, rc->c.d, rc->c.tmin, rc->c.tmax, flags, out);
-}
-static const shape_gen cones = {sizeof(congen_case), cone_make, cone_case, cone_band};
-
-static void round_make(int cat, uint64_t seed, size_t n, void *out, int shared)
-{
-    (shared ? rcgen_make_shared : rcgen_make)(cat - CAT_ROUND, seed, n, out);
-}
-static void round_case(ref_case *rc, const void *gv)
-{
-    const rcgen_case *g = gv;
-    rc->round = 1;
-    rc->rnd = g->rc;
-    ray_of(rc, g->o, g->d, g->tmin, g->tmax);
-}
-static void round_band(const ref_case *rc, unsigned flags, cylref_band *out)
-{
-    rcref_band_eval(&rc->rnd, rc->c.o, rc->c.d, rc->c.tmin, rc->c.tmax, flags, out);
-}
-static const shape_gen rounds = {sizeof(rcgen_case), round_make, round_case, round_band};
+SHAPE_GEN_DEFINE(sphere, sphgen, sphref, sph, sphere, sph, CAT_SPHERE);
+SHAPE_GEN_DEFINE(cone, congen, conref, cone, cone, con, CAT_CONE);
+SHAPE_GEN_DEFINE(round, rcgen, rcref, rc, round, rnd, CAT_ROUND);
 
 /* A sphere or cone category's cases: n_packet of their own, then one shared shape per
  * stream length, each with its two bands (plain and culling). */

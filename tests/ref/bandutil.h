@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: MIT */
 /* bandutil.h - what the three shapes' references (band.c, sphref.c, conref.c and
- * conref_band.c) share: the ray they take, the sequence of their exact answer, and what
- * their bands measure and keep their outcomes with. */
+ * conref_band.c, and the round cone's rcref.c and rcref_band.c) share: the ray they take,
+ * the sequence of their exact answer, and what their bands measure and keep their
+ * outcomes with. */
 #ifndef CYLREF_BANDUTIL_H
 #define CYLREF_BANDUTIL_H
 
@@ -45,11 +46,19 @@ static inline uint32_t ref_fbits(float f)
     return u;
 }
 
+/* c = a x b, in double. */
+static inline void ref_cross3(const double a[3], const double b[3], double c[3])
+{
+    c[0] = a[1] * b[2] - a[2] * b[1];
+    c[1] = a[2] * b[0] - a[0] * b[2];
+    c[2] = a[0] * b[1] - a[1] * b[0];
+}
+
 /* The angle between two directions, accurate near 0 and near pi. */
 static inline double ref_angle3(const double a[3], const double b[3])
 {
-    double c[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
-                   a[0] * b[1] - a[1] * b[0]};
+    double c[3];
+    ref_cross3(a, b, c);
     return atan2(sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]),
                  a[0] * b[0] + a[1] * b[1] + a[2] * b[2]);
 }
@@ -133,6 +142,120 @@ static inline void ref_perturb_ray(cylq w[3], cylq d[3], const cylq *step, const
     for (int i = 0; i < 3; i++) {
         w[i] += step[i] * k[i];
         d[i] += step[3 + i] * k[3 + i];
+    }
+}
+
+/* 1 when a shape between two ends (the cone, the round cone) has ends and radii its
+ * reference takes (cylray.h): every coordinate of the ends within 2^62, each radius 0 or
+ * in 2^-60..2^62, not both 0. */
+static inline int ref_ends_ok(const float p0[3], const float p1[3], float r0, float r1)
+{
+    for (int k = 0; k < 3; k++)
+        if (!(fabsf(p0[k]) <= 0x1p62f) || !(fabsf(p1[k]) <= 0x1p62f))
+            return 0;
+    const float r[2] = {r0, r1};
+    for (int i = 0; i < 2; i++)
+        if (!(r[i] == 0 || (r[i] >= 0x1p-60f && r[i] <= 0x1p62f)))
+            return 0;
+    return !(r0 == 0 && r1 == 0);
+}
+
+/* The inputs of a shape between two ends p0 and p1 (the cone's, the round cone's), in
+ * binary128: the origin from the ends' midpoint w, the direction d and the axis a = p1 - p0. */
+static inline void ref_axis_in(const float p0[3], const float p1[3], const float o[3],
+                               const float d[3], cylq w[3], cylq dq[3], cylq a[3])
+{
+    for (int k = 0; k < 3; k++) {
+        const cylq ctr = ((cylq)p0[k] + (cylq)p1[k]) / 2;
+        w[k] = (cylq)o[k] - ctr;
+        dq[k] = d[k];
+        a[k] = (cylq)p1[k] - (cylq)p0[k];
+    }
+}
+
+/* The steps of a shape between two ends (ref_axis_in's inputs w, d, a, then r0 and r1:
+ * step[REF_AXIS_W..]): w's, d's and a's 2 ulps norm-wise (ref_vec_step), w's grown by an
+ * ulp of the midpoint's largest coordinate where the midpoint (p0 + p1) / 2 is not a float
+ * (w is o less it); the radii's an ulp each. */
+enum {
+    REF_AXIS_W = 0,
+    REF_AXIS_D = 3,
+    REF_AXIS_A = 6,
+    REF_AXIS_R0 = 9,
+    REF_AXIS_R1 = 10,
+    REF_AXIS_COUNT = 11
+};
+static inline void ref_axis_steps(const float p0[3], const float p1[3], float r0, float r1,
+                                  const cylq w[3], const cylq d[3], const cylq a[3],
+                                  cylq step[REF_AXIS_COUNT])
+{
+    int center_float = 1;
+    cylq cmax = 0;
+    for (int k = 0; k < 3; k++) {
+        const cylq ctr = ((cylq)p0[k] + (cylq)p1[k]) / 2;
+        center_float &= (cylq)(float)ctr == ctr;
+        cmax = q_max(cmax, q_abs(ctr));
+    }
+    for (int k = 0; k < 3; k++) {
+        step[REF_AXIS_W + k] = ref_vec_step(w);
+        if (!center_float)
+            step[REF_AXIS_W + k] += (cylq)ref_float_ulp((double)cmax);
+        step[REF_AXIS_D + k] = ref_vec_step(d);
+        step[REF_AXIS_A + k] = ref_vec_step(a);
+    }
+    step[REF_AXIS_R0] = (cylq)ref_float_ulp(r0);
+    step[REF_AXIS_R1] = (cylq)ref_float_ulp(r1);
+}
+
+/* A side's quadratic F(t) and its half derivative F1, with the reach S and S1 of the
+ * box's inputs at t: what ref_reach_scan samples. */
+typedef struct {
+    cylq F, F1, S, S1;
+} ref_reach;
+
+/* A ray that runs beside a side over a stretch (along a generator line, within the box's
+ * reach of the surface) has no isolated roots: wherever |F(t)| <= S(t) some input of the
+ * box puts a root at t, to first order. Samples [ta, tb] at 512 points (at(ctx, t, &x));
+ * each run of two or more samples within reach is an outcome of the side, facing either
+ * way where F1 is within reach of 0 too, unless keep(ctx, lo) (NULL: always) says a
+ * candidate sure to be taken comes first; the back face only where back. Isolated roots
+ * are runs of one sample at most and keep their own bands. */
+static inline void ref_reach_scan(ref_set *set, cylq ta, cylq tb,
+                                  void (*at)(const void *ctx, cylq t, ref_reach *x),
+                                  int (*keep)(const void *ctx, double lo), const void *ctx,
+                                  int back)
+{
+    enum { N = 512 };
+    if (!(ta < tb) || !q_isfinite(ta) || !q_isfinite(tb))
+        return;
+    const cylq h = (tb - ta) / (N - 1);
+    int run = 0, both = 0, fsign = 0;
+    cylq first = 0;
+    for (int i = 0; i <= N; i++) {
+        const cylq t = ta + h * i;
+        int in = 0;
+        if (i < N) {
+            ref_reach x;
+            at(ctx, t, &x);
+            in = q_abs(x.F) <= x.S;
+            if (in) {
+                if (!run)
+                    first = t, both = 0, fsign = 0;
+                both |= q_abs(x.F1) <= x.S1;
+                fsign |= x.F1 < 0 ? 1 : 2;
+                run++;
+            }
+        }
+        if (!in && run) {
+            const double lo = (double)(first - h), hi = (double)t;
+            if (run >= 2 && (!keep || keep(ctx, lo))) {
+                if (both || (fsign & 1))
+                    ref_add_range(set, CYLRAY_SIDE, lo, hi);
+                if ((both || (fsign & 2)) && back)
+                    ref_add_range(set, CYLRAY_SIDE | CYLRAY_BACKFACE, lo, hi);
+            }
+            run = 0;
+        }
     }
 }
 
@@ -246,6 +369,20 @@ static inline void ref_band_keep_set(cylref_band *out, const ref_set *set, int e
         out->part = part_of(&r, x);                                                            \
         normal_of(&r, x, (flags & CYLRAY_FACE_FORWARD) != 0, out->n);                          \
         return 1;                                                                              \
+    }
+
+/* A shape's band, prefix_band_eval (cylref.h's CYLREF_SHAPE_DECLARE), from its row: a
+ * band begun (ref_band_begin, valid(s)) is band(s, o, d, tmin, tmax, vflags, ff, out)'s
+ * to fill, vflags the flags its answer reads (the shape's closed ends, s->flags, and the
+ * call's culling), ff 1 for CYLRAY_FACE_FORWARD. */
+#define REF_BAND_DEFINE(prefix, shape_t, valid, band)                                          \
+    void prefix##_band_eval(const shape_t *s, const float o[3], const float d[3], float tmin,  \
+                            float tmax, unsigned flags, cylref_band *out)                      \
+    {                                                                                          \
+        if (!ref_band_begin(out, valid(s), o, d, tmin, tmax))                                  \
+            return;                                                                            \
+        band(s, o, d, tmin, tmax, s->flags | (flags & CYLRAY_CULL_BACK),                       \
+             (flags & CYLRAY_FACE_FORWARD) != 0, out);                                         \
     }
 
 #endif

@@ -364,7 +364,7 @@ void congen_ray(int cat, cylgen_rng *r, cylgen_rng *cam, size_t index, const cyl
         break;
     default: {
         const v3 mid = axpy(g->p0, g->L / 2, g->u); /* where the camera looks */
-        const gen_ray_at at = {&cone_rays, g, g->R, mid, 0.8, GEN_RAY_CASE(c)};
+        const gen_ray_at at = {&cone_rays, g, g->R, mid, 0.8, 1.5, GEN_RAY_CASE(c)};
         gen_shared_ray(cat >= 0 && cat < CONGEN_COUNT ? shared_kind[cat] : GEN_RAY_ORDINARY, r,
                        cam, index, &at);
         break;

@@ -30,22 +30,14 @@ int conref_present_(unsigned flags, int kand)
 
 int conref_valid(const cylray_cone *c)
 {
-    if (!c)
+    if (!c || !ref_ends_ok(c->p0, c->p1, c->r0, c->r1))
         return 0;
     int big = 0;
     for (int k = 0; k < 3; k++) {
-        if (!(fabsf(c->p0[k]) <= 0x1p62f) || !(fabsf(c->p1[k]) <= 0x1p62f))
-            return 0;
         float a = c->p1[k] - c->p0[k];
         big |= fabsf(a) >= 0x1p-126f;
     }
     if (!big)
-        return 0;
-    const float r[2] = {c->r0, c->r1};
-    for (int i = 0; i < 2; i++)
-        if (!(r[i] == 0 || (r[i] >= 0x1p-60f && r[i] <= 0x1p62f)))
-            return 0;
-    if (c->r0 == 0 && c->r1 == 0)
         return 0;
     /* the ends at most 2^62 apart in each rounded coordinate and in half length, and
      * the slope |r1 - r0| / |p1 - p0| at most 2^40, max(r0, r1) (1 + slope) +
@@ -207,12 +199,7 @@ void conref_normal_(const crec *r, int kand, int ff, double n[3])
 
 void conref_in_(const cylray_cone *c, const float o[3], const float d[3], cin_q *q)
 {
-    for (int k = 0; k < 3; k++) {
-        const cylq ctr = ((cylq)c->p0[k] + (cylq)c->p1[k]) / 2;
-        q->w[k] = (cylq)o[k] - ctr;
-        q->d[k] = d[k];
-        q->a[k] = (cylq)c->p1[k] - (cylq)c->p0[k];
-    }
+    ref_axis_in(c->p0, c->p1, o, d, q->w, q->d, q->a);
     q->r0 = c->r0;
     q->r1 = c->r1;
 }

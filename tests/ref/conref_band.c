@@ -14,6 +14,9 @@
 /* ---- the band ----------------------------------------------------------------------- */
 
 enum { IN_W = 0, IN_D = 3, IN_A = 6, IN_R0 = 9, IN_R1 = 10, IN_COUNT = 11 };
+_Static_assert((int)IN_A == REF_AXIS_A && (int)IN_R1 == REF_AXIS_R1 &&
+                   (int)IN_COUNT == REF_AXIS_COUNT,
+               "the inputs as ref_axis_steps's");
 
 static void c_perturb(const cin_q *base, const cylq step[IN_COUNT],
                       const signed char k[IN_COUNT], cin_q *out)
@@ -55,17 +58,43 @@ static void track(c_track tr[K_COUNT], const crec *r, const unsigned char v[K_CO
     }
 }
 
-/* A ray that runs beside the side over a stretch (along a generator line, within the
- * box's reach of the surface) has no isolated roots: input i of the box moves the
- * quadratic at t by dA_i t^2 + 2 dB_i t + dC_i, S(t) the sum of their sizes, and
- * wherever |F(t)| <= S(t) some input in the box puts a root at t (to first order). Sampled along the ray's stretch inside the slab, each run of two or more
- * samples within reach is an outcome of the side (either facing where F' is within
- * reach of 0 too), unless a candidate sure to be taken comes first. Isolated roots are
- * runs of one sample at most and keep their own bands. */
+/* The side's quadratic beside a stretch (ref_reach_scan): input i of the box moves it at t
+ * by dA_i t^2 + 2 dB_i t + dC_i, S(t) the sum of their sizes; a run of the side's samples
+ * counts unless a candidate sure to be taken comes first. */
+typedef struct {
+    const crec *r;
+    const cylq (*dc)[3];
+    const int *may_drop;
+    const double *hi;
+} c_beside;
+
+static void c_reach_at(const void *ctx, cylq t, ref_reach *x)
+{
+    const c_beside *c = ctx;
+    const crec *r = c->r;
+    x->F = (r->A * t + 2 * r->B) * t + r->C;
+    x->F1 = r->A * t + r->B;
+    x->S = x->S1 = 0;
+    for (int k = 0; k < IN_COUNT; k++) {
+        x->S += q_abs((c->dc[k][0] * t + 2 * c->dc[k][1]) * t + c->dc[k][2]);
+        x->S1 += q_abs(c->dc[k][0] * t + c->dc[k][1]);
+    }
+}
+
+static int c_reach_keep(const void *ctx, double lo)
+{
+    const c_beside *c = ctx;
+    int sure_before = 0;
+    for (int j = 0; j < K_COUNT; j++)
+        sure_before |= !c->may_drop[j] && c->hi[j] < lo;
+    return !sure_before;
+}
+
+/* The side's runs beside a generator line, sampled along the ray's stretch inside the
+ * slab (ref_reach_scan). */
 static void c_reach(ref_set *set, const crec *r, const cylq (*dc)[3], cylq tmin, cylq tmax,
                     const int may_drop[K_COUNT], const double hi[K_COUNT])
 {
-    enum { N = 512 };
     cylq sa = 0;
     for (int i = 0; i < IN_COUNT; i++)
         sa += q_abs(dc[i][0]);
@@ -79,45 +108,8 @@ static void c_reach(ref_set *set, const crec *r, const cylq (*dc)[3], cylq tmin,
     }
     ta = q_max(ta, tmin);
     tb = tb < tmax ? tb : tmax;
-    if (!(ta < tb) || !q_isfinite(ta) || !q_isfinite(tb))
-        return;
-    const cylq h = (tb - ta) / (N - 1);
-    int run = 0, both = 0, fsign = 0;
-    cylq first = 0;
-    for (int i = 0; i <= N; i++) {
-        const cylq t = ta + h * i;
-        int in = 0;
-        if (i < N) {
-            const cylq F = (r->A * t + 2 * r->B) * t + r->C;
-            const cylq F1 = r->A * t + r->B;
-            cylq S = 0, S1 = 0;
-            for (int k = 0; k < IN_COUNT; k++) {
-                S += q_abs((dc[k][0] * t + 2 * dc[k][1]) * t + dc[k][2]);
-                S1 += q_abs(dc[k][0] * t + dc[k][1]);
-            }
-            in = q_abs(F) <= S;
-            if (in) {
-                if (!run)
-                    first = t, both = 0, fsign = 0;
-                both |= q_abs(F1) <= S1;
-                fsign |= F1 < 0 ? 1 : 2;
-                run++;
-            }
-        }
-        if (!in && run) {
-            const double lo = (double)(first - h), hi_t = (double)t;
-            int sure_before = 0;
-            for (int j = 0; j < K_COUNT; j++)
-                sure_before |= !may_drop[j] && hi[j] < lo;
-            if (run >= 2 && !sure_before) {
-                if (both || (fsign & 1))
-                    ref_add_range(set, CYLRAY_SIDE, lo, hi_t);
-                if (both || (fsign & 2))
-                    ref_add_range(set, CYLRAY_SIDE | CYLRAY_BACKFACE, lo, hi_t);
-            }
-            run = 0;
-        }
-    }
+    const c_beside c = {r, dc, may_drop, hi};
+    ref_reach_scan(set, ta, tb, c_reach_at, c_reach_keep, &c, 1);
 }
 
 /* One point of the box: its outcome joins the set, its candidates the tracks, and the
@@ -150,32 +142,13 @@ static void c_sample(c_box *b, const cin_q *q)
     }
 }
 
-void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], float tmin,
-                      float tmax, unsigned flags, cylref_band *out)
+static void cone_band(const cylray_cone *c, const float o[3], const float d[3], float tmin,
+                      float tmax, unsigned vflags, int ff, cylref_band *out)
 {
-    if (!ref_band_begin(out, conref_valid(c), o, d, tmin, tmax))
-        return;
-    const unsigned vflags = c->flags | (flags & CYLRAY_CULL_BACK);
-    const int ff = (flags & CYLRAY_FACE_FORWARD) != 0;
     cin_q base;
     conref_in_(c, o, d, &base);
-    int center_float = 1;
-    cylq cmax = 0;
-    for (int k = 0; k < 3; k++) {
-        const cylq ctr = ((cylq)c->p0[k] + (cylq)c->p1[k]) / 2;
-        center_float &= (cylq)(float)ctr == ctr;
-        cmax = q_max(cmax, q_abs(ctr));
-    }
     cylq step[IN_COUNT];
-    for (int k = 0; k < 3; k++) {
-        step[IN_W + k] = ref_vec_step(base.w);
-        if (!center_float)
-            step[IN_W + k] += (cylq)ref_float_ulp((double)cmax);
-        step[IN_D + k] = ref_vec_step(base.d);
-        step[IN_A + k] = ref_vec_step(base.a);
-    }
-    step[IN_R0] = (cylq)ref_float_ulp(c->r0);
-    step[IN_R1] = (cylq)ref_float_ulp(c->r1);
+    ref_axis_steps(c->p0, c->p1, c->r0, c->r1, base.w, base.d, base.a, step);
 
     crec r0, r;
     conref_eval_(&base, tmin, tmax, &r0);
@@ -475,6 +448,8 @@ void conref_band_eval(const cylray_cone *c, const float o[3], const float d[3], 
     }
     out->n_spread = fmin(out->n_spread, 3.14159265358979323846); /* opposite at most */
 }
+
+REF_BAND_DEFINE(conref, cylray_cone, conref_valid, cone_band)
 
 int conref_judge(const cylref_band *b, int hit, int part, float t, double *ulps_beyond)
 {

@@ -84,7 +84,7 @@ void gen_camera(cylgen_rng *cam, size_t index, v3 ctr, double R, double spread, 
 
 static void ordinary(cylgen_rng *r, const gen_ray_at *a)
 {
-    a->row->towards(r, a->geo, a->R * gen_uni(r, 1.5, 10), 1.2, a->c);
+    a->row->towards(r, a->geo, a->R * gen_uni(r, a->near, 10), 1.2, a->c);
 }
 
 void gen_shared_ray(int kind, cylgen_rng *r, cylgen_rng *cam, size_t index, const gen_ray_at *a)

@@ -82,11 +82,11 @@ void gen_scale_d(cylgen_rng *r, int span, float d[3], float *tmin, float *tmax);
 void gen_camera(cylgen_rng *cam, size_t index, v3 ctr, double R, double spread, float o[3],
                 float d[3]);
 
-/* The ray categories the sphere's and the cone's generators share, each drawn from the
- * shape's own few draws (gen_ray_row), so that a category means the same on both. A
- * shape numbers its categories its own way and maps them to these. */
+/* The ray categories the sphere's, the cone's and the round cone's generators share, each
+ * drawn from the shape's own few draws (gen_ray_row), so that a category means the same
+ * on all. A shape numbers its categories its own way and maps them to these. */
 typedef enum {
-    GEN_RAY_ORDINARY, /* from 1.5-10 R at a point within 1.2 of the solid */
+    GEN_RAY_ORDINARY, /* from near-10 R at a point within 1.2 of the solid */
     GEN_RAY_FAR,      /* from 2^10-2^20 R */
     GEN_RAY_GRAZING,
     GEN_RAY_SURFACE,
@@ -135,14 +135,15 @@ typedef struct gen_ray_row {
                                      name##_point_in, rim}
 
 /* One case under a shared category: the shape's row and geometry, its size R (the unit
- * of every distance), the camera's aim and its block's spread (in R), and the case with
- * its ray. */
+ * of every distance), the camera's aim and its block's spread (in R), the ordinary rays'
+ * nearest origin (in R: 1.5 for the sphere and the cone, 2 hull sizes for the round cone),
+ * and the case with its ray. */
 typedef struct gen_ray_at {
     const gen_ray_row *row;
     const void *geo;
     double R;
     v3 aim;
-    double spread;
+    double spread, near;
     void *c;
     float *o, *d, *tmin, *tmax;
 } gen_ray_at;

@@ -61,11 +61,7 @@ static void make_rc(int cat, cylgen_rng *r, rcref_round_cone *out)
         break;
     }
     case RCGEN_POINT:
-        if (gen_chance(r, 0.5))
-            r0 = 0;
-        else
-            r1 = 0;
-        L = fmax(L, 1.2 * fmax(r0, r1));
+        rcgen_point_end(gen_chance(r, 0.5), &r0, &r1, &L);
         break;
     case RCGEN_LONG:
         r1 = r0 * gen_uni(r, 0.8, 1.25);
@@ -218,14 +214,20 @@ static void gen_surface(cylgen_rng *r, const rgeo *g, rcgen_case *c)
     c->tmax = INFINITY;
 }
 
+/* A point of the sphere c(s), r(s) of the family grown by slack (of its radius): inside
+ * the hull where slack < 1. */
+static v3 point_in(cylgen_rng *r, const rgeo *g, double slack)
+{
+    const double s = gen_uni(r, 0, 1), f = gen_uni(r, 0, slack);
+    const v3 v = gen_dir(r);
+    const double rs = g->r0 + s * (g->r1 - g->r0);
+    return axpy(axpy(g->p0, s * g->L, g->u), f * rs, v);
+}
+
 static void gen_inside(cylgen_rng *r, const rgeo *g, rcgen_case *c)
 {
-    /* inside the sphere c(s), r(s) of the family, so inside the hull */
-    const double s = gen_uni(r, 0, 1), f = gen_uni(r, 0, 0.95);
-    const v3 v = gen_dir(r), d = gen_dir(r);
-    const double rs = g->r0 + s * (g->r1 - g->r0);
-    to_f(c->o, axpy(axpy(g->p0, s * g->L, g->u), f * rs, v));
-    to_f(c->d, d);
+    to_f(c->o, point_in(r, g, 0.95));
+    to_f(c->d, gen_dir(r));
     gen_interval(r, g->size, &c->tmin, &c->tmax);
 }
 
@@ -289,35 +291,34 @@ static void gen_axial(cylgen_rng *r, const rgeo *g, rcgen_case *c)
     aim(r, x, d, g->size * gen_uni(r, 2, 10) + (dot(d, g->u) < 0 ? g->L : 0), c);
 }
 
+GEN_RAY_ROW_DEFINE(rc_rays, towards, gen_grazing, gen_surface, point_in, NULL);
+
+/* The categories the sphere and the cone share (gen_ray_kind), ordinary rays from 2-10
+ * hull sizes; the others, ORDINARY's 0 here, are the round cone's own: one draw each
+ * (own_ray), the camera, and the shapes' mix. */
+static const unsigned char shared_kind[RCGEN_COUNT] = {
+    [RCGEN_FAR] = GEN_RAY_FAR,         [RCGEN_GRAZING] = GEN_RAY_GRAZING,
+    [RCGEN_SURFACE] = GEN_RAY_SURFACE, [RCGEN_UNNORM] = GEN_RAY_UNNORM,
+    [RCGEN_BAD] = GEN_RAY_BAD,         [RCGEN_SCALED] = GEN_RAY_SCALED};
+
+typedef void rc_draw(cylgen_rng *r, const rgeo *g, rcgen_case *c);
+static rc_draw *const own_ray[RCGEN_COUNT] = {[RCGEN_INSIDE] = gen_inside,
+                                              [RCGEN_SEAM] = gen_seam,
+                                              [RCGEN_POINT] = gen_point,
+                                              [RCGEN_AXIAL] = gen_axial};
+
 static void gen_case(int cat, cylgen_rng *r, const rgeo *g, cylgen_rng *cam, size_t index,
                      rcgen_case *c)
 {
+    /* no shared camera: the round cone's own frames rmax + L / 4 */
+    const gen_ray_at at = {&rc_rays, g, g->size, mk(0, 0, 0), 0, 2, GEN_RAY_CASE(c)};
+    if (cat < 0 || cat >= RCGEN_COUNT)
+        cat = RCGEN_ORDINARY;
+    if (own_ray[cat]) {
+        own_ray[cat](r, g, c);
+        return;
+    }
     switch (cat) {
-    case RCGEN_FAR:
-        towards(r, g, g->size * gen_logu(r, 10, 20), 1.1, c);
-        break;
-    case RCGEN_GRAZING:
-        gen_grazing(r, g, c);
-        break;
-    case RCGEN_SURFACE:
-        gen_surface(r, g, c);
-        break;
-    case RCGEN_INSIDE:
-        gen_inside(r, g, c);
-        break;
-    case RCGEN_SEAM:
-        gen_seam(r, g, c);
-        break;
-    case RCGEN_POINT:
-        gen_point(r, g, c);
-        break;
-    case RCGEN_AXIAL:
-        gen_axial(r, g, c);
-        break;
-    case RCGEN_UNNORM:
-        towards(r, g, g->size * gen_uni(r, 2, 10), 1.2, c);
-        gen_scale_d(r, 30, c->d, &c->tmin, &c->tmax);
-        break;
     case RCGEN_CAMERA: {
         const v3 mid = scl(add(g->p0, g->p1), 0.5);
         gen_camera(cam, index, mid, g->rmax + g->L / 4, 1.3, c->o, c->d);
@@ -325,17 +326,6 @@ static void gen_case(int cat, cylgen_rng *r, const rgeo *g, cylgen_rng *cam, siz
         c->tmax = INFINITY;
         break;
     }
-    case RCGEN_BAD:
-        towards(r, g, g->size * gen_uni(r, 2, 10), 1.2, c);
-        cylgen_spoil(cylgen_next(r), c->o, c->d, &c->tmin, &c->tmax);
-        break;
-    case RCGEN_SCALED:
-        if (gen_chance(r, 0.3))
-            gen_grazing(r, g, c);
-        else
-            towards(r, g, g->size * gen_uni(r, 2, 10), 1.2, c);
-        gen_scale_d(r, 20, c->d, &c->tmin, &c->tmax);
-        break;
     case RCGEN_CAPSULE:
     case RCGEN_TAPER:
     case RCGEN_NESTED:
@@ -346,12 +336,11 @@ static void gen_case(int cat, cylgen_rng *r, const rgeo *g, cylgen_rng *cam, siz
         else if (pick < 0.3)
             gen_seam(r, g, c);
         else
-            towards(r, g, g->size * gen_uni(r, 2, 10), 1.2, c);
+            gen_shared_ray(GEN_RAY_ORDINARY, r, cam, index, &at);
         break;
     }
-    case RCGEN_ORDINARY:
     default:
-        towards(r, g, g->size * gen_uni(r, 2, 10), 1.2, c);
+        gen_shared_ray(shared_kind[cat], r, cam, index, &at);
         break;
     }
 }

@@ -9,6 +9,7 @@
 #ifndef RCGEN_H
 #define RCGEN_H
 
+#include <math.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -41,6 +42,18 @@ enum {
 };
 
 CYLGEN_SHAPE_DECLARE(rcgen, rcref_round_cone, rc);
+
+/* A point end, as rc-point's (and the reference's own tests'): the radius at p0 (at_p0) or
+ * at p1 made 0, the length *L at least 1.2 times the other radius, so that the point
+ * stands out of the other end's sphere. */
+static inline void rcgen_point_end(int at_p0, double *r0, double *r1, double *L)
+{
+    if (at_p0)
+        *r0 = 0;
+    else
+        *r1 = 0;
+    *L = fmax(*L, 1.2 * fmax(*r0, *r1));
+}
 
 #ifdef __cplusplus
 }

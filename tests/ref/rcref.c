@@ -62,16 +62,7 @@
 
 int rcref_valid(const rcref_round_cone *s)
 {
-    if (!s)
-        return 0;
-    for (int k = 0; k < 3; k++)
-        if (!(fabsf(s->p0[k]) <= 0x1p62f) || !(fabsf(s->p1[k]) <= 0x1p62f))
-            return 0;
-    const float r[2] = {s->r0, s->r1};
-    for (int i = 0; i < 2; i++)
-        if (!(r[i] == 0 || (r[i] >= 0x1p-60f && r[i] <= 0x1p62f)))
-            return 0;
-    if (s->r0 == 0 && s->r1 == 0)
+    if (!s || !ref_ends_ok(s->p0, s->p1, s->r0, s->r1))
         return 0;
     return (s->flags & ~(unsigned)CYLRAY_CAPPED) == 0;
 }
@@ -90,12 +81,7 @@ static void cross3(const cylq a[3], const cylq b[3], cylq c[3])
 
 void rcref_in_(const rcref_round_cone *s, const float o[3], const float d[3], rin_q *q)
 {
-    for (int k = 0; k < 3; k++) {
-        const cylq ctr = ((cylq)s->p0[k] + (cylq)s->p1[k]) / 2;
-        q->w[k] = (cylq)o[k] - ctr;
-        q->d[k] = d[k];
-        q->a[k] = (cylq)s->p1[k] - (cylq)s->p0[k];
-    }
+    ref_axis_in(s->p0, s->p1, o, d, q->w, q->d, q->a);
     q->r0 = s->r0;
     q->r1 = s->r1;
     q->flags = s->flags;

@@ -18,6 +18,9 @@
 #include <string.h>
 
 enum { IN_W = 0, IN_D = 3, IN_A = 6, IN_R0 = 9, IN_R1 = 10, IN_COUNT = 11 };
+_Static_assert((int)IN_A == REF_AXIS_A && (int)IN_R1 == REF_AXIS_R1 &&
+                   (int)IN_COUNT == REF_AXIS_COUNT,
+               "the inputs as ref_axis_steps's");
 /* the samples: one per input, the vertices, each input alone at +-1/4 and +-1/2 */
 enum { N_GRAD = IN_COUNT, N_VTX = 2 + REF_RANDOM_VERTICES };
 /* where each input's step the other way (-2) starts: the first-order reach of a quantity is
@@ -100,64 +103,47 @@ static double wide(double t)
 /* A ray that runs beside the side along a generator line (within the box's reach of it)
  * has no isolated roots: the box tilts it onto the cone anywhere along that stretch. Input
  * i moves the frustum's quadratic at t by G_i(t) - G(t) (each sample in its own shifted
- * frame), S(t) the sum of their sizes; wherever |G(t)| <= S(t) some input in the box puts
- * a root at t, to first order. Sampled along the slab's stretch, each run of two or more
- * samples within reach is an outcome of the side, facing either way where G' is within
- * reach of 0 (conref_band.c's c_reach). */
+ * frame), S(t) the sum of their sizes, widened by widen_by; sampled along the slab's
+ * stretch (ref_reach_scan, as conref_band.c's c_reach), the back face only where it is
+ * not culled. */
+typedef struct {
+    const rrec *r;
+    const cylq (*gq)[4];
+    double widen_by;
+} f_beside;
+
+static void f_reach_at(const void *ctx, cylq t, ref_reach *x)
+{
+    const f_beside *c = ctx;
+    const rrec *r = c->r;
+    const cylq u = t - r->s0;
+    x->F = (r->qa[RP_F] * u + 2 * r->qb[RP_F]) * u + r->qc[RP_F];
+    x->F1 = r->qa[RP_F] * u + r->qb[RP_F];
+    cylq S = 0, S1 = 0;
+    for (int k = 0; k < N_GRAD; k++) {
+        cylq sk = 0, s1k = 0;
+        for (int side = 0; side < 2; side++) {
+            const cylq *g = c->gq[side * N_GRAD + k], v = t - g[3];
+            sk = q_max(sk, q_abs((g[0] * v + 2 * g[1]) * v + g[2] - x->F));
+            s1k = q_max(s1k, q_abs(g[0] * v + g[1] - x->F1));
+        }
+        S += sk;
+        S1 += s1k;
+    }
+    x->S = S * (cylq)c->widen_by;
+    x->S1 = S1 * (cylq)c->widen_by;
+}
+
 static void f_reach(r_box *b, const rrec *r, const cylq (*gq)[4], double widen_by)
 {
-    enum { N = 512 };
     cylq sa = 0;
     for (int i = 0; i < N_GRAD; i++)
         sa += q_max(q_abs(gq[i][0] - r->qa[RP_F]), q_abs(gq[N_GRAD + i][0] - r->qa[RP_F]));
     if (r->nested || !(q_abs(r->qa[RP_F]) <= 256 * sa))
         return;
     const cylq ta = q_max(r->s0 + r->sl, b->tmin), tb = q_min(r->s0 + r->sh, b->tmax);
-    if (!(ta < tb) || !q_isfinite(ta) || !q_isfinite(tb))
-        return;
-    const cylq h = (tb - ta) / (N - 1);
-    int run = 0, both = 0, fsign = 0;
-    cylq first = 0;
-    for (int i = 0; i <= N; i++) {
-        const cylq t = ta + h * i;
-        int in = 0;
-        if (i < N) {
-            const cylq u = t - r->s0;
-            const cylq F = (r->qa[RP_F] * u + 2 * r->qb[RP_F]) * u + r->qc[RP_F];
-            const cylq F1 = r->qa[RP_F] * u + r->qb[RP_F];
-            cylq S = 0, S1 = 0;
-            for (int k = 0; k < N_GRAD; k++) {
-                cylq sk = 0, s1k = 0;
-                for (int side = 0; side < 2; side++) {
-                    const cylq *g = gq[side * N_GRAD + k], v = t - g[3];
-                    sk = q_max(sk, q_abs((g[0] * v + 2 * g[1]) * v + g[2] - F));
-                    s1k = q_max(s1k, q_abs(g[0] * v + g[1] - F1));
-                }
-                S += sk;
-                S1 += s1k;
-            }
-            S *= (cylq)widen_by;
-            S1 *= (cylq)widen_by;
-            in = q_abs(F) <= S;
-            if (in) {
-                if (!run)
-                    first = t, both = 0, fsign = 0;
-                both |= q_abs(F1) <= S1;
-                fsign |= F1 < 0 ? 1 : 2;
-                run++;
-            }
-        }
-        if (!in && run) {
-            const double lo = (double)(first - h), hi = (double)t;
-            if (run >= 2) {
-                if (both || (fsign & 1))
-                    ref_add_range(b->set, CYLRAY_SIDE, lo, hi);
-                if ((both || (fsign & 2)) && !(b->vflags & CYLRAY_CULL_BACK))
-                    ref_add_range(b->set, CYLRAY_SIDE | CYLRAY_BACKFACE, lo, hi);
-            }
-            run = 0;
-        }
-    }
+    const f_beside c = {r, gq, widen_by};
+    ref_reach_scan(b->set, ta, tb, f_reach_at, NULL, &c, !(b->vflags & CYLRAY_CULL_BACK));
 }
 
 static void band_model(r_box *b, int model)
@@ -407,33 +393,14 @@ static double turn_bound(const rrec *r, int x, const cylq step[IN_COUNT], double
     return move < xp ? 2 * asin(move / xp) : 3.14159265358979323846;
 }
 
-void rcref_band_eval(const rcref_round_cone *s, const float o[3], const float d[3], float tmin,
-                     float tmax, unsigned flags, cylref_band *out)
+static void rc_band(const rcref_round_cone *s, const float o[3], const float d[3], float tmin,
+                    float tmax, unsigned vflags, int ff, cylref_band *out)
 {
-    if (!ref_band_begin(out, rcref_valid(s), o, d, tmin, tmax))
-        return;
-    const unsigned vflags = s->flags | (flags & CYLRAY_CULL_BACK);
-    const int ff = (flags & CYLRAY_FACE_FORWARD) != 0;
     rin_q qs[N_SAMPLES];
     rcref_in_(s, o, d, &qs[0]);
     const rin_q *base = &qs[0];
-    int center_float = 1;
-    cylq cmax = 0;
-    for (int k = 0; k < 3; k++) {
-        const cylq ctr = ((cylq)s->p0[k] + (cylq)s->p1[k]) / 2;
-        center_float &= (cylq)(float)ctr == ctr;
-        cmax = q_max(cmax, q_abs(ctr));
-    }
     cylq step[IN_COUNT];
-    for (int k = 0; k < 3; k++) {
-        step[IN_W + k] = ref_vec_step(base->w);
-        if (!center_float)
-            step[IN_W + k] += (cylq)ref_float_ulp((double)cmax);
-        step[IN_D + k] = ref_vec_step(base->d);
-        step[IN_A + k] = ref_vec_step(base->a);
-    }
-    step[IN_R0] = (cylq)ref_float_ulp(s->r0);
-    step[IN_R1] = (cylq)ref_float_ulp(s->r1);
+    ref_axis_steps(s->p0, s->p1, s->r0, s->r1, base->w, base->d, base->a, step);
 
     rrec r0;
     rcref_eval_(base, -1, tmin, tmax, &r0);
@@ -507,6 +474,8 @@ void rcref_band_eval(const rcref_round_cone *s, const float o[3], const float d[
         out->n_spread = fmax(out->n_spread, turn_bound(&r0, x0, step, out->t_lo, out->t_hi));
     out->n_spread = fmin(out->n_spread, 3.14159265358979323846);
 }
+
+REF_BAND_DEFINE(rcref, rcref_round_cone, rcref_valid, rc_band)
 
 int rcref_judge(const cylref_band *b, int hit, int part, float t, double *ulps_beyond)
 {

@@ -143,7 +143,7 @@ static void sphere_ray(int cat, cylgen_rng *r, cylgen_rng *cam, size_t index,
     ball bl = ball_of(&c->sph);
     /* The camera's block spans a bit more than the sphere's silhouette, so that its edge
      * pixels miss or graze. */
-    const gen_ray_at at = {&ball_rays, &bl, bl.R, bl.c, 1.3, GEN_RAY_CASE(c)};
+    const gen_ray_at at = {&ball_rays, &bl, bl.R, bl.c, 1.3, 1.5, GEN_RAY_CASE(c)};
     gen_shared_ray(cat, r, cam, index, &at);
 }
 

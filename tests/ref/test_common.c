@@ -186,3 +186,17 @@ void ref_each_case(const ref_gen *g, const int *cats, size_t ncats, uint64_t see
     }
     free(a);
 }
+
+int ref_catch_defects(ref_judge_fn *judge, const cylref_band *b, int *of)
+{
+    if (!b->exact.hit || b->decision_unstable)
+        return 0;
+    const float late = (float)(b->t_hi + 16 * cylref_float_ulp(b->t_hi));
+    double u;
+    int caught = 0;
+    (*of)++;
+    caught += judge(b, 1, b->exact.part, late, &u) == 0 && u > 8;
+    caught += judge(b, 0, 0, 0, &u) == 1;
+    caught += judge(b, 1, b->exact.part ^ CYLRAY_BACKFACE, (float)b->exact.t, &u) == 2;
+    return caught;
+}

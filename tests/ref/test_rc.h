@@ -45,6 +45,12 @@ int rc_dbl_solve(const rc_case *c, unsigned flags, float *t, int *part);
  * hit. The band must allow it. */
 int rc_inside_box(const rc_case *c, unsigned flags, uint64_t *s, int *part, float *t,
                   double n[3]);
+/* Judges a solver's answer (what: "inside the box", "double solver") to case i of the
+ * category cat under flags against the band b: returns the verdict, *ub the ulps beyond;
+ * one judged wrong or more than allow ulps beyond counts in *bad, the first 4 printed. */
+int rc_judge_answer(const cylref_band *b, const char *what, const char *cat, int i,
+                    unsigned flags, int hit, float t, int part, double allow, int *bad,
+                    double *ub);
 /* The band over rcgen.h's categories (test_rcgen.c). */
 void test_rcgen_bands(void);
 

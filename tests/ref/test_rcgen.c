@@ -76,11 +76,7 @@ void rc_make(int cat, uint64_t seed, int n, rc_case *out)
             r1 = r0;
             break;
         case RC_POINT:
-            if (f < 0.5)
-                r0 = 0;
-            else
-                r1 = 0;
-            L = fmax(L, 1.2 * fmax(r0, r1));
+            rcgen_point_end(f < 0.5, &r0, &r1, &L);
             break;
         case RC_NESTED:
             L = fabs(r1 - r0) * g * 0.99;
@@ -307,6 +303,19 @@ int rc_inside_box(const rc_case *c, unsigned flags, uint64_t *s, int *part, floa
     return 1;
 }
 
+int rc_judge_answer(const cylref_band *b, const char *what, const char *cat, int i,
+                    unsigned flags, int hit, float t, int part, double allow, int *bad,
+                    double *ub)
+{
+    const int v = rcref_judge(b, hit, part, t, ub);
+    if ((v || *ub > allow) && (*bad)++ < 4)
+        printf("  %s #%d flags %u: %s %d t %.9g part %#x judged %d, %.3g ulps beyond (exact %d "
+               "t %.9g part %#x)\n",
+               cat, i, flags, what, hit, (double)t, part, v, *ub, b->exact.hit, b->exact.t,
+               b->exact.part);
+    return v;
+}
+
 /* rcgen.h's categories (the cases a checker of round-cone kernels draws): the exact
  * answer inside its band, answers from inside the box and the double solver's allowed. */
 void test_rcgen_bands(void)
@@ -339,24 +348,14 @@ void test_rcgen_bands(void)
                     float t = 0;
                     double n[3];
                     const int hit = rc_inside_box(&c, fl, &s, &part, &t, n);
-                    const int v = rcref_judge(&b, hit, part, t, &ub);
-                    if ((v || ub > 0.5) && bad++ < 4)
-                        printf(
-                            "  %s #%d flags %u: inside the box %d t %.9g part %#x judged %d, "
-                            "%.3g ulps beyond (exact %d t %.9g part %#x)\n",
-                            rcgen_category_name(cat), i, fl, hit, (double)t, part, v, ub,
-                            b.exact.hit, b.exact.t, b.exact.part);
+                    rc_judge_answer(&b, "inside the box", rcgen_category_name(cat), i, fl, hit,
+                                    t, part, 0.5, &bad, &ub);
                 }
                 int part = 0;
                 float t = 0;
                 const int hit = rc_dbl_solve(&c, fl, &t, &part);
-                const int v = rcref_judge(&b, hit, part, t, &ub);
-                if ((v || ub > 1) && dbad++ < 4)
-                    printf(
-                        "  %s #%d flags %u: double solver %d t %.9g part %#x judged %d, %.3g "
-                        "ulps beyond (exact %d t %.9g part %#x)\n",
-                        rcgen_category_name(cat), i, fl, hit, (double)t, part, v, ub,
-                        b.exact.hit, b.exact.t, b.exact.part);
+                rc_judge_answer(&b, "double solver", rcgen_category_name(cat), i, fl, hit, t,
+                                part, 1, &dbad, &ub);
             }
         }
         printf("rcgen %-12s %3d/%d hits, %3d may hit or miss; %d answers from inside the box "

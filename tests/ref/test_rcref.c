@@ -452,15 +452,8 @@ static void test_band(void)
                         (n[0] != 0 || n[1] != 0 || n[2] != 0) &&
                         !(ref_angle3(n, b.exact.n) <= b.n_spread + 1e-12))
                         nbad++;
-                    const int v = rcref_judge(&b, hit, part, t, &ub);
-                    if (v || ub > 0.5) {
-                        if (bad++ < 4)
-                            printf(
-                                "  %s #%d flags %u: inside the box %d t %.9g part %#x judged "
-                                "%d, %.3g ulps beyond (exact %d t %.9g part %#x)\n",
-                                rc_names[cat], i, fl, hit, (double)t, part, v, ub, b.exact.hit,
-                                b.exact.t, b.exact.part);
-                    }
+                    const int v = rc_judge_answer(&b, "inside the box", rc_names[cat], i, fl,
+                                                  hit, t, part, 0.5, &bad, &ub);
                     if (!v && hit)
                         worst = fmax(worst, ub);
                 }
@@ -468,27 +461,12 @@ static void test_band(void)
                     int part = 0;
                     float t = 0;
                     const int hit = rc_dbl_solve(c, fl, &t, &part);
-                    const int v = rcref_judge(&b, hit, part, t, &ub);
-                    if (v || ub > 1) {
-                        if (dbad++ < 4)
-                            printf("  %s #%d flags %u: double solver %d t %.9g part %#x judged "
-                                   "%d, %.3g ulps beyond (exact %d t %.9g part %#x)\n",
-                                   rc_names[cat], i, fl, hit, (double)t, part, v, ub,
-                                   b.exact.hit, b.exact.t, b.exact.part);
-                    }
+                    const int v = rc_judge_answer(&b, "double solver", rc_names[cat], i, fl,
+                                                  hit, t, part, 1, &dbad, &ub);
                     if (!v && hit)
                         dworst = fmax(dworst, ub);
                 }
-                /* On a stable hit: 16 ulps past the band, a miss and the other face are
-                 * all caught. */
-                if (b.exact.hit && !b.decision_unstable) {
-                    const float late = (float)(b.t_hi + 16 * cylref_float_ulp(b.t_hi));
-                    caught_of++;
-                    caught += rcref_judge(&b, 1, b.exact.part, late, &ub) == 0 && ub > 8;
-                    caught += rcref_judge(&b, 0, 0, 0, &ub) == 1;
-                    caught += rcref_judge(&b, 1, b.exact.part ^ CYLRAY_BACKFACE,
-                                          (float)b.exact.t, &ub) == 2;
-                }
+                caught += ref_catch_defects(rcref_judge, &b, &caught_of);
             }
         }
         printf("rc band %-13s %3d/%d hits, %3d unstable (%d hit or miss), %d of %d answers "
@@ -550,9 +528,7 @@ static int seam_at(const rcref_round_cone *rc, int end, double phi, rc_seam *f)
     }
     for (int k = 0; k < 3; k++)
         e1[k] /= sqrt(l1);
-    e2[0] = u[1] * e1[2] - u[2] * e1[1];
-    e2[1] = u[2] * e1[0] - u[0] * e1[2];
-    e2[2] = u[0] * e1[1] - u[1] * e1[0];
+    ref_cross3(u, e1, e2);
     const double k = dr / L, nr = sqrt((L - fabs(dr)) * (L + fabs(dr))) / L;
     for (int j = 0; j < 3; j++) {
         const double radial = cos(phi) * e1[j] + sin(phi) * e2[j];

@@ -100,6 +100,12 @@ typedef void ref_case_fn(void *ctx, const void *c, const char *cat, int i, unsig
 void ref_each_case(const ref_gen *g, const int *cats, size_t ncats, uint64_t seed, size_t n,
                    ref_case_fn *each, void *ctx);
 
+/* The defects a band must catch on a stable hit (b->exact.hit, not decision_unstable): 16
+ * ulps past the band, a miss and the other face; counts the stable hit in *of and returns
+ * how many of the 3 judge caught (0 and nothing counted for any other band). */
+typedef int ref_judge_fn(const cylref_band *b, int hit, int part, float t, double *ulps_beyond);
+int ref_catch_defects(ref_judge_fn *judge, const cylref_band *b, int *of);
+
 void test_hand_cylinder(void); /* test_hand.c */
 void test_hand_sphere(void);
 void test_hand_cone(void);

@@ -175,17 +175,7 @@ static void test_band(void)
                 }
                 if (!v && hit)
                     worst = fmax(worst, ub);
-                /* On a stable hit: 16 ulps past the band, a miss and the other face must
-                 * all be caught. */
-                if (b.exact.hit && !b.decision_unstable) {
-                    float late = (float)(b.t_hi + 16 * cylref_float_ulp(b.t_hi));
-                    double u;
-                    caught_of++;
-                    caught += sphref_judge(&b, 1, b.exact.part, late, &u) == 0 && u > 8;
-                    caught += sphref_judge(&b, 0, 0, 0, &u) == 1;
-                    caught += sphref_judge(&b, 1, b.exact.part ^ CYLRAY_BACKFACE,
-                                           (float)b.exact.t, &u) == 2;
-                }
+                caught += ref_catch_defects(sphref_judge, &b, &caught_of);
             }
         }
         printf("sph band %-16s %4d/%d hits, %4d unstable, double solver: %d judged bad, worst "
