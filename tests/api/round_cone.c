@@ -137,38 +137,23 @@ static void hands(void)
     const cylray_round_cone nested = {{0, 0, 0}, {0, 0, 0.25f}, 1, 0.5f, CYLRAY_CAPPED_LO};
     cylray_round_cone nested_open = nested;
     nested_open.flags = CYLRAY_CAPPED_HI; /* the smaller sphere's flag drops nothing */
+    /* a case a line, as a table reads */
+    /* clang-format off */
     const hand h[] = {
         {"capsule side", capsule, {4, 0, 0.5f}, {-1, 0, 0}, 1, CYLRAY_SIDE, 3.5f},
         {"capsule cap hi", capsule, {0, 0, 4}, {0, 0, -1}, 1, CYLRAY_CAP_HI, 2.5f},
         {"capsule cap lo", capsule, {0, 0, -4}, {0, 0, 1}, 1, CYLRAY_CAP_LO, 2.5f},
         {"capsule seam", capsule, {4, 0, 1}, {-1, 0, 0}, 1, -1, 3.5f},
-        {"capsule from inside",
-         capsule,
-         {0, 0, 0},
-         {1, 0, 0},
-         1,
-         CYLRAY_SIDE | CYLRAY_BACKFACE,
-         0.5f},
-        {"through the open end onto the far cap",
-         open_lo,
-         {0, 0, -4},
-         {0, 0, 1},
-         1,
-         CYLRAY_CAP_HI | CYLRAY_BACKFACE,
-         5.5f},
-        {"through the open end onto the side",
-         open_lo,
-         {0, 0, -2},
-         {0.25f, 0, 1},
-         1,
-         CYLRAY_SIDE | CYLRAY_BACKFACE,
-         2},
+        {"capsule from inside", capsule, {0, 0, 0}, {1, 0, 0}, 1, CYLRAY_SIDE | CYLRAY_BACKFACE, 0.5f},
+        {"through the open end onto the far cap", open_lo, {0, 0, -4}, {0, 0, 1}, 1, CYLRAY_CAP_HI | CYLRAY_BACKFACE, 5.5f},
+        {"through the open end onto the side", open_lo, {0, 0, -2}, {0.25f, 0, 1}, 1, CYLRAY_SIDE | CYLRAY_BACKFACE, 2},
         {"point end: the side", point, {8, 0, 2}, {-1, 0, 0}, 1, CYLRAY_SIDE, 6.5f},
         {"point end: the cap", point, {0, 0, 9}, {0, 0, -1}, 1, CYLRAY_CAP_HI, 1},
         {"point end: its apex", point, {0, 0, -2}, {0, 0, 1}, 1, CYLRAY_SIDE, 2},
         {"nested: the larger sphere", nested, {0, 0, 4}, {0, 0, -1}, 1, CYLRAY_CAP_LO, 3},
         {"nested, its end open", nested_open, {0, 0, 4}, {0, 0, -1}, 0, 0, 0},
     };
+    /* clang-format on */
     for (size_t i = 0; i < sizeof h / sizeof h[0]; i++)
         check_hand(&h[i]);
 }
